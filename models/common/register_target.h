@@ -1,0 +1,42 @@
+#pragma once
+// Answers a register access carried by a TLM transaction, for every register slave alike:
+// registers are 32-bit words at word-aligned offsets, read and written whole, big-endian on
+// the bus (see byte_order.h). Anything else is answered with the TLM error response that
+// names what was wrong, never an assert.
+#include <cstdint>
+#include <tlm>
+
+#include "byte_order.h"
+
+namespace surfvp {
+
+// `access(offset, value, is_write)` reads into or writes from `value`; it returns false for
+// an offset that holds no register.
+template <typename Access>
+void answer_register_access(tlm::tlm_generic_payload& tx, Access&& access) {
+    const bool whole_word = tx.get_data_length() == 4 && tx.get_streaming_width() == 4 &&
+                            tx.get_address() % 4 == 0;
+    if (tx.get_byte_enable_ptr() != nullptr) {
+        tx.set_response_status(tlm::TLM_BYTE_ENABLE_ERROR_RESPONSE);
+        return;
+    }
+    if (!whole_word) {
+        tx.set_response_status(tlm::TLM_BURST_ERROR_RESPONSE);
+        return;
+    }
+    const auto offset = static_cast<uint32_t>(tx.get_address());
+    uint32_t value = 0;
+    bool ok = false;
+    if (tx.is_write()) {
+        value = load_be32(tx.get_data_ptr());
+        ok = access(offset, value, true);
+    } else if (tx.is_read()) {
+        ok = access(offset, value, false);
+        if (ok) store_be32(tx.get_data_ptr(), value);
+    } else {
+        ok = true;  // TLM_IGNORE_COMMAND
+    }
+    tx.set_response_status(ok ? tlm::TLM_OK_RESPONSE : tlm::TLM_ADDRESS_ERROR_RESPONSE);
+}
+
+}  // namespace surfvp

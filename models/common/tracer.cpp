@@ -1,0 +1,116 @@
+#include "tracer.h"
+
+#include <cstdio>
+#include <filesystem>
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+namespace surfvp {
+namespace fs = std::filesystem;
+namespace {
+
+// SystemC appends ".vcd" to the name it is given.
+const char* const kVcdTemp = "trace.vcd.partial";
+const char* const kPerfettoTemp = "trace.perfetto.json.partial";
+
+// Trace-event timestamps are microseconds; the simulator resolves picoseconds.
+std::string micros(const sc_core::sc_time& t) {
+    const auto ps = t.value();
+    return fmt::format("{}.{:06}", ps / 1000000, ps % 1000000);
+}
+
+std::string json_string(std::string_view text) { return nlohmann::json(std::string(text)).dump(); }
+
+}  // namespace
+
+Tracer::Tracer(const Options& options) : options_(options) {
+    if (options.vcd) {
+        vcd_ = sc_core::sc_create_vcd_trace_file((fs::path(options.dir) / kVcdTemp).string().c_str());
+        vcd_->set_time_unit(1, sc_core::SC_PS);
+    }
+    if (options.perfetto) {
+        perfetto_.open(fs::path(options.dir) / kPerfettoTemp, std::ios::binary | std::ios::trunc);
+        if (!perfetto_) throw std::runtime_error("cannot write " + (fs::path(options.dir) / kPerfettoTemp).string());
+        perfetto_ << "{\"displayTimeUnit\":\"ns\",\"traceEvents\":[";
+    }
+}
+
+Tracer::~Tracer() {
+    if (finished_) return;
+    // A run that did not finish removes its partial files rather than leave them behind.
+    if (vcd_) sc_core::sc_close_vcd_trace_file(vcd_);
+    if (perfetto_.is_open()) perfetto_.close();
+    std::error_code ignored;
+    fs::remove(fs::path(options_.dir) / (std::string(kVcdTemp) + ".vcd"), ignored);
+    fs::remove(fs::path(options_.dir) / kPerfettoTemp, ignored);
+}
+
+void Tracer::event_separator() {
+    perfetto_ << (first_event_ ? "\n" : ",\n");
+    first_event_ = false;
+}
+
+int Tracer::group_id(const std::string& group) {
+    for (size_t i = 0; i < groups_.size(); ++i)
+        if (groups_[i] == group) return static_cast<int>(i) + 1;
+    groups_.push_back(group);
+    const int pid = static_cast<int>(groups_.size());
+    event_separator();
+    perfetto_ << fmt::format(R"({{"ph":"M","name":"process_name","pid":{},"tid":0,"args":{{"name":{}}}}})", pid,
+                             json_string(group));
+    event_separator();
+    perfetto_ << fmt::format(R"({{"ph":"M","name":"process_sort_index","pid":{},"tid":0,"args":{{"sort_index":{}}}}})",
+                             pid, pid);
+    return pid;
+}
+
+int Tracer::track(const std::string& group, const std::string& name) {
+    if (!perfetto_on()) return -1;
+    const int pid = group_id(group);
+    const int tid = static_cast<int>(tracks_.size()) + 1;
+    tracks_.push_back({pid, tid});
+    event_separator();
+    perfetto_ << fmt::format(R"({{"ph":"M","name":"thread_name","pid":{},"tid":{},"args":{{"name":{}}}}})", pid, tid,
+                             json_string(name));
+    event_separator();
+    perfetto_ << fmt::format(R"({{"ph":"M","name":"thread_sort_index","pid":{},"tid":{},"args":{{"sort_index":{}}}}})",
+                             pid, tid, tid);
+    return static_cast<int>(tracks_.size()) - 1;
+}
+
+void Tracer::slice(int track, std::string_view name, const sc_core::sc_time& start, const sc_core::sc_time& end) {
+    if (!perfetto_on() || track < 0) return;
+    const Track& t = tracks_[track];
+    event_separator();
+    perfetto_ << fmt::format(R"({{"ph":"X","name":{},"pid":{},"tid":{},"ts":{},"dur":{}}})", json_string(name), t.pid,
+                             t.tid, micros(start), micros(end - start));
+}
+
+void Tracer::counter(int track, std::string_view name, const sc_core::sc_time& at, double value) {
+    if (!perfetto_on() || track < 0) return;
+    event_separator();
+    perfetto_ << fmt::format(R"({{"ph":"C","name":{},"pid":{},"ts":{},"args":{{"value":{}}}}})", json_string(name),
+                             tracks_[track].pid, micros(at), value);
+}
+
+std::vector<std::string> Tracer::finish() {
+    std::vector<std::string> written;
+    const fs::path dir(options_.dir);
+    if (vcd_) {
+        sc_core::sc_close_vcd_trace_file(vcd_);
+        vcd_ = nullptr;
+        fs::rename(dir / (std::string(kVcdTemp) + ".vcd"), dir / "trace.vcd");
+        written.push_back((dir / "trace.vcd").string());
+    }
+    if (perfetto_.is_open()) {
+        perfetto_ << "\n]}\n";
+        perfetto_.close();
+        if (!perfetto_) throw std::runtime_error("writing the Perfetto trace failed");
+        fs::rename(dir / kPerfettoTemp, dir / "trace.perfetto.json");
+        written.push_back((dir / "trace.perfetto.json").string());
+    }
+    finished_ = true;
+    return written;
+}
+
+}  // namespace surfvp

@@ -1,0 +1,65 @@
+#pragma once
+// The trace writers every model plugs into: a VCD through sc_trace (GTKWave) and a Chrome
+// trace-event JSON timeline (Perfetto). Either can be off; a model asks `perfetto_on()` before
+// building a slice's name, so tracing costs a branch when off. Files are written under
+// temporary names and renamed by finish(), so an interrupted run leaves no half file
+// under the final name.
+#include <cstdint>
+#include <fstream>
+#include <string>
+#include <string_view>
+#include <systemc>
+#include <vector>
+
+namespace surfvp {
+
+class Tracer {
+public:
+    struct Options {
+        bool vcd = false;
+        bool perfetto = false;
+        std::string dir;  // output folder; files are DIR/trace.vcd and DIR/trace.perfetto.json
+    };
+
+    Tracer() = default;  // everything off
+    explicit Tracer(const Options& options);
+    ~Tracer();
+    Tracer(const Tracer&) = delete;
+    Tracer& operator=(const Tracer&) = delete;
+
+    bool vcd_on() const { return vcd_ != nullptr; }
+    bool perfetto_on() const { return perfetto_.is_open(); }
+
+    // VCD: trace a signal under a dotted name ("plb2.write_busy"); call before sc_start.
+    template <typename T>
+    void signal(const sc_core::sc_signal_in_if<T>& s, const std::string& name) {
+        if (vcd_) sc_core::sc_trace(vcd_, s, name);
+    }
+
+    // Perfetto: a named track in a named group (a "process" with a "thread" in the
+    // trace-event format). Returns the track's id for slice() and counter().
+    int track(const std::string& group, const std::string& name);
+    void slice(int track, std::string_view name, const sc_core::sc_time& start, const sc_core::sc_time& end);
+    void counter(int track, std::string_view name, const sc_core::sc_time& at, double value);
+
+    // Closes the files and gives them their final names; returns the paths written.
+    std::vector<std::string> finish();
+
+private:
+    struct Track {
+        int pid;
+        int tid;
+    };
+    void event_separator();
+    int group_id(const std::string& group);
+
+    Options options_;
+    sc_core::sc_trace_file* vcd_ = nullptr;
+    std::ofstream perfetto_;
+    std::vector<std::string> groups_;
+    std::vector<Track> tracks_;
+    bool first_event_ = true;
+    bool finished_ = false;
+};
+
+}  // namespace surfvp

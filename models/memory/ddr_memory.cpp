@@ -1,0 +1,104 @@
+#include "ddr_memory.h"
+
+#include <algorithm>
+#include <cstdlib>
+#include <cstring>
+#include <fmt/format.h>
+#include <stdexcept>
+
+#include "models/common/clock.h"
+#include "models/common/dmi_rate.h"
+
+namespace surfvp {
+using sc_core::sc_time;
+
+void DdrMemory::FreeDeleter::operator()(uint8_t* p) const { std::free(p); }
+
+DdrMemory::DdrMemory(const sc_core::sc_module_name& name, const Params& params)
+    : sc_module(name), ports("ports"), params_(params) {
+    if (params.size.n == 0) throw std::invalid_argument(fmt::format("{}: memory size must be above zero", basename()));
+    if (params.efficiency <= 0 || params.efficiency > 1)
+        throw std::invalid_argument(fmt::format("{}: efficiency must be in (0, 1], not {}", basename(), params.efficiency));
+    storage_.reset(static_cast<uint8_t*>(std::calloc(params.size.n, 1)));
+    if (!storage_) throw std::runtime_error(fmt::format("{}: cannot allocate {}", basename(), format_bytes(params.size)));
+    ports.register_b_transport(this, &DdrMemory::b_transport);
+    ports.register_get_direct_mem_ptr(this, &DdrMemory::get_direct_mem_ptr);
+    ports.register_transport_dbg(this, &DdrMemory::transport_dbg);
+}
+
+void DdrMemory::name_port(const std::string& name) { port_stats_.push_back(PortStats{name}); }
+
+DdrMemory::PortStats& DdrMemory::stats(int port) {
+    while (port_stats_.size() <= static_cast<size_t>(port)) name_port(fmt::format("port{}", port_stats_.size()));
+    return port_stats_[port];
+}
+
+sc_time DdrMemory::latency() const { return cycles(params_.clock, params_.latency_cycles); }
+
+double DdrMemory::bytes_per_second() const {
+    return params_.width_bits / 8.0 * params_.transfers_per_clock * params_.clock.hz * params_.efficiency;
+}
+
+sc_time DdrMemory::access_time(uint64_t bytes) const { return latency() + transfer_time(bytes, bytes_per_second()); }
+
+bool DdrMemory::check(tlm::tlm_generic_payload& tx) const {
+    if (tx.get_address() + tx.get_data_length() > params_.size.n) {
+        tx.set_response_status(tlm::TLM_ADDRESS_ERROR_RESPONSE);
+        return false;
+    }
+    if (tx.get_byte_enable_ptr() != nullptr) {
+        tx.set_response_status(tlm::TLM_BYTE_ENABLE_ERROR_RESPONSE);
+        return false;
+    }
+    if (tx.get_streaming_width() < tx.get_data_length()) {
+        tx.set_response_status(tlm::TLM_BURST_ERROR_RESPONSE);
+        return false;
+    }
+    return true;
+}
+
+void DdrMemory::b_transport(int port, tlm::tlm_generic_payload& tx, sc_time& delay) {
+    if (!check(tx)) return;
+    uint8_t* cell = storage_.get() + tx.get_address();
+    const uint64_t bytes = tx.get_data_length();
+    PortStats& s = stats(port);
+    if (tx.is_write()) {
+        std::memcpy(cell, tx.get_data_ptr(), bytes);
+        ++s.writes;
+        s.bytes_written += bytes;
+    } else if (tx.is_read()) {
+        std::memcpy(tx.get_data_ptr(), cell, bytes);
+        ++s.reads;
+        s.bytes_read += bytes;
+    }
+    const sc_time request = sc_core::sc_time_stamp() + delay;
+    const sc_time start = std::max(request, dram_free_);
+    const sc_time transfer = transfer_time(bytes, bytes_per_second());
+    dram_free_ = start + transfer;
+    busy_ += transfer;
+    s.wait += start - request;
+    delay += (start - request) + access_time(bytes);
+    tx.set_response_status(tlm::TLM_OK_RESPONSE);
+}
+
+bool DdrMemory::get_direct_mem_ptr(int, tlm::tlm_generic_payload& tx, tlm::tlm_dmi& dmi) {
+    dmi.set_dmi_ptr(storage_.get());
+    dmi.set_start_address(0);
+    dmi.set_end_address(params_.size.n - 1);
+    dmi.allow_read_write();
+    dmi.set_read_latency(latency());
+    dmi.set_write_latency(latency());
+    if (DmiRate* rate = tx.get_extension<DmiRate>()) rate->limit(bytes_per_second());
+    return tx.get_address() < params_.size.n;
+}
+
+unsigned DdrMemory::transport_dbg(int, tlm::tlm_generic_payload& tx) {
+    const uint64_t address = tx.get_address();
+    if (address >= params_.size.n) return 0;
+    const auto n = static_cast<unsigned>(std::min<uint64_t>(tx.get_data_length(), params_.size.n - address));
+    if (tx.is_write()) std::memcpy(storage_.get() + address, tx.get_data_ptr(), n);
+    else if (tx.is_read()) std::memcpy(tx.get_data_ptr(), storage_.get() + address, n);
+    return n;
+}
+
+}  // namespace surfvp

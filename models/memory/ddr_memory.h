@@ -1,0 +1,78 @@
+#pragma once
+// DDR memory behind a multi-port controller (the EDK MPMC, DS643; PLATFORM_FACTS §2).
+// Each bus binds its own port. The DRAM itself is one shared resource: an access waits
+// until the DRAM is free, then streams its bytes at the controller's bandwidth after the
+// access latency. The latency of one access overlaps the transfer of the one before
+// (the controller pipelines commands), so only the transfers occupy the DRAM:
+//   bandwidth = width x clock x transfers_per_clock x efficiency
+//   start     = max(request, dram_free);   dram_free = start + bytes / bandwidth
+//   done      = start + latency cycles + bytes / bandwidth
+// DMI gives direct access to the storage (one array, byte order as in byte_order.h); its
+// latency and DmiRate carry the same formula (transfer_time()) for an uncontended access, so the time is
+// still accounted by the DMI user (without the contention).
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <systemc>
+#include <tlm>
+#include <tlm_utils/multi_passthrough_target_socket.h>
+#include <vector>
+
+#include "models/common/tracer.h"
+#include "models/common/units.h"
+
+namespace surfvp {
+
+class DdrMemory : public sc_core::sc_module {
+public:
+    struct Params {
+        Bytes size{256ull << 20};
+        Frequency clock{200e6};
+        unsigned width_bits = 64;
+        unsigned transfers_per_clock = 2;  // DDR: two transfers per clock
+        double efficiency = 0.8;           // fraction of the peak that sustained traffic gets
+        unsigned latency_cycles = 25;
+    };
+
+    struct PortStats {
+        std::string name;
+        uint64_t reads = 0, writes = 0;
+        uint64_t bytes_read = 0, bytes_written = 0;
+        sc_core::sc_time wait;  // time spent waiting for the DRAM behind another access
+    };
+
+    tlm_utils::multi_passthrough_target_socket<DdrMemory> ports;
+
+    DdrMemory(const sc_core::sc_module_name& name, const Params& params);
+
+    // Names the next port binding (for the report); call in binding order.
+    void name_port(const std::string& name);
+
+    // Uncontended time of one access of `bytes`, the formula above.
+    sc_core::sc_time access_time(uint64_t bytes) const;
+    sc_core::sc_time latency() const;
+    double bytes_per_second() const;
+
+    const std::vector<PortStats>& port_stats() const { return port_stats_; }
+    sc_core::sc_time busy() const { return busy_; }
+    const Params& params() const { return params_; }
+
+private:
+    void b_transport(int port, tlm::tlm_generic_payload& tx, sc_core::sc_time& delay);
+    bool get_direct_mem_ptr(int port, tlm::tlm_generic_payload& tx, tlm::tlm_dmi& dmi);
+    unsigned transport_dbg(int port, tlm::tlm_generic_payload& tx);
+    bool check(tlm::tlm_generic_payload& tx) const;
+    PortStats& stats(int port);
+
+    struct FreeDeleter {
+        void operator()(uint8_t* p) const;
+    };
+
+    Params params_;
+    std::unique_ptr<uint8_t[], FreeDeleter> storage_;  // zero pages from calloc: untouched memory costs nothing
+    std::vector<PortStats> port_stats_;
+    sc_core::sc_time dram_free_;
+    sc_core::sc_time busy_;
+};
+
+}  // namespace surfvp

@@ -1,0 +1,209 @@
+#include "plb_bus.h"
+
+#include <algorithm>
+#include <fmt/format.h>
+#include <stdexcept>
+
+#include "models/common/clock.h"
+#include "models/common/dmi_rate.h"
+
+namespace surfvp {
+using sc_core::sc_time;
+using sc_core::SC_ZERO_TIME;
+
+PlbBus::PlbBus(const sc_core::sc_module_name& name, const Params& params, Tracer& tracer)
+    : sc_module(name), masters("masters"), slaves("slaves"), params_(params), tracer_(tracer) {
+    if (params.width_bits != 32 && params.width_bits != 64 && params.width_bits != 128)
+        throw std::invalid_argument(fmt::format("{}: PLB width must be 32, 64 or 128 bit, not {}", basename(),
+                                                params.width_bits));
+    if (params.max_burst_beats < 2 || params.max_burst_beats > 16)
+        throw std::invalid_argument(fmt::format("{}: PLB bursts are 2 to 16 beats, not {}", basename(),
+                                                params.max_burst_beats));
+    masters.register_b_transport(this, &PlbBus::b_transport);
+    masters.register_get_direct_mem_ptr(this, &PlbBus::get_direct_mem_ptr);
+    masters.register_transport_dbg(this, &PlbBus::transport_dbg);
+    slaves.register_invalidate_direct_mem_ptr(this, &PlbBus::invalidate_direct_mem_ptr);
+
+    for (Path* path : {&read_, &write_}) {
+        path->busy = std::make_unique<sc_core::sc_signal<bool>>(fmt::format("{}_busy", path->name).c_str());
+        tracer_.signal(*path->busy, fmt::format("{}.{}_busy", basename(), path->name));
+        path->track = tracer_.track(basename(), fmt::format("{} data", path->name));
+        sc_core::sc_spawn_options options;
+        options.spawn_method();
+        options.dont_initialize();
+        options.set_sensitivity(&path->arbitrate);
+        sc_core::sc_spawn([this, path] { arbitrate(path); }, fmt::format("{}_arbiter", path->name).c_str(),
+                          &options);
+    }
+}
+
+void PlbBus::connect_master(tlm::tlm_base_initiator_socket<>& socket, const std::string& name) {
+    socket.bind(masters);
+    master_stats_.emplace_back();
+    master_stats_.back().name = name;
+    master_tracks_.push_back(tracer_.track(basename(), name));
+    read_.granted.emplace_back();
+    write_.granted.emplace_back();
+}
+
+void PlbBus::map(uint64_t base, uint64_t size, unsigned slave, const std::string& name) {
+    for (const Route& r : routes_)
+        if (base < r.base + r.size && r.base < base + size)
+            throw std::invalid_argument(fmt::format("{}: region {} [{:#x}, +{:#x}) overlaps {}", basename(), name,
+                                                    base, size, r.name));
+    routes_.push_back({base, size, slave, name});
+}
+
+void PlbBus::start_of_simulation() {
+    if (static_cast<size_t>(masters.size()) != master_stats_.size())
+        throw std::logic_error(fmt::format("{}: bind masters with connect_master()", basename()));
+}
+
+sc_time PlbBus::occupancy(uint64_t bytes, const sc_time& slave_time) const {
+    const uint64_t width_bytes = params_.width_bits / 8;
+    const uint64_t beats = std::max<uint64_t>(1, (bytes + width_bytes - 1) / width_bytes);
+    const uint64_t bursts = (beats + params_.max_burst_beats - 1) / params_.max_burst_beats;
+    const sc_time overhead = cycles(params_.clock, double(bursts * (params_.arbitration_cycles + params_.address_cycles)));
+    return overhead + std::max(cycles(params_.clock, double(beats)), slave_time);
+}
+
+sc_time PlbBus::transaction_time(uint64_t bytes) const { return occupancy(bytes, SC_ZERO_TIME); }
+
+const PlbBus::Route* PlbBus::decode(uint64_t address, uint64_t length) const {
+    for (const Route& r : routes_)
+        if (address >= r.base && address - r.base + length <= r.size) return &r;
+    return nullptr;
+}
+
+int PlbBus::pick(const Path& path) const {
+    const int n = static_cast<int>(master_stats_.size());
+    auto rank = [&](int master) {
+        if (params_.arbitration == Arbitration::fixed_priority) return master;
+        return (master - path.last_master - 1 + n) % n;  // the master after the last winner first
+    };
+    int best = 0;
+    for (int i = 1; i < static_cast<int>(path.pending.size()); ++i)
+        if (rank(path.pending[i].master) < rank(path.pending[best].master)) best = i;
+    return best;
+}
+
+// The path's arbiter: runs one delta after a request (so that every request made at the same
+// time is present) and whenever the path becomes free.
+void PlbBus::arbitrate(Path* path) {
+    const sc_time now = sc_core::sc_time_stamp();
+    if (path->in_flight) return;  // the winner re-arms us when its end is known
+    if (now < path->free_at) {
+        path->arbitrate.notify(path->free_at - now);
+        return;
+    }
+    if (path->pending.empty()) {
+        if (tracer_.vcd_on()) path->busy->write(false);
+        return;
+    }
+    const int index = pick(*path);
+    const int master = path->pending[index].master;
+    path->pending.erase(path->pending.begin() + index);
+    path->in_flight = true;
+    path->last_master = master;
+    if (tracer_.vcd_on()) path->busy->write(true);
+    path->granted[master].notify();
+}
+
+void PlbBus::await_grant(Path& path, int master) {
+    path.pending.push_back({master, sc_core::sc_time_stamp()});
+    path.arbitrate.notify(SC_ZERO_TIME);
+    sc_core::wait(path.granted[master]);
+}
+
+void PlbBus::b_transport(int master, tlm::tlm_generic_payload& tx, sc_time& delay) {
+    MasterStats& stats = master_stats_[master];
+    const uint64_t address = tx.get_address();
+    const uint64_t bytes = tx.get_data_length();
+    const Route* route = decode(address, bytes);
+    if (route == nullptr) {
+        // No slave claims the address: the bus answers after its address phase.
+        tx.set_response_status(tlm::TLM_ADDRESS_ERROR_RESPONSE);
+        delay += cycles(params_.clock, params_.arbitration_cycles + params_.address_cycles);
+        ++decode_errors_;
+        ++stats.errors;
+        return;
+    }
+    // The bus is a synchronisation point: requests are arbitrated at their true time.
+    if (delay > SC_ZERO_TIME) {
+        sc_core::wait(delay);
+        delay = SC_ZERO_TIME;
+    }
+    const sc_time requested = sc_core::sc_time_stamp();
+    Path& path = tx.is_write() ? write_ : read_;
+    await_grant(path, master);
+    const sc_time granted = sc_core::sc_time_stamp();
+
+    sc_time slave_time = SC_ZERO_TIME;
+    tx.set_address(address - route->base);
+    slaves[route->slave]->b_transport(tx, slave_time);
+    tx.set_address(address);
+
+    const sc_time duration = occupancy(bytes, slave_time);
+    path.free_at = granted + duration;
+    path.in_flight = false;
+    if (!path.pending.empty() || tracer_.vcd_on()) path.arbitrate.notify(duration);
+    delay = duration;
+
+    ++stats.transactions;
+    (tx.is_write() ? stats.bytes_written : stats.bytes_read) += bytes;
+    if (tx.get_response_status() != tlm::TLM_OK_RESPONSE) ++stats.errors;
+    stats.wait += granted - requested;
+    stats.busy += duration;
+    ++path.stats.transactions;
+    path.stats.bytes += bytes;
+    path.stats.busy += duration;
+    if (tracer_.perfetto_on()) trace_transaction(master, tx.is_write(), bytes, requested, granted, granted + duration);
+}
+
+void PlbBus::trace_transaction(int master, bool write, uint64_t bytes, const sc_time& requested,
+                               const sc_time& granted, const sc_time& end) {
+    const int track = master_tracks_[master];
+    if (granted > requested) tracer_.slice(track, "wait", requested, granted);
+    const std::string name = fmt::format("{} {} B", write ? "write" : "read", bytes);
+    tracer_.slice(track, name, granted, end);
+    tracer_.slice((write ? write_ : read_).track, fmt::format("{} {}", master_stats_[master].name, name), granted,
+                  end);
+}
+
+bool PlbBus::get_direct_mem_ptr(int, tlm::tlm_generic_payload& tx, tlm::tlm_dmi& dmi) {
+    const uint64_t address = tx.get_address();
+    const Route* route = decode(address, 1);
+    if (route == nullptr) return false;
+    tx.set_address(address - route->base);
+    const bool granted = slaves[route->slave]->get_direct_mem_ptr(tx, dmi);
+    tx.set_address(address);
+    if (!granted) return false;
+    // Back to bus addresses, clipped to the region; the bus adds its own cost (DmiRate).
+    dmi.set_start_address(dmi.get_start_address() + route->base);
+    dmi.set_end_address(std::min<uint64_t>(dmi.get_end_address() + route->base, route->base + route->size - 1));
+    const sc_time overhead = cycles(params_.clock, params_.arbitration_cycles + params_.address_cycles);
+    dmi.set_read_latency(dmi.get_read_latency() + overhead);
+    dmi.set_write_latency(dmi.get_write_latency() + overhead);
+    if (DmiRate* rate = tx.get_extension<DmiRate>()) rate->limit(params_.width_bits / 8.0 * params_.clock.hz);
+    return true;
+}
+
+unsigned PlbBus::transport_dbg(int, tlm::tlm_generic_payload& tx) {
+    const uint64_t address = tx.get_address();
+    const Route* route = decode(address, tx.get_data_length());
+    if (route == nullptr) return 0;
+    tx.set_address(address - route->base);
+    const unsigned n = slaves[route->slave]->transport_dbg(tx);
+    tx.set_address(address);
+    return n;
+}
+
+void PlbBus::invalidate_direct_mem_ptr(int slave, sc_dt::uint64 start, sc_dt::uint64 end) {
+    for (const Route& r : routes_) {
+        if (r.slave != static_cast<unsigned>(slave) || start >= r.size) continue;
+        const uint64_t last = std::min<uint64_t>(end, r.size - 1);
+        for (unsigned m = 0; m < masters.size(); ++m) masters[m]->invalidate_direct_mem_ptr(r.base + start, r.base + last);
+    }
+}
+
+}  // namespace surfvp

@@ -1,0 +1,130 @@
+#pragma once
+// PLB v4.6 bus (Xilinx DS531/DS561; PLATFORM_FACTS §2): address decode from the address map,
+// arbitration among several masters (round-robin or fixed priority), a data width and a
+// clock, fixed bursts of up to `max_burst_beats`, separate read and write data paths.
+//
+// Timing of one transaction of B bytes granted at time g (README.md has the derivation):
+//   beats  = ceil(B / (width/8)),  bursts = ceil(beats / max_burst_beats)
+//   end    = g + bursts x (arbitration + address) cycles + max(beats cycles, slave time)
+// The slave's time (its latency and its own transfer time, which the memory model returns)
+// overlaps the data beats: the data stream runs at the slower of the two.
+//
+// Contention is exact at transaction granularity: a master's request waits until its
+// local time, joins the path's queue, and an arbiter grants the path when it is free,
+// picking among the requests present by the policy. Wait time and busy time are recorded
+// per master. A transaction is granted whole (its bursts are not interleaved with other
+// masters'). Slaves must answer without calling wait().
+#include <cstdint>
+#include <deque>
+#include <memory>
+#include <string>
+#include <systemc>
+#include <tlm>
+#include <tlm_utils/multi_passthrough_initiator_socket.h>
+#include <tlm_utils/multi_passthrough_target_socket.h>
+#include <vector>
+
+#include "models/common/tracer.h"
+#include "models/common/units.h"
+
+namespace surfvp {
+
+class PlbBus : public sc_core::sc_module {
+public:
+    enum class Arbitration { round_robin, fixed_priority };
+
+    struct Params {
+        Frequency clock{100e6};
+        unsigned width_bits = 128;
+        unsigned max_burst_beats = 16;
+        unsigned arbitration_cycles = 3;
+        unsigned address_cycles = 1;
+        Arbitration arbitration = Arbitration::round_robin;
+    };
+
+    struct MasterStats {
+        std::string name;
+        uint64_t transactions = 0;
+        uint64_t bytes_read = 0;
+        uint64_t bytes_written = 0;
+        uint64_t errors = 0;
+        sc_core::sc_time wait;  // from request to grant, summed
+        sc_core::sc_time busy;  // from grant to end, summed
+    };
+
+    struct PathStats {
+        uint64_t transactions = 0;
+        uint64_t bytes = 0;
+        sc_core::sc_time busy;
+    };
+
+    tlm_utils::multi_passthrough_target_socket<PlbBus> masters;  // bind with connect_master()
+    tlm_utils::multi_passthrough_initiator_socket<PlbBus> slaves;
+
+    PlbBus(const sc_core::sc_module_name& name, const Params& params, Tracer& tracer);
+
+    // Masters are numbered in the order they connect; with fixed priority, 0 is highest.
+    void connect_master(tlm::tlm_base_initiator_socket<>& socket, const std::string& name);
+    // The region [base, base+size) goes to `slave` (the index of its slaves binding); the
+    // slave sees addresses relative to base.
+    void map(uint64_t base, uint64_t size, unsigned slave, const std::string& name);
+
+    // The documented formula for an uncontended transaction with a zero-time slave.
+    sc_core::sc_time transaction_time(uint64_t bytes) const;
+
+    const Params& params() const { return params_; }
+    const std::vector<MasterStats>& master_stats() const { return master_stats_; }
+    const PathStats& read_stats() const { return read_.stats; }
+    const PathStats& write_stats() const { return write_.stats; }
+    uint64_t decode_errors() const { return decode_errors_; }
+
+private:
+    struct Route {
+        uint64_t base;
+        uint64_t size;
+        unsigned slave;
+        std::string name;
+    };
+    struct Request {
+        int master;
+        sc_core::sc_time requested;
+    };
+    struct Path {
+        explicit Path(const char* path_name) : name(path_name) {}
+        const char* name;
+        std::vector<Request> pending;
+        sc_core::sc_time free_at;
+        bool in_flight = false;  // granted, end not yet known
+        int last_master = -1;
+        sc_core::sc_event arbitrate;
+        std::deque<sc_core::sc_event> granted;  // one per master
+        std::unique_ptr<sc_core::sc_signal<bool>> busy;
+        PathStats stats;
+        int track = -1;
+    };
+
+    void b_transport(int master, tlm::tlm_generic_payload& tx, sc_core::sc_time& delay);
+    bool get_direct_mem_ptr(int master, tlm::tlm_generic_payload& tx, tlm::tlm_dmi& dmi);
+    unsigned transport_dbg(int master, tlm::tlm_generic_payload& tx);
+    void invalidate_direct_mem_ptr(int slave, sc_dt::uint64 start, sc_dt::uint64 end);
+
+    void arbitrate(Path* path);
+    int pick(const Path& path) const;
+    void await_grant(Path& path, int master);
+    sc_core::sc_time occupancy(uint64_t bytes, const sc_core::sc_time& slave_time) const;
+    const Route* decode(uint64_t address, uint64_t length) const;
+    void trace_transaction(int master, bool write, uint64_t bytes, const sc_core::sc_time& requested,
+                           const sc_core::sc_time& granted, const sc_core::sc_time& end);
+    void start_of_simulation() override;
+
+    Params params_;
+    Tracer& tracer_;
+    std::vector<Route> routes_;
+    std::vector<MasterStats> master_stats_;
+    std::vector<int> master_tracks_;
+    Path read_{Path("read")};
+    Path write_{Path("write")};
+    uint64_t decode_errors_ = 0;
+};
+
+}  // namespace surfvp

@@ -1,0 +1,90 @@
+#pragma once
+// The PPC440 "ISS stub" (DESIGN: models/ppc440): it does not interpret PowerPC code; it runs
+// the software natively in an SC_THREAD and gives it the HAL (sw/hal/hal.h). Time comes
+// from what the software does: MMIO is a timed PLB1 transaction, memory copies go through
+// DMI and are charged the memory's and bus's latency and rate, and computation is charged
+// through consume(cycles) at the CPU clock. Local time runs ahead of the kernel up to the
+// global quantum (TLM-2.0 temporal decoupling) and is synchronised at every bus access and
+// interrupt wait.
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <systemc>
+#include <tlm>
+#include <tlm_utils/simple_initiator_socket.h>
+#include <tlm_utils/tlm_quantumkeeper.h>
+#include <vector>
+
+#include "models/common/tracer.h"
+#include "models/common/units.h"
+#include "sw/hal/hal.h"
+
+namespace surfvp {
+
+class Ppc440 : public sc_core::sc_module, private sw::Hal {
+public:
+    struct Params {
+        Frequency clock{400e6};
+        Duration quantum{1000000};  // 1 us
+        unsigned line_bytes = 32;   // memory accesses without DMI go in lines of this size
+    };
+    using Software = std::function<void(sw::Hal&)>;
+
+    struct Stats {
+        uint64_t mmio_reads = 0, mmio_writes = 0;
+        uint64_t bytes_read = 0, bytes_written = 0;
+        uint64_t cycles_consumed = 0;
+        uint64_t irq_waits = 0;
+        sc_core::sc_time irq_wait_time;
+    };
+
+    tlm_utils::simple_initiator_socket<Ppc440> bus;  // MPLB on PLB1
+    sc_core::sc_in<bool> irq;
+
+    Ppc440(const sc_core::sc_module_name& name, const Params& params, Software software, Tracer& tracer);
+
+    bool finished() const { return finished_; }
+    const sc_core::sc_event& done_event() const { return done_; }  // notified when the software returns
+    const sc_core::sc_time& finish_time() const { return finish_time_; }
+    const std::string& error() const { return error_; }  // empty unless the software threw
+    const Stats& stats() const { return stats_; }
+
+private:
+    void run();
+    uint32_t read32(uint32_t address) override;
+    void write32(uint32_t address, uint32_t value) override;
+    void read(uint32_t address, void* data, size_t bytes) override;
+    void write(uint32_t address, const void* data, size_t bytes) override;
+    void wait_for_irq() override;
+    void consume(uint64_t cycles) override;
+    void begin(const char* what) override;
+    void end() override;
+
+    void mmio(tlm::tlm_command command, uint32_t address, uint8_t* data);
+    void memory(tlm::tlm_command command, uint32_t address, uint8_t* data, size_t bytes);
+    bool dmi_covers(uint32_t address, size_t bytes, tlm::tlm_command command);
+    void invalidate_dmi(sc_dt::uint64 start, sc_dt::uint64 end);
+    sc_core::sc_time now() const;
+
+    Params params_;
+    Software software_;
+    Tracer& tracer_;
+    tlm_utils::tlm_quantumkeeper keeper_;
+    tlm::tlm_dmi dmi_;
+    double dmi_rate_ = 0;  // bytes per second along the DMI path
+    bool dmi_valid_ = false;
+    bool finished_ = false;
+    sc_core::sc_event done_;
+    sc_core::sc_time finish_time_;
+    std::string error_;
+    Stats stats_;
+    sc_core::sc_signal<bool> waiting_{"waiting_irq"};
+    struct OpenSpan {
+        std::string name;
+        sc_core::sc_time start;
+    };
+    std::vector<OpenSpan> spans_;
+    int track_ = -1;
+};
+
+}  // namespace surfvp

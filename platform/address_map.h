@@ -1,0 +1,31 @@
+#pragma once
+// The SoC's address map and interrupt lines (paper Fig. 3), named once: the platform wires
+// the bus decoders from it and the software includes it. Byte order is big-endian
+// throughout: see models/common/byte_order.h.
+//
+//   PLB1 (CPU's MPLB; register slaves):  DDR, INTC, test DMA registers
+//   PLB2 (DMA traffic, "increased capacity"): DDR only
+#include <cstdint>
+
+namespace surfvp::map {
+
+struct Region {
+    const char* name;
+    uint32_t base;
+    uint32_t size;
+};
+
+// DDR is at 0 on both buses; the window is 256 MiB (the ML507's DDR2), the installed
+// size is the memory.size parameter.
+constexpr Region ddr{"ddr", 0x0000'0000, 0x1000'0000};
+// The XPS INTC at EDK's default base.
+constexpr Region intc{"intc", 0x8180'0000, 0x0001'0000};
+// The standalone memory-to-memory DMA (smoke scenario's test master).
+constexpr Region dma{"dma", 0xC000'0000, 0x0001'0000};
+
+// Interrupt controller inputs (bit numbers in the INTC registers; lower is higher priority).
+namespace irq {
+constexpr unsigned dma = 0;
+}  // namespace irq
+
+}  // namespace surfvp::map

@@ -1,0 +1,85 @@
+// surfvp: the command line of the FPGA-SURF virtual platform.
+#include <CLI/CLI.hpp>
+#include <cstdio>
+#include <cstdlib>
+#include <exception>
+#include <systemc>
+
+#include "config.h"
+#include "parameters.h"
+#include "run.h"
+#include "scenario.h"
+
+namespace {
+
+using namespace surfvp;
+
+void add_scenario_options(CLI::App& command, RunOptions& options) {
+    command.add_option("scenario", options.scenario, "Scenario file, or the name of a shipped one (see `surfvp list`)")
+        ->required();
+    command.add_option("--set", options.sets, "Override a parameter: --set plb2.width='64 bit' (repeatable)")
+        ->type_name("KEY=VALUE");
+}
+
+int list_scenarios() {
+    for (const auto& s : shipped_scenarios()) std::printf("%-24s %s\n", s.name.c_str(), s.description.c_str());
+    return kExitOk;
+}
+
+int dispatch(int argc, char** argv) {
+    CLI::App app{"surfvp: a SystemC/TLM-2.0 virtual platform of the FPGA-SURF system-on-chip"};
+    app.set_version_flag("--version", std::string("surfvp ") + SURFVP_VERSION);
+    app.require_subcommand(1);
+    RunOptions options;
+
+    CLI::App* run = app.add_subcommand("run", "Simulate a scenario; write report.json/.md, config.yaml and traces");
+    add_scenario_options(*run, options);
+    run->add_option("--out", options.out, "Output folder (default: traces/<scenario name>)");
+    run->add_option("--trace", options.trace, "Which traces to write")
+        ->check(CLI::IsMember({"none", "vcd", "perfetto", "all"}))
+        ->default_val("all");
+    run->add_flag("--quiet,-q", options.quiet, "No progress or summary lines on stderr");
+
+    CLI::App* validate = app.add_subcommand("validate", "Check a scenario (and --set overrides) without running it");
+    add_scenario_options(*validate, options);
+    app.add_subcommand("list", "List the shipped scenarios with their descriptions");
+    app.add_subcommand("params", "Print every parameter with its default, range and source (Markdown)");
+
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError& e) {
+        const int code = app.exit(e);
+        return code == 0 ? kExitOk : kExitBadInput;
+    }
+    try {
+        if (*run) return run_scenario(options);
+        if (*validate) return validate_scenario(options);
+        if (app.got_subcommand("list")) return list_scenarios();
+        if (app.got_subcommand("params")) {
+            std::fputs(parameters_markdown().c_str(), stdout);
+            return kExitOk;
+        }
+    } catch (const ConfigError& e) {
+        std::fprintf(stderr, "surfvp: error: %s\n", e.what());
+        return kExitBadInput;
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "surfvp: internal error: %s\n", e.what());
+        return kExitInternal;
+    }
+    return kExitBadInput;
+}
+
+}  // namespace
+
+int sc_main(int argc, char** argv) {
+    // SystemC's informational notes (e.g. the VCD time unit) are not the user's business.
+    sc_core::sc_report_handler::set_actions(sc_core::SC_INFO, sc_core::SC_DO_NOTHING);
+    return dispatch(argc, argv);
+}
+
+// Our own main, ahead of libsystemc's: SystemC prints its banner before sc_main runs unless
+// this is set.
+int main(int argc, char** argv) {
+    setenv("SYSTEMC_DISABLE_COPYRIGHT_MESSAGE", "1", 0);
+    return sc_core::sc_elab_and_sim(argc, argv);
+}

@@ -1,0 +1,232 @@
+#include "parameters.h"
+
+#include <algorithm>
+#include <cmath>
+#include <fmt/format.h>
+#include <limits>
+
+#include "models/common/units.h"
+
+namespace surfvp {
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr double MHz = 1e6;
+constexpr double us = 1e6;  // in ps
+constexpr double s = 1e12;  // in ps
+constexpr double MiB = 1048576.0;
+
+// PLB1 and PLB2 share their structure; only the width's default and its reason differ.
+void add_plb(std::vector<ParamSpec>& t, const std::string& bus, const std::string& width, const std::string& width_source,
+             const std::string& role) {
+    t.push_back({bus + ".clock", ParamKind::frequency, "100 MHz", 1 * MHz, 1000 * MHz, {},
+                 role + " bus clock", "[S] ML507 design: PLB at 100 MHz (mch-plb-clk-period-ps = 10000)"});
+    t.push_back({bus + ".width", ParamKind::bits, width, 32, 128, {}, role + " data width: 32, 64 or 128 bit",
+                 width_source});
+    t.push_back({bus + ".max_burst", ParamKind::beats, "16 beats", 2, 16, {},
+                 "Longest fixed-length burst; longer transactions are split", "[S] Xilinx DS711/DS561: fixed bursts of 2-16 beats"});
+    t.push_back({bus + ".arbitration", ParamKind::choice, "round_robin", 0, 0, {"round_robin", "fixed_priority"},
+                 "Arbitration among masters (fixed priority: the first master connected wins)",
+                 "[A] PLB v4.6 supports both; round robin treats the masters alike"});
+    t.push_back({bus + ".arbitration_latency", ParamKind::cycles, "3 cycles", 0, 64, {},
+                 "Request-to-grant cycles paid by every burst",
+                 "[A] PLATFORM_FACTS: ~3-4 cycles of arbitration overhead per burst (not retrieved)"});
+    t.push_back({bus + ".address_latency", ParamKind::cycles, "1 cycle", 0, 64, {},
+                 "Address-phase cycles paid by every burst (no address pipelining modelled)",
+                 "[A] one address cycle; with arbitration, 4 cycles of overhead per burst"});
+}
+
+std::vector<ParamSpec> make_table() {
+    std::vector<ParamSpec> t;
+    t.push_back({"run.workload", ParamKind::choice, "smoke", 0, 0, {"smoke"}, "What the CPU runs",
+                 "[-] scenario choice"});
+    t.push_back({"run.max_time", ParamKind::duration, "10 s", 1, 3600 * s, {},
+                 "Simulated time after which a run that has not finished is stopped as stalled",
+                 "[A] a guard, far above any scenario's length"});
+
+    t.push_back({"cpu.clock", ParamKind::frequency, "400 MHz", 1 * MHz, 550 * MHz, {}, "PowerPC 440 core clock",
+                 "[S] ML507 reference design (Linux virtex440-ml507.dts, QEMU virtex_ml507): 400 MHz; 550 MHz is the device maximum"});
+    t.push_back({"cpu.quantum", ParamKind::duration, "1 us", 1, 1000 * us, {},
+                 "Temporal-decoupling quantum: how far the CPU runs ahead of the kernel between synchronisations",
+                 "[A] 100 PLB cycles: coarse enough to be fast, fine against millisecond frame phases"});
+    t.push_back({"cpu.cache_line", ParamKind::bytes, "32 B", 4, 256, {}, "Cache line; memory accesses without DMI go in lines",
+                 "[S] ML507 DTS: 32-byte L1 lines"});
+
+    add_plb(t, "plb1", "128 bit", "[S] ML507 DTS: mplb-dwidth = 0x80", "PLB1 (CPU and register slaves)");
+    add_plb(t, "plb2", "128 bit", "[A] the paper: PLB2 \"has accordingly increased capacity\" (Fig. 3 lost); 64 bit would do",
+            "PLB2 (IP DMA traffic)");
+
+    t.push_back({"memory.size", ParamKind::bytes, "256 MiB", 1 * MiB, 256 * MiB, {}, "Installed DDR", "[S] ML507: 256 MB DDR2"});
+    t.push_back({"memory.clock", ParamKind::frequency, "200 MHz", 50 * MHz, 800 * MHz, {}, "DDR clock",
+                 "[A] DDR2 at ~200 MHz on the ML507 class of boards"});
+    t.push_back({"memory.width", ParamKind::bits, "64 bit", 8, 256, {}, "DDR data width", "[A] 64-bit DDR2 DIMM"});
+    t.push_back({"memory.transfers_per_clock", ParamKind::count, "2", 1, 2, {}, "Data transfers per clock (2 for DDR)",
+                 "[S] DDR transfers on both clock edges"});
+    t.push_back({"memory.efficiency", ParamKind::real, "0.8", 0.01, 1, {},
+                 "Fraction of the peak bandwidth that sustained traffic gets",
+                 "[A] ~80 % burst efficiency (PLATFORM_FACTS §5.5)"});
+    t.push_back({"memory.latency", ParamKind::cycles, "25 cycles", 0, 1000, {},
+                 "Access latency at the DDR clock, before the first data",
+                 "[A] PLATFORM_FACTS: ~20-30 MPMC cycles read latency (no DS643 table retrieved)"});
+
+    t.push_back({"intc.inputs", ParamKind::count, "12", 1, 32, {}, "Interrupt inputs of the XPS INTC",
+                 "[S] ML507 DTS: xps_intc with 12 inputs"});
+
+    t.push_back({"dma.burst", ParamKind::beats, "16 beats", 1, 16, {}, "Burst length of the test DMA on PLB2",
+                 "[A] the longest PLB burst"});
+
+    t.push_back({"smoke.buffer", ParamKind::bytes, "64 KiB", 1, 16 * MiB, {}, "Bytes the test DMA copies per copy",
+                 "[A] test size: many bursts, well inside the L1-sized buffers of the chip's drivers"});
+    t.push_back({"smoke.copies", ParamKind::count, "4", 1, 1000000, {}, "Copies the smoke software runs one after another",
+                 "[A] test size"});
+    t.push_back({"smoke.polls", ParamKind::count, "3", 0, 1000000, {},
+                 "Status polls over PLB1 per copy before the CPU sleeps on the interrupt", "[A] test size"});
+    t.push_back({"smoke.poll_interval", ParamKind::cycles, "200 cycles", 0, 1e9, {}, "CPU cycles between status polls",
+                 "[A] a short delay loop"});
+    t.push_back({"smoke.src", ParamKind::address, "0x0010_0000", 0, 0xFFFFFFFF, {}, "Source buffer address in DDR",
+                 "[-] placement"});
+    t.push_back({"smoke.dst", ParamKind::address, "0x0020_0000", 0, 0xFFFFFFFF, {}, "Destination buffer address in DDR",
+                 "[-] placement"});
+    return t;
+}
+
+size_t edit_distance(std::string_view a, std::string_view b) {
+    std::vector<size_t> row(b.size() + 1);
+    for (size_t j = 0; j <= b.size(); ++j) row[j] = j;
+    for (size_t i = 1; i <= a.size(); ++i) {
+        size_t diagonal = row[0];
+        row[0] = i;
+        for (size_t j = 1; j <= b.size(); ++j) {
+            const size_t up = row[j];
+            row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] != b[j - 1])});
+            diagonal = up;
+        }
+    }
+    return row[b.size()];
+}
+
+double parse_address(const std::string& text) {
+    std::string digits;
+    for (char c : text)
+        if (c != '_') digits += c;
+    size_t used = 0;
+    unsigned long long value = 0;
+    try {
+        value = std::stoull(digits, &used, 0);
+    } catch (const std::exception&) {
+        used = 0;
+    }
+    if (digits.empty() || used != digits.size() || digits[0] == '-')
+        throw UnitError(fmt::format("'{}' is not an address: expected a number such as 0x0010_0000", text));
+    return double(value);
+}
+
+double parse_plain(const std::string& text, bool integer) {
+    size_t used = 0;
+    double value = 0;
+    try {
+        value = std::stod(text, &used);
+    } catch (const std::exception&) {
+        used = 0;
+    }
+    if (used == 0 || used != text.size())
+        throw UnitError(fmt::format("'{}' is not a {}", text, integer ? "whole number" : "number"));
+    if (integer && value != std::floor(value)) throw UnitError(fmt::format("'{}' is not a whole number", text));
+    return value;
+}
+
+std::string format_base(const ParamSpec& spec, double value) {
+    switch (spec.kind) {
+        case ParamKind::frequency: return format_frequency(Frequency{value});
+        case ParamKind::duration: return format_duration(Duration{uint64_t(value)});
+        case ParamKind::bits: return fmt::format("{} bit", uint64_t(value));
+        case ParamKind::bytes: return format_bytes(Bytes{uint64_t(value)});
+        case ParamKind::cycles: return fmt::format("{} cycles", uint64_t(value));
+        case ParamKind::beats: return fmt::format("{} beats", uint64_t(value));
+        case ParamKind::address: return fmt::format("{:#x}", uint64_t(value));
+        case ParamKind::count: return fmt::format("{}", uint64_t(value));
+        default: return fmt::format("{}", value);
+    }
+}
+
+}  // namespace
+
+const std::vector<ParamSpec>& parameter_table() {
+    static const std::vector<ParamSpec> table = make_table();
+    return table;
+}
+
+const ParamSpec* find_parameter(std::string_view key) {
+    for (const ParamSpec& p : parameter_table())
+        if (p.key == key) return &p;
+    return nullptr;
+}
+
+std::string closest_parameter(std::string_view key) {
+    std::string best;
+    size_t best_distance = 4;  // farther than three edits is no longer a typo
+    for (const ParamSpec& p : parameter_table()) {
+        const size_t d = edit_distance(key, p.key);
+        if (d < best_distance) {
+            best_distance = d;
+            best = p.key;
+        }
+    }
+    return best;
+}
+
+double parse_value(const ParamSpec& spec, const std::string& text) {
+    double value = 0;
+    switch (spec.kind) {
+        case ParamKind::frequency: value = parse_frequency(text).hz; break;
+        case ParamKind::duration: value = double(parse_duration(text).ps); break;
+        case ParamKind::bits: value = parse_bits(text); break;
+        case ParamKind::bytes: value = double(parse_bytes(text).n); break;
+        case ParamKind::cycles: value = double(parse_cycles(text)); break;
+        case ParamKind::beats: value = parse_beats(text); break;
+        case ParamKind::count: value = parse_plain(text, true); break;
+        case ParamKind::real: value = parse_plain(text, false); break;
+        case ParamKind::address: value = parse_address(text); break;
+        case ParamKind::choice:
+            if (std::find(spec.choices.begin(), spec.choices.end(), text) == spec.choices.end())
+                throw UnitError(fmt::format("'{}' is not one of: {}", text, fmt::join(spec.choices, ", ")));
+            return 0;
+    }
+    if (value < spec.min || value > spec.max)
+        throw UnitError(fmt::format("'{}' is out of range: {} must be between {} and {}", text, spec.key,
+                                    format_base(spec, spec.min), format_base(spec, spec.max)));
+    return value;
+}
+
+std::string describe_kind(const ParamSpec& spec) {
+    switch (spec.kind) {
+        case ParamKind::frequency: return "frequency (Hz, kHz, MHz, GHz)";
+        case ParamKind::duration: return "duration (ps, ns, us, ms, s)";
+        case ParamKind::bits: return "width (bit)";
+        case ParamKind::bytes: return "size (B, KiB, MiB, GiB)";
+        case ParamKind::cycles: return "clock cycles (cycles)";
+        case ParamKind::beats: return "bus beats (beats)";
+        case ParamKind::count: return "whole number";
+        case ParamKind::real: return "number";
+        case ParamKind::address: return "address";
+        case ParamKind::choice: return fmt::format("one of {}", fmt::join(spec.choices, ", "));
+    }
+    return "";
+}
+
+std::string parameters_markdown() {
+    std::string out =
+        "# surfvp parameters\n\n"
+        "Every parameter a scenario can set, with its default and where the default comes from:\n"
+        "**[S]** sourced, **[D]** derived, **[A]** assumed (the reason follows), **[-]** a choice, not a\n"
+        "fact. Generated by `surfvp params`; a test keeps this file equal to its output.\n\n"
+        "| key | default | range | kind | what it is | source |\n|---|---|---|---|---|---|\n";
+    for (const ParamSpec& p : parameter_table()) {
+        std::string range = p.kind == ParamKind::choice ? "" : fmt::format("{} .. {}", format_base(p, p.min), format_base(p, p.max));
+        out += fmt::format("| `{}` | `{}` | {} | {} | {} | {} |\n", p.key, p.default_value, range, describe_kind(p),
+                           p.description, p.source);
+    }
+    return out;
+}
+
+}  // namespace surfvp

@@ -1,0 +1,41 @@
+#pragma once
+// Every scenario parameter, defined once: its key ("section.name"), the kind of value (and
+// so its units), its default, its range, a one-line description, and the source of the
+// default or the assumption behind it ([S] sourced, [D] derived, [A] assumed; see
+// docs/parameters.md, which `surfvp params` prints).
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace surfvp {
+
+enum class ParamKind { frequency, duration, bits, bytes, cycles, beats, count, real, choice, address };
+
+struct ParamSpec {
+    std::string key;
+    ParamKind kind;
+    std::string default_value;
+    double min;                        // in the kind's base unit (Hz, ps, bit, B, cycles, beats)
+    double max;
+    std::vector<std::string> choices;  // for ParamKind::choice
+    std::string description;
+    std::string source;
+};
+
+const std::vector<ParamSpec>& parameter_table();
+const ParamSpec* find_parameter(std::string_view key);
+
+// The closest known key to a misspelt one, or "" when none is close.
+std::string closest_parameter(std::string_view key);
+
+// Parses `text` as a value of `spec` and checks its range; returns the value in the kind's
+// base unit. Throws UnitError with a message naming what is wrong.
+double parse_value(const ParamSpec& spec, const std::string& text);
+
+// What values of this kind look like, for messages and docs ("a frequency, e.g. 100 MHz").
+std::string describe_kind(const ParamSpec& spec);
+
+// docs/parameters.md: the whole table as Markdown.
+std::string parameters_markdown();
+
+}  // namespace surfvp

@@ -1,0 +1,167 @@
+#include "run.h"
+
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <fmt/format.h>
+#include <unistd.h>
+
+#include "report.h"
+#include "scenario.h"
+#include "soc.h"
+
+namespace surfvp {
+namespace fs = std::filesystem;
+namespace {
+
+using WallClock = std::chrono::steady_clock;
+
+double since(WallClock::time_point start) {
+    return std::chrono::duration<double>(WallClock::now() - start).count();
+}
+
+Tracer::Options trace_options(const std::string& mode, const std::string& dir) {
+    if (mode != "none" && mode != "vcd" && mode != "perfetto" && mode != "all")
+        throw ConfigError(fmt::format("--trace {}: expected none, vcd, perfetto or all", mode));
+    return {mode == "vcd" || mode == "all", mode == "perfetto" || mode == "all", dir};
+}
+
+// A progress line on stderr once a run has taken a second of wall time.
+class ProgressLine {
+public:
+    ProgressLine(bool quiet, std::string name) : quiet_(quiet), name_(std::move(name)), tty_(isatty(2)) {}
+    ~ProgressLine() {
+        if (shown_ && tty_) std::fputc('\n', stderr);
+    }
+    void update(const Progress& p, double sim_s, double wall_s) {
+        if (quiet_ || wall_s < 1.0 || wall_s - last_ < 0.5) return;
+        last_ = wall_s;
+        shown_ = true;
+        std::fprintf(stderr, "%ssurfvp: %s: %llu/%llu %s, %.3f ms simulated, %.1f s wall, %.3gx real time%s",
+                     tty_ ? "\r" : "", name_.c_str(), (unsigned long long)p.done, (unsigned long long)p.total,
+                     p.unit.c_str(), sim_s * 1e3, wall_s, sim_s / wall_s, tty_ ? "" : "\n");
+    }
+
+private:
+    bool quiet_;
+    std::string name_;
+    bool tty_;
+    bool shown_ = false;
+    double last_ = 0;
+};
+
+struct Outcome {
+    sc_core::sc_time sim_time;
+    std::string failure;  // empty when the software ran to its end
+};
+
+// Simulates in slices until the software returns, a stall, or run.max_time.
+Outcome simulate(Soc& soc, const Config& config, ProgressLine& progress, WallClock::time_point start) {
+    const sc_core::sc_time limit(double(config.duration("run.max_time").ps), sc_core::SC_PS);
+    const sc_core::sc_time slice(100, sc_core::SC_US);
+    sc_core::sc_spawn_options pause_when_done;
+    pause_when_done.spawn_method();
+    pause_when_done.dont_initialize();
+    pause_when_done.set_sensitivity(&soc.cpu().done_event());
+    sc_core::sc_spawn([] { sc_core::sc_pause(); }, "pause_when_software_done", &pause_when_done);
+
+    while (!soc.cpu().finished()) {
+        if (sc_core::sc_time_stamp() >= limit)
+            return {sc_core::sc_time_stamp(), fmt::format("the software had not finished after run.max_time ({})",
+                                                          format_duration(config.duration("run.max_time")))};
+        if (sc_core::sc_time_stamp() > sc_core::SC_ZERO_TIME && !sc_core::sc_pending_activity())
+            return {sc_core::sc_time_stamp(),
+                    "stalled: nothing is left to simulate but the software has not finished "
+                    "(is it waiting for an interrupt that never comes?)"};
+        sc_core::sc_start(slice);
+        progress.update(soc.workload().progress(), sc_core::sc_time_stamp().to_seconds(), since(start));
+    }
+    if (!soc.cpu().error().empty()) return {soc.cpu().finish_time(), "software error: " + soc.cpu().error()};
+    return {soc.cpu().finish_time(), ""};
+}
+
+nlohmann::ordered_json build_report(const Config& config, Soc& soc, const Outcome& outcome, double wall_s,
+                                    const std::vector<std::string>& outputs) {
+    nlohmann::ordered_json checks = nlohmann::ordered_json::array();
+    bool passed = outcome.failure.empty();
+    for (const Check& c : soc.workload().checks()) {
+        checks.push_back({{"name", c.name}, {"passed", c.passed}, {"detail", c.detail}});
+        passed = passed && c.passed;
+    }
+    const double sim_s = outcome.sim_time.to_seconds();
+    const uint64_t transactions = soc.bus_transactions();
+    nlohmann::ordered_json r;
+    r["surfvp_version"] = SURFVP_VERSION;
+    r["scenario"] = {{"name", config.name}, {"file", config.file}, {"description", config.description}};
+    r["passed"] = passed;
+    if (!outcome.failure.empty()) r["failure"] = outcome.failure;
+    r["checks"] = checks;
+    r["budget"] = nullptr;  // this workload has no frame-rate budget
+    r["sim_time_s"] = sim_s;
+    r["wall_time_s"] = wall_s;
+    r["real_time_factor"] = wall_s > 0 ? sim_s / wall_s : 0.0;
+    r["transactions"] = transactions;
+    r["transactions_per_second"] = wall_s > 0 ? transactions / wall_s : 0.0;
+    r["wall_clock_fields"] = {"wall_time_s", "real_time_factor", "transactions_per_second"};
+    r["workload"] = soc.workload().report();
+    const nlohmann::ordered_json platform = soc.report(outcome.sim_time);
+    for (const auto& [key, value] : platform.items()) r[key] = value;
+    r["outputs"] = outputs;
+    return r;
+}
+
+fs::path output_dir(const RunOptions& options, const Config& config) {
+    const fs::path dir = options.out.empty() ? fs::path("traces") / config.name : fs::path(options.out);
+    std::error_code error;
+    fs::create_directories(dir, error);
+    if (error || !fs::is_directory(dir)) throw ConfigError(fmt::format("--out {}: cannot create the folder: {}", dir.string(), error.message()));
+    return dir;
+}
+
+}  // namespace
+
+int run_scenario(const RunOptions& options) {
+    const Config config = load_scenario(resolve_scenario(options.scenario), options.sets);
+    const Tracer::Options traces = trace_options(options.trace, "");
+    const fs::path dir = output_dir(options, config);
+    Tracer tracer({traces.vcd, traces.perfetto, dir.string()});
+    Soc soc(config, tracer);
+
+    const auto start = WallClock::now();
+    Outcome outcome;
+    {
+        ProgressLine progress(options.quiet, config.name);
+        outcome = simulate(soc, config, progress, start);
+    }
+    const double wall_s = since(start);
+
+    std::vector<std::string> outputs{"report.json", "report.md", "config.yaml"};
+    for (const std::string& f : tracer.finish()) outputs.push_back(fs::path(f).filename().string());
+    const nlohmann::ordered_json report = build_report(config, soc, outcome, wall_s, outputs);
+    write_file_atomically((dir / "config.yaml").string(), config.to_yaml());
+    write_file_atomically((dir / "report.md").string(), report_markdown(report));
+    write_file_atomically((dir / "report.json").string(), report.dump(2) + "\n");
+
+    if (!options.quiet)
+        std::fprintf(stderr, "surfvp: %s: %s in %.3f ms simulated (%.3f s wall); report in %s\n", config.name.c_str(),
+                     report["passed"].get<bool>() ? "passed" : "FAILED", outcome.sim_time.to_seconds() * 1e3, wall_s,
+                     (dir / "report.md").c_str());
+    return report["passed"].get<bool>() ? kExitOk : kExitFailed;
+}
+
+int validate_scenario(const RunOptions& options) {
+    const std::string path = resolve_scenario(options.scenario);
+    const Config config = load_scenario(path, options.sets);
+    Tracer tracer;  // elaborate with every trace off: catches what only the wiring can see
+    Soc soc(config, tracer);
+    size_t from_file = 0, from_set = 0;
+    for (const auto& e : config.entries()) {
+        if (e.origin == "--set") ++from_set;
+        else if (e.origin != "default") ++from_file;
+    }
+    std::printf("%s: ok: scenario '%s', %zu parameters (%zu from the file, %zu from --set, the rest defaults)\n",
+                path.c_str(), config.name.c_str(), config.entries().size(), from_file, from_set);
+    return kExitOk;
+}
+
+}  // namespace surfvp

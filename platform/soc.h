@@ -1,0 +1,41 @@
+#pragma once
+// The SoC of the paper's Fig. 3, built from a configuration: it instantiates the blocks,
+// binds their sockets and interrupt lines, and maps their regions from address_map.h.
+// It holds no behaviour of its own.
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <systemc>
+
+#include "config.h"
+#include "models/common/tracer.h"
+#include "models/dma/dma.h"
+#include "models/intc/intc.h"
+#include "models/memory/ddr_memory.h"
+#include "models/plb/plb_bus.h"
+#include "models/ppc440/ppc440.h"
+#include "workload.h"
+
+namespace surfvp {
+
+class Soc {
+public:
+    Soc(const Config& config, Tracer& tracer);  // elaborates; throws ConfigError
+
+    Ppc440& cpu() { return *cpu_; }
+    Workload& workload() { return *workload_; }
+
+    // Bus, memory, CPU and interrupt statistics over `elapsed` of simulated time.
+    nlohmann::ordered_json report(const sc_core::sc_time& elapsed) const;
+    uint64_t bus_transactions() const;
+
+private:
+    std::unique_ptr<Workload> workload_;
+    std::unique_ptr<DdrMemory> memory_;
+    std::unique_ptr<PlbBus> plb1_, plb2_;
+    std::unique_ptr<Intc> intc_;
+    std::unique_ptr<Dma> dma_;
+    std::unique_ptr<Ppc440> cpu_;
+    sc_core::sc_signal<bool> dma_irq_{"dma_irq"}, cpu_irq_{"cpu_irq"}, low_{"unused_irq"};
+};
+
+}  // namespace surfvp

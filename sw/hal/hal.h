@@ -1,0 +1,70 @@
+#pragma once
+// The hardware abstraction the CPU's software is written against (DESIGN principle 2): the
+// software reaches the chip only through MMIO, memory and interrupts, and says how much CPU
+// time its own computation takes. The VP's PPC440 stub implements it with timed TLM
+// transactions; a direct (untimed) implementation runs the same software without SystemC.
+#include <cstddef>
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+
+#include "models/common/byte_order.h"
+
+namespace surfvp::sw {
+
+// A bus transaction answered with an error; the software may catch it, else the run
+// reports it.
+struct BusError : std::runtime_error {
+    BusError(const std::string& what, uint32_t address) : std::runtime_error(what), address(address) {}
+    uint32_t address;
+};
+
+class Hal {
+public:
+    virtual ~Hal() = default;
+
+    // One uncached 32-bit register access (on the chip: over PLB1).
+    virtual uint32_t read32(uint32_t address) = 0;
+    virtual void write32(uint32_t address, uint32_t value) = 0;
+
+    // Memory (DDR), bytes in address order (byte_order.h), timed as the memory serves them.
+    virtual void read(uint32_t address, void* data, size_t bytes) = 0;
+    virtual void write(uint32_t address, const void* data, size_t bytes) = 0;
+
+    // Blocks until the CPU's interrupt input is high.
+    virtual void wait_for_irq() = 0;
+
+    // The software's own computation: `cycles` CPU clock cycles.
+    virtual void consume(uint64_t cycles) = 0;
+
+    // Marks a span of software work on the CPU's timeline (spans may nest).
+    virtual void begin(const char* what) = 0;
+    virtual void end() = 0;
+};
+
+// A big-endian 32-bit word in memory, as the PPC440 loads and stores it.
+inline uint32_t load32(Hal& hal, uint32_t address) {
+    uint8_t bytes[4];
+    hal.read(address, bytes, 4);
+    return load_be32(bytes);
+}
+
+inline void store32(Hal& hal, uint32_t address, uint32_t value) {
+    uint8_t bytes[4];
+    store_be32(bytes, value);
+    hal.write(address, bytes, 4);
+}
+
+// Marks a span for the length of a scope.
+class Span {
+public:
+    Span(Hal& hal, const char* what) : hal_(hal) { hal_.begin(what); }
+    ~Span() { hal_.end(); }
+    Span(const Span&) = delete;
+    Span& operator=(const Span&) = delete;
+
+private:
+    Hal& hal_;
+};
+
+}  // namespace surfvp::sw
