@@ -41,6 +41,12 @@ double DdrMemory::bytes_per_second() const {
 
 sc_time DdrMemory::access_time(uint64_t bytes) const { return latency() + transfer_time(bytes, bytes_per_second()); }
 
+uint8_t* DdrMemory::backdoor(uint64_t address, uint64_t bytes) {
+    if (address + bytes > params_.size.n)
+        throw std::out_of_range(fmt::format("{}: [{:#x}, +{}) is outside the memory", basename(), address, bytes));
+    return storage_.get() + address;
+}
+
 bool DdrMemory::check(tlm::tlm_generic_payload& tx) const {
     if (tx.get_address() + tx.get_data_length() > params_.size.n) {
         tx.set_response_status(tlm::TLM_ADDRESS_ERROR_RESPONSE);

@@ -53,6 +53,10 @@ public:
     sc_core::sc_time latency() const;
     double bytes_per_second() const;
 
+    // Untimed backdoor for loaders and tests: the storage of [address, address + bytes).
+    // Throws std::out_of_range outside the installed size.
+    uint8_t* backdoor(uint64_t address, uint64_t bytes);
+
     const std::vector<PortStats>& port_stats() const { return port_stats_; }
     sc_core::sc_time busy() const { return busy_; }
     const Params& params() const { return params_; }

@@ -87,8 +87,9 @@ int PlbBus::pick(const Path& path) const {
     return best;
 }
 
-// The path's arbiter: runs one delta after a request (so that every request made at the same
-// time is present) and whenever the path becomes free.
+// The path's arbiter: runs after a request and when the path becomes free. It decides one
+// delta after its first activation at a time, so that every request made at that time
+// (by masters whose processes run after it) is present when the policy picks.
 void PlbBus::arbitrate(Path* path) {
     const sc_time now = sc_core::sc_time_stamp();
     if (path->in_flight) return;  // the winner re-arms us when its end is known
@@ -96,6 +97,13 @@ void PlbBus::arbitrate(Path* path) {
         path->arbitrate.notify(path->free_at - now);
         return;
     }
+    if (!path->settling || path->settle_time != now) {
+        path->settling = true;
+        path->settle_time = now;
+        path->arbitrate.notify(SC_ZERO_TIME);
+        return;
+    }
+    path->settling = false;
     if (path->pending.empty()) {
         if (tracer_.vcd_on()) path->busy->write(false);
         return;

@@ -95,6 +95,8 @@ private:
         std::vector<Request> pending;
         sc_core::sc_time free_at;
         bool in_flight = false;  // granted, end not yet known
+        bool settling = false;   // waiting one delta for same-time requests
+        sc_core::sc_time settle_time;
         int last_master = -1;
         sc_core::sc_event arbitrate;
         std::deque<sc_core::sc_event> granted;  // one per master
