@@ -1,0 +1,52 @@
+#pragma once
+// Runs the surfvp binary as a user would, capturing exit code, stdout and stderr.
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <sys/wait.h>
+
+namespace surfvp::test {
+
+struct Cli {
+    int exit_code;
+    std::string out;
+    std::string err;
+};
+
+inline std::string slurp(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::stringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+
+inline Cli surfvp(const std::string& args) {
+    const auto dir = std::filesystem::temp_directory_path();
+    const std::string tag = std::to_string(::getpid());
+    const std::string out = (dir / ("surfvp_out_" + tag)).string(), err = (dir / ("surfvp_err_" + tag)).string();
+    const std::string command = std::string(SURFVP_BINARY) + " " + args + " >" + out + " 2>" + err;
+    const int status = std::system(command.c_str());
+    Cli result{WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(out), slurp(err)};
+    std::filesystem::remove(out);
+    std::filesystem::remove(err);
+    return result;
+}
+
+// A fresh empty folder under the temporary directory, unique to this test process.
+inline std::string fresh_dir(const std::string& name) {
+    const auto dir = std::filesystem::temp_directory_path() / ("surfvp_test_" + std::to_string(::getpid())) / name;
+    std::filesystem::remove_all(dir);
+    std::filesystem::create_directories(dir);
+    return dir.string();
+}
+
+inline std::string write_file(const std::string& dir, const std::string& name, const std::string& text) {
+    const std::string path = (std::filesystem::path(dir) / name).string();
+    std::ofstream(path) << text;
+    return path;
+}
+
+}  // namespace surfvp::test

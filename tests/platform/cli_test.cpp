@@ -1,0 +1,163 @@
+// The surfvp command line end to end, as an architect uses it.
+#include <filesystem>
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+#include <regex>
+
+#include "cli.h"
+#include "platform/parameters.h"
+#include "vcd_reader.h"
+
+namespace surfvp {
+namespace {
+namespace fs = std::filesystem;
+using test::fresh_dir;
+using test::slurp;
+using test::surfvp;
+
+const std::string kSmoke = std::string(SURFVP_SOURCE_DIR) + "/scenarios/smoke.yaml";
+
+TEST(Cli, SmokeRunWritesReportsAndTraces) {
+    const std::string out = fresh_dir("smoke");
+    const auto r = surfvp("run " + kSmoke + " --out " + out + " --quiet");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    for (const char* f : {"report.json", "report.md", "config.yaml", "trace.vcd", "trace.perfetto.json"})
+        EXPECT_TRUE(fs::exists(fs::path(out) / f)) << f;
+    for (const auto& entry : fs::directory_iterator(out))
+        EXPECT_EQ(entry.path().string().find(".partial"), std::string::npos) << entry.path();
+
+    const auto report = nlohmann::json::parse(slurp(out + "/report.json"));
+    const uint64_t moved = 64 * 1024 * 4;  // smoke.buffer x smoke.copies
+    EXPECT_TRUE(report["passed"].get<bool>());
+    EXPECT_EQ(report["workload"]["bytes_copied"].get<uint64_t>(), moved);
+    EXPECT_EQ(report["buses"]["plb2"]["masters"]["dma"]["bytes_read"].get<uint64_t>(), moved);
+    EXPECT_EQ(report["buses"]["plb2"]["masters"]["dma"]["bytes_written"].get<uint64_t>(), moved);
+    EXPECT_EQ(report["memory"]["ports"]["plb2"]["bytes_written"].get<uint64_t>(), moved);
+    EXPECT_GT(report["buses"]["plb1"]["read"]["transactions"].get<uint64_t>(), 0u);  // the CPU's polls
+    EXPECT_GT(report["buses"]["plb2"]["write"]["utilisation"].get<double>(), 0.0);
+    EXPECT_GT(report["sim_time_s"].get<double>(), 0.0);
+    EXPECT_GT(report["real_time_factor"].get<double>(), 0.0);
+}
+
+TEST(Cli, SmokeVcdHasBusyLinesAndInterrupts) {
+    const std::string out = fresh_dir("vcd");
+    ASSERT_EQ(surfvp("run " + kSmoke + " --out " + out + " --quiet --trace vcd").exit_code, 0);
+    EXPECT_FALSE(fs::exists(out + "/trace.perfetto.json"));
+    const auto vcd = test::Vcd::read(out + "/trace.vcd");
+    EXPECT_EQ(vcd.timescale, "1ps");
+    for (const char* s : {"plb1.read_busy", "plb1.write_busy", "plb2.read_busy", "plb2.write_busy", "dma.busy",
+                          "irq.dma", "irq.cpu", "cpu.waiting_irq"})
+        ASSERT_TRUE(vcd.changes.count(s)) << s;
+    EXPECT_EQ(vcd.rises("irq.dma"), 4u);  // one per copy
+    EXPECT_EQ(vcd.rises("irq.cpu"), 4u);
+    EXPECT_EQ(vcd.rises("dma.busy"), 4u);
+    EXPECT_GT(vcd.rises("plb2.write_busy"), 0u);
+    EXPECT_GT(vcd.rises("plb1.read_busy"), 0u);
+}
+
+TEST(Cli, SmokePerfettoTraceIsValidJsonWithTracksAndSlices) {
+    const std::string out = fresh_dir("perfetto");
+    ASSERT_EQ(surfvp("run " + kSmoke + " --out " + out + " --quiet --trace perfetto").exit_code, 0);
+    EXPECT_FALSE(fs::exists(out + "/trace.vcd"));
+    const auto trace = nlohmann::json::parse(slurp(out + "/trace.perfetto.json"));
+    std::set<std::string> tracks;
+    size_t dma_bursts = 0, bus_bursts = 0, cpu_spans = 0, counters = 0;
+    std::map<int, std::string> processes;
+    for (const auto& e : trace["traceEvents"]) {
+        if (e["ph"] == "M" && e["name"] == "process_name") processes[e["pid"]] = e["args"]["name"];
+        if (e["ph"] == "M" && e["name"] == "thread_name") tracks.insert(e["args"]["name"].get<std::string>());
+        if (e["ph"] == "X" && e["name"] == "write 256 B") ++dma_bursts;    // the master's track
+        if (e["ph"] == "X" && e["name"] == "dma write 256 B") ++bus_bursts;  // the bus's write-data track
+        if (e["ph"] == "X" && processes[e["pid"]] == "cpu") ++cpu_spans;
+        if (e["ph"] == "C") ++counters;
+    }
+    for (const char* t : {"cpu", "dma", "read data", "write data"}) EXPECT_TRUE(tracks.count(t)) << t;
+    EXPECT_EQ(dma_bursts, 4u * 256);  // 256 bursts per 64 KiB copy
+    EXPECT_EQ(bus_bursts, 4u * 256);
+    EXPECT_GT(cpu_spans, 4u * 4);
+    EXPECT_GT(counters, 0u);
+}
+
+TEST(Cli, SameScenarioGivesTheSameBytes) {
+    const std::string a = fresh_dir("a"), b = fresh_dir("b");
+    ASSERT_EQ(surfvp("run " + kSmoke + " --out " + a + " --quiet").exit_code, 0);
+    ASSERT_EQ(surfvp("run " + kSmoke + " --out " + b + " --quiet").exit_code, 0);
+    EXPECT_EQ(slurp(a + "/trace.perfetto.json"), slurp(b + "/trace.perfetto.json"));
+    EXPECT_EQ(slurp(a + "/config.yaml"), slurp(b + "/config.yaml"));
+    // VCD: all but SystemC's $date header; reports: all but the fields they list as wall-clock.
+    const std::regex date(R"(\$date[^$]*\$end)");
+    EXPECT_EQ(std::regex_replace(slurp(a + "/trace.vcd"), date, ""), std::regex_replace(slurp(b + "/trace.vcd"), date, ""));
+    auto ja = nlohmann::json::parse(slurp(a + "/report.json")), jb = nlohmann::json::parse(slurp(b + "/report.json"));
+    for (const auto& field : ja["wall_clock_fields"]) {
+        ja.erase(field.get<std::string>());
+        jb.erase(field.get<std::string>());
+    }
+    EXPECT_EQ(ja, jb);
+}
+
+TEST(Cli, ValidateNamesTheMisspeltKeyAndLine) {
+    const std::string dir = fresh_dir("validate");
+    const std::string path = test::write_file(dir, "bad.yaml", "name: bad\nplb2:\n  width: 64 bit\n  clokc: 100 MHz\n");
+    const auto r = surfvp("validate " + path);
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_NE(r.err.find(path + ":4"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("plb2.clokc"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("did you mean 'plb2.clock'"), std::string::npos) << r.err;
+}
+
+TEST(Cli, ValidateAcceptsAGoodScenario) {
+    const auto r = surfvp("validate " + kSmoke + " --set 'plb2.width=64 bit'");
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.out.find("ok"), std::string::npos);
+    EXPECT_NE(r.out.find("1 from --set"), std::string::npos) << r.out;
+}
+
+TEST(Cli, BadInputWritesNothingAndKeepsWhatWasThere) {
+    const std::string out = fresh_dir("keep");
+    test::write_file(out, "report.json", "earlier run");
+    const auto r = surfvp("run " + kSmoke + " --out " + out + " --set 'plb2.width=100 MHz'");
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_NE(r.err.find("plb2.width"), std::string::npos) << r.err;
+    EXPECT_EQ(slurp(out + "/report.json"), "earlier run");
+    EXPECT_EQ(std::distance(fs::directory_iterator(out), fs::directory_iterator{}), 1);
+}
+
+TEST(Cli, BufferOutsideMemoryIsBadInput) {
+    const auto r = surfvp("run smoke --out " + fresh_dir("outside") + " --set smoke.dst=0x0FFF_F000");
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_NE(r.err.find("smoke.dst"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("memory.size"), std::string::npos) << r.err;
+}
+
+TEST(Cli, UnknownCommandOrOptionIsBadInput) {
+    EXPECT_EQ(surfvp("frobnicate").exit_code, 2);
+    EXPECT_EQ(surfvp("run " + kSmoke + " --tracing all").exit_code, 2);
+    EXPECT_EQ(surfvp("run " + kSmoke + " --trace some").exit_code, 2);
+}
+
+TEST(Cli, ListShowsShippedScenariosWithDescriptions) {
+    const auto r = surfvp("list");
+    EXPECT_EQ(r.exit_code, 0);
+    EXPECT_NE(r.out.find("smoke"), std::string::npos);
+    EXPECT_NE(r.out.find("test DMA"), std::string::npos) << r.out;
+}
+
+TEST(Cli, VersionAndHelp) {
+    EXPECT_NE(surfvp("--version").out.find("surfvp 0."), std::string::npos);
+    for (const char* command : {"run", "validate", "list", "params"}) {
+        const auto r = surfvp(std::string(command) + " --help");
+        EXPECT_EQ(r.exit_code, 0) << command;
+        EXPECT_NE(r.out.find("Usage"), std::string::npos) << command;
+    }
+}
+
+TEST(Cli, ParameterDocMatchesTheTable) {
+    const auto r = surfvp("params");
+    EXPECT_EQ(r.exit_code, 0);
+    EXPECT_EQ(r.out, parameters_markdown());
+    EXPECT_EQ(slurp(std::string(SURFVP_SOURCE_DIR) + "/docs/parameters.md"), r.out)
+        << "docs/parameters.md is stale: regenerate it with `build/surfvp params > docs/parameters.md`";
+}
+
+}  // namespace
+}  // namespace surfvp
