@@ -1,0 +1,42 @@
+#!/usr/bin/env bash
+# Sets up a Debian 12 machine for surfvp and builds it (Release, into build/), then:
+#   run   simulates the default scenario
+#   test  runs the whole test suite through ctest
+# Installing is idempotent: only missing Debian packages are installed, so a second call
+# goes straight to the (incremental) build. Run as root or as a user with sudo.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+readonly DEFAULT_SCENARIO=scenarios/smoke.yaml
+readonly PACKAGES=(
+  build-essential cmake pkg-config
+  libsystemc-dev libyaml-cpp-dev libcli11-dev nlohmann-json3-dev libfmt-dev
+  libopencv-dev libeigen3-dev libgtest-dev libbenchmark-dev
+  opencv-doc visp-images-data   # real images for tests and scenarios
+)
+
+usage() { echo "usage: $0 run|test" >&2; exit 2; }
+[ $# -eq 1 ] || usage
+case "$1" in run|test) ;; *) usage ;; esac
+
+install_missing() {
+  local missing=()
+  for p in "${PACKAGES[@]}"; do
+    dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+  done
+  [ ${#missing[@]} -eq 0 ] && return
+  local sudo=""
+  [ "$(id -u)" -eq 0 ] || sudo=sudo
+  echo "surfvp: installing ${missing[*]}" >&2
+  $sudo apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+}
+
+install_missing
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release >/dev/null
+cmake --build build -j2
+
+case "$1" in
+  run) ./build/surfvp run "$DEFAULT_SCENARIO" ;;
+  test) cd build && ctest --output-on-failure -j2 ;;
+esac
