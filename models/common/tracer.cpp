@@ -3,7 +3,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fmt/format.h>
-#include <nlohmann/json.hpp>
+#include <iterator>
 
 namespace surfvp {
 namespace fs = std::filesystem;
@@ -19,7 +19,17 @@ std::string micros(const sc_core::sc_time& t) {
     return fmt::format("{}.{:06}", ps / 1000000, ps % 1000000);
 }
 
-std::string json_string(std::string_view text) { return nlohmann::json(std::string(text)).dump(); }
+// Event names are short and mostly plain: escape them here rather than build a JSON value
+// per event (the timeline writer is on every transaction's path when tracing is on).
+std::string json_string(std::string_view text) {
+    std::string out = "\"";
+    for (char c : text) {
+        if (c == '"' || c == '\\') out += '\\';
+        if (static_cast<unsigned char>(c) < 0x20) out += fmt::format("\\u{:04x}", unsigned(c));
+        else out += c;
+    }
+    return out + "\"";
+}
 
 }  // namespace
 
@@ -82,15 +92,15 @@ void Tracer::slice(int track, std::string_view name, const sc_core::sc_time& sta
     if (!perfetto_on() || track < 0) return;
     const Track& t = tracks_[track];
     event_separator();
-    perfetto_ << fmt::format(R"({{"ph":"X","name":{},"pid":{},"tid":{},"ts":{},"dur":{}}})", json_string(name), t.pid,
-                             t.tid, micros(start), micros(end - start));
+    fmt::format_to(std::ostreambuf_iterator<char>(perfetto_), R"({{"ph":"X","name":{},"pid":{},"tid":{},"ts":{},"dur":{}}})",
+                   json_string(name), t.pid, t.tid, micros(start), micros(end - start));
 }
 
 void Tracer::counter(int track, std::string_view name, const sc_core::sc_time& at, double value) {
     if (!perfetto_on() || track < 0) return;
     event_separator();
-    perfetto_ << fmt::format(R"({{"ph":"C","name":{},"pid":{},"ts":{},"args":{{"value":{}}}}})", json_string(name),
-                             tracks_[track].pid, micros(at), value);
+    fmt::format_to(std::ostreambuf_iterator<char>(perfetto_), R"({{"ph":"C","name":{},"pid":{},"ts":{},"args":{{"value":{}}}}})",
+                   json_string(name), tracks_[track].pid, micros(at), value);
 }
 
 std::vector<std::string> Tracer::finish() {
