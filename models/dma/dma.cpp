@@ -72,8 +72,11 @@ void Dma::update_irq() {
 }
 
 void Dma::copy_thread() {
+    // The buffer is a member: a thread that never returns is not unwound at the end of the
+    // simulation, so its locals would never be freed.
     DmaEngine engine(mplb, params_.burst_beats * params_.bus_width_bits / 8);
-    std::vector<uint8_t> buffer(engine.burst_bytes());
+    buffer_.resize(engine.burst_bytes());
+    std::vector<uint8_t>& buffer = buffer_;
     for (;;) {
         sc_core::wait(start_);
         busy_.write(true);

@@ -44,6 +44,7 @@ private:
     uint32_t ctrl_ = 0, status_ = 0, src_ = 0, dst_ = 0, len_ = 0, error_code_ = 0, error_addr_ = 0;
     sc_core::sc_event start_, irq_changed_;
     sc_core::sc_signal<bool> busy_{"busy"};
+    std::vector<uint8_t> buffer_;  // one burst
     uint64_t bytes_copied_ = 0, copies_ = 0;
     int track_ = -1;
 };

@@ -21,6 +21,7 @@ TEST(Cli, SmokeRunWritesReportsAndTraces) {
     const std::string out = fresh_dir("smoke");
     const auto r = surfvp("run " + kSmoke + " --out " + out + " --quiet");
     ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_EQ(r.err, "") << "--quiet prints nothing";
     for (const char* f : {"report.json", "report.md", "config.yaml", "trace.vcd", "trace.perfetto.json"})
         EXPECT_TRUE(fs::exists(fs::path(out) / f)) << f;
     for (const auto& entry : fs::directory_iterator(out))
@@ -76,6 +77,16 @@ TEST(Cli, SmokePerfettoTraceIsValidJsonWithTracksAndSlices) {
     EXPECT_EQ(bus_bursts, 4u * 256);
     EXPECT_GT(cpu_spans, 4u * 4);
     EXPECT_GT(counters, 0u);
+}
+
+TEST(Cli, LongRunsShowProgressOnStderr) {
+    // ~2 s of wall time: 6000 copies of 64 KiB without traces.
+    const auto r = surfvp("run smoke --trace none --set smoke.copies=6000 --out " + fresh_dir("progress"));
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.err.find("surfvp: smoke: "), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("/6000 copies"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("x real time"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("passed in"), std::string::npos) << r.err;
 }
 
 TEST(Cli, SameScenarioGivesTheSameBytes) {
