@@ -1,0 +1,144 @@
+#include "hessian_core.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <vector>
+
+namespace surfvp::fhg {
+namespace {
+
+void check(bool ok, const std::string& what) {
+    if (!ok) throw std::invalid_argument("fhg precision: " + what);
+}
+
+int64_t round_shift(int64_t v, unsigned shift) {
+    return shift ? (v + (int64_t(1) << (shift - 1))) >> shift : v;
+}
+
+int64_t saturate(int64_t v, unsigned bits) {
+    const int64_t hi = (int64_t(1) << (bits - 1)) - 1;
+    return std::clamp(v, -hi - 1, hi);
+}
+
+}  // namespace
+
+HessianCore::HessianCore(const Precision& p) : precision_(p) {
+    check(p.accumulator_bits >= 16 && p.accumulator_bits <= 32, "accumulator_bits must be 16..32");
+    check(p.response_bits >= 8 && p.response_bits <= 32, "response_bits must be 8..32");
+    check(p.response_frac_bits < p.response_bits, "response_frac_bits must be below response_bits");
+    check(p.recip_shift <= 24, "recip_shift must be 0..24");
+    check(p.weight_frac_bits >= 1 && p.weight_frac_bits <= 20, "weight_frac_bits must be 1..20");
+    check(p.det_bits >= 8 && p.det_bits <= 32, "det_bits must be 8..32");
+    check(p.det_frac_bits <= 2 * p.response_frac_bits, "det_frac_bits must not exceed 2 x response_frac_bits");
+    weight_ = std::llround(0.81 * double(int64_t(1) << p.weight_frac_bits));
+    for (int size : kSizes)
+        reciprocal_[size] = std::llround(std::ldexp(1.0, int(p.response_frac_bits + p.recip_shift)) / (size * size));
+}
+
+bool HessianCore::inside(int width, int height, int x, int y, int size) {
+    const int b = (size - 1) / 2;
+    return x >= b && y >= b && x + b < width && y + b < height;
+}
+
+int64_t HessianCore::wrap(int64_t sum) const {
+    const unsigned drop = 64 - precision_.accumulator_bits;
+    return int64_t(uint64_t(sum) << drop) >> drop;
+}
+
+int32_t HessianCore::finish(int64_t xx, int64_t yy, int64_t xy, int size) const {
+    const Precision& p = precision_;
+    const int64_t k = reciprocal_[size];
+    const int64_t rxx = saturate(round_shift(wrap(xx) * k, p.recip_shift), p.response_bits);
+    const int64_t ryy = saturate(round_shift(wrap(yy) * k, p.recip_shift), p.response_bits);
+    const int64_t rxy = saturate(round_shift(wrap(xy) * k, p.recip_shift), p.response_bits);
+    const int64_t det = rxx * ryy - round_shift(weight_ * rxy * rxy, p.weight_frac_bits);
+    return int32_t(saturate(round_shift(det, 2 * p.response_frac_bits - p.det_frac_bits), p.det_bits));
+}
+
+HessianCore::Sums HessianCore::sums(const IntegralView& ii, int x, int y, int size) const {
+    int64_t acc[3] = {0, 0, 0};
+    for (const Read& r : filter_reads(size)) {
+        const int rx = x + r.dx, ry = y + r.dy;
+        const int64_t value = (rx < 0 || ry < 0) ? 0 : ii.at(rx, ry);
+        acc[int(r.response)] += r.coefficient * value;
+    }
+    return {wrap(acc[0]), wrap(acc[1]), wrap(acc[2])};
+}
+
+int32_t HessianCore::determinant(const IntegralView& ii, int x, int y, int size) const {
+    if (!inside(ii.width, ii.height, x, y, size)) return 0;
+    const Sums s = sums(ii, x, y, size);
+    return finish(s.xx, s.yy, s.xy, size);
+}
+
+std::array<int32_t, kDeterminantsPerBlock> HessianCore::block(const IntegralView& ii, int bx, int by) const {
+    std::array<int32_t, kDeterminantsPerBlock> out{};
+    for (int k = 0; k < kDeterminantsPerBlock; ++k) {
+        const BlockDeterminant d = block_determinant(k);
+        out[k] = determinant(ii, 2 * bx + d.px, 2 * by + d.py, d.size);
+    }
+    return out;
+}
+
+// The fast path: for one filter and one image row, every read is a column offset into one
+// integral row, so the sums are loops over x that the compiler vectorises. Sums wrap in
+// 32-bit unsigned arithmetic, which is exact modulo 2^32 and so for any accumulator width
+// up to 32 bits; wrap() then narrows them.
+void HessianCore::row(const IntegralView& ii, int y, int size, int x0, int step, int count, int32_t* out,
+                      int out_stride) const {
+    const int b = (size - 1) / 2;
+    // Only x in [b, width - 1 - b] and y in [b, height - 1 - b] have determinants.
+    int first = 0, last = count;  // k range inside
+    while (first < count && x0 + first * step < b) ++first;
+    while (last > first && x0 + (last - 1) * step > ii.width - 1 - b) --last;
+    for (int k = 0; k < count; ++k)
+        if (k < first || k >= last || y < b || y > ii.height - 1 - b) out[k * out_stride] = 0;
+    if (first >= last || y < b || y > ii.height - 1 - b) return;
+
+    const int n = last - first;
+    thread_local std::vector<uint32_t> acc;
+    acc.assign(size_t(3) * n, 0);
+    thread_local std::vector<uint32_t> zeros;
+    if (zeros.size() < size_t(ii.width) + 1) zeros.assign(size_t(ii.width) + 1, 0);
+    for (const Read& r : filter_reads(size)) {
+        // Row -1 and column -1 of the integral image are zero.
+        const int ry = y + r.dy;
+        const int start = x0 + first * step + r.dx;
+        uint32_t* a = acc.data() + size_t(int(r.response)) * n;
+        const uint32_t c = uint32_t(r.coefficient);
+        if (ry < 0) continue;
+        const uint32_t* src = ii.row(ry);
+        int k = 0;
+        if (start < 0) k = 1;  // only the first sample can fall on column -1 (start >= -1)
+        if (step == 1)
+            for (; k < n; ++k) a[k] += c * src[start + k];
+        else
+            for (; k < n; ++k) a[k] += c * src[start + k * step];
+    }
+    for (int k = 0; k < n; ++k)
+        out[(first + k) * out_stride] = finish(int32_t(acc[k]), int32_t(acc[n + k]), int32_t(acc[2 * n + k]), size);
+}
+
+void HessianCore::block_row(const IntegralView& ii, int by, int32_t* out) const {
+    const int blocks = (ii.width + 1) / 2;
+    thread_local std::vector<int32_t> line;
+    line.assign(size_t(blocks) * 2, 0);  // one image row at one size (padded to even width)
+    for (int py = 0; py < 2; ++py) {
+        const int y = 2 * by + py;
+        for (int i = 0; i < 4; ++i) {
+            if (y < ii.height) row(ii, y, kSizes[i], 0, 1, ii.width, line.data(), 1);
+            else std::fill(line.begin(), line.end(), 0);
+            for (int x = 0; x < 2 * blocks; ++x)
+                out[(x / 2) * kDeterminantsPerBlock + 4 * i + 2 * py + x % 2] = x < ii.width ? line[x] : 0;
+        }
+    }
+    for (int j = 0; j < 2; ++j) row(ii, 2 * by, kSizes[4 + j], 0, 2, blocks, out + 16 + j, kDeterminantsPerBlock);
+}
+
+int32_t HessianCore::from_float(double det) const {
+    const double scaled = std::round(det * double(int64_t(1) << precision_.det_frac_bits));
+    return int32_t(saturate(int64_t(std::clamp(scaled, -9.2e18, 9.2e18)), precision_.det_bits));
+}
+
+}  // namespace surfvp::fhg
