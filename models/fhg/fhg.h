@@ -1,0 +1,110 @@
+#pragma once
+// SSA FHG, the Fast-Hessian generator (paper §III-C, Figs. 5-8). Arithmetic lives in
+// HessianCore, LocalMaxFinder and SequenceGenerator; this module moves data and spends time.
+//
+// Integral lines arrive over PixelBus into the MasterController's line FIFO (`fifo_lines`
+// lines; a sender waits while it is full). A block row (2 image rows) starts when the FIFO
+// holds every line its 52-line window needs; it takes blocks x block_cycles FHG cycles,
+// where block_cycles is the generated sequence's length or HessianCalc's reading of the 18
+// TripleMAC outputs, whichever is longer. Then the lines no later block row needs leave
+// the FIFO, the block row's determinants go to the writer (DMA over PLB2, 72-byte records),
+// and LocMaxFinder's candidates enter the maxima FIFO, which raises the interrupt at its
+// threshold and counts what it drops when full. The frame is done when the last
+// determinants are written plus the HessianCalc/LocMaxFinder pipeline latency.
+#include <cstdint>
+#include <deque>
+#include <systemc>
+#include <tlm>
+#include <tlm_utils/simple_initiator_socket.h>
+#include <tlm_utils/simple_target_socket.h>
+#include <vector>
+
+#include "hessian_core.h"
+#include "local_max_finder.h"
+#include "models/common/tracer.h"
+#include "models/common/units.h"
+#include "models/pixelbus/pixel_bus.h"
+#include "sequence_generator.h"
+
+namespace surfvp {
+
+class Fhg : public sc_core::sc_module, public PixelBusIf {
+public:
+    struct Params {
+        Frequency clock{100e6};
+        fhg::SequenceParams sequence;
+        fhg::Precision precision;
+        unsigned hessian_cycles_per_triple_mac = 1;  // HessianCalc reads one TripleMAC's 3 responses per cycle
+        unsigned pipeline_latency_cycles = 8;
+        unsigned maxima_fifo_depth = 1024;
+        unsigned burst_beats = 16;
+        unsigned bus_width_bits = 128;
+        unsigned det_row_buffers = 2;  // block rows of determinants waiting for the writer
+        unsigned max_width = 1024, max_height = 1024;
+    };
+
+    struct Stats {
+        uint64_t frames = 0, errors = 0, candidates = 0, dropped = 0;
+        unsigned fifo_high_water = 0, lines_high_water = 0;
+        sc_core::sc_time busy, computing, waiting_for_lines;
+    };
+
+    tlm_utils::simple_target_socket<Fhg> regs;     // SPLB on PLB1
+    tlm_utils::simple_initiator_socket<Fhg> mplb;  // determinants to DDR on PLB2
+    PixelBusIn pixels;                             // integral lines from the IIG
+    sc_core::sc_out<bool> irq;
+
+    Fhg(const sc_core::sc_module_name& name, const Params& params, Tracer& tracer);
+
+    const fhg::Sequence& sequence() const { return sequence_; }
+    int block_cycles() const { return block_cycles_; }  // per 2x2 block, at the FHG clock
+    const char* block_limit() const;                    // "sequence" or "HessianCalc"
+    const fhg::HessianCore& core() const { return core_; }
+    const Stats& stats() const { return stats_; }
+    const Params& params() const { return params_; }
+
+    void send_line(int y, const uint32_t* data, int width, const sc_core::sc_time& transfer) override;
+
+private:
+    void b_transport(tlm::tlm_generic_payload& tx, sc_core::sc_time& delay);
+    bool access(uint32_t offset, uint32_t& value, bool write);
+    void start();
+    void flag(uint32_t code);
+    void fail(uint32_t code);
+    void frame_thread();
+    void writer_thread();
+    void compute_block_row(int by, int32_t* records);
+    void push_candidates(const std::vector<fhg::Candidate>& candidates);
+    uint32_t pop_candidate();
+    void update_irq();
+    void trace_levels();
+
+    Params params_;
+    Tracer& tracer_;
+    fhg::HessianCore core_;
+    fhg::Sequence sequence_;
+    int block_cycles_;
+    uint32_t ctrl_ = 0, status_ = 0, error_code_ = 0, det_addr_ = 0, width_ = 0, height_ = 0;
+    uint32_t threshold_ = 0, fifo_threshold_ = 0, overflow_count_ = 0, candidate_count_ = 0;
+    struct Frame {
+        uint32_t det_addr, width, height, blocks_x, blocks_y;
+        int32_t threshold;
+        bool running, failed;
+        int received;         // lines received: rows 0 .. received-1
+        int oldest;           // first line still held in the FIFO
+        unsigned rows_written;
+        sc_core::sc_time began;
+    } frame_{};
+    std::vector<uint32_t> lines_;              // received integral rows (the FIFO's contents live here)
+    std::vector<std::vector<int32_t>> slots_;  // block rows of records for the writer
+    std::deque<uint32_t> maxima_;
+    sc_core::sc_fifo<int> det_rows_;  // block rows ready for the writer
+    sc_core::sc_event start_, line_arrived_, room_, rows_written_, irq_changed_;
+    sc_core::sc_signal<bool, sc_core::SC_MANY_WRITERS> busy_{"busy"};
+    sc_core::sc_signal<unsigned, sc_core::SC_MANY_WRITERS> fifo_level_{"maxima_fifo_level"};
+    sc_core::sc_signal<unsigned, sc_core::SC_MANY_WRITERS> line_level_{"line_fifo_level"};
+    Stats stats_;
+    int frame_track_ = -1, row_track_ = -1, level_track_ = -1;
+};
+
+}  // namespace surfvp

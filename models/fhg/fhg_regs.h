@@ -1,0 +1,54 @@
+#pragma once
+// SSA FHG registers and the determinant buffer's layout: the contract between the model
+// and libSSA2. 32-bit registers, big-endian on the bus (models/common/byte_order.h).
+#include <cstdint>
+
+namespace surfvp::fhg_regs {
+
+constexpr uint32_t CTRL = 0x00;            // START, IRQ_EN_DONE, IRQ_EN_FIFO, ABORT
+constexpr uint32_t STATUS = 0x04;          // BUSY, DONE, ERROR, FIFO_OVERFLOW, FIFO_IRQ; write 1 to clear DONE/ERROR/FIFO_OVERFLOW
+constexpr uint32_t ERROR_CODE = 0x08;      // ErrorCode of the last ERROR (read only)
+constexpr uint32_t DET_ADDR = 0x0C;        // determinant buffer (bus address on PLB2)
+constexpr uint32_t WIDTH = 0x10;           // pixels
+constexpr uint32_t HEIGHT = 0x14;          // rows
+constexpr uint32_t THRESHOLD = 0x18;       // signed, in determinant units (fixed point, det_frac_bits)
+constexpr uint32_t FIFO_DATA = 0x1C;       // reading pops one candidate word (bit 31 clear: FIFO was empty)
+constexpr uint32_t FIFO_LEVEL = 0x20;      // candidates waiting (read only)
+constexpr uint32_t FIFO_THRESHOLD = 0x24;  // FIFO_IRQ while FIFO_LEVEL >= this (0: never)
+constexpr uint32_t OVERFLOW_COUNT = 0x28;  // candidates dropped on a full FIFO this frame (read only)
+constexpr uint32_t CANDIDATES = 0x2C;      // candidates marked this frame (read only)
+constexpr uint32_t DET_FRAC_BITS = 0x30;   // fraction bits of determinants and THRESHOLD (read only)
+
+constexpr uint32_t CTRL_START = 1u << 0;
+constexpr uint32_t CTRL_IRQ_EN_DONE = 1u << 1;
+constexpr uint32_t CTRL_IRQ_EN_FIFO = 1u << 2;
+constexpr uint32_t CTRL_ABORT = 1u << 3;
+
+constexpr uint32_t STATUS_BUSY = 1u << 0;
+constexpr uint32_t STATUS_DONE = 1u << 1;
+constexpr uint32_t STATUS_ERROR = 1u << 2;
+constexpr uint32_t STATUS_FIFO_OVERFLOW = 1u << 3;
+constexpr uint32_t STATUS_FIFO_IRQ = 1u << 4;  // FIFO_LEVEL >= FIFO_THRESHOLD (read only)
+
+enum ErrorCode : uint32_t {
+    ERR_NONE = 0,
+    ERR_WRITE = 1,       // a determinant DMA write got an error response
+    ERR_SIZE = 2,        // WIDTH or HEIGHT zero or above the maximum
+    ERR_START_BUSY = 3,  // START while a frame was running (ignored)
+    ERR_ABORTED = 4,     // CTRL.ABORT
+    ERR_PIXELBUS = 5,    // a PixelBus line of another width than WIDTH
+};
+
+// The determinant buffer: one 72-byte record per 2x2 block, blocks in raster order
+// (record of block (bx, by) at DET_ADDR + (by x ceil(WIDTH/2) + bx) x 72). A record is 18
+// signed 32-bit big-endian determinants, index k:
+//   k = 4 i + 2 py + px  octave 1, size 9, 15, 21, 27 (i = 0..3) at pixel (2 bx + px, 2 by + py)
+//   k = 16, 17           octave 2, size 39, 51 at pixel (2 bx, 2 by)
+// (octave 2's sizes 15 and 27 are k = 4 and k = 12). A determinant whose filter does not
+// fit inside the image is 0.
+constexpr uint32_t kRecordBytes = 18 * 4;
+
+// Maxima FIFO word: [31] valid, [27] octave 2, [26:24] size index into 9, 15, 21, 27, 39, 51,
+// [23:12] y, [11:0] x (pixel of the candidate).
+
+}  // namespace surfvp::fhg_regs

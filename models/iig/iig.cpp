@@ -1,0 +1,188 @@
+#include "iig.h"
+
+#include <fmt/format.h>
+
+#include "iig_regs.h"
+#include "models/common/byte_order.h"
+#include "models/common/clock.h"
+#include "models/common/register_target.h"
+#include "models/dma/dma_engine.h"
+
+namespace surfvp {
+using sc_core::sc_time;
+
+Iig::Iig(const sc_core::sc_module_name& name, const Params& params, Tracer& tracer)
+    : sc_module(name),
+      regs("regs"),
+      mplb("mplb"),
+      pixels("pixels"),
+      irq("irq"),
+      params_(params),
+      tracer_(tracer),
+      core_(params.sum_bits),
+      fetched_("fetched", int(params.line_buffers)),
+      computed_for_write_("computed_for_write", int(params.line_buffers)),
+      computed_for_send_("computed_for_send", int(params.line_buffers)) {
+    if (params.pixels_per_clock == 0 || params.line_buffers == 0 || params.pixelbus_width_bits == 0)
+        throw std::invalid_argument(fmt::format("{}: pixels per clock, line buffers and PixelBus width must be above zero", basename()));
+    regs.register_b_transport(this, &Iig::b_transport);
+    SC_HAS_PROCESS(Iig);
+    SC_THREAD(fetch_thread);
+    SC_THREAD(compute_thread);
+    SC_THREAD(write_thread);
+    SC_THREAD(send_thread);
+    SC_METHOD(update_irq);
+    sensitive << irq_changed_;
+    dont_initialize();
+    tracer_.signal(busy_, fmt::format("{}.busy", basename()));
+    tracer_.signal(stalled_, fmt::format("{}.stalled", basename()));
+    track_ = tracer_.track(basename(), "frame");
+}
+
+bool Iig::access(uint32_t offset, uint32_t& value, bool write) {
+    uint32_t* reg = nullptr;
+    switch (offset) {
+        case iig::CTRL: reg = &ctrl_; break;
+        case iig::SRC: reg = &src_; break;
+        case iig::DST: reg = &dst_; break;
+        case iig::WIDTH: reg = &width_; break;
+        case iig::HEIGHT: reg = &height_; break;
+        case iig::SRC_STRIDE: reg = &src_stride_; break;
+        case iig::DST_STRIDE: reg = &dst_stride_; break;
+        case iig::STATUS: case iig::ERROR_CODE: case iig::STALL_CYCLES: break;
+        default: return false;
+    }
+    if (!write) {
+        value = offset == iig::STATUS ? status_ : offset == iig::ERROR_CODE ? error_code_
+              : offset == iig::STALL_CYCLES ? stall_cycles_ : *reg;
+        return true;
+    }
+    if (offset == iig::STATUS) {
+        status_ &= ~(value & (iig::STATUS_DONE | iig::STATUS_ERROR));
+    } else if (offset == iig::CTRL) {
+        ctrl_ = value & (iig::CTRL_IRQ_EN | iig::CTRL_STREAM);
+        if (value & iig::CTRL_ABORT) {
+            if (status_ & iig::STATUS_BUSY) fail(iig::ERR_ABORTED);
+        } else if (value & iig::CTRL_START) {
+            start();
+        }
+    } else if (reg) {
+        *reg = value;
+    }
+    irq_changed_.notify(sc_core::SC_ZERO_TIME);
+    return true;
+}
+
+void Iig::b_transport(tlm::tlm_generic_payload& tx, sc_time&) {
+    answer_register_access(tx, [this](uint32_t offset, uint32_t& value, bool write) {
+        return access(offset, value, write);
+    });
+}
+
+// Flags an error in STATUS; fail() also stops the frame in progress.
+void Iig::flag(uint32_t code) {
+    error_code_ = code;
+    status_ |= iig::STATUS_ERROR;
+    ++stats_.errors;
+}
+
+void Iig::fail(uint32_t code) {
+    flag(code);
+    frame_.failed = true;
+}
+
+void Iig::start() {
+    if (status_ & iig::STATUS_BUSY) return flag(iig::ERR_START_BUSY);
+    if (width_ == 0 || height_ == 0 || width_ > params_.max_width || height_ > params_.max_height)
+        return flag(iig::ERR_SIZE);
+    frame_ = {src_, dst_, width_, height_, src_stride_ ? src_stride_ : width_, dst_stride_ ? dst_stride_ : 4 * width_,
+              (ctrl_ & iig::CTRL_STREAM) != 0, false, 0, sc_core::sc_time_stamp()};
+    image_.assign(size_t(frame_.width) * frame_.height, 0);
+    integral_.assign(size_t(frame_.width) * frame_.height, 0);
+    bytes_.resize(size_t(frame_.width) * 4);
+    stall_total_ = sc_core::SC_ZERO_TIME;
+    status_ = iig::STATUS_BUSY;
+    busy_.write(true);
+    start_.notify(sc_core::SC_ZERO_TIME);
+}
+
+void Iig::fetch_thread() {
+    DmaEngine dma(mplb, params_.burst_beats * params_.bus_width_bits / 8);
+    for (;;) {
+        sc_core::wait(start_);
+        for (uint32_t y = 0; y < frame_.height; ++y) {
+            if (!frame_.failed) {
+                uint8_t* row = image_.data() + size_t(y) * frame_.width;
+                if (!dma.read(frame_.src + uint64_t(y) * frame_.src_stride, row, frame_.width).ok) fail(iig::ERR_READ);
+            }
+            fetched_.write(int(y));
+        }
+    }
+}
+
+void Iig::compute_thread() {
+    for (;;) {
+        int y = 0;
+        fetched_.read(y);  // read(T&): the returning read() trips -Wmaybe-uninitialized in sc_fifo.h
+        if (!frame_.failed) {
+            const size_t at = size_t(y) * frame_.width;
+            const uint32_t* above = y ? integral_.data() + at - frame_.width : nullptr;
+            if (!core_.row(image_.data() + at, above, integral_.data() + at, int(frame_.width))) fail(iig::ERR_OVERFLOW);
+            sc_core::wait(cycles(params_.clock, double((frame_.width + params_.pixels_per_clock - 1) / params_.pixels_per_clock)));
+        }
+        computed_for_write_.write(y);
+        if (frame_.stream) computed_for_send_.write(y);
+    }
+}
+
+void Iig::write_thread() {
+    DmaEngine dma(mplb, params_.burst_beats * params_.bus_width_bits / 8);
+    for (;;) {
+        int y = 0;
+        computed_for_write_.read(y);  // read(T&): the returning read() trips -Wmaybe-uninitialized in sc_fifo.h
+        if (!frame_.failed) {
+            const uint32_t* row = integral_.data() + size_t(y) * frame_.width;
+            for (uint32_t x = 0; x < frame_.width; ++x) store_be32(bytes_.data() + 4 * x, row[x]);
+            if (!dma.write(frame_.dst + uint64_t(y) * frame_.dst_stride, bytes_.data(), bytes_.size()).ok)
+                fail(iig::ERR_WRITE);
+        }
+        finish_row();
+    }
+}
+
+void Iig::send_thread() {
+    for (;;) {
+        int y = 0;
+        computed_for_send_.read(y);  // read(T&): the returning read() trips -Wmaybe-uninitialized in sc_fifo.h
+        if (!frame_.failed) {
+            const sc_time transfer = cycles(params_.clock, double(frame_.width) * 32 / params_.pixelbus_width_bits);
+            const sc_time began = sc_core::sc_time_stamp();
+            stalled_.write(true);
+            pixels->send_line(y, integral_.data() + size_t(y) * frame_.width, int(frame_.width), transfer);
+            stalled_.write(false);
+            stall_total_ += sc_core::sc_time_stamp() - began - transfer;
+        }
+        finish_row();
+    }
+}
+
+// A row is finished when it is written and, when streaming, sent; the frame when all are.
+void Iig::finish_row() {
+    if (++frame_.rows_finished < frame_.height * (frame_.stream ? 2 : 1)) return;
+    stall_cycles_ = uint32_t(stall_total_.to_seconds() * params_.clock.hz + 0.5);
+    stats_.stalled += stall_total_;
+    stats_.busy += sc_core::sc_time_stamp() - frame_.began;
+    ++stats_.frames;
+    status_ = (status_ & ~iig::STATUS_BUSY) | (frame_.failed ? 0 : iig::STATUS_DONE);
+    busy_.write(false);
+    if (tracer_.perfetto_on())
+        tracer_.slice(track_, fmt::format("integral {}x{}", frame_.width, frame_.height), frame_.began,
+                      sc_core::sc_time_stamp());
+    irq_changed_.notify(sc_core::SC_ZERO_TIME);
+}
+
+void Iig::update_irq() {
+    irq.write((ctrl_ & iig::CTRL_IRQ_EN) && (status_ & (iig::STATUS_DONE | iig::STATUS_ERROR)));
+}
+
+}  // namespace surfvp
