@@ -1,0 +1,87 @@
+// Homography files: OpenCV FileStorage (opencv-doc's H1to3p.xml) and Oxford plain text.
+#include "sw/eval/homography.h"
+
+#include <fstream>
+
+#include <Eigen/Dense>
+#include <gtest/gtest.h>
+#include <opencv2/core.hpp>
+
+#include "eval/eval_test_support.h"
+
+namespace surfvp::eval {
+namespace {
+
+TEST(Homography, ReadsOpenCvsGraffitiFileStorage) {
+    const std::string file = std::string(OPENCV_DATA_DIR) + "/H1to3p.xml";
+    ASSERT_TRUE(test::package_file(file, "opencv-doc"));
+    Eigen::Matrix3d h = read_homography_file(file);
+    EXPECT_EQ(h(0, 0), 7.6285898e-01);
+    EXPECT_EQ(h(0, 2), 2.2567123e+02);
+    EXPECT_EQ(h(1, 2), -7.6999973e+01);
+    EXPECT_EQ(h(2, 0), 3.4663091e-04);
+    EXPECT_EQ(h(2, 2), 1.0);
+}
+
+TEST(Homography, ReadsOxfordPlainTextAndYaml) {
+    test::TemporaryFolder dir;
+    std::ofstream(dir / "H1to2p") << "   8.7976964e-01   3.1245438e-01  -3.9430589e+01\n"
+                                     "  -1.8389418e-01   9.3847198e-01   1.5315784e+02\n"
+                                     "   1.9641425e-04  -1.6015275e-05   1.0000000e+00\n";
+    Eigen::Matrix3d h = read_homography_file(dir / "H1to2p");
+    EXPECT_EQ(h(0, 1), 3.1245438e-01);
+    EXPECT_EQ(h(1, 2), 1.5315784e+02);
+    EXPECT_EQ(h(2, 1), -1.6015275e-05);
+    cv::Mat m(3, 3, CV_64F);
+    for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c) m.at<double>(r, c) = h(r, c);
+    {
+        cv::FileStorage out((dir / "h.yml").string(), cv::FileStorage::WRITE);
+        out << "size" << 3 << "H12" << m;
+    }
+    EXPECT_EQ(read_homography_file(dir / "h.yml"), h);  // the 3x3 node, not the scalar
+}
+
+TEST(Homography, MalformedFilesAreNamed) {
+    test::TemporaryFolder dir;
+    std::ofstream(dir / "two_rows") << "1 0 0\n0 1 0\n";
+    std::ofstream(dir / "word") << "1 0 0\n0 one 0\n0 0 1\n";
+    std::ofstream(dir / "singular") << "1 2 3\n2 4 6\n0 0 1\n";
+    std::ofstream(dir / "no_matrix.xml") << "<?xml version=\"1.0\"?>\n<opencv_storage>\n"
+                                            "<n>3</n>\n</opencv_storage>\n";
+    struct Case { const char* file; std::size_t line; const char* problem; };
+    for (const Case& c : {Case{"two_rows", 2, "file ends after 2 of the 3 rows"},
+                          Case{"word", 2, "'one' is not a number"},
+                          Case{"singular", 0, "singular"},
+                          Case{"no_matrix.xml", 0, "no 3x3 matrix"}}) {
+        SCOPED_TRACE(c.file);
+        try {
+            read_homography_file(dir / c.file);
+            ADD_FAILURE() << "no FormatError";
+        } catch (const FormatError& e) {
+            EXPECT_EQ(e.file(), dir / c.file);
+            EXPECT_EQ(e.line(), c.line);
+            EXPECT_NE(e.problem().find(c.problem), std::string::npos) << e.what();
+        }
+    }
+    EXPECT_THROW(read_homography_file(dir / "absent"), std::runtime_error);
+}
+
+TEST(Homography, MapsPointsAndHasTheRightJacobian) {
+    Eigen::Matrix3d t = translation_homography(5, -2);
+    EXPECT_EQ(apply_homography(t, {1, 1}), Eigen::Vector2d(6, -1));
+    EXPECT_EQ(homography_jacobian(t, {1, 1}), Eigen::Matrix2d::Identity());
+    Eigen::Matrix3d h;
+    h << 2, 0, 0, 0, 2, 0, 0.001, 0, 1;  // x' = 2x / (1 + x/1000)
+    Eigen::Vector2d p(1000, 300);
+    EXPECT_TRUE(apply_homography(h, p).isApprox(Eigen::Vector2d(1000, 300)));
+    // d/dx 2x/(1 + x/1000) = 2 / (1 + x/1000)^2 = 0.5; d/dy of y' = -2y/1000/4 = -0.15.
+    Eigen::Matrix2d j = homography_jacobian(h, p);
+    EXPECT_NEAR(j(0, 0), 0.5, 1e-12);
+    EXPECT_NEAR(j(0, 1), 0.0, 1e-12);
+    EXPECT_NEAR(j(1, 0), -0.15, 1e-12);
+    EXPECT_NEAR(j(1, 1), 1.0, 1e-12);
+}
+
+}  // namespace
+}  // namespace surfvp::eval
