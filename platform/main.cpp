@@ -7,6 +7,7 @@
 
 #include "config.h"
 #include "parameters.h"
+#include "quality_commands.h"
 #include "run.h"
 #include "scenario.h"
 
@@ -44,6 +45,7 @@ int dispatch(int argc, char** argv) {
     add_scenario_options(*validate, options);
     app.add_subcommand("list", "List the shipped scenarios with their descriptions");
     app.add_subcommand("params", "Print every parameter with its default, range and source (Markdown)");
+    QualityCommands quality(app);
 
     try {
         app.parse(argc, argv);
@@ -52,6 +54,7 @@ int dispatch(int argc, char** argv) {
         return code == 0 ? kExitOk : kExitBadInput;
     }
     try {
+        if (const auto code = quality.run()) return *code;
         if (*run) return run_scenario(options);
         if (*validate) return validate_scenario(options);
         if (app.got_subcommand("list")) return list_scenarios();
