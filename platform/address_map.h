@@ -3,7 +3,7 @@
 // the bus decoders from it and the software includes it. Byte order is big-endian
 // throughout: see models/common/byte_order.h.
 //
-//   PLB1 (CPU's MPLB; register slaves):  DDR, INTC, test DMA registers
+//   PLB1 (CPU's MPLB; register slaves):  DDR, INTC, test DMA, IIG and FHG registers
 //   PLB2 (DMA traffic, "increased capacity"): DDR only
 #include <cstdint>
 
@@ -22,10 +22,15 @@ constexpr Region ddr{"ddr", 0x0000'0000, 0x1000'0000};
 constexpr Region intc{"intc", 0x8180'0000, 0x0001'0000};
 // The standalone memory-to-memory DMA (smoke scenario's test master).
 constexpr Region dma{"dma", 0xC000'0000, 0x0001'0000};
+// The SSA IIG and SSA FHG register windows.
+constexpr Region iig{"iig", 0xC100'0000, 0x0001'0000};
+constexpr Region fhg{"fhg", 0xC200'0000, 0x0001'0000};
 
 // Interrupt controller inputs (bit numbers in the INTC registers; lower is higher priority).
 namespace irq {
 constexpr unsigned dma = 0;
+constexpr unsigned iig = 1;
+constexpr unsigned fhg = 2;
 }  // namespace irq
 
 }  // namespace surfvp::map

@@ -10,6 +10,7 @@
 #include "quality_commands.h"
 #include "run.h"
 #include "scenario.h"
+#include "seqgen.h"
 
 namespace {
 
@@ -45,6 +46,13 @@ int dispatch(int argc, char** argv) {
     add_scenario_options(*validate, options);
     app.add_subcommand("list", "List the shipped scenarios with their descriptions");
     app.add_subcommand("params", "Print every parameter with its default, range and source (Markdown)");
+    SeqgenOptions seqgen_options;
+    CLI::App* seqgen = app.add_subcommand("seqgen", "Generate the FHG's control sequence and print its statistics (JSON)");
+    seqgen->add_option("scenario", seqgen_options.scenario, "Scenario to take the parameters from (default: the defaults)");
+    seqgen->add_option("--set", seqgen_options.sets, "Override a parameter: --set fhg.read_buses=6 (repeatable)")
+        ->type_name("KEY=VALUE");
+    seqgen->add_option("--width", seqgen_options.width, "Image width for the implied frame rate")->capture_default_str();
+    seqgen->add_option("--height", seqgen_options.height, "Image height for the implied frame rate")->capture_default_str();
     QualityCommands quality(app);
 
     try {
@@ -57,6 +65,7 @@ int dispatch(int argc, char** argv) {
         if (const auto code = quality.run()) return *code;
         if (*run) return run_scenario(options);
         if (*validate) return validate_scenario(options);
+        if (*seqgen) return seqgen_command(seqgen_options);
         if (app.got_subcommand("list")) return list_scenarios();
         if (app.got_subcommand("params")) {
             std::fputs(parameters_markdown().c_str(), stdout);

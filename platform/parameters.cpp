@@ -36,6 +36,76 @@ void add_plb(std::vector<ParamSpec>& t, const std::string& bus, const std::strin
                  "[A] one address cycle; with arbitration, 4 cycles of overhead per burst"});
 }
 
+void add_iig(std::vector<ParamSpec>& t) {
+    t.push_back({"iig.clock", ParamKind::frequency, "100 MHz", 1 * MHz, 500 * MHz, {}, "SSA IIG clock",
+                 "[A] the PLB clock of the ML507 design; Fig. 3's clocks are lost"});
+    t.push_back({"iig.pixels_per_clock", ParamKind::count, "1", 1, 16, {}, "Pixels the integral core adds per clock",
+                 "[A] one adder chain: 7.9 ms for 1024x768 at 100 MHz (PLATFORM_FACTS)"});
+    t.push_back({"iig.sum_bits", ParamKind::bits, "28 bit", 16, 32, {},
+                 "Significant bits of an integral value (in a 32-bit word); a larger sum is an error",
+                 "[D] 255 x 1024 x 1024 < 2^28: enough for the 1024x1024 limit"});
+    t.push_back({"iig.burst", ParamKind::beats, "16 beats", 1, 16, {}, "IIG DMA burst length on PLB2", "[A] the longest PLB burst"});
+    t.push_back({"iig.line_buffers", ParamKind::count, "2", 1, 64, {},
+                 "Lines queued between the IIG's fetch, compute, write and send units",
+                 "[A] double buffering: one line in work, one waiting"});
+    t.push_back({"iig.max_width", ParamKind::count, "1024", 1, 4096, {}, "Widest image the IIG accepts",
+                 "[S] paper §III: image size limit 1024 x 1024"});
+    t.push_back({"iig.max_height", ParamKind::count, "1024", 1, 4096, {}, "Tallest image the IIG accepts",
+                 "[S] paper §III: image size limit 1024 x 1024"});
+}
+
+void add_fhg(std::vector<ParamSpec>& t) {
+    t.push_back({"fhg.clock", ParamKind::frequency, "100 MHz", 1 * MHz, 1000 * MHz, {}, "SSA FHG clock",
+                 "[A] PLATFORM_FACTS §5.4: the quad schedule needs ~105 MHz for 10 FPS; the standard EDK clock"});
+    t.push_back({"fhg.read_buses", ParamKind::count, "4", 1, 64, {}, "MasterController read buses from the line FIFO",
+                 "[S] paper §III-C: 4 independent buses"});
+    t.push_back({"fhg.bus_word", ParamKind::choice, "quad", 0, 0, {"quad", "scalar"},
+                 "What one read bus delivers per cycle: a 2x2 quad of integral values or one value",
+                 "[A] PLATFORM_FACTS §5.3(c): only quads reach ~10 FPS at 100 MHz"});
+    t.push_back({"fhg.reuse", ParamKind::choice, "on", 0, 0, {"on", "off"},
+                 "Whether one delivered value may serve several TripleMACs in the same cycle",
+                 "[A] the TripleMACs snoop all buses (paper §III-C)"});
+    t.push_back({"fhg.triple_macs", ParamKind::count, "18", 18, 64, {}, "TripleMAC units (one per determinant of a block)",
+                 "[S] paper §III-C: 18 TripleMACs"});
+    t.push_back({"fhg.x3_cycles", ParamKind::cycles, "3 cycles", 1, 8, {}, "Cycles a TripleMAC spends on a x3 coefficient",
+                 "[S] paper §III-C: three additions instead of a multiplication"});
+    t.push_back({"fhg.fifo_lines", ParamKind::count, "56", 52, 1024, {}, "Integral lines the MasterController FIFO holds",
+                 "[S] paper §III-C: 56 lines (52 for the largest filter + refill)"});
+    t.push_back({"fhg.sequence_attempts", ParamKind::count, "16", 1, 10000, {},
+                 "Greedy scheduling passes (different tie-breaks) the sequence generator tries",
+                 "[-] tool setting: more passes, shorter sequences, slower start-up"});
+    t.push_back({"fhg.hessian_cycles_per_triple_mac", ParamKind::cycles, "1 cycle", 1, 16, {},
+                 "HessianCalc cycles to read one TripleMAC's three responses over the three-state bus",
+                 "[A] one 3-response word per cycle: 18 cycles per block, below the sequence"});
+    t.push_back({"fhg.pipeline_latency", ParamKind::cycles, "8 cycles", 0, 1000, {},
+                 "HessianCalc and LocMaxFinder latency after the last block's sequence",
+                 "[A] multiply, subtract, round, compare: a few pipeline stages"});
+    t.push_back({"fhg.maxima_fifo_depth", ParamKind::count, "1024", 1, 1 << 20, {}, "Candidates the maxima FIFO holds",
+                 "[A] one RAMB36 of 32-bit words (PLATFORM_FACTS table)"});
+    t.push_back({"fhg.det_row_buffers", ParamKind::count, "2", 1, 64, {}, "Block rows of determinants waiting for the DMA writer",
+                 "[A] double buffering"});
+    t.push_back({"fhg.burst", ParamKind::beats, "16 beats", 1, 16, {}, "FHG DMA burst length on PLB2", "[A] the longest PLB burst"});
+    t.push_back({"fhg.max_width", ParamKind::count, "1024", 1, 4096, {}, "Widest image the FHG accepts",
+                 "[S] paper §III: 1024 x 1024, BRAM sized by the width (MVA 2014)"});
+    t.push_back({"fhg.max_height", ParamKind::count, "1024", 1, 4096, {}, "Tallest image the FHG accepts",
+                 "[S] paper §III: image size limit 1024 x 1024"});
+    t.push_back({"fhg.accumulator_bits", ParamKind::bits, "24 bit", 16, 32, {}, "TripleMAC accumulator width (wrapping)",
+                 "[D] |Dxx| < 2^19 for L = 51 (51 x 33 x 255 x 2): 21 bits with sign; 24 leaves margin"});
+    t.push_back({"fhg.recip_shift", ParamKind::bits, "16 bit", 0, 24, {},
+                 "Extra fraction bits of the 1/L^2 constants that normalise the responses", "[A] 1/L^2 to ~1e-5"});
+    t.push_back({"fhg.response_frac_bits", ParamKind::bits, "9 bit", 0, 24, {}, "Fraction bits of the normalised responses",
+                 "[A] |Dxx/L^2| < 95 needs 8 integer bits: 9 fraction bits fill an 18-bit DSP48E port"});
+    t.push_back({"fhg.response_bits", ParamKind::bits, "18 bit", 8, 32, {}, "Width of the normalised responses (saturating)",
+                 "[A] the DSP48E's 18-bit multiplier input"});
+    t.push_back({"fhg.weight_frac_bits", ParamKind::bits, "12 bit", 1, 20, {}, "Fraction bits of the 0.81 weight",
+                 "[A] 3318/4096 = 0.81006"});
+    t.push_back({"fhg.det_frac_bits", ParamKind::bits, "16 bit", 0, 48, {},
+                 "Fraction bits of the determinant word (and of THRESHOLD)",
+                 "[A] determinants < 2^14 in threshold units: 16 fraction bits fit a signed 32-bit word"});
+    t.push_back({"fhg.det_bits", ParamKind::bits, "32 bit", 8, 32, {}, "Determinant word written to memory (saturating)",
+                 "[A] PLATFORM_FACTS: 32-bit fixed point"});
+}
+
 std::vector<ParamSpec> make_table() {
     std::vector<ParamSpec> t;
     t.push_back({"run.workload", ParamKind::choice, "smoke", 0, 0, {"smoke"}, "What the CPU runs",
@@ -74,6 +144,11 @@ std::vector<ParamSpec> make_table() {
 
     t.push_back({"dma.burst", ParamKind::beats, "16 beats", 1, 16, {}, "Burst length of the test DMA on PLB2",
                  "[A] the longest PLB burst"});
+
+    add_iig(t);
+    t.push_back({"pixelbus.width", ParamKind::bits, "32 bit", 8, 128, {}, "PixelBus width: integral values per IIG cycle x 32",
+                 "[A] one 32-bit integral value per cycle (PLATFORM_FACTS table)"});
+    add_fhg(t);
 
     t.push_back({"smoke.buffer", ParamKind::bytes, "64 KiB", 1, 16 * MiB, {}, "Bytes the test DMA copies per copy",
                  "[A] test size: many bursts, well inside the L1-sized buffers of the chip's drivers"});

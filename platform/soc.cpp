@@ -1,5 +1,7 @@
 #include "soc.h"
 
+#include <fmt/format.h>
+
 #include "address_map.h"
 
 namespace surfvp {
@@ -30,6 +32,52 @@ DdrMemory::Params memory_params(const Config& c) {
     return p;
 }
 
+}  // namespace
+
+Iig::Params iig_params(const Config& c) {
+    Iig::Params p;
+    p.clock = c.frequency("iig.clock");
+    p.pixels_per_clock = unsigned(c.count("iig.pixels_per_clock"));
+    p.sum_bits = c.bits("iig.sum_bits");
+    p.burst_beats = c.beats("iig.burst");
+    p.bus_width_bits = c.bits("plb2.width");
+    p.pixelbus_width_bits = c.bits("pixelbus.width");
+    p.line_buffers = unsigned(c.count("iig.line_buffers"));
+    p.max_width = unsigned(c.count("iig.max_width"));
+    p.max_height = unsigned(c.count("iig.max_height"));
+    return p;
+}
+
+Fhg::Params fhg_params(const Config& c) {
+    Fhg::Params p;
+    p.clock = c.frequency("fhg.clock");
+    p.sequence.read_buses = unsigned(c.count("fhg.read_buses"));
+    p.sequence.triple_macs = unsigned(c.count("fhg.triple_macs"));
+    p.sequence.fifo_lines = unsigned(c.count("fhg.fifo_lines"));
+    p.sequence.x3_cycles = unsigned(c.cycles("fhg.x3_cycles"));
+    p.sequence.bus_word = c.choice("fhg.bus_word") == "quad" ? fhg::BusWord::quad : fhg::BusWord::scalar;
+    p.sequence.reuse = c.choice("fhg.reuse") == "on";
+    p.sequence.attempts = unsigned(c.count("fhg.sequence_attempts"));
+    p.precision.accumulator_bits = c.bits("fhg.accumulator_bits");
+    p.precision.recip_shift = c.bits("fhg.recip_shift");
+    p.precision.response_frac_bits = c.bits("fhg.response_frac_bits");
+    p.precision.response_bits = c.bits("fhg.response_bits");
+    p.precision.weight_frac_bits = c.bits("fhg.weight_frac_bits");
+    p.precision.det_frac_bits = c.bits("fhg.det_frac_bits");
+    p.precision.det_bits = c.bits("fhg.det_bits");
+    p.hessian_cycles_per_triple_mac = unsigned(c.cycles("fhg.hessian_cycles_per_triple_mac"));
+    p.pipeline_latency_cycles = unsigned(c.cycles("fhg.pipeline_latency"));
+    p.maxima_fifo_depth = unsigned(c.count("fhg.maxima_fifo_depth"));
+    p.burst_beats = c.beats("fhg.burst");
+    p.bus_width_bits = c.bits("plb2.width");
+    p.det_row_buffers = unsigned(c.count("fhg.det_row_buffers"));
+    p.max_width = unsigned(c.count("fhg.max_width"));
+    p.max_height = unsigned(c.count("fhg.max_height"));
+    return p;
+}
+
+namespace {
+
 nlohmann::ordered_json seconds(const sc_core::sc_time& t) { return t.to_seconds(); }
 
 double share(const sc_core::sc_time& part, const sc_core::sc_time& whole) {
@@ -56,40 +104,74 @@ nlohmann::ordered_json bus_report(const PlbBus& bus, const sc_core::sc_time& ela
 }  // namespace
 
 Soc::Soc(const Config& c, Tracer& tracer) : workload_(make_workload(c)) {
+    try {
+        build(c, tracer);
+    } catch (const std::invalid_argument& e) {
+        // A model refused its parameters (an impossible FHG configuration, say).
+        throw ConfigError(e.what());
+    }
+}
+
+void Soc::build(const Config& c, Tracer& tracer) {
     memory_ = std::make_unique<DdrMemory>("memory", memory_params(c));
     plb1_ = std::make_unique<PlbBus>("plb1", plb_params(c, "plb1"), tracer);
     plb2_ = std::make_unique<PlbBus>("plb2", plb_params(c, "plb2"), tracer);
     intc_ = std::make_unique<Intc>("intc", Intc::Params{static_cast<unsigned>(c.count("intc.inputs"))}, tracer);
     dma_ = std::make_unique<Dma>("dma", Dma::Params{c.beats("dma.burst"), c.bits("plb2.width")}, tracer);
+    iig_ = std::make_unique<Iig>("iig", iig_params(c), tracer);
+    fhg_ = std::make_unique<Fhg>("fhg", fhg_params(c), tracer);
     Ppc440::Params cpu;
     cpu.clock = c.frequency("cpu.clock");
     cpu.quantum = c.duration("cpu.quantum");
     cpu.line_bytes = static_cast<unsigned>(c.bytes("cpu.cache_line").n);
     cpu_ = std::make_unique<Ppc440>("cpu", cpu, workload_->software(), tracer);
+    const uint64_t ddr_size = memory_params(c).size.n;
 
     // PLB1: the CPU's MPLB; DDR, the INTC and the register slaves.
     plb1_->connect_master(cpu_->bus, "cpu");
     plb1_->slaves.bind(memory_->ports);
     memory_->name_port("plb1");
+    plb1_->map(map::ddr.base, ddr_size, 0, map::ddr.name);
     plb1_->slaves.bind(intc_->regs);
-    plb1_->slaves.bind(dma_->regs);
-    plb1_->map(map::ddr.base, memory_params(c).size.n, 0, map::ddr.name);
     plb1_->map(map::intc.base, map::intc.size, 1, map::intc.name);
+    plb1_->slaves.bind(dma_->regs);
     plb1_->map(map::dma.base, map::dma.size, 2, map::dma.name);
+    plb1_->slaves.bind(iig_->regs);
+    plb1_->map(map::iig.base, map::iig.size, 3, map::iig.name);
+    plb1_->slaves.bind(fhg_->regs);
+    plb1_->map(map::fhg.base, map::fhg.size, 4, map::fhg.name);
 
     // PLB2: the DMA masters to DDR.
     plb2_->connect_master(dma_->mplb, "dma");
+    plb2_->connect_master(iig_->mplb, "iig");
+    plb2_->connect_master(fhg_->mplb, "fhg");
     plb2_->slaves.bind(memory_->ports);
     memory_->name_port("plb2");
-    plb2_->map(map::ddr.base, memory_params(c).size.n, 0, map::ddr.name);
+    plb2_->map(map::ddr.base, ddr_size, 0, map::ddr.name);
+
+    // PixelBus: IIG -> FHG.
+    iig_->pixels.bind(fhg_->pixels);
 
     // Interrupts: block lines into the INTC, the INTC into the CPU; unused inputs held low.
-    if (map::irq::dma >= intc_->irq_in.size()) throw ConfigError("intc.inputs: too few for the DMA's interrupt line");
+    const std::pair<unsigned, sc_core::sc_signal<bool>*> lines[] = {
+        {map::irq::dma, &dma_irq_}, {map::irq::iig, &iig_irq_}, {map::irq::fhg, &fhg_irq_}};
+    for (const auto& [line, signal] : lines)
+        if (line >= intc_->irq_in.size())
+            throw ConfigError(fmt::format("intc.inputs: {} are too few for interrupt line {}", intc_->irq_in.size(), line));
     dma_->irq.bind(dma_irq_);
-    for (unsigned i = 0; i < intc_->irq_in.size(); ++i) intc_->irq_in[i].bind(i == map::irq::dma ? dma_irq_ : low_);
+    iig_->irq.bind(iig_irq_);
+    fhg_->irq.bind(fhg_irq_);
+    for (unsigned i = 0; i < intc_->irq_in.size(); ++i) {
+        sc_core::sc_signal<bool>* signal = &low_;
+        for (const auto& [line, s] : lines)
+            if (line == i) signal = s;
+        intc_->irq_in[i].bind(*signal);
+    }
     intc_->irq.bind(cpu_irq_);
     cpu_->irq.bind(cpu_irq_);
     tracer.signal(dma_irq_, "irq.dma");
+    tracer.signal(iig_irq_, "irq.iig");
+    tracer.signal(fhg_irq_, "irq.fhg");
     tracer.signal(cpu_irq_, "irq.cpu");
 }
 
@@ -118,7 +200,18 @@ nlohmann::ordered_json Soc::report(const sc_core::sc_time& elapsed) const {
                      {"cycles_consumed", s.cycles_consumed}, {"irq_waits", s.irq_waits},
                      {"irq_wait_s", seconds(s.irq_wait_time)}}},
             {"interrupts", {{"raised", intc_->interrupts_raised()}}},
-            {"dma", {{"copies", dma_->copies()}, {"bytes_copied", dma_->bytes_copied()}}}};
+            {"dma", {{"copies", dma_->copies()}, {"bytes_copied", dma_->bytes_copied()}}},
+            {"iig", {{"frames", iig_->stats().frames}, {"errors", iig_->stats().errors},
+                     {"busy_s", seconds(iig_->stats().busy)}, {"stalled_s", seconds(iig_->stats().stalled)}}},
+            {"fhg", {{"frames", fhg_->stats().frames}, {"errors", fhg_->stats().errors},
+                     {"cycles_per_block", fhg_->block_cycles()}, {"block_limit", fhg_->block_limit()},
+                     {"sequence_cycles_per_block", fhg_->sequence().cycles},
+                     {"optimal_cycles_per_block", fhg_->sequence().optimal_cycles},
+                     {"busy_s", seconds(fhg_->stats().busy)}, {"computing_s", seconds(fhg_->stats().computing)},
+                     {"waiting_for_lines_s", seconds(fhg_->stats().waiting_for_lines)},
+                     {"candidates", fhg_->stats().candidates}, {"candidates_dropped", fhg_->stats().dropped},
+                     {"maxima_fifo_high_water", fhg_->stats().fifo_high_water},
+                     {"line_fifo_high_water", fhg_->stats().lines_high_water}}}};
 }
 
 }  // namespace surfvp

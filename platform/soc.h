@@ -9,6 +9,8 @@
 #include "config.h"
 #include "models/common/tracer.h"
 #include "models/dma/dma.h"
+#include "models/fhg/fhg.h"
+#include "models/iig/iig.h"
 #include "models/intc/intc.h"
 #include "models/memory/ddr_memory.h"
 #include "models/plb/plb_bus.h"
@@ -16,6 +18,10 @@
 #include "workload.h"
 
 namespace surfvp {
+
+// The IP blocks' parameters from a configuration (also used by `surfvp seqgen`).
+Iig::Params iig_params(const Config& config);
+Fhg::Params fhg_params(const Config& config);
 
 class Soc {
 public:
@@ -29,13 +35,18 @@ public:
     uint64_t bus_transactions() const;
 
 private:
+    void build(const Config& config, Tracer& tracer);
+
     std::unique_ptr<Workload> workload_;
     std::unique_ptr<DdrMemory> memory_;
     std::unique_ptr<PlbBus> plb1_, plb2_;
     std::unique_ptr<Intc> intc_;
     std::unique_ptr<Dma> dma_;
+    std::unique_ptr<Iig> iig_;
+    std::unique_ptr<Fhg> fhg_;
     std::unique_ptr<Ppc440> cpu_;
-    sc_core::sc_signal<bool> dma_irq_{"dma_irq"}, cpu_irq_{"cpu_irq"}, low_{"unused_irq"};
+    sc_core::sc_signal<bool> dma_irq_{"dma_irq"}, iig_irq_{"iig_irq"}, fhg_irq_{"fhg_irq"}, cpu_irq_{"cpu_irq"},
+        low_{"unused_irq"};
 };
 
 }  // namespace surfvp

@@ -36,7 +36,7 @@ struct SequenceParams {
     unsigned x3_cycles = 3;
     BusWord bus_word = BusWord::quad;
     bool reuse = true;
-    unsigned attempts = 64;  // greedy passes with different tie-breaks; the shortest is kept
+    unsigned attempts = 16;  // greedy passes with different tie-breaks; the shortest is kept
 };
 
 struct Tap {
