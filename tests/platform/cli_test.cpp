@@ -172,3 +172,35 @@ TEST(Cli, ParameterDocMatchesTheTable) {
 
 }  // namespace
 }  // namespace surfvp
+
+namespace surfvp {
+namespace {
+
+TEST(Cli, SeqgenPrintsTheScheduleAndItsImpliedFrameRate) {
+    const auto r = test::surfvp("seqgen --width 1024 --height 768");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const auto j = nlohmann::json::parse(r.out);
+    for (const char* key : {"reads_per_block", "distinct_reads_per_block", "cycles_per_block", "optimal_cycles_per_block",
+                            "overhead"})
+        EXPECT_TRUE(j.contains(key)) << key;
+    EXPECT_EQ(j["reads_per_block"], 576);
+    EXPECT_EQ(j["distinct_reads_per_block"], 405);
+    EXPECT_EQ(j["optimal_cycles_per_block"], 48);
+    const int cycles = j["cycles_per_block"];
+    EXPECT_NEAR(j["frame"]["frames_per_second"].get<double>(), 100e6 / (512.0 * 384 * cycles), 1e-9);
+    EXPECT_NEAR(j["overhead"].get<double>(), cycles / 48.0 - 1, 1e-12);
+}
+
+TEST(Cli, SeqgenFollowsParameters) {
+    const auto scalar = nlohmann::json::parse(test::surfvp("seqgen --set fhg.bus_word=scalar --set fhg.reuse=off").out);
+    EXPECT_EQ(scalar["cycles_per_block"], 144);  // 576 reads over 4 buses, no idle cycle
+    const auto six = nlohmann::json::parse(test::surfvp("seqgen --set fhg.bus_word=scalar --set fhg.read_buses=6").out);
+    EXPECT_LT(six["cycles_per_block"].get<int>(), 103);
+    EXPECT_GE(six["cycles_per_block"].get<int>(), six["optimal_cycles_per_block"].get<int>());
+    const auto r = test::surfvp("seqgen --set fhg.fifo_lines=40");
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_NE(r.err.find("fhg.fifo_lines"), std::string::npos) << r.err;
+}
+
+}  // namespace
+}  // namespace surfvp
