@@ -26,11 +26,17 @@ constexpr Region dma{"dma", 0xC000'0000, 0x0001'0000};
 constexpr Region iig{"iig", 0xC100'0000, 0x0001'0000};
 constexpr Region fhg{"fhg", 0xC200'0000, 0x0001'0000};
 
+// Accelerator pair k (libSSA2 drives several): its windows are k strides above pair 0's.
+constexpr uint32_t kAcceleratorStride = 0x0010'0000;
+constexpr unsigned kMaxAccelerators = 8;
+constexpr uint32_t iig_base(unsigned k) { return iig.base + k * kAcceleratorStride; }
+constexpr uint32_t fhg_base(unsigned k) { return fhg.base + k * kAcceleratorStride; }
+
 // Interrupt controller inputs (bit numbers in the INTC registers; lower is higher priority).
 namespace irq {
 constexpr unsigned dma = 0;
-constexpr unsigned iig = 1;
-constexpr unsigned fhg = 2;
+constexpr unsigned iig(unsigned k) { return 1 + 2 * k; }
+constexpr unsigned fhg(unsigned k) { return 2 + 2 * k; }
 }  // namespace irq
 
 }  // namespace surfvp::map

@@ -42,6 +42,7 @@ Bytes Config::bytes(const std::string& key) const { return parse_bytes(entry(key
 uint64_t Config::cycles(const std::string& key) const { return parse_cycles(entry(key, ParamKind::cycles).value); }
 unsigned Config::beats(const std::string& key) const { return parse_beats(entry(key, ParamKind::beats).value); }
 const std::string& Config::choice(const std::string& key) const { return entry(key, ParamKind::choice).value; }
+const std::string& Config::text(const std::string& key) const { return entry(key, ParamKind::text).value; }
 
 uint64_t Config::count(const std::string& key) const {
     const Entry& e = entry(key, ParamKind::count);

@@ -41,6 +41,7 @@ public:
     double real(const std::string& key) const;
     uint32_t address(const std::string& key) const;
     const std::string& choice(const std::string& key) const;
+    const std::string& text(const std::string& key) const;
 
     const std::vector<Entry>& entries() const { return entries_; }
 

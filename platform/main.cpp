@@ -41,6 +41,8 @@ int dispatch(int argc, char** argv) {
         ->check(CLI::IsMember({"none", "vcd", "perfetto", "all"}))
         ->default_val("all");
     run->add_flag("--quiet,-q", options.quiet, "No progress or summary lines on stderr");
+    run->add_flag("--direct", options.direct,
+                  "Run the driver and software on the cores without SystemC (no time): keypoints only");
 
     CLI::App* validate = app.add_subcommand("validate", "Check a scenario (and --set overrides) without running it");
     add_scenario_options(*validate, options);

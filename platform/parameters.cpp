@@ -106,10 +106,39 @@ void add_fhg(std::vector<ParamSpec>& t) {
                  "[A] PLATFORM_FACTS: 32-bit fixed point"});
 }
 
+void add_surf(std::vector<ParamSpec>& t) {
+    t.push_back({"surf.source", ParamKind::text, "/usr/share/doc/opencv-doc/examples/data/graf1.png", 0, 0, {},
+                 "Frames: an image (repeated), a folder of images, a list file or a video",
+                 "[-] Debian opencv-doc's graf1"});
+    t.push_back({"surf.frames", ParamKind::count, "20", 1, 100000, {}, "Frames to process", "[-] scenario size"});
+    t.push_back({"surf.width", ParamKind::count, "1024", 0, 4096, {}, "Frames are resized to this width (0: as they are)",
+                 "[S] paper: 1024 x 768 frames"});
+    t.push_back({"surf.height", ParamKind::count, "768", 0, 4096, {}, "Frames are resized to this height (0: as they are)",
+                 "[S] paper: 1024 x 768 frames"});
+    t.push_back({"surf.target_keypoints", ParamKind::count, "100", 0, 100000, {},
+                 "Calibrate the threshold on the first frame (float reference) to give about this many keypoints; 0: use surf.threshold",
+                 "[S] paper: ~100 descriptors per image"});
+    t.push_back({"surf.threshold", ParamKind::real, "500", 0, 1e9, {}, "Determinant threshold (units of sw/surf/README.md) when not calibrated",
+                 "[A] a middle value for 1024x768 scenes"});
+    t.push_back({"surf.upright", ParamKind::choice, "off", 0, 0, {"on", "off"}, "Skip the orientation (U-SURF)",
+                 "[S] paper §II: orientation is optional"});
+    t.push_back({"surf.tasks_in_flight", ParamKind::count, "2", 1, 16, {},
+                 "Tasks between hardware start and descriptors done (buffer sets in memory)",
+                 "[S] paper §III-D: tasks overlap; two let the CPU describe one while the hardware does the next"});
+    t.push_back({"surf.fifo_irq_level", ParamKind::count, "256", 1, 1 << 20, {},
+                 "Maxima FIFO level that interrupts the CPU to drain it", "[A] a quarter of the default FIFO"});
+    t.push_back({"budget.fps", ParamKind::real, "10", 0, 1e6, {}, "Frames per second the scenario must sustain (0: no budget)",
+                 "[S] paper: ~10 FPS at 1024 x 768"});
+    t.push_back({"eval.homography", ParamKind::text, "", 0, 0, {},
+                 "Homography from frame 0 to frame 1 (Oxford or OpenCV file): report repeatability and precision", "[-] evaluation"});
+    t.push_back({"eval.poses", ParamKind::text, "", 0, 0, {},
+                 "Folder of Camera_NNN.txt poses (ViSP castle): report distinguishability with the true F too", "[-] evaluation"});
+}
+
 std::vector<ParamSpec> make_table() {
     std::vector<ParamSpec> t;
-    t.push_back({"run.workload", ParamKind::choice, "smoke", 0, 0, {"smoke"}, "What the CPU runs",
-                 "[-] scenario choice"});
+    t.push_back({"run.workload", ParamKind::choice, "smoke", 0, 0, {"smoke", "surf"},
+                 "What the CPU runs: the bus smoke test, or libSSA2 and SURF on frames", "[-] scenario choice"});
     t.push_back({"run.max_time", ParamKind::duration, "10 s", 1, 3600 * s, {},
                  "Simulated time after which a run that has not finished is stopped as stalled",
                  "[A] a guard, far above any scenario's length"});
@@ -149,6 +178,10 @@ std::vector<ParamSpec> make_table() {
     t.push_back({"pixelbus.width", ParamKind::bits, "32 bit", 8, 128, {}, "PixelBus width: integral values per IIG cycle x 32",
                  "[A] one 32-bit integral value per cycle (PLATFORM_FACTS table)"});
     add_fhg(t);
+
+    t.push_back({"soc.accelerators", ParamKind::count, "1", 1, 4, {}, "SSA IIG + SSA FHG pairs on the chip",
+                 "[S] paper §III-D: one pair; the library supports more"});
+    add_surf(t);
 
     t.push_back({"smoke.buffer", ParamKind::bytes, "64 KiB", 1, 16 * MiB, {}, "Bytes the test DMA copies per copy",
                  "[A] test size: many bursts, well inside the L1-sized buffers of the chip's drivers"});
@@ -262,6 +295,7 @@ double parse_value(const ParamSpec& spec, const std::string& text) {
         case ParamKind::count: value = parse_plain(text, true); break;
         case ParamKind::real: value = parse_plain(text, false); break;
         case ParamKind::address: value = parse_address(text); break;
+        case ParamKind::text: return 0;
         case ParamKind::choice:
             if (std::find(spec.choices.begin(), spec.choices.end(), text) == spec.choices.end())
                 throw UnitError(fmt::format("'{}' is not one of: {}", text, fmt::join(spec.choices, ", ")));
@@ -285,6 +319,7 @@ std::string describe_kind(const ParamSpec& spec) {
         case ParamKind::real: return "number";
         case ParamKind::address: return "address";
         case ParamKind::choice: return fmt::format("one of {}", fmt::join(spec.choices, ", "));
+        case ParamKind::text: return "text";
     }
     return "";
 }
@@ -297,7 +332,7 @@ std::string parameters_markdown() {
         "fact. Generated by `surfvp params`; a test keeps this file equal to its output.\n\n"
         "| key | default | range | kind | what it is | source |\n|---|---|---|---|---|---|\n";
     for (const ParamSpec& p : parameter_table()) {
-        std::string range = p.kind == ParamKind::choice ? "" : fmt::format("{} .. {}", format_base(p, p.min), format_base(p, p.max));
+        std::string range = p.kind == ParamKind::choice || p.kind == ParamKind::text ? "" : fmt::format("{} .. {}", format_base(p, p.min), format_base(p, p.max));
         out += fmt::format("| `{}` | `{}` | {} | {} | {} | {} |\n", p.key, p.default_value, range, describe_kind(p),
                            p.description, p.source);
     }

@@ -9,7 +9,7 @@
 
 namespace surfvp {
 
-enum class ParamKind { frequency, duration, bits, bytes, cycles, beats, count, real, choice, address };
+enum class ParamKind { frequency, duration, bits, bytes, cycles, beats, count, real, choice, address, text };
 
 struct ParamSpec {
     std::string key;

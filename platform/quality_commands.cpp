@@ -9,7 +9,7 @@ namespace {
 
 using namespace quality;
 
-constexpr const char* kDocs = "Metrics and examples: docs/quality.md; definitions: sw/eval/README.md.";
+constexpr const char* kDocs = "Metrics and examples: docs/quality.md; definitions: sw/eval/README.md.\n";
 
 // The detector options `surf` and `eval-seq` share. Optional values are set from callbacks so
 // that "not given" stays distinguishable from any value.
@@ -30,7 +30,7 @@ void add_surf_options(CLI::App& command, SurfSettings& surf) {
         ->check(CLI::Range(1, 2))
         ->capture_default_str();
     command.add_option("--threads", surf.threads, "Threads for SURF, 0 = all cores")
-        ->check(CLI::NonNegativeNumber)
+        ->check(CLI::Range(0, 1024))
         ->capture_default_str();
 }
 
@@ -64,13 +64,17 @@ CLI::App* add_eval_command(CLI::App& app, EvalCommand& c) {
     command->add_option("b", c.b, "Keypoint file of image B")->required();
     CLI::Option* h = command->add_option(
         "--homography,-H", c.homography, "Homography A -> B (Oxford text H1to3p, or OpenCV XML/YAML/JSON)");
+    h->type_name("FILE");
     CLI::Option* images = command->add_option("--images", c.images, "Images A and B (repeatability needs their sizes)")
                               ->expected(2)
                               ->type_name("IMG_A IMG_B");
     h->needs(images);
     images->needs(h);
     add_matching_options(*command, c.radius, c.laplacian);
-    command->footer(std::string("Prints one JSON object on stdout. ") + kDocs);
+    command->footer(std::string("Prints one JSON object on stdout: candidates, valid, distinguishability, status "
+                                "(RANSAC F); with --homography also repeatability, correspondences, precision, "
+                                "matches, visible_a, visible_b, precision_candidates, precision_correct.\n") +
+                    kDocs);
     return command;
 }
 
@@ -88,6 +92,7 @@ CLI::App* add_eval_seq_command(CLI::App& app, EvalSeqCommand& c) {
     CLI::Option* poses = command->add_option(
         "--poses", c.poses, "Folder of Camera_<n>.txt cMo pose files (ViSP): also ground-truth F; frame n is the "
                             "image whose name ends in n");
+    poses->type_name("DIR");
     CLI::Option* intrinsics = command->add_option("--intrinsics", c.intrinsics, "Camera intrinsics for --poses")
                                   ->expected(4)
                                   ->delimiter(',')

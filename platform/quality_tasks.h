@@ -32,7 +32,6 @@ struct SurfSettings {
 struct Detection {
     surf::Keypoints keypoints;
     float threshold = 0;          // the one used
-    std::size_t maxima = 0;       // with a target count: all keypoints above 0 (else 0)
     double milliseconds = 0;      // threshold search + detect + describe
 };
 

@@ -28,6 +28,29 @@ void bus_section(std::string& md, const std::string& name, const nlohmann::order
                           ms(m["wait_s"]), m["errors"].get<uint64_t>());
 }
 
+// The verdict on frames: rate, budget, latency, where the time goes.
+std::string frames_section(const nlohmann::ordered_json& r) {
+    std::string md = "\n## Frames\n\n| | |\n|---|---:|\n";
+    md += fmt::format("| image | {} x {} |\n", r["image"]["width"].get<int>(), r["image"]["height"].get<int>());
+    md += fmt::format("| frames done | {} of {} |\n", r["frames_done"].get<size_t>(), r["frames"].get<size_t>());
+    md += fmt::format("| throughput | **{:.2f} frames/s** |\n", r["throughput_fps"].get<double>());
+    if (!r["budget"].is_null())
+        md += fmt::format("| budget | {:.2f} frames/s: **{}** |\n", r["budget"]["fps"].get<double>(),
+                          r["budget"]["met"].get<bool>() ? "met" : "MISSED");
+    md += fmt::format("| latency (hardware start to descriptors) | {:.2f} ms |\n", r["latency_ms"].get<double>());
+    md += fmt::format("| keypoints per frame | {:.1f} |\n", r["keypoints_per_frame"].get<double>());
+    md += fmt::format("| software per keypoint | {:.1f} us ({:.0f} cycles) |\n",
+                      r["software_time_per_keypoint_us"].get<double>(), r["software_cycles_per_keypoint"].get<double>());
+    if (r.contains("bottleneck")) {
+        md += fmt::format("| bottleneck | **{}** |\n", r["bottleneck"].get<std::string>());
+        md += "\nBusy time per frame:\n\n| resource | ms |\n|---|---:|\n";
+        for (const auto& [name, ms] : r["busy_per_frame_ms"].items()) md += fmt::format("| {} | {:.2f} |\n", name, ms.get<double>());
+    }
+    md += "\nMean time from hardware start to the end of each phase:\n\n| phase | ms |\n|---|---:|\n";
+    for (const auto& [name, ms] : r["phases_ms"].items()) md += fmt::format("| {} | {:.2f} |\n", name, ms.get<double>());
+    return md;
+}
+
 }  // namespace
 
 std::string report_markdown(const nlohmann::ordered_json& r) {
@@ -39,6 +62,7 @@ std::string report_markdown(const nlohmann::ordered_json& r) {
     for (const auto& c : r["checks"])
         md += fmt::format("| {} | {} | {} |\n", c["name"].get<std::string>(), c["passed"].get<bool>() ? "pass" : "FAIL",
                           c["detail"].get<std::string>());
+    if (r.contains("throughput_fps")) md += frames_section(r);
     md += "\n## Time\n\n| | |\n|---|---:|\n";
     md += fmt::format("| simulated time | {} |\n", ms(r["sim_time_s"]));
     md += fmt::format("| wall time | {} |\n", ms(r["wall_time_s"]));

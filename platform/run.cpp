@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 #include <unistd.h>
 
+#include "direct_chip.h"
 #include "report.h"
 #include "scenario.h"
 #include "soc.h"
@@ -80,6 +81,37 @@ Outcome simulate(Soc& soc, const Config& config, ProgressLine& progress, WallClo
     return {soc.cpu().finish_time(), ""};
 }
 
+// Busy time per frame of each resource; the largest limits the frame rate.
+void add_bottleneck(nlohmann::ordered_json& r, const sc_core::sc_time& elapsed) {
+    const double frames = double(r["frames_done"].get<size_t>());
+    // One block or an array of them: the busiest; time stalled by another block is not its own.
+    auto busy = [&](const nlohmann::ordered_json& blocks) {
+        auto own = [](const nlohmann::ordered_json& b) {
+            return b["busy_s"].get<double>() - (b.contains("stalled_s") ? b["stalled_s"].get<double>() : 0.0);
+        };
+        double most = 0;
+        if (blocks.is_array()) {
+            for (const auto& b : blocks) most = std::max(most, own(b));
+        } else {
+            most = own(blocks);
+        }
+        return most;
+    };
+    const double pairs = r["fhg"].is_array() ? double(r["fhg"].size()) : 1.0;
+    const auto& plb2 = r["buses"]["plb2"];
+    nlohmann::ordered_json per_frame = {
+        {"iig", busy(r["iig"]) / frames * pairs * 1e3},
+        {"fhg", busy(r["fhg"]) / frames * pairs * 1e3},
+        {"cpu", (elapsed.to_seconds() - r["cpu"]["irq_wait_s"].get<double>()) / frames * 1e3},
+        {"plb2", std::max(plb2["read"]["busy_s"].get<double>(), plb2["write"]["busy_s"].get<double>()) / frames * 1e3}};
+    std::string worst;
+    double most = -1;
+    for (const auto& [name, ms] : per_frame.items())
+        if (ms.get<double>() > most) most = ms.get<double>(), worst = name;
+    r["busy_per_frame_ms"] = per_frame;
+    r["bottleneck"] = worst;
+}
+
 nlohmann::ordered_json build_report(const Config& config, Soc& soc, const Outcome& outcome, double wall_s,
                                     const std::vector<std::string>& outputs) {
     nlohmann::ordered_json checks = nlohmann::ordered_json::array();
@@ -96,16 +128,19 @@ nlohmann::ordered_json build_report(const Config& config, Soc& soc, const Outcom
     r["passed"] = passed;
     if (!outcome.failure.empty()) r["failure"] = outcome.failure;
     r["checks"] = checks;
-    r["budget"] = nullptr;  // this workload has no frame-rate budget
+    r["budget"] = nullptr;  // unless the workload's summary sets one
     r["sim_time_s"] = sim_s;
     r["wall_time_s"] = wall_s;
     r["real_time_factor"] = wall_s > 0 ? sim_s / wall_s : 0.0;
     r["transactions"] = transactions;
     r["transactions_per_second"] = wall_s > 0 ? transactions / wall_s : 0.0;
     r["wall_clock_fields"] = {"wall_time_s", "real_time_factor", "transactions_per_second"};
-    r["workload"] = soc.workload().report();
+    const nlohmann::ordered_json summary = soc.workload().summary();
+    for (const auto& [key, value] : summary.items()) r[key] = value;
     const nlohmann::ordered_json platform = soc.report(outcome.sim_time);
     for (const auto& [key, value] : platform.items()) r[key] = value;
+    if (summary.contains("frames_done") && summary["frames_done"].get<size_t>() > 0) add_bottleneck(r, outcome.sim_time);
+    r["workload"] = soc.workload().report();
     r["outputs"] = outputs;
     return r;
 }
@@ -118,14 +153,54 @@ fs::path output_dir(const RunOptions& options, const Config& config) {
     return dir;
 }
 
+// The same driver and software without SystemC: keypoints, no time.
+int run_direct(const Config& config, const fs::path& dir, const RunOptions& options) {
+    const auto workload = make_workload(config);
+    DirectChip chip(config, unsigned(config.count("soc.accelerators")));
+    workload->preload([&chip](uint64_t address, uint64_t bytes) { return chip.backdoor(address, bytes); });
+    std::string failure;
+    try {
+        workload->software()(chip);
+    } catch (const std::exception& e) {
+        failure = std::string("software error: ") + e.what();
+    }
+    nlohmann::ordered_json checks = nlohmann::ordered_json::array();
+    bool passed = failure.empty();
+    for (const Check& c : workload->checks()) {
+        if (c.name == "frame-rate budget") continue;  // no time here
+        checks.push_back({{"name", c.name}, {"passed", c.passed}, {"detail", c.detail}});
+        passed = passed && c.passed;
+    }
+    std::vector<std::string> outputs{"report.json", "config.yaml"};
+    for (const std::string& f : workload->write_files(dir.string())) outputs.push_back(f);
+    nlohmann::ordered_json r;
+    r["surfvp_version"] = SURFVP_VERSION;
+    r["mode"] = "direct";
+    r["scenario"] = {{"name", config.name}, {"file", config.file}, {"description", config.description}};
+    r["passed"] = passed;
+    if (!failure.empty()) r["failure"] = failure;
+    r["checks"] = checks;
+    r["software_cycles"] = chip.cycles_consumed();
+    r["workload"] = workload->report();
+    r["outputs"] = outputs;
+    write_file_atomically((dir / "config.yaml").string(), config.to_yaml());
+    write_file_atomically((dir / "report.json").string(), r.dump(2) + "\n");
+    if (!options.quiet)
+        std::fprintf(stderr, "surfvp: %s (direct): %s; report in %s\n", config.name.c_str(), passed ? "passed" : "FAILED",
+                     (dir / "report.json").c_str());
+    return passed ? kExitOk : kExitFailed;
+}
+
 }  // namespace
 
 int run_scenario(const RunOptions& options) {
     const Config config = load_scenario(resolve_scenario(options.scenario), options.sets);
     const Tracer::Options traces = trace_options(options.trace, "");
     const fs::path dir = output_dir(options, config);
+    if (options.direct) return run_direct(config, dir, options);
     Tracer tracer({traces.vcd, traces.perfetto, dir.string()});
     Soc soc(config, tracer);
+    soc.workload().preload([&soc](uint64_t address, uint64_t bytes) { return soc.memory().backdoor(address, bytes); });
 
     const auto start = WallClock::now();
     Outcome outcome;
@@ -137,6 +212,7 @@ int run_scenario(const RunOptions& options) {
 
     std::vector<std::string> outputs{"report.json", "report.md", "config.yaml"};
     for (const std::string& f : tracer.finish()) outputs.push_back(fs::path(f).filename().string());
+    for (const std::string& f : soc.workload().write_files(dir.string())) outputs.push_back(f);
     const nlohmann::ordered_json report = build_report(config, soc, outcome, wall_s, outputs);
     write_file_atomically((dir / "config.yaml").string(), config.to_yaml());
     write_file_atomically((dir / "report.md").string(), report_markdown(report));
@@ -148,6 +224,7 @@ int run_scenario(const RunOptions& options) {
                      (dir / "report.md").c_str());
     return report["passed"].get<bool>() ? kExitOk : kExitFailed;
 }
+
 
 int validate_scenario(const RunOptions& options) {
     const std::string path = resolve_scenario(options.scenario);

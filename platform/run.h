@@ -14,6 +14,7 @@ struct RunOptions {
     std::string out;            // default: traces/<scenario name>
     std::string trace = "all";  // none | vcd | perfetto | all
     bool quiet = false;
+    bool direct = false;  // no SystemC: the driver and software on the untimed DirectChip
 };
 
 // Both throw ConfigError for bad input; the caller turns it into kExitBadInput.

@@ -31,7 +31,12 @@ void apply_section(Config& config, const std::string& path, const std::string& s
         const std::string key = section + "." + item.first.Scalar();
         if (!seen.insert(key).second)
             throw ConfigError(fmt::format("{}: {} is set twice", at(path, item.first), key));
-        config.set(key, scalar(path, key, item.second), at(path, item.second.IsNull() ? item.first : item.second));
+        std::string value = scalar(path, key, item.second);
+        // Paths in a scenario are relative to the scenario's own folder.
+        const ParamSpec* spec = find_parameter(key);
+        if (spec && spec->kind == ParamKind::text && !value.empty() && fs::path(value).is_relative())
+            value = (fs::path(path).parent_path() / value).lexically_normal().string();
+        config.set(key, value, at(path, item.second.IsNull() ? item.first : item.second));
     }
 }
 

@@ -65,6 +65,7 @@ private:
 std::unique_ptr<Workload> make_workload(const Config& config) {
     const std::string& name = config.choice("run.workload");
     if (name == "smoke") return std::make_unique<SmokeWorkload>(config);
+    if (name == "surf") return make_surf_workload(config);
     throw ConfigError("run.workload: no workload named " + name);
 }
 

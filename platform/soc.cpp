@@ -84,6 +84,32 @@ double share(const sc_core::sc_time& part, const sc_core::sc_time& whole) {
     return whole > sc_core::SC_ZERO_TIME ? part.to_seconds() / whole.to_seconds() : 0.0;
 }
 
+nlohmann::ordered_json iig_report(const Iig& iig) {
+    return {{"frames", iig.stats().frames}, {"errors", iig.stats().errors}, {"busy_s", seconds(iig.stats().busy)},
+            {"stalled_s", seconds(iig.stats().stalled)}};
+}
+
+nlohmann::ordered_json fhg_report(const Fhg& fhg) {
+    const auto& s = fhg.stats();
+    return {{"frames", s.frames}, {"errors", s.errors},
+            {"cycles_per_block", fhg.block_cycles()}, {"block_limit", fhg.block_limit()},
+            {"sequence_cycles_per_block", fhg.sequence().cycles},
+            {"optimal_cycles_per_block", fhg.sequence().optimal_cycles},
+            {"busy_s", seconds(s.busy)}, {"computing_s", seconds(s.computing)},
+            {"waiting_for_lines_s", seconds(s.waiting_for_lines)},
+            {"candidates", s.candidates}, {"candidates_dropped", s.dropped},
+            {"maxima_fifo_high_water", s.fifo_high_water}, {"line_fifo_high_water", s.lines_high_water}};
+}
+
+// One block: its object; several: an array of them.
+template <typename Block, typename Report>
+nlohmann::ordered_json blocks_report(const std::vector<std::unique_ptr<Block>>& blocks, Report report) {
+    if (blocks.size() == 1) return report(*blocks[0]);
+    nlohmann::ordered_json all = nlohmann::ordered_json::array();
+    for (const auto& b : blocks) all.push_back(report(*b));
+    return all;
+}
+
 nlohmann::ordered_json bus_report(const PlbBus& bus, const sc_core::sc_time& elapsed) {
     nlohmann::ordered_json masters = nlohmann::ordered_json::object();
     for (const auto& m : bus.master_stats())
@@ -113,13 +139,17 @@ Soc::Soc(const Config& c, Tracer& tracer) : workload_(make_workload(c)) {
 }
 
 void Soc::build(const Config& c, Tracer& tracer) {
+    const unsigned pairs = unsigned(c.count("soc.accelerators"));
     memory_ = std::make_unique<DdrMemory>("memory", memory_params(c));
     plb1_ = std::make_unique<PlbBus>("plb1", plb_params(c, "plb1"), tracer);
     plb2_ = std::make_unique<PlbBus>("plb2", plb_params(c, "plb2"), tracer);
     intc_ = std::make_unique<Intc>("intc", Intc::Params{static_cast<unsigned>(c.count("intc.inputs"))}, tracer);
     dma_ = std::make_unique<Dma>("dma", Dma::Params{c.beats("dma.burst"), c.bits("plb2.width")}, tracer);
-    iig_ = std::make_unique<Iig>("iig", iig_params(c), tracer);
-    fhg_ = std::make_unique<Fhg>("fhg", fhg_params(c), tracer);
+    for (unsigned k = 0; k < pairs; ++k) {
+        const std::string suffix = pairs > 1 ? std::to_string(k) : "";
+        iigs_.push_back(std::make_unique<Iig>(("iig" + suffix).c_str(), iig_params(c), tracer));
+        fhgs_.push_back(std::make_unique<Fhg>(("fhg" + suffix).c_str(), fhg_params(c), tracer));
+    }
     Ppc440::Params cpu;
     cpu.clock = c.frequency("cpu.clock");
     cpu.quantum = c.duration("cpu.quantum");
@@ -129,49 +159,57 @@ void Soc::build(const Config& c, Tracer& tracer) {
 
     // PLB1: the CPU's MPLB; DDR, the INTC and the register slaves.
     plb1_->connect_master(cpu_->bus, "cpu");
-    plb1_->slaves.bind(memory_->ports);
+    unsigned slave = 0;
+    auto attach = [&](auto& socket, uint64_t base, uint64_t size, const std::string& name) {
+        plb1_->slaves.bind(socket);
+        plb1_->map(base, size, slave++, name);
+    };
+    attach(memory_->ports, map::ddr.base, ddr_size, map::ddr.name);
     memory_->name_port("plb1");
-    plb1_->map(map::ddr.base, ddr_size, 0, map::ddr.name);
-    plb1_->slaves.bind(intc_->regs);
-    plb1_->map(map::intc.base, map::intc.size, 1, map::intc.name);
-    plb1_->slaves.bind(dma_->regs);
-    plb1_->map(map::dma.base, map::dma.size, 2, map::dma.name);
-    plb1_->slaves.bind(iig_->regs);
-    plb1_->map(map::iig.base, map::iig.size, 3, map::iig.name);
-    plb1_->slaves.bind(fhg_->regs);
-    plb1_->map(map::fhg.base, map::fhg.size, 4, map::fhg.name);
+    attach(intc_->regs, map::intc.base, map::intc.size, map::intc.name);
+    attach(dma_->regs, map::dma.base, map::dma.size, map::dma.name);
+    for (unsigned k = 0; k < pairs; ++k) {
+        attach(iigs_[k]->regs, map::iig_base(k), map::iig.size, iigs_[k]->basename());
+        attach(fhgs_[k]->regs, map::fhg_base(k), map::fhg.size, fhgs_[k]->basename());
+    }
 
     // PLB2: the DMA masters to DDR.
     plb2_->connect_master(dma_->mplb, "dma");
-    plb2_->connect_master(iig_->mplb, "iig");
-    plb2_->connect_master(fhg_->mplb, "fhg");
+    for (unsigned k = 0; k < pairs; ++k) {
+        plb2_->connect_master(iigs_[k]->mplb, iigs_[k]->basename());
+        plb2_->connect_master(fhgs_[k]->mplb, fhgs_[k]->basename());
+        iigs_[k]->pixels.bind(fhgs_[k]->pixels);  // PixelBus: IIG -> FHG
+    }
     plb2_->slaves.bind(memory_->ports);
     memory_->name_port("plb2");
     plb2_->map(map::ddr.base, ddr_size, 0, map::ddr.name);
 
-    // PixelBus: IIG -> FHG.
-    iig_->pixels.bind(fhg_->pixels);
+    wire_interrupts(tracer);
+}
 
-    // Interrupts: block lines into the INTC, the INTC into the CPU; unused inputs held low.
-    const std::pair<unsigned, sc_core::sc_signal<bool>*> lines[] = {
-        {map::irq::dma, &dma_irq_}, {map::irq::iig, &iig_irq_}, {map::irq::fhg, &fhg_irq_}};
-    for (const auto& [line, signal] : lines)
-        if (line >= intc_->irq_in.size())
-            throw ConfigError(fmt::format("intc.inputs: {} are too few for interrupt line {}", intc_->irq_in.size(), line));
+// Block lines into the INTC, the INTC into the CPU; unused inputs held low.
+void Soc::wire_interrupts(Tracer& tracer) {
+    const unsigned pairs = unsigned(iigs_.size());
+    if (map::irq::fhg(pairs - 1) >= intc_->irq_in.size())
+        throw ConfigError(fmt::format("intc.inputs: {} are too few for {} accelerator pairs (they need {})",
+                                      intc_->irq_in.size(), pairs, map::irq::fhg(pairs - 1) + 1));
+    iig_irqs_.init(pairs);
+    fhg_irqs_.init(pairs);
+    std::vector<sc_core::sc_signal<bool>*> line(intc_->irq_in.size(), &low_);
+    line[map::irq::dma] = &dma_irq_;
     dma_->irq.bind(dma_irq_);
-    iig_->irq.bind(iig_irq_);
-    fhg_->irq.bind(fhg_irq_);
-    for (unsigned i = 0; i < intc_->irq_in.size(); ++i) {
-        sc_core::sc_signal<bool>* signal = &low_;
-        for (const auto& [line, s] : lines)
-            if (line == i) signal = s;
-        intc_->irq_in[i].bind(*signal);
+    tracer.signal(dma_irq_, "irq.dma");
+    for (unsigned k = 0; k < pairs; ++k) {
+        iigs_[k]->irq.bind(iig_irqs_[k]);
+        fhgs_[k]->irq.bind(fhg_irqs_[k]);
+        line[map::irq::iig(k)] = &iig_irqs_[k];
+        line[map::irq::fhg(k)] = &fhg_irqs_[k];
+        tracer.signal(iig_irqs_[k], std::string("irq.") + iigs_[k]->basename());
+        tracer.signal(fhg_irqs_[k], std::string("irq.") + fhgs_[k]->basename());
     }
+    for (unsigned i = 0; i < intc_->irq_in.size(); ++i) intc_->irq_in[i].bind(*line[i]);
     intc_->irq.bind(cpu_irq_);
     cpu_->irq.bind(cpu_irq_);
-    tracer.signal(dma_irq_, "irq.dma");
-    tracer.signal(iig_irq_, "irq.iig");
-    tracer.signal(fhg_irq_, "irq.fhg");
     tracer.signal(cpu_irq_, "irq.cpu");
 }
 
@@ -201,17 +239,8 @@ nlohmann::ordered_json Soc::report(const sc_core::sc_time& elapsed) const {
                      {"irq_wait_s", seconds(s.irq_wait_time)}}},
             {"interrupts", {{"raised", intc_->interrupts_raised()}}},
             {"dma", {{"copies", dma_->copies()}, {"bytes_copied", dma_->bytes_copied()}}},
-            {"iig", {{"frames", iig_->stats().frames}, {"errors", iig_->stats().errors},
-                     {"busy_s", seconds(iig_->stats().busy)}, {"stalled_s", seconds(iig_->stats().stalled)}}},
-            {"fhg", {{"frames", fhg_->stats().frames}, {"errors", fhg_->stats().errors},
-                     {"cycles_per_block", fhg_->block_cycles()}, {"block_limit", fhg_->block_limit()},
-                     {"sequence_cycles_per_block", fhg_->sequence().cycles},
-                     {"optimal_cycles_per_block", fhg_->sequence().optimal_cycles},
-                     {"busy_s", seconds(fhg_->stats().busy)}, {"computing_s", seconds(fhg_->stats().computing)},
-                     {"waiting_for_lines_s", seconds(fhg_->stats().waiting_for_lines)},
-                     {"candidates", fhg_->stats().candidates}, {"candidates_dropped", fhg_->stats().dropped},
-                     {"maxima_fifo_high_water", fhg_->stats().fifo_high_water},
-                     {"line_fifo_high_water", fhg_->stats().lines_high_water}}}};
+            {"iig", blocks_report(iigs_, iig_report)},
+            {"fhg", blocks_report(fhgs_, fhg_report)}};
 }
 
 }  // namespace surfvp

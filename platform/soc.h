@@ -3,6 +3,7 @@
 // binds their sockets and interrupt lines, and maps their regions from address_map.h.
 // It holds no behaviour of its own.
 #include <memory>
+#include <vector>
 #include <nlohmann/json.hpp>
 #include <systemc>
 
@@ -28,6 +29,9 @@ public:
     Soc(const Config& config, Tracer& tracer);  // elaborates; throws ConfigError
 
     Ppc440& cpu() { return *cpu_; }
+    DdrMemory& memory() { return *memory_; }
+    const std::vector<std::unique_ptr<Iig>>& iigs() const { return iigs_; }
+    const std::vector<std::unique_ptr<Fhg>>& fhgs() const { return fhgs_; }
     Workload& workload() { return *workload_; }
 
     // Bus, memory, CPU and interrupt statistics over `elapsed` of simulated time.
@@ -36,17 +40,18 @@ public:
 
 private:
     void build(const Config& config, Tracer& tracer);
+    void wire_interrupts(Tracer& tracer);
 
     std::unique_ptr<Workload> workload_;
     std::unique_ptr<DdrMemory> memory_;
     std::unique_ptr<PlbBus> plb1_, plb2_;
     std::unique_ptr<Intc> intc_;
     std::unique_ptr<Dma> dma_;
-    std::unique_ptr<Iig> iig_;
-    std::unique_ptr<Fhg> fhg_;
+    std::vector<std::unique_ptr<Iig>> iigs_;
+    std::vector<std::unique_ptr<Fhg>> fhgs_;
     std::unique_ptr<Ppc440> cpu_;
-    sc_core::sc_signal<bool> dma_irq_{"dma_irq"}, iig_irq_{"iig_irq"}, fhg_irq_{"fhg_irq"}, cpu_irq_{"cpu_irq"},
-        low_{"unused_irq"};
+    sc_core::sc_signal<bool> dma_irq_{"dma_irq"}, cpu_irq_{"cpu_irq"}, low_{"unused_irq"};
+    sc_core::sc_vector<sc_core::sc_signal<bool>> iig_irqs_{"iig_irq"}, fhg_irqs_{"fhg_irq"};
 };
 
 }  // namespace surfvp

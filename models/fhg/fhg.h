@@ -100,9 +100,9 @@ private:
     std::deque<uint32_t> maxima_;
     sc_core::sc_fifo<int> det_rows_;  // block rows ready for the writer
     sc_core::sc_event start_, line_arrived_, room_, rows_written_, irq_changed_;
-    sc_core::sc_signal<bool, sc_core::SC_MANY_WRITERS> busy_{"busy"};
-    sc_core::sc_signal<unsigned, sc_core::SC_MANY_WRITERS> fifo_level_{"maxima_fifo_level"};
-    sc_core::sc_signal<unsigned, sc_core::SC_MANY_WRITERS> line_level_{"line_fifo_level"};
+    sc_core::sc_signal<bool, sc_core::SC_UNCHECKED_WRITERS> busy_{"busy"};
+    sc_core::sc_signal<unsigned, sc_core::SC_UNCHECKED_WRITERS> fifo_level_{"maxima_fifo_level"};
+    sc_core::sc_signal<unsigned, sc_core::SC_UNCHECKED_WRITERS> line_level_{"line_fifo_level"};
     Stats stats_;
     int frame_track_ = -1, row_track_ = -1, level_track_ = -1;
 };

@@ -82,7 +82,7 @@ private:
     std::vector<uint8_t> bytes_;       // one integral row as bus bytes
     sc_core::sc_fifo<int> fetched_, computed_for_write_, computed_for_send_;
     sc_core::sc_event start_, irq_changed_;
-    sc_core::sc_signal<bool, sc_core::SC_MANY_WRITERS> busy_{"busy"};  // set by START, cleared by the last unit
+    sc_core::sc_signal<bool, sc_core::SC_UNCHECKED_WRITERS> busy_{"busy"};  // set by START, cleared by the last unit
     sc_core::sc_signal<bool> stalled_{"stalled"};
     Stats stats_;
     sc_core::sc_time stall_total_;

@@ -132,6 +132,19 @@ void Ppc440::write(uint32_t address, const void* data, size_t bytes) {
     stats_.bytes_written += bytes;
 }
 
+const uint8_t* Ppc440::map(uint32_t address, size_t bytes) {
+    if (bytes == 0 || !dmi_covers(address, bytes, tlm::TLM_READ_COMMAND))
+        throw sw::BusError(fmt::format("no direct memory at {:#010x} (+{} B)", address, bytes), address);
+    return dmi_.get_dmi_ptr() + (address - dmi_.get_start_address());
+}
+
+bool Ppc440::irq_pending() {
+    keeper_.sync();  // the input's level at the software's own time
+    return irq.read();
+}
+
+uint64_t Ppc440::time_ps() { return now().value(); }
+
 void Ppc440::wait_for_irq() {
     keeper_.sync();
     ++stats_.irq_waits;

@@ -55,7 +55,10 @@ private:
     void write32(uint32_t address, uint32_t value) override;
     void read(uint32_t address, void* data, size_t bytes) override;
     void write(uint32_t address, const void* data, size_t bytes) override;
+    const uint8_t* map(uint32_t address, size_t bytes) override;
     void wait_for_irq() override;
+    bool irq_pending() override;
+    uint64_t time_ps() override;
     void consume(uint64_t cycles) override;
     void begin(const char* what) override;
     void end() override;

@@ -31,8 +31,19 @@ public:
     virtual void read(uint32_t address, void* data, size_t bytes) = 0;
     virtual void write(uint32_t address, const void* data, size_t bytes) = 0;
 
+    // Memory for reading in place: a pointer to `bytes` bytes at `address`, valid until the
+    // next HAL call, without time. Software that reads through it counts its own accesses
+    // (sw/cpu_cost) and charges them with consume(). Throws BusError outside memory.
+    virtual const uint8_t* map(uint32_t address, size_t bytes) = 0;
+
     // Blocks until the CPU's interrupt input is high.
     virtual void wait_for_irq() = 0;
+    // The interrupt input's level now: software that computes for long checks it between
+    // pieces of work, as an interrupt would preempt it.
+    virtual bool irq_pending() = 0;
+
+    // The time base (picoseconds since reset); 0 where there is no time (direct mode).
+    virtual uint64_t time_ps() = 0;
 
     // The software's own computation: `cycles` CPU clock cycles.
     virtual void consume(uint64_t cycles) = 0;

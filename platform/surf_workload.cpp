@@ -1,0 +1,285 @@
+// The SURF workload: frames in memory, libSSA2 driving the accelerators, the software stage
+// describing the candidates; judged on frame rate against the budget.
+#include <algorithm>
+#include <filesystem>
+#include <fmt/format.h>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "address_map.h"
+#include "describer.h"
+#include "models/fhg/fhg_regs.h"
+#include "models/fhg/hessian_core.h"
+#include "soc.h"
+#include "sw/eval/distinguishability.h"
+#include "sw/eval/homography.h"
+#include "sw/eval/keypoint_file.h"
+#include "sw/eval/pose_geometry.h"
+#include "sw/eval/repeatability.h"
+#include "sw/eval/sequence.h"
+#include "sw/libssa2/libssa2.h"
+#include "sw/surf/surf.h"
+#include "workload.h"
+
+namespace surfvp {
+namespace {
+namespace fs = std::filesystem;
+
+constexpr uint64_t kPage = 4096;
+uint64_t round_up(uint64_t v) { return (v + kPage - 1) / kPage * kPage; }
+
+std::vector<cv::Mat> load_frames(const Config& c) {
+    const std::string source = c.text("surf.source");
+    const size_t count = c.count("surf.frames");
+    std::vector<cv::Mat> frames;
+    std::error_code ec;
+    try {
+        if (fs::is_regular_file(source, ec) && !cv::imread(source, cv::IMREAD_GRAYSCALE).empty()) {
+            frames.assign(count, cv::imread(source, cv::IMREAD_GRAYSCALE));  // one image, repeated
+        } else {
+            eval::SequenceReader reader(eval::open_sequence(source, count));
+            for (cv::Mat frame; frames.size() < count && reader.next(frame);) frames.push_back(frame.clone());
+        }
+    } catch (const std::exception& e) {
+        throw ConfigError(fmt::format("surf.source {}: {}", source, e.what()));
+    }
+    if (frames.empty()) throw ConfigError(fmt::format("surf.source {}: no frames (install opencv-doc / visp-images-data?)", source));
+    const int w = int(c.count("surf.width")), h = int(c.count("surf.height"));
+    for (cv::Mat& f : frames)
+        if (w && h && (f.cols != w || f.rows != h)) {
+            cv::Mat resized;
+            cv::resize(f, resized, cv::Size(w, h), 0, 0, cv::INTER_AREA);
+            f = resized;
+        }
+    for (const cv::Mat& f : frames)
+        if (f.size() != frames[0].size()) throw ConfigError("surf.source: frames differ in size; set surf.width and surf.height");
+    return frames;
+}
+
+// The float reference on frame 0, limited to the chip's two octaves at step 1.
+float calibrate(const Config& c, const cv::Mat& frame) {
+    if (c.count("surf.target_keypoints") == 0) return float(c.real("surf.threshold"));
+    surf::Params p;
+    p.octaves = 2;
+    p.init_step = 1;
+    p.upright = c.choice("surf.upright") == "on";
+    return surf::threshold_for_count(frame, int(c.count("surf.target_keypoints")), p);
+}
+
+struct FrameResult {
+    surf::Keypoints keypoints;
+    sw::ssa2::Task task;
+    bool reported = false;
+};
+
+class SurfWorkload : public Workload {
+public:
+    explicit SurfWorkload(const Config& c)
+        : config_(c), frames_(load_frames(c)), threshold_(calibrate(c, frames_[0])),
+          describer_(make_describer(c, threshold_)), results_(frames_.size()) {
+        width_ = frames_[0].cols;
+        height_ = frames_[0].rows;
+        layout(c);
+        const fhg::HessianCore core(fhg_params(c).precision);
+        driver_.intc_base = map::intc.base;
+        for (unsigned k = 0; k < c.count("soc.accelerators"); ++k)
+            driver_.accelerators.push_back({map::iig_base(k), map::fhg_base(k), map::irq::iig(k), map::irq::fhg(k)});
+        driver_.tasks_in_flight = unsigned(c.count("surf.tasks_in_flight"));
+        driver_.fifo_irq_level = uint32_t(c.count("surf.fifo_irq_level"));
+        driver_.threshold = core.from_float(threshold_);
+        budget_fps_ = c.real("budget.fps");
+        cpu_hz_ = c.frequency("cpu.clock").hz;
+    }
+
+    void preload(const Backdoor& memory) override {
+        for (size_t i = 0; i < frames_.size(); ++i) {
+            uint8_t* at = memory(frame_address(i), uint64_t(width_) * height_);
+            for (int y = 0; y < height_; ++y) std::copy_n(frames_[i].ptr(y), width_, at + size_t(y) * width_);
+        }
+    }
+
+    Ppc440::Software software() override {
+        return [this](sw::Hal& hal) {
+            std::vector<sw::ssa2::Task> tasks(frames_.size());
+            for (size_t i = 0; i < tasks.size(); ++i) {
+                const size_t slot = i % driver_.tasks_in_flight;
+                tasks[i].image = frame_address(i);
+                tasks[i].integral = uint32_t(slots_base_ + slot * slot_bytes_);
+                tasks[i].determinants = uint32_t(slots_base_ + slot * slot_bytes_ + integral_bytes_);
+                tasks[i].width = width_;
+                tasks[i].height = height_;
+            }
+            sw::ssa2::Driver driver(hal, driver_, *describer_);
+            driver.run(tasks, [this](const sw::ssa2::Task& task, surf::Keypoints&& keypoints) {
+                FrameResult& r = results_[size_t(task.id)];
+                r.task = task;
+                r.keypoints = std::move(keypoints);
+                r.reported = true;
+                ++done_;
+            });
+        };
+    }
+
+    Progress progress() const override { return {done_, frames_.size(), "frames"}; }
+
+    std::vector<Check> checks() const override {
+        std::vector<Check> checks;
+        std::vector<std::string> failures;
+        for (const FrameResult& r : results_)
+            if (r.task.phase == sw::ssa2::Phase::failed) failures.push_back(fmt::format("frame {}: {}", r.task.id, r.task.error));
+        checks.push_back({"every frame processed", failures.empty() && done_ == frames_.size(),
+                          failures.empty() ? fmt::format("{} of {} frames", done_, frames_.size())
+                                           : fmt::format("{}", fmt::join(failures, "; "))});
+        if (budget_fps_ > 0) {
+            const double fps = throughput();
+            checks.push_back({"frame-rate budget", fps >= budget_fps_,
+                              fmt::format("{:.2f} frames/s against {:.2f}", fps, budget_fps_)});
+        }
+        return checks;
+    }
+
+    nlohmann::ordered_json summary() const override;
+    nlohmann::ordered_json report() const override;
+    std::vector<std::string> write_files(const std::string& dir) const override;
+
+private:
+    uint32_t frame_address(size_t i) const { return uint32_t(frames_base_ + i * frame_bytes_); }
+
+    // Frames, then one set of integral image and determinant buffers per task in flight.
+    void layout(const Config& c) {
+        frame_bytes_ = round_up(uint64_t(width_) * height_);
+        integral_bytes_ = round_up(uint64_t(width_) * height_ * 4);
+        slot_bytes_ = integral_bytes_ + round_up(uint64_t((width_ + 1) / 2) * ((height_ + 1) / 2) * fhg_regs::kRecordBytes);
+        frames_base_ = 0x0010'0000;
+        slots_base_ = frames_base_ + frames_.size() * frame_bytes_;
+        const uint64_t end = slots_base_ + c.count("surf.tasks_in_flight") * slot_bytes_;
+        if (end > c.bytes("memory.size").n)
+            throw ConfigError(fmt::format("{} frames of {}x{} and {} buffer sets need {} of memory, memory.size is {}",
+                                          frames_.size(), width_, height_, c.count("surf.tasks_in_flight"),
+                                          format_bytes(Bytes{end}), format_bytes(c.bytes("memory.size"))));
+    }
+
+    double throughput() const;
+    nlohmann::ordered_json evaluation() const;
+
+    const Config& config_;
+    std::vector<cv::Mat> frames_;
+    float threshold_;
+    std::unique_ptr<sw::ssa2::Describer> describer_;
+    std::vector<FrameResult> results_;
+    sw::ssa2::DriverConfig driver_;
+    int width_ = 0, height_ = 0;
+    uint64_t frame_bytes_ = 0, integral_bytes_ = 0, slot_bytes_ = 0, frames_base_ = 0, slots_base_ = 0;
+    uint64_t done_ = 0;
+    double budget_fps_ = 0, cpu_hz_ = 0;
+};
+
+// Steady state: frames finished per second between the first and the last to finish.
+double SurfWorkload::throughput() const {
+    std::vector<uint64_t> ends;
+    for (const FrameResult& r : results_)
+        if (r.reported && r.task.phase == sw::ssa2::Phase::done) ends.push_back(r.task.t_done);
+    if (ends.size() < 2) return 0;
+    std::sort(ends.begin(), ends.end());
+    return double(ends.size() - 1) / (double(ends.back() - ends.front()) * 1e-12);
+}
+
+nlohmann::ordered_json SurfWorkload::summary() const {
+    double latency = 0, integral = 0, determinants = 0, describe = 0, keypoints = 0, cycles = 0;
+    size_t n = 0, min_kp = SIZE_MAX, max_kp = 0;
+    for (const FrameResult& r : results_) {
+        if (r.task.phase != sw::ssa2::Phase::done) continue;
+        const auto& t = r.task;
+        latency += double(t.t_done - t.t_start);
+        integral += double(t.t_integral - t.t_start);
+        determinants += double(t.t_determinants - t.t_start);
+        describe += double(t.t_done - t.t_determinants);
+        keypoints += double(r.keypoints.size());
+        cycles += double(t.descriptor_cycles);
+        min_kp = std::min(min_kp, r.keypoints.size());
+        max_kp = std::max(max_kp, r.keypoints.size());
+        ++n;
+    }
+    const double per = n ? 1.0 / double(n) : 0;
+    const double fps = throughput();
+    nlohmann::ordered_json budget = nullptr;
+    if (budget_fps_ > 0) budget = {{"fps", budget_fps_}, {"met", fps >= budget_fps_}};
+    return {{"image", {{"width", width_}, {"height", height_}}},
+            {"frames", frames_.size()},
+            {"frames_done", n},
+            {"throughput_fps", fps},
+            {"latency_ms", latency * per * 1e-9},
+            {"keypoints_per_frame", keypoints * per},
+            {"keypoints_per_frame_range", {n ? min_kp : 0, max_kp}},
+            {"threshold", threshold_},
+            {"budget", budget},
+            {"phases_ms", {{"integral_image", integral * per * 1e-9},
+                           {"determinants", determinants * per * 1e-9},
+                           {"descriptors", describe * per * 1e-9}}},
+            {"software_time_per_keypoint_us", keypoints > 0 ? cycles / keypoints / cpu_hz_ * 1e6 : 0.0},
+            {"software_cycles_per_keypoint", keypoints > 0 ? cycles / keypoints : 0.0}};
+}
+
+nlohmann::ordered_json SurfWorkload::report() const {
+    nlohmann::ordered_json frames = nlohmann::ordered_json::array();
+    for (const FrameResult& r : results_) {
+        const auto& t = r.task;
+        nlohmann::ordered_json f = {{"frame", t.id}, {"candidates", t.candidates.size()}, {"keypoints", r.keypoints.size()},
+                                    {"start_ms", t.t_start * 1e-9}, {"integral_done_ms", t.t_integral * 1e-9},
+                                    {"determinants_done_ms", t.t_determinants * 1e-9}, {"done_ms", t.t_done * 1e-9},
+                                    {"descriptor_cycles", t.descriptor_cycles}};
+        if (t.phase == sw::ssa2::Phase::failed) f["error"] = t.error;
+        frames.push_back(f);
+    }
+    return {{"source", config_.text("surf.source")}, {"evaluation", evaluation()}, {"per_frame", frames}};
+}
+
+// Feature quality on the chip's own keypoints, when the scenario gives the geometry.
+nlohmann::ordered_json SurfWorkload::evaluation() const {
+    nlohmann::ordered_json out = nlohmann::ordered_json::object();
+    if (done_ != frames_.size()) return out;
+    const std::string homography = config_.text("eval.homography");
+    if (!homography.empty() && results_.size() >= 2) {
+        const Eigen::Matrix3d h = eval::read_homography_file(homography);
+        const auto rep = eval::repeatability(results_[0].keypoints, results_[1].keypoints, h, frames_[0].size(),
+                                             frames_[1].size());
+        const auto prec = eval::matching_precision(results_[0].keypoints, results_[1].keypoints, h);
+        out["homography"] = {{"repeatability", rep.repeatability}, {"correspondences", rep.correspondences},
+                             {"precision", prec.precision}, {"candidates", prec.candidates}};
+    }
+    const std::string poses = config_.text("eval.poses");
+    if (!poses.empty() && results_.size() >= 2) {
+        std::vector<surf::Keypoints> all;
+        for (const FrameResult& r : results_) all.push_back(r.keypoints);
+        const auto posed = eval::list_posed_frames(poses);
+        const eval::CameraIntrinsics k = eval::kCastleIntrinsics;
+        for (size_t gap : {size_t(1), size_t(2)}) {
+            const auto ransac = eval::sequence_distinguishability(all, gap);
+            const auto truth = eval::sequence_distinguishability(all, gap, [&](size_t i, size_t j) {
+                return eval::fundamental_from_poses(k, posed.at(i).c_m_o, posed.at(j).c_m_o);
+            });
+            out[fmt::format("distinguishability_gap{}", gap)] = {{"ransac", ransac.mean}, {"ground_truth", truth.mean},
+                                                                  {"pairs", ransac.pairs.size()}};
+        }
+    }
+    return out;
+}
+
+std::vector<std::string> SurfWorkload::write_files(const std::string& dir) const {
+    const fs::path folder = fs::path(dir) / "keypoints";
+    fs::create_directories(folder);
+    std::vector<std::string> written;
+    for (const FrameResult& r : results_) {
+        if (!r.reported) continue;
+        const fs::path file = folder / fmt::format("frame_{:04}.surf", r.task.id);
+        eval::write_keypoint_file(file, r.keypoints);
+        written.push_back(fs::relative(file, dir).string());
+    }
+    return written;
+}
+
+}  // namespace
+
+std::unique_ptr<Workload> make_surf_workload(const Config& config) { return std::make_unique<SurfWorkload>(config); }
+
+}  // namespace surfvp

@@ -1,0 +1,212 @@
+#include "libssa2.h"
+
+#include <fmt/format.h>
+#include <stdexcept>
+
+#include "models/fhg/fhg_regs.h"
+#include "models/iig/iig_regs.h"
+#include "models/intc/intc_regs.h"
+
+namespace surfvp::sw::ssa2 {
+namespace f = fhg_regs;
+
+namespace {
+
+const char* fhg_error(uint32_t code) {
+    switch (code) {
+        case f::ERR_WRITE: return "FHG determinant DMA write got a bus error";
+        case f::ERR_SIZE: return "FHG refused the image size";
+        case f::ERR_START_BUSY: return "FHG was started while busy";
+        case f::ERR_ABORTED: return "FHG aborted";
+        case f::ERR_PIXELBUS: return "FHG got a PixelBus line of the wrong width";
+        default: return "FHG error";
+    }
+}
+
+const char* iig_error(uint32_t code) {
+    switch (code) {
+        case iig::ERR_READ: return "IIG image DMA read got a bus error";
+        case iig::ERR_WRITE: return "IIG integral DMA write got a bus error";
+        case iig::ERR_OVERFLOW: return "IIG integral sum overflowed its word";
+        case iig::ERR_SIZE: return "IIG refused the image size";
+        case iig::ERR_START_BUSY: return "IIG was started while busy";
+        case iig::ERR_ABORTED: return "IIG aborted";
+        default: return "IIG error";
+    }
+}
+
+}  // namespace
+
+Driver::Driver(Hal& hal, DriverConfig config, Describer& describer)
+    : hal_(hal), config_(std::move(config)), describer_(describer), running_(config_.accelerators.size(), -1) {
+    if (config_.accelerators.empty()) throw std::invalid_argument("libSSA2 needs at least one accelerator");
+    if (config_.tasks_in_flight == 0) throw std::invalid_argument("libSSA2 needs at least one task in flight");
+}
+
+void Driver::enable_interrupts() {
+    Span span(hal_, "init interrupts");
+    uint32_t mask = 0;
+    for (const Accelerator& a : config_.accelerators) mask |= 1u << a.iig_irq | 1u << a.fhg_irq;
+    hal_.write32(config_.intc_base + intc::IER, mask);
+    hal_.write32(config_.intc_base + intc::MER, intc::MER_ME | intc::MER_HIE);
+}
+
+void Driver::run(std::vector<Task>& tasks, const Callback& callback) {
+    keypoints_.assign(tasks.size(), {});
+    for (size_t i = 0; i < tasks.size(); ++i) tasks[i].id = int(i);
+    enable_interrupts();
+    auto unfinished = [&] {
+        for (const Task& t : tasks)
+            if (t.phase != Phase::done && t.phase != Phase::failed) return true;
+        return false;
+    };
+    while (unfinished()) {
+        start_hardware(tasks);
+        if (hal_.irq_pending()) {
+            service_interrupts(tasks);
+        } else if (Task* t = describing(tasks)) {
+            describe_one(*t, callback);
+        } else {
+            Span span(hal_, "idle");
+            hal_.wait_for_irq();
+        }
+        // Tasks that failed are reported as soon as their accelerator has let go of them.
+        for (Task& t : tasks)
+            if (t.phase == Phase::failed && t.accelerator < 0 && t.t_done == 0) finish(t, callback);
+    }
+}
+
+// In flight: started and not yet finished. The next queued task starts on a free pair.
+void Driver::start_hardware(std::vector<Task>& tasks) {
+    unsigned in_flight = 0;
+    for (const Task& t : tasks) in_flight += t.phase == Phase::hardware || t.phase == Phase::descriptors;
+    for (size_t a = 0; a < running_.size() && in_flight < config_.tasks_in_flight; ++a) {
+        if (running_[a] >= 0) continue;
+        for (Task& t : tasks)
+            if (t.phase == Phase::queued) {
+                start(t, int(a));
+                ++in_flight;
+                break;
+            }
+    }
+}
+
+void Driver::start(Task& task, int accelerator) {
+    Span span(hal_, "start hardware");
+    const Accelerator& a = config_.accelerators[accelerator];
+    task.phase = Phase::hardware;
+    task.accelerator = accelerator;
+    running_[accelerator] = task.id;
+    task.t_start = hal_.time_ps();
+    // The FHG first: it must be listening before the IIG streams.
+    hal_.write32(a.fhg_base + f::DET_ADDR, task.determinants);
+    hal_.write32(a.fhg_base + f::WIDTH, uint32_t(task.width));
+    hal_.write32(a.fhg_base + f::HEIGHT, uint32_t(task.height));
+    hal_.write32(a.fhg_base + f::THRESHOLD, uint32_t(config_.threshold));
+    hal_.write32(a.fhg_base + f::FIFO_THRESHOLD, config_.fifo_irq_level);
+    hal_.write32(a.fhg_base + f::CTRL, f::CTRL_START | f::CTRL_IRQ_EN_DONE | f::CTRL_IRQ_EN_FIFO);
+    hal_.write32(a.iig_base + iig::SRC, task.image);
+    hal_.write32(a.iig_base + iig::DST, task.integral);
+    hal_.write32(a.iig_base + iig::WIDTH, uint32_t(task.width));
+    hal_.write32(a.iig_base + iig::HEIGHT, uint32_t(task.height));
+    hal_.write32(a.iig_base + iig::SRC_STRIDE, uint32_t(task.width));
+    hal_.write32(a.iig_base + iig::DST_STRIDE, uint32_t(task.width) * 4);
+    hal_.write32(a.iig_base + iig::CTRL, iig::CTRL_START | iig::CTRL_IRQ_EN | iig::CTRL_STREAM);
+}
+
+void Driver::service_interrupts(std::vector<Task>& tasks) {
+    Span span(hal_, "interrupt");
+    ++interrupts_;
+    const uint32_t pending = hal_.read32(config_.intc_base + intc::IPR);
+    for (size_t i = 0; i < config_.accelerators.size(); ++i) {
+        const Accelerator& a = config_.accelerators[i];
+        if (running_[i] < 0) continue;
+        Task& task = tasks[size_t(running_[i])];
+        if (pending & (1u << a.fhg_irq)) on_fhg(task, a);
+        if (pending & (1u << a.iig_irq)) on_iig(task, a);
+        if (task.integral_done && task.determinants_done) hardware_finished(task);
+    }
+    // Acknowledge after the sources have let go of their lines (they are level sensitive).
+    hal_.write32(config_.intc_base + intc::IAR, pending);
+}
+
+void Driver::drain_fifo(Task& task, const Accelerator& a) {
+    const uint32_t level = hal_.read32(a.fhg_base + f::FIFO_LEVEL);
+    for (uint32_t i = 0; i < level; ++i) {
+        const uint32_t word = hal_.read32(a.fhg_base + f::FIFO_DATA);
+        if (word >> 31) task.candidates.push_back(word);
+    }
+}
+
+void Driver::on_fhg(Task& task, const Accelerator& a) {
+    const uint32_t status = hal_.read32(a.fhg_base + f::STATUS);
+    drain_fifo(task, a);
+    if (!(status & (f::STATUS_DONE | f::STATUS_ERROR))) return;
+    drain_fifo(task, a);  // what arrived after the first read-out
+    task.t_determinants = hal_.time_ps();
+    task.determinants_done = true;
+    if (status & f::STATUS_ERROR) {
+        fail(task, fhg_error(hal_.read32(a.fhg_base + f::ERROR_CODE)));
+        hal_.write32(a.iig_base + iig::CTRL, iig::CTRL_ABORT | iig::CTRL_IRQ_EN);
+    } else if (const uint32_t dropped = hal_.read32(a.fhg_base + f::OVERFLOW_COUNT)) {
+        fail(task, fmt::format("the maxima FIFO overflowed: {} candidates dropped", dropped));
+    }
+    hal_.write32(a.fhg_base + f::STATUS, f::STATUS_DONE | f::STATUS_ERROR | f::STATUS_FIFO_OVERFLOW);
+}
+
+void Driver::on_iig(Task& task, const Accelerator& a) {
+    const uint32_t status = hal_.read32(a.iig_base + iig::STATUS);
+    if (!(status & (iig::STATUS_DONE | iig::STATUS_ERROR))) return;
+    task.t_integral = hal_.time_ps();
+    task.integral_done = true;
+    if (status & iig::STATUS_ERROR) {
+        const uint32_t code = hal_.read32(a.iig_base + iig::ERROR_CODE);
+        if (code != iig::ERR_ABORTED) fail(task, iig_error(code));
+        hal_.write32(a.fhg_base + f::CTRL, f::CTRL_ABORT | f::CTRL_IRQ_EN_DONE);  // the FHG waits for lines that will not come
+    }
+    hal_.write32(a.iig_base + iig::STATUS, iig::STATUS_DONE | iig::STATUS_ERROR);
+}
+
+void Driver::fail(Task& task, const std::string& why) {
+    if (task.phase == Phase::failed) return;  // the first reason stands
+    task.phase = Phase::failed;
+    task.error = why;
+}
+
+// Both units are done with the task: the pair is free, and the CPU may describe it.
+void Driver::hardware_finished(Task& task) {
+    running_[size_t(task.accelerator)] = -1;
+    task.accelerator = -1;
+    if (task.phase == Phase::hardware) task.phase = Phase::descriptors;
+}
+
+Task* Driver::describing(std::vector<Task>& tasks) {
+    for (Task& t : tasks)
+        if (t.phase == Phase::descriptors) return &t;
+    return nullptr;
+}
+
+// One candidate at a time, so that interrupts are served between them.
+void Driver::describe_one(Task& task, const Callback& callback) {
+    if (task.described < task.candidates.size()) {
+        Span span(hal_, "describe");
+        const FrameInMemory frame{task.integral, task.determinants, task.width, task.height};
+        uint64_t cycles = 0;
+        auto keypoint = describer_.describe(hal_, task.candidates[task.described++], frame, cycles);
+        hal_.consume(cycles);
+        task.descriptor_cycles += cycles;
+        if (keypoint) keypoints_[size_t(task.id)].push_back(*keypoint);
+    }
+    if (task.described == task.candidates.size()) {
+        task.phase = Phase::done;
+        finish(task, callback);
+    }
+}
+
+void Driver::finish(Task& task, const Callback& callback) {
+    task.t_done = hal_.time_ps();
+    if (task.t_done == 0) task.t_done = 1;  // direct mode has no time: mark it reported
+    callback(task, std::move(keypoints_[size_t(task.id)]));
+}
+
+}  // namespace surfvp::sw::ssa2

@@ -1,0 +1,107 @@
+#pragma once
+// libSSA2, the driver of the SSA IIG / SSA FHG accelerators (paper §III-D), written against
+// the HAL only: registers, memory and interrupts.
+//
+// A task is one image: its buffers in memory (image, integral image, determinants) and its
+// results. Processing has the paper's four phases:
+//   1. integral image      the IIG, streaming into the FHG          (hardware)
+//   2. determinants        the FHG                                   (hardware)
+//   3. local maxima        draining the FHG's maxima FIFO on its occupancy interrupt, and
+//                          what is left when the FHG is done        (CPU, interrupt-driven)
+//   4. descriptors         the software stage on every candidate     (CPU)
+// Phases overlap, and so do tasks: while the CPU describes task n, the accelerators already
+// work on task n+1 (up to `tasks_in_flight` tasks between start and end). With several
+// accelerator pairs, tasks go to whichever pair is free. A hardware error (bus error, size,
+// FIFO overflow) fails that task with its reason; the others go on.
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "sw/hal/hal.h"
+#include "sw/surf/keypoint.h"
+
+namespace surfvp::sw::ssa2 {
+
+struct Accelerator {
+    uint32_t iig_base, fhg_base;  // register windows
+    unsigned iig_irq, fhg_irq;    // INTC input numbers
+};
+
+struct DriverConfig {
+    uint32_t intc_base = 0;
+    std::vector<Accelerator> accelerators;
+    unsigned tasks_in_flight = 2;
+    uint32_t fifo_irq_level = 256;  // FHG FIFO_THRESHOLD
+    int32_t threshold = 0;          // FHG THRESHOLD (determinant fixed point)
+};
+
+// Where the hardware left one task's results, as the software stage reads them.
+struct FrameInMemory {
+    uint32_t integral, determinants;  // bus addresses
+    int width, height;
+};
+
+// The CPU's part of phase 4 (sw/stage): one candidate word -> a keypoint or none. It reads
+// the frame through hal.map() and returns the CPU cycles its work cost.
+class Describer {
+public:
+    virtual ~Describer() = default;
+    virtual std::optional<surf::Keypoint> describe(Hal& hal, uint32_t candidate, const FrameInMemory& frame,
+                                                   uint64_t& cycles) = 0;
+};
+
+enum class Phase { queued, hardware, descriptors, done, failed };
+
+struct Task {
+    int id = 0;
+    uint32_t image = 0, integral = 0, determinants = 0;
+    int width = 0, height = 0;
+
+    Phase phase = Phase::queued;
+    int accelerator = -1;
+    std::string error;                 // why it failed
+    std::vector<uint32_t> candidates;  // maxima FIFO words, in FIFO order
+    size_t described = 0;              // candidates handed to the describer so far
+    uint64_t descriptor_cycles = 0;
+    bool integral_done = false, determinants_done = false;
+    // Time base (ps): hardware start, IIG done, FHG done, descriptors done.
+    uint64_t t_start = 0, t_integral = 0, t_determinants = 0, t_done = 0;
+};
+
+using Callback = std::function<void(const Task& task, surf::Keypoints&& keypoints)>;
+
+class Driver {
+public:
+    Driver(Hal& hal, DriverConfig config, Describer& describer);
+
+    // Runs every task to its end (done or failed), calling `callback` once per task in the
+    // order they finish.
+    void run(std::vector<Task>& tasks, const Callback& callback);
+
+    uint64_t interrupts_served() const { return interrupts_; }
+
+private:
+    void enable_interrupts();
+    void start_hardware(std::vector<Task>& tasks);
+    void start(Task& task, int accelerator);
+    void service_interrupts(std::vector<Task>& tasks);
+    void on_fhg(Task& task, const Accelerator& a);
+    void on_iig(Task& task, const Accelerator& a);
+    void drain_fifo(Task& task, const Accelerator& a);
+    void fail(Task& task, const std::string& why);
+    void hardware_finished(Task& task);
+    Task* describing(std::vector<Task>& tasks);
+    void describe_one(Task& task, const Callback& callback);
+    void finish(Task& task, const Callback& callback);
+
+    Hal& hal_;
+    DriverConfig config_;
+    Describer& describer_;
+    std::vector<int> running_;  // per accelerator: the task it works on, or -1
+    std::vector<surf::Keypoints> keypoints_;
+    uint64_t interrupts_ = 0;
+};
+
+}  // namespace surfvp::sw::ssa2
