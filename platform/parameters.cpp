@@ -129,6 +129,9 @@ void add_surf(std::vector<ParamSpec>& t) {
                  "Maxima FIFO level that interrupts the CPU to drain it", "[A] a quarter of the default FIFO"});
     t.push_back({"budget.fps", ParamKind::real, "10", 0, 1e6, {}, "Frames per second the scenario must sustain (0: no budget)",
                  "[S] paper: ~10 FPS at 1024 x 768"});
+    t.push_back({"fault.frame", ParamKind::count, "0", 0, 100000, {},
+                 "Fault injection: frame number (from 1) whose determinant buffer is placed outside memory; 0: none",
+                 "[-] test hook: a DMA bus error in one task"});
     t.push_back({"eval.homography", ParamKind::text, "", 0, 0, {},
                  "Homography from frame 0 to frame 1 (Oxford or OpenCV file): report repeatability and precision", "[-] evaluation"});
     t.push_back({"eval.poses", ParamKind::text, "", 0, 0, {},

@@ -26,6 +26,7 @@ namespace {
 namespace fs = std::filesystem;
 
 constexpr uint64_t kPage = 4096;
+constexpr uint32_t kOutsideMemory = 0xF000'0000;  // fault.frame's determinant buffer: no DDR there
 uint64_t round_up(uint64_t v) { return (v + kPage - 1) / kPage * kPage; }
 
 std::vector<cv::Mat> load_frames(const Config& c) {
@@ -88,6 +89,7 @@ public:
         driver_.fifo_irq_level = uint32_t(c.count("surf.fifo_irq_level"));
         driver_.threshold = core.from_float(threshold_);
         budget_fps_ = c.real("budget.fps");
+        fault_frame_ = c.count("fault.frame");
         cpu_hz_ = c.frequency("cpu.clock").hz;
     }
 
@@ -109,6 +111,7 @@ public:
                 tasks[i].width = width_;
                 tasks[i].height = height_;
             }
+            if (fault_frame_ > 0 && fault_frame_ <= tasks.size()) tasks[fault_frame_ - 1].determinants = kOutsideMemory;
             sw::ssa2::Driver driver(hal, driver_, *describer_);
             driver.run(tasks, [this](const sw::ssa2::Task& task, surf::Keypoints&& keypoints) {
                 FrameResult& r = results_[size_t(task.id)];
@@ -170,7 +173,7 @@ private:
     sw::ssa2::DriverConfig driver_;
     int width_ = 0, height_ = 0;
     uint64_t frame_bytes_ = 0, integral_bytes_ = 0, slot_bytes_ = 0, frames_base_ = 0, slots_base_ = 0;
-    uint64_t done_ = 0;
+    uint64_t done_ = 0, fault_frame_ = 0;
     double budget_fps_ = 0, cpu_hz_ = 0;
 };
 

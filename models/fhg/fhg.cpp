@@ -105,10 +105,12 @@ void Fhg::flag(uint32_t code) {
     ++stats_.errors;
 }
 
-// Stops the frame: waiting units wake up and run out without doing more work.
+// Stops the frame: waiting units wake up and run out without doing more work; ERROR shows
+// when the frame thread has finished (BUSY clears), so the next START finds the FHG idle.
 void Fhg::fail(uint32_t code) {
-    flag(code);
+    if (frame_.failed) return;  // the first cause stands
     frame_.failed = true;
+    frame_.error = code;
     line_arrived_.notify(sc_core::SC_ZERO_TIME);
     room_.notify(sc_core::SC_ZERO_TIME);
 }
@@ -118,7 +120,7 @@ void Fhg::start() {
     if (width_ == 0 || height_ == 0 || width_ > params_.max_width || height_ > params_.max_height)
         return flag(r::ERR_SIZE);
     frame_ = {det_addr_, width_, height_, (width_ + 1) / 2, (height_ + 1) / 2, int32_t(threshold_), true, false, 0, 0, 0,
-              sc_core::sc_time_stamp()};
+              0, sc_core::sc_time_stamp()};
     lines_.assign(size_t(width_) * height_, 0);
     for (auto& slot : slots_) slot.assign(size_t(frame_.blocks_x) * fhg::kDeterminantsPerBlock, 0);
     maxima_.clear();
@@ -176,7 +178,9 @@ void Fhg::frame_thread() {
         stats_.busy += sc_core::sc_time_stamp() - frame_.began;
         ++stats_.frames;
         frame_.running = false;
-        status_ = (status_ & ~r::STATUS_BUSY) | (frame_.failed ? 0 : r::STATUS_DONE);
+        status_ &= ~r::STATUS_BUSY;
+        if (frame_.failed) flag(frame_.error);
+        else status_ |= r::STATUS_DONE;
         busy_.write(false);
         room_.notify(sc_core::SC_ZERO_TIME);  // a sender still waiting gives up
         if (tracer_.perfetto_on())

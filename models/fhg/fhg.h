@@ -90,6 +90,7 @@ private:
         uint32_t det_addr, width, height, blocks_x, blocks_y;
         int32_t threshold;
         bool running, failed;
+        uint32_t error;       // ErrorCode of the failure, shown at the frame's end
         int received;         // lines received: rows 0 .. received-1
         int oldest;           // first line still held in the FIFO
         unsigned rows_written;

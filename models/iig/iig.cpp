@@ -79,16 +79,19 @@ void Iig::b_transport(tlm::tlm_generic_payload& tx, sc_time&) {
     });
 }
 
-// Flags an error in STATUS; fail() also stops the frame in progress.
+// Flags an error in STATUS at once (a refused command).
 void Iig::flag(uint32_t code) {
     error_code_ = code;
     status_ |= iig::STATUS_ERROR;
     ++stats_.errors;
 }
 
+// Stops the frame in progress; its ERROR shows when the units have run out (BUSY clears),
+// so that the next START finds the IIG idle.
 void Iig::fail(uint32_t code) {
-    flag(code);
+    if (frame_.failed) return;  // the first cause stands
     frame_.failed = true;
+    frame_.error = code;
 }
 
 void Iig::start() {
@@ -96,7 +99,7 @@ void Iig::start() {
     if (width_ == 0 || height_ == 0 || width_ > params_.max_width || height_ > params_.max_height)
         return flag(iig::ERR_SIZE);
     frame_ = {src_, dst_, width_, height_, src_stride_ ? src_stride_ : width_, dst_stride_ ? dst_stride_ : 4 * width_,
-              (ctrl_ & iig::CTRL_STREAM) != 0, false, 0, sc_core::sc_time_stamp()};
+              (ctrl_ & iig::CTRL_STREAM) != 0, false, 0, 0, sc_core::sc_time_stamp()};
     image_.assign(size_t(frame_.width) * frame_.height, 0);
     integral_.assign(size_t(frame_.width) * frame_.height, 0);
     bytes_.resize(size_t(frame_.width) * 4);
@@ -173,7 +176,9 @@ void Iig::finish_row() {
     stats_.stalled += stall_total_;
     stats_.busy += sc_core::sc_time_stamp() - frame_.began;
     ++stats_.frames;
-    status_ = (status_ & ~iig::STATUS_BUSY) | (frame_.failed ? 0 : iig::STATUS_DONE);
+    status_ &= ~iig::STATUS_BUSY;
+    if (frame_.failed) flag(frame_.error);
+    else status_ |= iig::STATUS_DONE;
     busy_.write(false);
     if (tracer_.perfetto_on())
         tracer_.slice(track_, fmt::format("integral {}x{}", frame_.width, frame_.height), frame_.began,

@@ -74,6 +74,7 @@ private:
         uint32_t src, dst, width, height, src_stride, dst_stride;
         bool stream;
         bool failed;
+        uint32_t error;          // ErrorCode of the failure, shown at the frame's end
         unsigned rows_finished;  // written and (if streaming) sent
         sc_core::sc_time began;
     } frame_{};
