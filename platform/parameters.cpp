@@ -146,6 +146,10 @@ std::vector<ParamSpec> make_table() {
                  "Simulated time after which a run that has not finished is stopped as stalled",
                  "[A] a guard, far above any scenario's length"});
 
+    t.push_back({"run.dma_granularity", ParamKind::choice, "line", 0, 0, {"line", "burst"},
+                 "IP blocks' DMA: one TLM transaction per line (fast; the bus still charges each burst) or per burst "
+                 "(other masters may slip in between bursts)",
+                 "[-] simulation setting (DESIGN: one transaction per burst or per line)"});
     t.push_back({"cpu.clock", ParamKind::frequency, "400 MHz", 1 * MHz, 550 * MHz, {}, "PowerPC 440 core clock",
                  "[S] ML507 reference design (Linux virtex440-ml507.dts, QEMU virtex_ml507): 400 MHz; 550 MHz is the device maximum"});
     t.push_back({"cpu.quantum", ParamKind::duration, "1 us", 1, 1000 * us, {},

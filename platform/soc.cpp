@@ -32,6 +32,11 @@ DdrMemory::Params memory_params(const Config& c) {
     return p;
 }
 
+// One TLM transaction per line (fast) or per burst (finest contention).
+uint64_t dma_transaction_bytes(const Config& c, unsigned burst_beats) {
+    return c.choice("run.dma_granularity") == "burst" ? uint64_t(burst_beats) * c.bits("plb2.width") / 8 : 0;
+}
+
 }  // namespace
 
 Iig::Params iig_params(const Config& c) {
@@ -45,6 +50,7 @@ Iig::Params iig_params(const Config& c) {
     p.line_buffers = unsigned(c.count("iig.line_buffers"));
     p.max_width = unsigned(c.count("iig.max_width"));
     p.max_height = unsigned(c.count("iig.max_height"));
+    p.dma_transaction_bytes = dma_transaction_bytes(c, p.burst_beats);
     return p;
 }
 
@@ -73,6 +79,7 @@ Fhg::Params fhg_params(const Config& c) {
     p.det_row_buffers = unsigned(c.count("fhg.det_row_buffers"));
     p.max_width = unsigned(c.count("fhg.max_width"));
     p.max_height = unsigned(c.count("fhg.max_height"));
+    p.dma_transaction_bytes = dma_transaction_bytes(c, p.burst_beats);
     return p;
 }
 

@@ -5,7 +5,8 @@
 
 namespace surfvp {
 
-DmaEngine::DmaEngine(tlm::tlm_initiator_socket<>& port, unsigned burst_bytes) : port_(port), burst_bytes_(burst_bytes) {
+DmaEngine::DmaEngine(tlm::tlm_initiator_socket<>& port, unsigned burst_bytes, uint64_t transaction_bytes)
+    : port_(port), burst_bytes_(burst_bytes), transaction_bytes_(transaction_bytes) {
     if (burst_bytes == 0) throw std::invalid_argument("DMA burst length must be above zero");
 }
 
@@ -22,8 +23,9 @@ DmaEngine::Result DmaEngine::transfer(tlm::tlm_command command, uint64_t address
     Result result;
     tlm::tlm_generic_payload tx;
     sc_core::sc_time local = sc_core::SC_ZERO_TIME;
+    const uint64_t chunk = transaction_bytes_ ? std::max<uint64_t>(transaction_bytes_, burst_bytes_) : bytes;
     for (uint64_t done = 0; done < bytes;) {
-        const auto length = static_cast<unsigned>(std::min<uint64_t>(burst_bytes_, bytes - done));
+        const auto length = static_cast<unsigned>(std::min<uint64_t>(chunk, bytes - done));
         tx.set_command(command);
         tx.set_address(address + done);
         tx.set_data_ptr(data + done);
@@ -33,9 +35,9 @@ DmaEngine::Result DmaEngine::transfer(tlm::tlm_command command, uint64_t address
         tx.set_dmi_allowed(false);
         tx.set_response_status(tlm::TLM_INCOMPLETE_RESPONSE);
         port_->b_transport(tx, local);
-        ++bursts_;
+        ++transactions_;
         if (!tx.is_response_ok()) {
-            result = {false, address + done, tx.get_response_status()};
+            result = {false, address + done, tx.get_response_status()};  // the transaction that failed
             break;
         }
         done += length;

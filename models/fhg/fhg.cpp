@@ -191,7 +191,7 @@ void Fhg::frame_thread() {
 }
 
 void Fhg::writer_thread() {
-    DmaEngine dma(mplb, params_.burst_beats * params_.bus_width_bits / 8);
+    DmaEngine dma(mplb, params_.burst_beats * params_.bus_width_bits / 8, params_.dma_transaction_bytes);
     std::vector<uint8_t> bytes;
     for (;;) {
         int by = 0;

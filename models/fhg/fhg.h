@@ -41,6 +41,7 @@ public:
         unsigned bus_width_bits = 128;
         unsigned det_row_buffers = 2;  // block rows of determinants waiting for the writer
         unsigned max_width = 1024, max_height = 1024;
+        uint64_t dma_transaction_bytes = 0;  // bytes per TLM transaction: 0 = a whole line (DmaEngine)
     };
 
     struct Stats {

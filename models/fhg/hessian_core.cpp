@@ -32,8 +32,10 @@ HessianCore::HessianCore(const Precision& p) : precision_(p) {
     check(p.det_bits >= 8 && p.det_bits <= 32, "det_bits must be 8..32");
     check(p.det_frac_bits <= 2 * p.response_frac_bits, "det_frac_bits must not exceed 2 x response_frac_bits");
     weight_ = std::llround(0.81 * double(int64_t(1) << p.weight_frac_bits));
-    for (int size : kSizes)
+    for (int size : kSizes) {
         reciprocal_[size] = std::llround(std::ldexp(1.0, int(p.response_frac_bits + p.recip_shift)) / (size * size));
+        reads_[size] = filter_reads(size);
+    }
 }
 
 bool HessianCore::inside(int width, int height, int x, int y, int size) {
@@ -58,7 +60,7 @@ int32_t HessianCore::finish(int64_t xx, int64_t yy, int64_t xy, int size) const 
 
 HessianCore::Sums HessianCore::sums(const IntegralView& ii, int x, int y, int size) const {
     int64_t acc[3] = {0, 0, 0};
-    for (const Read& r : filter_reads(size)) {
+    for (const Read& r : reads_[size]) {
         const int rx = x + r.dx, ry = y + r.dy;
         const int64_t value = (rx < 0 || ry < 0) ? 0 : ii.at(rx, ry);
         acc[int(r.response)] += r.coefficient * value;
@@ -81,10 +83,54 @@ std::array<int32_t, kDeterminantsPerBlock> HessianCore::block(const IntegralView
     return out;
 }
 
+namespace {
+
+// The fixed-point steps 2 and 3 for a run of TripleMAC sums, as plain loops over arrays so
+// that the compiler vectorises them (with clones for AVX2 and AVX-512 picked at run time).
+// Same arithmetic as HessianCore::finish, element by element.
+struct FinishConstants {
+    unsigned drop;  // 64 - accumulator_bits
+    int64_t k, weight;
+    unsigned recip_shift, weight_shift, det_shift;
+    int64_t response_max, det_max;
+};
+
+[[gnu::always_inline]] inline int64_t step_shift(int64_t v, unsigned shift) {
+    return shift ? (v + (int64_t(1) << (shift - 1))) >> shift : v;
+}
+
+[[gnu::always_inline]] inline int64_t clamp_to(int64_t v, int64_t max) { return v > max ? max : (v < -max - 1 ? -max - 1 : v); }
+
+__attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
+void finish_run(const uint32_t* xx, const uint32_t* yy, const uint32_t* xy, int n, const FinishConstants& c,
+                int32_t* out) {
+    for (int i = 0; i < n; ++i) {
+        const int64_t sxx = int64_t(uint64_t(int64_t(int32_t(xx[i]))) << c.drop) >> c.drop;
+        const int64_t syy = int64_t(uint64_t(int64_t(int32_t(yy[i]))) << c.drop) >> c.drop;
+        const int64_t sxy = int64_t(uint64_t(int64_t(int32_t(xy[i]))) << c.drop) >> c.drop;
+        const int64_t rxx = clamp_to(step_shift(sxx * c.k, c.recip_shift), c.response_max);
+        const int64_t ryy = clamp_to(step_shift(syy * c.k, c.recip_shift), c.response_max);
+        const int64_t rxy = clamp_to(step_shift(sxy * c.k, c.recip_shift), c.response_max);
+        const int64_t det = rxx * ryy - step_shift(c.weight * rxy * rxy, c.weight_shift);
+        out[i] = int32_t(clamp_to(step_shift(det, c.det_shift), c.det_max));
+    }
+}
+
+// The TripleMAC sums of one filter along a row: one integral row per read, so each read is
+// a loop over x. 32-bit unsigned sums wrap, which is exact modulo 2^32 and so for any
+// accumulator width up to 32 bits.
+__attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
+void accumulate(uint32_t* a, const uint32_t* src, uint32_t coefficient, int k, int n, int step) {
+    if (step == 1)
+        for (; k < n; ++k) a[k] += coefficient * src[k];
+    else
+        for (; k < n; ++k) a[k] += coefficient * src[k * step];
+}
+
+}  // namespace
+
 // The fast path: for one filter and one image row, every read is a column offset into one
-// integral row, so the sums are loops over x that the compiler vectorises. Sums wrap in
-// 32-bit unsigned arithmetic, which is exact modulo 2^32 and so for any accumulator width
-// up to 32 bits; wrap() then narrows them.
+// integral row, so the sums are loops over x.
 void HessianCore::row(const IntegralView& ii, int y, int size, int x0, int step, int count, int32_t* out,
                       int out_stride) const {
     const int b = (size - 1) / 2;
@@ -98,26 +144,23 @@ void HessianCore::row(const IntegralView& ii, int y, int size, int x0, int step,
 
     const int n = last - first;
     thread_local std::vector<uint32_t> acc;
+    thread_local std::vector<int32_t> dets;
     acc.assign(size_t(3) * n, 0);
-    thread_local std::vector<uint32_t> zeros;
-    if (zeros.size() < size_t(ii.width) + 1) zeros.assign(size_t(ii.width) + 1, 0);
-    for (const Read& r : filter_reads(size)) {
-        // Row -1 and column -1 of the integral image are zero.
+    dets.resize(size_t(n));
+    for (const Read& r : reads_[size]) {
         const int ry = y + r.dy;
+        if (ry < 0) continue;  // row -1 of the integral image is zero
         const int start = x0 + first * step + r.dx;
-        uint32_t* a = acc.data() + size_t(int(r.response)) * n;
-        const uint32_t c = uint32_t(r.coefficient);
-        if (ry < 0) continue;
-        const uint32_t* src = ii.row(ry);
-        int k = 0;
-        if (start < 0) k = 1;  // only the first sample can fall on column -1 (start >= -1)
-        if (step == 1)
-            for (; k < n; ++k) a[k] += c * src[start + k];
-        else
-            for (; k < n; ++k) a[k] += c * src[start + k * step];
+        // Only the first sample can fall on column -1 (start >= -1), which is zero too.
+        accumulate(acc.data() + size_t(int(r.response)) * n, ii.row(ry) + start, uint32_t(r.coefficient),
+                   start < 0 ? 1 : 0, n, step);
     }
-    for (int k = 0; k < n; ++k)
-        out[(first + k) * out_stride] = finish(int32_t(acc[k]), int32_t(acc[n + k]), int32_t(acc[2 * n + k]), size);
+    const Precision& p = precision_;
+    const FinishConstants c{64 - p.accumulator_bits, reciprocal_[size], weight_, p.recip_shift, p.weight_frac_bits,
+                            2 * p.response_frac_bits - p.det_frac_bits, (int64_t(1) << (p.response_bits - 1)) - 1,
+                            (int64_t(1) << (p.det_bits - 1)) - 1};
+    finish_run(acc.data(), acc.data() + n, acc.data() + 2 * n, n, c, dets.data());
+    for (int k = 0; k < n; ++k) out[(first + k) * out_stride] = dets[size_t(k)];
 }
 
 void HessianCore::block_row(const IntegralView& ii, int by, int32_t* out) const {

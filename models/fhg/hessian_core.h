@@ -16,6 +16,7 @@
 #include <array>
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "filter_geometry.h"
 #include "models/iig/integral_core.h"
@@ -59,6 +60,7 @@ private:
     Precision precision_;
     int64_t weight_;
     std::array<int64_t, 64> reciprocal_{};  // K_L indexed by L
+    std::array<std::vector<Read>, 64> reads_;  // filter_reads(L) indexed by L
 };
 
 }  // namespace surfvp::fhg

@@ -110,7 +110,7 @@ void Iig::start() {
 }
 
 void Iig::fetch_thread() {
-    DmaEngine dma(mplb, params_.burst_beats * params_.bus_width_bits / 8);
+    DmaEngine dma(mplb, params_.burst_beats * params_.bus_width_bits / 8, params_.dma_transaction_bytes);
     for (;;) {
         sc_core::wait(start_);
         for (uint32_t y = 0; y < frame_.height; ++y) {
@@ -139,7 +139,7 @@ void Iig::compute_thread() {
 }
 
 void Iig::write_thread() {
-    DmaEngine dma(mplb, params_.burst_beats * params_.bus_width_bits / 8);
+    DmaEngine dma(mplb, params_.burst_beats * params_.bus_width_bits / 8, params_.dma_transaction_bytes);
     for (;;) {
         int y = 0;
         computed_for_write_.read(y);  // read(T&): the returning read() trips -Wmaybe-uninitialized in sc_fifo.h

@@ -34,6 +34,7 @@ public:
         unsigned pixelbus_width_bits = 32;
         unsigned line_buffers = 2;
         unsigned max_width = 1024, max_height = 1024;
+        uint64_t dma_transaction_bytes = 0;  // bytes per TLM transaction: 0 = a whole line (DmaEngine)
     };
 
     struct Stats {
