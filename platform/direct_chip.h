@@ -34,6 +34,7 @@ public:
     void consume(uint64_t cycles) override { cycles_ += cycles; }
     void begin(const char*) override {}
     void end() override {}
+    void mark(unsigned, int) override {}
 
 private:
     struct Iig {

@@ -5,6 +5,7 @@
 #include <exception>
 #include <systemc>
 
+#include "bench.h"
 #include "config.h"
 #include "parameters.h"
 #include "quality_commands.h"
@@ -55,6 +56,12 @@ int dispatch(int argc, char** argv) {
         ->type_name("KEY=VALUE");
     seqgen->add_option("--width", seqgen_options.width, "Image width for the implied frame rate")->capture_default_str();
     seqgen->add_option("--height", seqgen_options.height, "Image height for the implied frame rate")->capture_default_str();
+    BenchOptions bench_options;
+    bench_options.self = "/proc/self/exe";
+    CLI::App* bench = app.add_subcommand("bench", "Measure the simulator: wall time per frame (traces off and on), peak memory");
+    bench->add_option("scenario", bench_options.scenario, "Scenario to run")->capture_default_str();
+    bench->add_option("--frames", bench_options.frames, "Frames of the shorter run (the longer has twice as many)")
+        ->capture_default_str();
     QualityCommands quality(app);
 
     try {
@@ -68,6 +75,7 @@ int dispatch(int argc, char** argv) {
         if (*run) return run_scenario(options);
         if (*validate) return validate_scenario(options);
         if (*seqgen) return seqgen_command(seqgen_options);
+        if (*bench) return bench_command(bench_options);
         if (app.got_subcommand("list")) return list_scenarios();
         if (app.got_subcommand("params")) {
             std::fputs(parameters_markdown().c_str(), stdout);

@@ -209,6 +209,7 @@ int run_scenario(const RunOptions& options) {
         outcome = simulate(soc, config, progress, start);
     }
     const double wall_s = since(start);
+    soc.workload().trace(tracer);
 
     std::vector<std::string> outputs{"report.json", "report.md", "config.yaml"};
     for (const std::string& f : tracer.finish()) outputs.push_back(fs::path(f).filename().string());

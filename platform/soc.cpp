@@ -161,6 +161,8 @@ void Soc::build(const Config& c, Tracer& tracer) {
     cpu.clock = c.frequency("cpu.clock");
     cpu.quantum = c.duration("cpu.quantum");
     cpu.line_bytes = static_cast<unsigned>(c.bytes("cpu.cache_line").n);
+    for (unsigned k = 0; k < pairs; ++k) cpu.markers.push_back(fmt::format("accelerator{}_task", k));
+    cpu.markers.push_back("describing_task");
     cpu_ = std::make_unique<Ppc440>("cpu", cpu, workload_->software(), tracer);
     const uint64_t ddr_size = memory_params(c).size.n;
 

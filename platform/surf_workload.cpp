@@ -145,6 +145,24 @@ public:
     nlohmann::ordered_json report() const override;
     std::vector<std::string> write_files(const std::string& dir) const override;
 
+    // Each frame's hardware phases on its accelerator's track and its descriptors on the
+    // CPU's: frames overlapping across the chip.
+    void trace(Tracer& tracer) const override {
+        if (!tracer.perfetto_on()) return;
+        std::vector<int> hardware;
+        for (size_t k = 0; k < driver_.accelerators.size(); ++k)
+            hardware.push_back(tracer.track("frames", fmt::format("accelerator {} (integral + determinants)", k)));
+        const int descriptors = tracer.track("frames", "cpu (descriptors)");
+        auto at = [](uint64_t ps) { return sc_core::sc_time(double(ps), sc_core::SC_PS); };
+        for (const FrameResult& r : results_) {
+            const auto& t = r.task;
+            if (!r.reported || t.t_determinants == 0) continue;
+            const std::string name = fmt::format("frame {}{}", t.id, t.phase == sw::ssa2::Phase::failed ? " (failed)" : "");
+            tracer.slice(hardware[size_t(t.id) % hardware.size()], name, at(t.t_start), at(t.t_determinants));
+            if (t.phase == sw::ssa2::Phase::done) tracer.slice(descriptors, name, at(t.t_determinants), at(t.t_done));
+        }
+    }
+
 private:
     uint32_t frame_address(size_t i) const { return uint32_t(frames_base_ + i * frame_bytes_); }
 

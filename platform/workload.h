@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "config.h"
+#include "models/common/tracer.h"
 #include "models/ppc440/ppc440.h"
 
 namespace surfvp {
@@ -38,6 +39,8 @@ public:
     virtual nlohmann::ordered_json report() const = 0;  // the workload's own section
     // Top-level report keys (frame rate, latency, budget...): none by default.
     virtual nlohmann::ordered_json summary() const { return nlohmann::ordered_json::object(); }
+    // Its own timeline tracks, after the run (frames across the blocks).
+    virtual void trace(Tracer&) const {}
     // Files of its own under the output folder (keypoints): the names written.
     virtual std::vector<std::string> write_files(const std::string& /*dir*/) const { return {}; }
 };

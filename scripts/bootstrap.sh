@@ -7,7 +7,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-readonly DEFAULT_SCENARIO=scenarios/smoke.yaml
+readonly DEFAULT_SCENARIO=scenarios/budget_1024x768.yaml
 readonly PACKAGES=(
   build-essential cmake pkg-config
   libsystemc-dev libyaml-cpp-dev libcli11-dev nlohmann-json3-dev libfmt-dev
@@ -37,6 +37,6 @@ cmake -S . -B build -DCMAKE_BUILD_TYPE=Release >/dev/null
 cmake --build build -j2
 
 case "$1" in
-  run) ./build/surfvp run "$DEFAULT_SCENARIO" ;;
+  run) ./build/surfvp run "$DEFAULT_SCENARIO" || [ $? -eq 1 ] ;;  # 1: the budget verdict, reported, not a failure to run
   test) cd build && ctest --output-on-failure -j2 ;;
 esac

@@ -18,6 +18,12 @@ Ppc440::Ppc440(const sc_core::sc_module_name& name, const Params& params, Softwa
     SC_THREAD(run);
     tracer_.signal(waiting_, fmt::format("{}.waiting_irq", basename()));
     track_ = tracer_.track("cpu", basename());
+    markers_.init(params.markers.size());
+    for (size_t i = 0; i < params.markers.size(); ++i) {
+        markers_[i].write(-1);
+        tracer_.signal(markers_[i], "sw." + params.markers[i]);
+        marker_tracks_.push_back(tracer_.track("sw", params.markers[i]));
+    }
 }
 
 sc_time Ppc440::now() const { return sc_core::sc_time_stamp() + keeper_.get_local_time(); }
@@ -161,6 +167,14 @@ void Ppc440::consume(uint64_t count) {
     stats_.cycles_consumed += count;
     keeper_.inc(cycles(params_.clock, double(count)));
     if (keeper_.need_sync()) keeper_.sync();
+}
+
+void Ppc440::mark(unsigned index, int value) {
+    if (index >= markers_.size()) return;
+    keeper_.sync();  // the signal changes at the software's own time
+    markers_[index].write(value);
+    if (tracer_.perfetto_on())
+        tracer_.counter(marker_tracks_[index], params_.markers[index], sc_core::sc_time_stamp(), value);
 }
 
 void Ppc440::begin(const char* what) { spans_.push_back({what, now()}); }

@@ -27,6 +27,7 @@ public:
         Frequency clock{400e6};
         Duration quantum{1000000};  // 1 us
         unsigned line_bytes = 32;   // memory accesses without DMI go in lines of this size
+        std::vector<std::string> markers;  // names of the software's markers (HAL mark())
     };
     using Software = std::function<void(sw::Hal&)>;
 
@@ -62,6 +63,7 @@ private:
     void consume(uint64_t cycles) override;
     void begin(const char* what) override;
     void end() override;
+    void mark(unsigned index, int value) override;
 
     void mmio(tlm::tlm_command command, uint32_t address, uint8_t* data);
     void memory(tlm::tlm_command command, uint32_t address, uint8_t* data, size_t bytes);
@@ -88,6 +90,8 @@ private:
     };
     std::vector<OpenSpan> spans_;
     int track_ = -1;
+    sc_core::sc_vector<sc_core::sc_signal<int>> markers_{"marker"};
+    std::vector<int> marker_tracks_;
 };
 
 }  // namespace surfvp

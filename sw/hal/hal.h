@@ -51,6 +51,9 @@ public:
     // Marks a span of software work on the CPU's timeline (spans may nest).
     virtual void begin(const char* what) = 0;
     virtual void end() = 0;
+    // Sets marker `index` (the platform names them: e.g. which task an accelerator works on)
+    // to `value`, shown as a VCD signal and a timeline counter.
+    virtual void mark(unsigned index, int value) = 0;
 };
 
 // A big-endian 32-bit word in memory, as the PPC440 loads and stores it.

@@ -97,6 +97,7 @@ void Driver::start(Task& task, int accelerator) {
     task.phase = Phase::hardware;
     task.accelerator = accelerator;
     running_[accelerator] = task.id;
+    hal_.mark(unsigned(accelerator), task.id);
     task.t_start = hal_.time_ps();
     // The FHG first: it must be listening before the IIG streams.
     hal_.write32(a.fhg_base + f::DET_ADDR, task.determinants);
@@ -176,6 +177,7 @@ void Driver::fail(Task& task, const std::string& why) {
 // Both units are done with the task: the pair is free, and the CPU may describe it.
 void Driver::hardware_finished(Task& task) {
     running_[size_t(task.accelerator)] = -1;
+    hal_.mark(unsigned(task.accelerator), -1);
     task.accelerator = -1;
     if (task.phase == Phase::hardware) task.phase = Phase::descriptors;
 }
@@ -188,6 +190,7 @@ Task* Driver::describing(std::vector<Task>& tasks) {
 
 // One candidate at a time, so that interrupts are served between them.
 void Driver::describe_one(Task& task, const Callback& callback) {
+    if (task.described == 0) hal_.mark(unsigned(config_.accelerators.size()), task.id);
     if (task.described < task.candidates.size()) {
         Span span(hal_, "describe");
         const FrameInMemory frame{task.integral, task.determinants, task.width, task.height};
@@ -198,6 +201,7 @@ void Driver::describe_one(Task& task, const Callback& callback) {
         if (keypoint) keypoints_[size_t(task.id)].push_back(*keypoint);
     }
     if (task.described == task.candidates.size()) {
+        hal_.mark(unsigned(config_.accelerators.size()), -1);
         task.phase = Phase::done;
         finish(task, callback);
     }

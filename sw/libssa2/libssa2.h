@@ -35,6 +35,8 @@ struct DriverConfig {
     unsigned tasks_in_flight = 2;
     uint32_t fifo_irq_level = 256;  // FHG FIFO_THRESHOLD
     int32_t threshold = 0;          // FHG THRESHOLD (determinant fixed point)
+    // HAL markers: accelerator k's task is marker k (-1 when idle); the task being described
+    // is marker accelerators.size() (-1 when none).
 };
 
 // Where the hardware left one task's results, as the software stage reads them.

@@ -1,0 +1,57 @@
+// The simulator's own speed: wall time per simulated 1024x768 frame of the budget scenario,
+// with traces off and all on, and the peak memory of the run. Each iteration is a child
+// `surfvp run` (SystemC simulates once per process); per-frame time is the difference of a
+// run of 2N and a run of N frames, divided by N, so start-up cancels out.
+#include <benchmark/benchmark.h>
+#include <chrono>
+#include <fmt/format.h>
+#include <string>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+namespace {
+
+struct Run {
+    double wall_s;
+    double peak_rss_mb;
+};
+
+Run run_frames(const std::string& trace, int frames) {
+    const std::string out = fmt::format("/tmp/surfvp_simbench_{}", ::getpid());
+    const auto start = std::chrono::steady_clock::now();
+    const pid_t pid = fork();
+    if (pid == 0) {
+        const std::string set = fmt::format("surf.frames={}", frames);
+        execl(SURFVP_BINARY, SURFVP_BINARY, "run", SURFVP_SOURCE_DIR "/scenarios/budget_1024x768.yaml", "--quiet",
+              "--trace", trace.c_str(), "--out", out.c_str(), "--set", set.c_str(), nullptr);
+        _exit(127);
+    }
+    int status = 0;
+    rusage usage{};
+    wait4(pid, &status, 0, &usage);
+    return {std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), usage.ru_maxrss / 1024.0};
+}
+
+void simulate_frames(benchmark::State& state, const std::string& trace) {
+    const int n = int(state.range(0));
+    double peak = 0;
+    for (auto _ : state) {
+        const Run shorter = run_frames(trace, n), longer = run_frames(trace, 2 * n);
+        const double per_frame = (longer.wall_s - shorter.wall_s) / n;
+        state.SetIterationTime(per_frame);
+        peak = std::max({peak, shorter.peak_rss_mb, longer.peak_rss_mb});
+    }
+    state.counters["peak_rss_mb"] = peak;
+}
+
+void BM_FrameTracesOff(benchmark::State& state) { simulate_frames(state, "none"); }
+void BM_FrameTracesAll(benchmark::State& state) { simulate_frames(state, "all"); }
+
+// Iteration time = wall time per simulated frame.
+BENCHMARK(BM_FrameTracesOff)->Arg(10)->UseManualTime()->Unit(benchmark::kMillisecond)->Iterations(3);
+BENCHMARK(BM_FrameTracesAll)->Arg(10)->UseManualTime()->Unit(benchmark::kMillisecond)->Iterations(3);
+
+}  // namespace
+
+BENCHMARK_MAIN();
