@@ -1,27 +1,92 @@
 #include "describer.h"
 
-#include "models/fhg/filter_geometry.h"
-#include "models/fhg/local_max_finder.h"
+#include "models/fhg/fhg_regs.h"
+#include "soc.h"
+#include "sw/stage/software_stage.h"
 
 namespace surfvp {
 namespace {
 
-// Until the software stage is wired: a keypoint at the candidate itself, at no cost.
-class CandidateDescriber : public sw::ssa2::Describer {
+// A line fill: the CPU's request over PLB1 (arbitration and address phase), the DDR's
+// latency, and 32 bytes at the slower of PLB1 and DDR, in CPU cycles [D].
+double miss_cycles(const Config& c) {
+    const double plb_hz = c.frequency("plb1.clock").hz;
+    const double overhead_s = double(c.cycles("plb1.arbitration_latency") + c.cycles("plb1.address_latency")) / plb_hz;
+    const double latency_s = double(c.cycles("memory.latency")) / c.frequency("memory.clock").hz;
+    const double line = double(c.bytes("cpu.cache_line").n);
+    const double ddr_rate = c.bits("memory.width") / 8.0 * double(c.count("memory.transfers_per_clock")) *
+                            c.frequency("memory.clock").hz * c.real("memory.efficiency");
+    const double plb_rate = c.bits("plb1.width") / 8.0 * plb_hz;
+    return (overhead_s + latency_s + line / std::min(ddr_rate, plb_rate)) * c.frequency("cpu.clock").hz;
+}
+
+sw::CostParams cost_params(const Config& c) {
+    sw::CostParams p;
+    p.int_op_cycles = double(c.cycles("cpu.int_op"));
+    p.branch_cycles = double(c.cycles("cpu.branch"));
+    p.load_cycles = double(c.cycles("cpu.load"));
+    p.miss_cycles = miss_cycles(c);
+    p.fpu_clock_ratio = double(c.count("cpu.fpu_ratio"));
+    p.fpu_issue_cycles = double(c.cycles("cpu.fpu_issue"));
+    p.fpu_dependent_fraction = c.real("cpu.fpu_dependent_fraction");
+    p.fadd_latency = double(c.cycles("fpu.fadd"));
+    p.fmul_latency = double(c.cycles("fpu.fmul"));
+    p.fmadd_latency = double(c.cycles("fpu.fmadd"));
+    p.fdiv_latency = double(c.cycles("fpu.fdiv"));
+    p.fsqrt_latency = double(c.cycles("fpu.fsqrt"));
+    p.fcmp_latency = double(c.cycles("fpu.fcmp"));
+    p.fmove_latency = double(c.cycles("fpu.fmove"));
+    p.fload_latency = double(c.cycles("fpu.fload"));
+    p.fstore_latency = double(c.cycles("fpu.fstore"));
+    p.fcvt_cycles = double(c.cycles("cpu.int_float_convert"));
+    p.call_cycles = double(c.cycles("cpu.call"));
+    p.cache.size_bytes = uint32_t(c.bytes("cpu.dcache_size").n);
+    p.cache.line_bytes = uint32_t(c.bytes("cpu.cache_line").n);
+    p.cache.ways = uint32_t(c.count("cpu.dcache_ways"));
+    p.cache.replacement = c.choice("cpu.dcache_replacement") == "lru" ? sw::Replacement::lru : sw::Replacement::round_robin;
+    return p;
+}
+
+// libSSA2's phase 4 on the software stage: the frame's buffers read in place (DMI), the
+// stage's counted cycles handed back for the CPU to spend.
+class StageDescriber : public sw::ssa2::Describer {
 public:
-    std::optional<surf::Keypoint> describe(sw::Hal&, uint32_t word, const sw::ssa2::FrameInMemory&, uint64_t& cycles) override {
-        const fhg::Candidate c = fhg::unpack_candidate(word);
-        cycles = 0;
-        surf::Keypoint k;
-        k.x = float(c.x);
-        k.y = float(c.y);
-        k.scale = 1.2f * float(fhg::kSizes[size_t(c.size_index)]) / 9.f;
-        return k;
+    StageDescriber(const sw::StageParams& params, unsigned det_frac_bits) : stage_(params), det_frac_bits_(det_frac_bits) {}
+
+    std::optional<surf::Keypoint> describe(sw::Hal& hal, uint32_t word, const sw::ssa2::FrameInMemory& frame,
+                                           uint64_t& cycles) override {
+        if (frame.task != task_) {  // new DMA'd buffers: the cached lines are stale
+            stage_.begin_frame();
+            task_ = frame.task;
+        }
+        const size_t integral_bytes = size_t(frame.width) * frame.height * 4;
+        const size_t det_bytes = size_t((frame.width + 1) / 2) * ((frame.height + 1) / 2) * fhg_regs::kRecordBytes;
+        const sw::FrameBuffers buffers{hal.map(frame.integral, integral_bytes), frame.integral, size_t(frame.width) * 4,
+                                       hal.map(frame.determinants, det_bytes), frame.determinants, frame.width,
+                                       frame.height, det_frac_bits_};
+        auto keypoint = stage_.process(word, buffers);
+        cycles = stage_.cost().take_cycles();
+        return keypoint;
     }
+
+private:
+    sw::SoftwareStage stage_;
+    unsigned det_frac_bits_;
+    int task_ = -1;
 };
 
 }  // namespace
 
-std::unique_ptr<sw::ssa2::Describer> make_describer(const Config&, float) { return std::make_unique<CandidateDescriber>(); }
+std::unique_ptr<sw::ssa2::Describer> make_describer(const Config& config, float threshold) {
+    sw::StageParams params;
+    params.upright = config.choice("surf.upright") == "on";
+    params.threshold = threshold;
+    params.cost = cost_params(config);
+    try {
+        return std::make_unique<StageDescriber>(params, config.bits("fhg.det_frac_bits"));
+    } catch (const std::invalid_argument& e) {
+        throw ConfigError(e.what());
+    }
+}
 
 }  // namespace surfvp

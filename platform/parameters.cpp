@@ -36,6 +36,39 @@ void add_plb(std::vector<ParamSpec>& t, const std::string& bus, const std::strin
                  "[A] one address cycle; with arbitration, 4 cycles of overhead per burst"});
 }
 
+// The software stage's cost model (sw/cpu_cost/README.md has the reasoning of each).
+void add_cpu_cost(std::vector<ParamSpec>& t) {
+    t.push_back({"cpu.dcache_size", ParamKind::bytes, "32 KiB", 1024, 1 << 20, {}, "L1 data cache",
+                 "[S] ML507 DTS; PPC440 32 KB D-cache"});
+    t.push_back({"cpu.dcache_ways", ParamKind::count, "64", 1, 1024, {}, "L1 data cache associativity",
+                 "[S] PPC440x5 manual Table 4-2: 32 KB, 64 ways"});
+    t.push_back({"cpu.dcache_replacement", ParamKind::choice, "lru", 0, 0, {"lru", "round_robin"},
+                 "L1 data cache replacement", "[A] LRU; the PPC440's round robin differs by 0.25 % in cycles"});
+    t.push_back({"cpu.int_op", ParamKind::cycles, "1 cycle", 0, 100, {}, "CPU cycles per counted integer operation",
+                 "[A] dual-issue core, mix of co-issued and stalled ops"});
+    t.push_back({"cpu.branch", ParamKind::cycles, "2 cycles", 0, 100, {}, "CPU cycles per branch or loop iteration",
+                 "[A] 1 issue cycle plus a share of mispredictions"});
+    t.push_back({"cpu.load", ParamKind::cycles, "1 cycle", 0, 100, {}, "CPU cycles per 32-bit load that hits L1",
+                 "[S] PPC440 datasheet: single-cycle throughput on a hit"});
+    t.push_back({"cpu.fpu_ratio", ParamKind::count, "2", 1, 8, {}, "CPU cycles per FPU cycle",
+                 "[S] DS693: optimised for 2:1 and 3:1"});
+    t.push_back({"cpu.fpu_issue", ParamKind::cycles, "4 cycles", 1, 100, {}, "CPU cycles between two FPU instructions",
+                 "[A] proxy: Virtex-4 APU FPU issues once per 4 CPU cycles"});
+    t.push_back({"cpu.fpu_dependent_fraction", ParamKind::real, "0.5", 0, 1, {},
+                 "Share of an FPU operation's latency beyond issue that is not hidden",
+                 "[A] between fully overlapped (0) and fully serial (1)"});
+    t.push_back({"cpu.int_float_convert", ParamKind::cycles, "20 cycles", 0, 1000, {}, "CPU cycles per int <-> float conversion",
+                 "[D] no conversion instruction: store, load, dependent FPU op"});
+    t.push_back({"cpu.call", ParamKind::cycles, "8 cycles", 0, 1000, {}, "CPU cycles of a libm call's own overhead",
+                 "[A] branch-and-link, return, prologue, epilogue"});
+    const std::pair<const char*, const char*> latencies[] = {{"fadd", "6"}, {"fmul", "5"}, {"fmadd", "10"}, {"fdiv", "17"},
+                                                             {"fsqrt", "17"}, {"fcmp", "3"}, {"fmove", "2"},
+                                                             {"fload", "3"}, {"fstore", "4"}};
+    for (const auto& [op, cycles] : latencies)
+        t.push_back({std::string("fpu.") + op, ParamKind::cycles, std::string(cycles) + " cycles", 1, 1000, {},
+                     std::string("FPU cycles of ") + op, "[A] proxy: Virtex-4 APU FPU v3.1 latencies (PLATFORM_FACTS §2)"});
+}
+
 void add_iig(std::vector<ParamSpec>& t) {
     t.push_back({"iig.clock", ParamKind::frequency, "100 MHz", 1 * MHz, 500 * MHz, {}, "SSA IIG clock",
                  "[A] the PLB clock of the ML507 design; Fig. 3's clocks are lost"});
@@ -157,6 +190,8 @@ std::vector<ParamSpec> make_table() {
                  "[A] 100 PLB cycles: coarse enough to be fast, fine against millisecond frame phases"});
     t.push_back({"cpu.cache_line", ParamKind::bytes, "32 B", 4, 256, {}, "Cache line; memory accesses without DMI go in lines",
                  "[S] ML507 DTS: 32-byte L1 lines"});
+
+    add_cpu_cost(t);
 
     add_plb(t, "plb1", "128 bit", "[S] ML507 DTS: mplb-dwidth = 0x80", "PLB1 (CPU and register slaves)");
     add_plb(t, "plb2", "128 bit", "[A] the paper: PLB2 \"has accordingly increased capacity\" (Fig. 3 lost); 64 bit would do",

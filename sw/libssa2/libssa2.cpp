@@ -193,7 +193,7 @@ void Driver::describe_one(Task& task, const Callback& callback) {
     if (task.described == 0) hal_.mark(unsigned(config_.accelerators.size()), task.id);
     if (task.described < task.candidates.size()) {
         Span span(hal_, "describe");
-        const FrameInMemory frame{task.integral, task.determinants, task.width, task.height};
+        const FrameInMemory frame{task.id, task.integral, task.determinants, task.width, task.height};
         uint64_t cycles = 0;
         auto keypoint = describer_.describe(hal_, task.candidates[task.described++], frame, cycles);
         hal_.consume(cycles);

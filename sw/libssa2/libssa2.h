@@ -41,6 +41,7 @@ struct DriverConfig {
 
 // Where the hardware left one task's results, as the software stage reads them.
 struct FrameInMemory {
+    int task;                         // which task: new buffers when it changes
     uint32_t integral, determinants;  // bus addresses
     int width, height;
 };

@@ -1,0 +1,67 @@
+#pragma once
+// The PPC440's L1 data cache as the software stage's reads see it: set-associative, reads
+// only (the stage writes nothing the hardware reads back), deterministic. Plain C++.
+//
+// PPC440 (IBM PPC440x5 CPU Core User's Manual, §4.1 and Table 4-2): 32 KB data cache, 32-byte
+// lines, 64 ways (so 16 sets); the set index is the address bits just above the line offset.
+// Its replacement is round-robin per set (a victim index incremented on every line fill,
+// §4.1.1); LRU is offered too and is the default the scenario table asks for. The two differ
+// only once a set is full and a line that was filled early is reused (tests/stage).
+#include <cstdint>
+#include <vector>
+
+namespace surfvp::sw {
+
+enum class Replacement { lru, round_robin };
+
+struct CacheParams {
+    uint32_t size_bytes = 32 * 1024;  // [S] ML507 DTS, PLATFORM_FACTS §2
+    uint32_t line_bytes = 32;         // [S] ML507 DTS; PPC440x5 manual §4.1
+    uint32_t ways = 64;               // [S] PPC440x5 manual Table 4-2 (32 KB -> 64 ways)
+    Replacement replacement = Replacement::lru;  // [A] as asked; the PPC440 is round-robin [S]
+};
+
+class CacheModel {
+public:
+    // Throws std::invalid_argument unless line_bytes and the number of sets
+    // (size / (line x ways)) are powers of two and size is a whole number of sets.
+    explicit CacheModel(const CacheParams& params);
+
+    struct Result {
+        uint32_t hits = 0, misses = 0;  // lines touched
+    };
+    // A read of `bytes` bytes at `address`: every line it touches is one hit or one miss
+    // (a miss fills the line). bytes == 0 touches nothing.
+    Result access(uint32_t address, uint32_t bytes);
+
+    // Drops every line (e.g. after DMA rewrote the buffers: the PPC440 L1 is not coherent
+    // with DMA, so the driver invalidates before reading). Counters are kept.
+    void invalidate();
+    void reset_counters() { hits_ = misses_ = 0; }
+
+    uint64_t hits() const { return hits_; }
+    uint64_t misses() const { return misses_; }
+    uint64_t accesses() const { return hits_ + misses_; }  // line touches
+    double hit_rate() const { return accesses() ? double(hits_) / double(accesses()) : 0.0; }
+    uint32_t sets() const { return sets_; }
+    const CacheParams& params() const { return params_; }
+
+private:
+    bool touch(uint32_t line);  // true on a hit
+    bool touch_lru(uint32_t set, uint32_t line);
+    bool touch_round_robin(uint32_t set, uint32_t line);
+
+    CacheParams params_;
+    uint32_t sets_ = 0;
+    unsigned line_shift_ = 0;
+    // Per set, `ways` line numbers. LRU: the first `filled_[set]` slots in recency order,
+    // most recent first. Round-robin: slot w holds way w; victim_[set] is the next to fill.
+    std::vector<uint32_t> lines_;
+    std::vector<uint32_t> filled_;
+    std::vector<uint32_t> victim_;
+    uint32_t last_line_ = 0;  // fast path: the line touched last is a hit without any change
+    bool last_valid_ = false;
+    uint64_t hits_ = 0, misses_ = 0;
+};
+
+}  // namespace surfvp::sw
