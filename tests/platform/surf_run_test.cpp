@@ -3,8 +3,13 @@
 #include <filesystem>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
+#include <cmath>
+#include <fmt/format.h>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
 
 #include "cli.h"
+#include "sw/eval/keypoint_file.h"
 
 namespace surfvp {
 namespace {
@@ -48,8 +53,9 @@ TEST(SurfRun, TwoTasksInFlightOverlapHardwareAndSoftware) {
     EXPECT_NEAR(two["throughput_fps"].get<double>(), 1000.0 / slowest_ms, 0.03 * 1000.0 / slowest_ms);
 }
 
+// With few keypoints the CPU keeps up and the FHG sets the rate: ~52 cycles a block.
 TEST(SurfRun, BudgetVerdictFollowsTheFhgClock) {
-    const std::string sets = " --set surf.frames=4";
+    const std::string sets = " --set surf.frames=4 --set surf.target_keypoints=20";
     const auto slow = run("slow", sets + " --set fhg.clock=90MHz", 1);
     EXPECT_FALSE(slow["budget"]["met"].get<bool>());
     EXPECT_EQ(slow["bottleneck"], "fhg");
@@ -68,6 +74,50 @@ TEST(SurfRun, HardwareErrorFailsOnlyItsTask) {
         EXPECT_GT(frames[i]["keypoints"].get<int>(), 0);
     }
     EXPECT_EQ(r["frames_done"], 3);
+}
+
+}  // namespace
+}  // namespace surfvp
+
+namespace surfvp {
+namespace {
+
+// The chip's keypoints against the float reference SURF (2 octaves, step 1, the same
+// threshold) on the same 1024x768 frame: a reference keypoint is found when a chip keypoint
+// lies within 1.5 px with a scale within 10 %.
+TEST(SurfRun, ChipKeypointsMatchTheFloatReference) {
+    const std::string out = fresh_dir("reference");
+    const auto r = run("chip", " --set surf.frames=1 --set budget.fps=0 --set surf.target_keypoints=300", 0);
+    // (direct mode gives the VP's keypoints byte for byte: VpKeypointsEqualDirectModeByteForByte)
+    const double threshold = r["threshold"];
+    const std::string chip_dir = fresh_dir("chip_keypoints");
+    ASSERT_EQ(surfvp("run " + kBudget + " --direct --quiet --out " + chip_dir +
+                     " --set surf.frames=1 --set budget.fps=0 --set surf.target_keypoints=300")
+                  .exit_code,
+              0);
+    // The frame as the chip saw it: graf1 resized to 1024x768 (INTER_AREA), written as PNG.
+    cv::Mat frame = cv::imread(std::string(OPENCV_DATA_DIR) + "/graf1.png", cv::IMREAD_GRAYSCALE), resized;
+    ASSERT_FALSE(frame.empty()) << "install the Debian package opencv-doc";
+    cv::resize(frame, resized, cv::Size(1024, 768), 0, 0, cv::INTER_AREA);
+    cv::imwrite(out + "/frame.png", resized);
+    ASSERT_EQ(surfvp(fmt::format("surf {}/frame.png --out {}/reference.surf --threshold {:.9g} --octaves 2 --init-step 1 -q",
+                                 out, out, threshold))
+                  .exit_code,
+              0);
+    const auto reference = eval::load_keypoints(out + "/reference.surf");
+    const auto chip = eval::load_keypoints(chip_dir + "/keypoints/frame_0000.surf");
+    ASSERT_GT(reference.size(), 200u);
+    size_t found = 0;
+    for (const auto& k : reference)
+        for (const auto& c : chip)
+            if (std::hypot(k.x - c.x, k.y - c.y) <= 1.5f && std::abs(c.scale / k.scale - 1) <= 0.1f) {
+                ++found;
+                break;
+            }
+    const double fraction = double(found) / double(reference.size());
+    std::printf("chip %zu keypoints, reference %zu: %.1f %% of the reference found\n", chip.size(), reference.size(),
+                100 * fraction);
+    EXPECT_GE(fraction, 0.9);
 }
 
 }  // namespace
