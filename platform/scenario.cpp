@@ -70,13 +70,17 @@ Config load_scenario(const std::string& path, const std::vector<std::string>& ov
         else if (key == "description") config.description = scalar(path, key, item.second);
         else apply_section(config, path, key, item.second, seen);
     }
+    apply_overrides(config, overrides);
+    return config;
+}
+
+void apply_overrides(Config& config, const std::vector<std::string>& overrides) {
     for (const std::string& o : overrides) {
         const auto eq = o.find('=');
         if (eq == std::string::npos || eq == 0)
             throw ConfigError(fmt::format("--set '{}': expected KEY=VALUE, e.g. plb2.width=64 bit", o));
         config.set(o.substr(0, eq), o.substr(eq + 1), "--set");
     }
-    return config;
 }
 
 std::string scenario_dir() {

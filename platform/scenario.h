@@ -12,6 +12,8 @@ namespace surfvp {
 
 // Throws ConfigError.
 Config load_scenario(const std::string& path, const std::vector<std::string>& overrides);
+// `--set KEY=VALUE` overrides, applied in order; throws ConfigError.
+void apply_overrides(Config& config, const std::vector<std::string>& overrides);
 
 // A scenario argument is a file path, or the name of a scenario shipped in scenario_dir().
 std::string resolve_scenario(const std::string& argument);

@@ -15,12 +15,7 @@ int seqgen_command(const SeqgenOptions& options) {
     if (!options.scenario.empty()) {
         config = load_scenario(resolve_scenario(options.scenario), options.sets);
     } else {
-        for (const std::string& o : options.sets) {
-            const auto eq = o.find('=');
-            if (eq == std::string::npos || eq == 0)
-                throw ConfigError("--set '" + o + "': expected KEY=VALUE, e.g. fhg.read_buses=6");
-            config.set(o.substr(0, eq), o.substr(eq + 1), "--set");
-        }
+        apply_overrides(config, options.sets);
     }
     if (options.width == 0 || options.height == 0) throw ConfigError("--width and --height must be above zero");
     const Fhg::Params p = fhg_params(config);
