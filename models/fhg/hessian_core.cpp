@@ -36,6 +36,12 @@ HessianCore::HessianCore(const Precision& p) : precision_(p) {
         reciprocal_[size] = std::llround(std::ldexp(1.0, int(p.response_frac_bits + p.recip_shift)) / (size * size));
         reads_[size] = filter_reads(size);
     }
+    // Largest magnitudes (as powers of two) of the finishing steps: sum x K, the squared
+    // responses times W, the determinant. Below 2^52 every step is exact in double.
+    const double k_bits = std::log2(double(*std::max_element(reciprocal_.begin(), reciprocal_.end())) + 1);
+    const double bound = std::max({double(p.accumulator_bits) + k_bits, 2.0 * (p.response_bits - 1) + 1,
+                                   2.0 * (p.response_bits - 1) + double(p.weight_frac_bits) + 1});
+    double_exact_ = bound < 52;
 }
 
 bool HessianCore::inside(int width, int height, int x, int y, int size) {
@@ -116,6 +122,38 @@ void finish_run(const uint32_t* xx, const uint32_t* yy, const uint32_t* xy, int 
     }
 }
 
+// The same steps in double precision: every intermediate is an integer below 2^53 (the
+// constructor checks the bounds), so each product, sum and power-of-two scaling is exact and
+// floor() gives the arithmetic shift; the loop vectorises where int64 multiplies do not.
+struct FinishConstantsF {
+    double drop_scale, drop_inverse;  // 2^(64 - accumulator_bits) wrap, done in integers below
+    double k, weight;
+    double recip_half, recip_inverse, weight_half, weight_inverse, det_half, det_inverse;
+    double response_max, det_max;
+};
+
+[[gnu::always_inline]] inline double shift_f(double v, double half, double inverse) { return std::floor((v + half) * inverse); }
+
+[[gnu::always_inline]] inline double clamp_f(double v, double max) { return std::min(std::max(v, -max - 1), max); }
+
+__attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
+void finish_run_exact_double(const int32_t* xx, const int32_t* yy, const int32_t* xy, int n, const FinishConstantsF& c,
+                             int32_t* out) {
+    for (int i = 0; i < n; ++i) {
+        const double rxx = clamp_f(shift_f(double(xx[i]) * c.k, c.recip_half, c.recip_inverse), c.response_max);
+        const double ryy = clamp_f(shift_f(double(yy[i]) * c.k, c.recip_half, c.recip_inverse), c.response_max);
+        const double rxy = clamp_f(shift_f(double(xy[i]) * c.k, c.recip_half, c.recip_inverse), c.response_max);
+        const double det = rxx * ryy - shift_f(c.weight * rxy * rxy, c.weight_half, c.weight_inverse);
+        out[i] = int32_t(clamp_f(shift_f(det, c.det_half, c.det_inverse), c.det_max));
+    }
+}
+
+// Sums narrowed to the accumulator's width, sign-extended: what the TripleMAC holds.
+__attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
+void narrow(const uint32_t* in, int32_t* out, int n, unsigned drop) {
+    for (int i = 0; i < n; ++i) out[i] = int32_t(in[i] << drop) >> drop;
+}
+
 // The TripleMAC sums of one filter along a row: one integral row per read, so each read is
 // a loop over x. 32-bit unsigned sums wrap, which is exact modulo 2^32 and so for any
 // accumulator width up to 32 bits.
@@ -156,10 +194,23 @@ void HessianCore::row(const IntegralView& ii, int y, int size, int x0, int step,
                    start < 0 ? 1 : 0, n, step);
     }
     const Precision& p = precision_;
-    const FinishConstants c{64 - p.accumulator_bits, reciprocal_[size], weight_, p.recip_shift, p.weight_frac_bits,
-                            2 * p.response_frac_bits - p.det_frac_bits, (int64_t(1) << (p.response_bits - 1)) - 1,
-                            (int64_t(1) << (p.det_bits - 1)) - 1};
-    finish_run(acc.data(), acc.data() + n, acc.data() + 2 * n, n, c, dets.data());
+    if (double_exact_) {
+        thread_local std::vector<int32_t> sums;
+        sums.resize(size_t(3) * n);
+        narrow(acc.data(), sums.data(), 3 * n, 32 - p.accumulator_bits);
+        auto half = [](unsigned s) { return s ? std::ldexp(1.0, int(s) - 1) : 0.0; };
+        const unsigned det_shift = 2 * p.response_frac_bits - p.det_frac_bits;
+        const FinishConstantsF c{0, 0, double(reciprocal_[size]), double(weight_), half(p.recip_shift),
+                                 std::ldexp(1.0, -int(p.recip_shift)), half(p.weight_frac_bits),
+                                 std::ldexp(1.0, -int(p.weight_frac_bits)), half(det_shift), std::ldexp(1.0, -int(det_shift)),
+                                 std::ldexp(1.0, int(p.response_bits) - 1) - 1, std::ldexp(1.0, int(p.det_bits) - 1) - 1};
+        finish_run_exact_double(sums.data(), sums.data() + n, sums.data() + 2 * n, n, c, dets.data());
+    } else {
+        const FinishConstants c{64 - p.accumulator_bits, reciprocal_[size], weight_, p.recip_shift, p.weight_frac_bits,
+                                2 * p.response_frac_bits - p.det_frac_bits, (int64_t(1) << (p.response_bits - 1)) - 1,
+                                (int64_t(1) << (p.det_bits - 1)) - 1};
+        finish_run(acc.data(), acc.data() + n, acc.data() + 2 * n, n, c, dets.data());
+    }
     for (int k = 0; k < n; ++k) out[(first + k) * out_stride] = dets[size_t(k)];
 }
 

@@ -61,6 +61,7 @@ private:
     int64_t weight_;
     std::array<int64_t, 64> reciprocal_{};  // K_L indexed by L
     std::array<std::vector<Read>, 64> reads_;  // filter_reads(L) indexed by L
+    bool double_exact_ = false;                // the row path may finish in double precision
 };
 
 }  // namespace surfvp::fhg
