@@ -80,6 +80,7 @@ private:
 std::unique_ptr<sw::ssa2::Describer> make_describer(const Config& config, float threshold) {
     sw::StageParams params;
     params.upright = config.choice("surf.upright") == "on";
+    params.haar = config.choice("surf.haar") == "exact" ? surf::HaarMode::exact : surf::HaarMode::rounded;
     params.threshold = threshold;
     params.cost = cost_params(config);
     try {

@@ -20,6 +20,22 @@ namespace surfvp::sw::surf_ops {
 constexpr OpCounts kHaarWavelet{{Op::fadd, 44}, {Op::fmul, 29}, {Op::fcvt, 38}, {Op::fcmp, 6},
                                 {Op::int_op, 92}, {Op::branch, 10}};
 
+// HaarMode::rounded, haar_response_rounded(): the x and y wavelets of whole size 2 half centred
+// on the pixel corner nearest to a real position, from the 3 x 3 grid of integral values
+// (8 distinct reads, counted by the probe; 6 per wavelet, 4 shared).
+//   2 corner indices floor(v) + 1   truncation and back for the test: 4 fcvt, 2 fcmp, 2 branch,
+//                                   decrement and + 1: 4 int
+//   6 grid coordinates              6 int
+//   inside test                     8 int, 4 branch
+//   8 addresses                     3 row bases 6 int, 3 column offsets 3 int, 8 adds 8 int
+//   dx, dy in integers              14 int (5 add/sub and 2 shifts each)
+//   the two responses to float      2 fcvt
+constexpr OpCounts kHaarWaveletRounded{{Op::fcvt, 6}, {Op::fcmp, 2}, {Op::int_op, 49}, {Op::branch, 6}};
+// HaarMode::rounded, once per orientation: the half-size round(2s), at least 1 (1 fmul, 1 fadd,
+// truncation 1 fcvt, the minimum 2 int + 1 branch).
+constexpr OpCounts kOrientationSetupRounded{{Op::fmul, 1}, {Op::fadd, 1}, {Op::fcvt, 1}, {Op::int_op, 2},
+                                            {Op::branch, 1}};
+
 // orientation(): one of the 109 samples, besides its wavelet.
 //   position x + i s, y + j s      2 fcvt, 2 fmul, 2 fadd, 2 int (grid entry)
 //   weight, weighted dx, dy        1 gaussian_weight, 2 fmul
@@ -42,6 +58,9 @@ constexpr OpCounts kOrientationFinish{{Op::atan2, 1}, {Op::fcmp, 2}, {Op::fadd, 
 
 // descriptor(): cos and sin of the orientation, the wavelet size 2s.
 constexpr OpCounts kDescriptorSetup{{Op::sin_cos, 2}, {Op::fmul, 1}};
+// HaarMode::rounded: cos and sin, the half-size round(s), at least 1 (no multiplication).
+constexpr OpCounts kDescriptorSetupRounded{{Op::sin_cos, 2}, {Op::fadd, 1}, {Op::fcvt, 1}, {Op::int_op, 2},
+                                           {Op::branch, 1}};
 // One of the 400 samples, besides its wavelet.
 //   offset u = (k - 9.5) s          1 fcvt, 1 fadd, 1 fmul
 //   rotated position px, py         4 fmul, 4 fadd

@@ -57,6 +57,8 @@ struct SoftwareStage::Scan {
 };
 
 SoftwareStage::SoftwareStage(const StageParams& params) : params_(params), cost_(params.cost) {
+    if (params.haar != surf::HaarMode::exact && params.haar != surf::HaarMode::rounded)
+        throw std::invalid_argument("software stage: haar mode must be exact or rounded");
     stack_.octaves.resize(2);
     for (int o = 0; o < 2; ++o) {
         surf::ResponseOctave& oct = stack_.octaves[static_cast<size_t>(o)];
@@ -190,24 +192,27 @@ void SoftwareStage::describe(const Scan& s, const FrameBuffers& f, surf::Keypoin
     kp.laplacian = surf::hessian_at(view, s.x, s.y, s.size(s.layer)).laplacian;
     charge(phases_.laplacian, since);
 
+    const bool rounded = params_.haar == surf::HaarMode::rounded;
+    const OpCounts& wavelet = rounded ? kHaarWaveletRounded : kHaarWavelet;
     if (!params_.upright) {
         // Every sample counted with its atan2; sw/surf skips it only where both weighted
         // responses are exactly 0 (flat patches, outside the image).
-        cost_.add(kHaarWavelet, kOrientationSamples);
+        if (rounded) cost_.add(kOrientationSetupRounded);
+        cost_.add(wavelet, kOrientationSamples);
         cost_.add(kOrientationSample, kOrientationSamples);
         cost_.add(kOrientationWindow, kOrientationWindows);
         cost_.add(kOrientationFinish);
-        kp.orientation = surf::orientation(view, kp.x, kp.y, kp.scale);
+        kp.orientation = surf::orientation(view, kp.x, kp.y, kp.scale, params_.haar);
     } else {
         kp.orientation = 0;
     }
     charge(phases_.orientation, since);
 
-    cost_.add(kDescriptorSetup);
-    cost_.add(kHaarWavelet, kDescriptorSamples);
+    cost_.add(rounded ? kDescriptorSetupRounded : kDescriptorSetup);
+    cost_.add(wavelet, kDescriptorSamples);
     cost_.add(kDescriptorSample, kDescriptorSamples);
     cost_.add(kDescriptorNormalise);
-    kp.descriptor = surf::descriptor(view, kp);
+    kp.descriptor = surf::descriptor(view, kp, params_.haar);
     charge(phases_.descriptor, since);
 }
 

@@ -13,6 +13,7 @@
 #include "sw/cpu_cost/cost_model.h"
 #include "sw/surf/fast_hessian.h"
 #include "sw/surf/keypoint.h"
+#include "sw/surf/params.h"
 
 namespace surfvp::sw {
 
@@ -29,13 +30,17 @@ struct FrameBuffers {
 
 struct StageParams {
     bool upright = false;  // U-SURF: orientation 0, not computed
+    // Haar wavelets of orientation and descriptor (sw/surf/params.h): exact area integrals at
+    // real positions (the reference's), or rounded to whole pixels and sizes (OpenSURF-style,
+    // integer sums). Charged by the mode in use (sw/cpu_cost/surf_op_counts.h).
+    surf::HaarMode haar = surf::HaarMode::exact;
     float threshold = 0;   // determinant threshold in float units (sw/surf/README.md)
     CostParams cost;
 };
 
 class SoftwareStage {
 public:
-    explicit SoftwareStage(const StageParams& params);  // throws std::invalid_argument (cost params)
+    explicit SoftwareStage(const StageParams& params);  // throws std::invalid_argument (cost params, haar)
 
     // One maxima-FIFO word -> a keypoint (position, scale, response = the candidate's own
     // determinant, Laplacian, orientation, descriptor), or nothing when the candidate touches

@@ -10,7 +10,11 @@
 // integral over a box with real corners is the bilinear interpolation of the integral image
 // (exact for piecewise-constant pixels). Outside the image the pixels are 0, the same clamp
 // rule as box_sum().
+//
+// HaarMode::rounded (params.h) is the embedded alternative, as OpenSURF and the CPU code of the
+// paper's time compute it: haar_response_rounded() below, integer corners and integer sums.
 #include "sw/surf/integral_image.h"
+#include "sw/surf/params.h"
 
 namespace surfvp::surf {
 
@@ -80,6 +84,35 @@ template <bool kInside, class View>
             static_cast<float>(static_cast<int32_t>(dy(whole))) + dy(fraction)};
 }
 
+// Rounded mode: floor(v) + 1, the integral-image column (row) whose left (top) pixel edge is
+// the pixel corner nearest to v (pixel centres at integers, edges at half-integers; ties,
+// v an exact integer, go to the corner above). Truncation, then floor for negatives.
+[[gnu::always_inline]] inline int nearest_corner(float v) {
+    int i = static_cast<int>(v);
+    if (v < static_cast<float>(i)) --i;
+    return i + 1;
+}
+
+// Rounded mode's half-size: round(v) (halves up), at least 1 pixel.
+inline int rounded_half(float v) {
+    const int h = static_cast<int>(v + 0.5f);
+    return h < 1 ? 1 : h;
+}
+
+// dx, dy from the 3 x 3 grid of integral values at columns x[0..2], rows y[0..2] (the centre
+// one is needed by neither): wrap-around uint32 sums (exact, integral_image.h), one int->float
+// conversion per response.
+template <bool kInside, class View>
+[[gnu::always_inline]] inline HaarResponse haar_from_corners(const View& ii, const int (&x)[3], const int (&y)[3]) {
+    auto read = [&](int c, int r) { return kInside ? ii.at(x[c], y[r]) : ii.clamped(x[c], y[r]); };
+    const uint32_t g00 = read(0, 0), g10 = read(1, 0), g20 = read(2, 0);
+    const uint32_t g01 = read(0, 1), g21 = read(2, 1);
+    const uint32_t g02 = read(0, 2), g12 = read(1, 2), g22 = read(2, 2);
+    const uint32_t dx = g22 - 2 * g12 - g20 + 2 * g10 + g02 - g00;
+    const uint32_t dy = g22 - 2 * g21 - g02 + 2 * g01 + g20 - g00;
+    return {static_cast<float>(static_cast<int32_t>(dx)), static_cast<float>(static_cast<int32_t>(dy))};
+}
+
 }  // namespace haar_detail
 
 // Integral of the image over [-0.5, X) x [-0.5, Y), pixel centres at integers (Keypoint's
@@ -104,6 +137,28 @@ HaarResponse haar_response(const View& ii, float x, float y, float size) {
     const bool inside = axis_inside(ax[0], ii.width) && axis_inside(ax[2], ii.width) && axis_inside(ay[0], ii.height) &&
                         axis_inside(ay[2], ii.height);
     return inside ? haar_from_axes<true>(ii, ax, ay) : haar_from_axes<false>(ii, ax, ay);
+}
+
+// HaarMode::rounded: the x and y wavelets of side 2 * half (whole pixels) centred on the pixel
+// corner nearest to (x, y). With cx = floor(x) + 1 and cy = floor(y) + 1 (that corner lies
+// between pixels cx - 1 and cx, cy - 1 and cy), the boxes are pixel columns
+// [cx - half, cx - 1] (left) and [cx, cx + half - 1] (right) over rows [cy - half, cy + half - 1],
+// and the transposed pair for dy: OpenSURF's haarX(row = cy, column = cx, 2 * half) and haarY.
+// OpenSURF takes column = round(x), which puts every wavelet's centre at round(x) - 0.5, half a
+// pixel up-left of the sample on average; round(x + 0.5) = floor(x) + 1 (halves up) is the
+// nearest corner and has no such bias, and it keeps the wavelets covariant under 90-degree
+// rotations. Box integrals in grey level x pixel^2 (the units of haar_response), computed in
+// integer arithmetic from the 3 x 3 grid of integral values at columns cx - half - 1, cx - 1,
+// cx + half - 1 and the same rows: 8 distinct reads for both wavelets (6 each, 4 shared; fewer
+// beyond the top/left border), one int->float conversion per response.
+template <class View>
+HaarResponse haar_response_rounded(const View& ii, float x, float y, int half) {
+    using namespace haar_detail;
+    const int cx = nearest_corner(x), cy = nearest_corner(y);
+    const int gx[3] = {cx - half - 1, cx - 1, cx + half - 1};
+    const int gy[3] = {cy - half - 1, cy - 1, cy + half - 1};
+    const bool inside = gx[0] >= 0 && gx[2] < ii.width && gy[0] >= 0 && gy[2] < ii.height;
+    return inside ? haar_from_corners<true>(ii, gx, gy) : haar_from_corners<false>(ii, gx, gy);
 }
 
 }  // namespace surfvp::surf

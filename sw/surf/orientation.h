@@ -8,6 +8,7 @@
 #include "sw/surf/haar.h"
 #include "sw/surf/integral_image.h"
 #include "sw/surf/keypoint.h"
+#include "sw/surf/params.h"
 
 namespace surfvp::surf {
 
@@ -33,23 +34,12 @@ inline float wrap_angle(float a) {
     return a < 0 ? a + kTwoPi : a;
 }
 
-}  // namespace orientation_detail
-
-// Dominant direction of the interest point at (x, y) with scale s, radians in [0, 2 pi),
-// measured from +x towards +y in image axes (x right, y down): atan2(sum dy, sum dx).
-//
-// Haar wavelets of size 4s are sampled every s inside a circle of radius 6s (the 109 grid
-// points with i^2 + j^2 < 36), weighted by a Gaussian of sigma 2.5s centred on the point. A
-// window of pi/3 slides around the circle in steps of pi/18; the window whose summed
-// (dx, dy) is longest gives the direction. Because both the width and the step are multiples
-// of pi/18, responses are summed into 36 bins of pi/18 first and a window is 6 adjacent bins,
-// which is exactly the sliding-window sum. Any integral-image view type (integral_image.h).
-template <class View>
-float orientation(const View& ii, float x, float y, float scale) {
-    using namespace orientation_detail;
+// The orientation proper, with the Haar wavelet pair at a sample position given by `haar`.
+template <class Haar>
+[[gnu::always_inline]] inline float dominant_direction(float x, float y, float scale, const Haar& haar) {
     std::array<float, kBins> bin_dx{}, bin_dy{};
     for (const Sample& s : samples()) {
-        const HaarResponse r = haar_response(ii, x + s.i * scale, y + s.j * scale, kWaveletSize * scale);
+        const HaarResponse r = haar(x + s.i * scale, y + s.j * scale);
         const float dx = s.weight * r.dx, dy = s.weight * r.dy;
         if (dx == 0 && dy == 0) continue;
         int bin = static_cast<int>(wrap_angle(std::atan2(dy, dx)) * (kBins / kTwoPi));
@@ -72,6 +62,34 @@ float orientation(const View& ii, float x, float y, float scale) {
         }
     }
     return best_len2 > 0 ? wrap_angle(std::atan2(best_dy, best_dx)) : 0.0f;
+}
+
+}  // namespace orientation_detail
+
+// Dominant direction of the interest point at (x, y) with scale s, radians in [0, 2 pi),
+// measured from +x towards +y in image axes (x right, y down): atan2(sum dy, sum dx).
+//
+// Haar wavelets of size 4s are sampled every s inside a circle of radius 6s (the 109 grid
+// points with i^2 + j^2 < 36), weighted by a Gaussian of sigma 2.5s centred on the point. A
+// window of pi/3 slides around the circle in steps of pi/18; the window whose summed
+// (dx, dy) is longest gives the direction. Because both the width and the step are multiples
+// of pi/18, responses are summed into 36 bins of pi/18 first and a window is 6 adjacent bins,
+// which is exactly the sliding-window sum. Any integral-image view type (integral_image.h).
+//
+// `mode` (params.h): exact wavelets of size 4s at the real sample positions, or rounded ones
+// (haar_response_rounded) of size 2 round(2s), the even whole size nearest to 4s, centred on
+// the pixel corner nearest to each sample. OpenSURF uses 4 round(s), up to 2 px from 4s
+// (s = 1.4: 4 vs 5.6); 2 round(2s) is within 1 px. Everything else is the same.
+template <class View>
+float orientation(const View& ii, float x, float y, float scale, HaarMode mode = HaarMode::exact) {
+    using namespace orientation_detail;
+    if (mode == HaarMode::rounded) {
+        const int half = haar_detail::rounded_half(kWaveletSize / 2 * scale);
+        return dominant_direction(x, y, scale,
+                                  [&](float px, float py) { return haar_response_rounded(ii, px, py, half); });
+    }
+    const float size = kWaveletSize * scale;
+    return dominant_direction(x, y, scale, [&](float px, float py) { return haar_response(ii, px, py, size); });
 }
 
 }  // namespace surfvp::surf

@@ -55,6 +55,8 @@ void validate(const Params& params) {
         throw std::invalid_argument(fmt::format("SURF init_step must be 1 or 2, got {}", params.init_step));
     if (params.threads < 0)
         throw std::invalid_argument(fmt::format("SURF threads must be >= 0, got {}", params.threads));
+    if (params.haar != HaarMode::exact && params.haar != HaarMode::rounded)
+        throw std::invalid_argument(fmt::format("SURF haar mode must be exact or rounded, got {}", int(params.haar)));
 }
 
 Keypoints detect(const IntegralView& ii, const Params& params) {
@@ -78,8 +80,8 @@ void describe(const IntegralView& ii, Keypoints& keypoints, const Params& params
     parallel_for(static_cast<int>(keypoints.size()), resolve_threads(params.threads), [&](int begin, int end) {
         for (int i = begin; i < end; ++i) {
             Keypoint& kp = keypoints[static_cast<size_t>(i)];
-            kp.orientation = params.upright ? 0.0f : orientation(ii, kp.x, kp.y, kp.scale);
-            kp.descriptor = descriptor(ii, kp);
+            kp.orientation = params.upright ? 0.0f : orientation(ii, kp.x, kp.y, kp.scale, params.haar);
+            kp.descriptor = descriptor(ii, kp, params.haar);
         }
     });
 }

@@ -156,5 +156,54 @@ TEST(MemoryView, ProbeSeesEveryReadOfTheReferenceCode) {
     EXPECT_EQ(reads.count, 0u);
 }
 
+// The same in HaarMode::rounded: bit-identical on both views, 8 reads per wavelet pair inside
+// the image (109 x 8 for an orientation, 400 x 8 for a descriptor).
+TEST(MemoryView, RoundedOrientationAndDescriptorAreBitIdentical) {
+    const cv::Mat gray = graf1_1024x768();
+    ASSERT_FALSE(gray.empty());
+    const TwoViews views(gray);
+    const surf::IntegralView native = views.native.view();
+    Reads reads;
+    const auto memory = views.memory(RecordingProbe{&reads});
+    const surf::Keypoints kps = test_keypoints(gray);
+    ASSERT_GT(kps.size(), 100u);
+    constexpr auto rounded = surf::HaarMode::rounded;
+    for (surf::Keypoint kp : kps) {
+        const float a = surf::orientation(native, kp.x, kp.y, kp.scale, rounded);
+        const float b = surf::orientation(memory, kp.x, kp.y, kp.scale, rounded);
+        ASSERT_TRUE(same_bits(a, b)) << kp.x << "," << kp.y << ": " << a << " vs " << b;
+        kp.orientation = a;
+        const std::array<float, 64> da = surf::descriptor(native, kp, rounded);
+        const std::array<float, 64> db = surf::descriptor(memory, kp, rounded);
+        ASSERT_EQ(std::memcmp(da.data(), db.data(), sizeof(float) * 64), 0) << kp.x << "," << kp.y;
+    }
+    EXPECT_TRUE(reads.aligned);
+    EXPECT_GE(reads.lowest, kBase);
+    EXPECT_LE(reads.highest, kBase + views.stride * size_t(native.height));
+    for (int i = 0; i < 2000; ++i) {
+        const float x = float((i * 7919) % 1100) - 30.5f + 0.37f * float(i % 3);
+        const float y = float((i * 104729) % 820) - 25.25f;
+        const int half = 1 + i % 17;
+        const surf::HaarResponse p = surf::haar_response_rounded(native, x, y, half);
+        const surf::HaarResponse q = surf::haar_response_rounded(views.memory(surf::NoProbe{}), x, y, half);
+        ASSERT_TRUE(same_bits(p.dx, q.dx) && same_bits(p.dy, q.dy)) << x << "," << y << " half " << half;
+    }
+
+    reads = {};
+    surf::orientation(memory, 500.3f, 400.6f, 2.4f, rounded);
+    EXPECT_EQ(reads.count, 109u * 8);
+    reads = {};
+    surf::Keypoint kp;
+    kp.x = 500.3f;
+    kp.y = 400.6f;
+    kp.scale = 2.4f;
+    kp.orientation = 1.0f;
+    surf::descriptor(memory, kp, rounded);
+    EXPECT_EQ(reads.count, 400u * 8);
+    reads = {};
+    surf::orientation(memory, -40.0f, -40.0f, 2.0f, rounded);  // far outside: nothing read
+    EXPECT_EQ(reads.count, 0u);
+}
+
 }  // namespace
 }  // namespace surfvp::stage_test

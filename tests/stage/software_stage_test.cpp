@@ -14,6 +14,8 @@
 
 #include "stage_fixture.h"
 #include "sw/cpu_cost/surf_op_counts.h"
+#include "sw/surf/descriptor.h"
+#include "sw/surf/orientation.h"
 #include "sw/surf/surf.h"
 
 namespace surfvp::stage_test {
@@ -21,8 +23,9 @@ namespace {
 
 using sw::SoftwareStage;
 
-surf::Params reference_params(bool upright) {
+surf::Params reference_params(bool upright, surf::HaarMode haar = surf::HaarMode::exact) {
     surf::Params p;
+    p.haar = haar;
     p.octaves = 2;  // the chip's 2 octaves x 4 intervals (paper §III)
     p.init_step = 1;
     p.upright = upright;
@@ -38,10 +41,12 @@ struct StageRun {
     uint64_t cycles = 0;
 };
 
-StageRun run_stage(const HardwareFrame& frame, float threshold, bool upright) {
+StageRun run_stage(const HardwareFrame& frame, float threshold, bool upright,
+                   surf::HaarMode haar = surf::HaarMode::exact) {
     sw::StageParams params;
     params.threshold = threshold;
     params.upright = upright;
+    params.haar = haar;
     SoftwareStage stage(params);
     stage.begin_frame();
     StageRun run;
@@ -100,21 +105,26 @@ Agreement agree(const surf::Keypoints& reference, const surf::Keypoints& stage) 
 void report(const char* title, const surf::Keypoints& reference, const StageRun& run, const Agreement& a) {
     const auto& st = run.stats;
     std::printf("\n== %s ==\n", title);
-    std::printf("reference %zu keypoints; stage %llu keypoints from %llu candidates "
-                "(border %llu, not maximum %llu, interpolation %llu)\n",
-                reference.size(), (unsigned long long)st.keypoints, (unsigned long long)st.candidates,
-                (unsigned long long)st.rejected_border, (unsigned long long)st.rejected_not_maximum,
-                (unsigned long long)st.rejected_interpolation);
-    std::printf("matched %zu / %zu reference keypoints (%.1f %%), Laplacian agrees %zu\n", a.matched, reference.size(),
-                100.0 * double(a.matched) / double(reference.size()), a.laplacian_agrees);
-    std::printf("position distance px: median %.4f p90 %.4f max %.4f\n", percentile(a.distance, 0.5),
-                percentile(a.distance, 0.9), percentile(a.distance, 1.0));
-    std::printf("descriptor L2 distance: median %.4f p90 %.4f p99 %.4f max %.4f\n",
-                percentile(a.descriptor_distance, 0.5), percentile(a.descriptor_distance, 0.9),
-                percentile(a.descriptor_distance, 0.99), percentile(a.descriptor_distance, 1.0));
-    std::printf("orientation difference rad: median %.5f p90 %.5f max %.5f\n",
-                percentile(a.orientation_difference, 0.5), percentile(a.orientation_difference, 0.9),
-                percentile(a.orientation_difference, 1.0));
+    if (reference.empty()) {  // cost only
+        std::printf("stage %llu keypoints from %llu candidates\n", (unsigned long long)st.keypoints,
+                    (unsigned long long)st.candidates);
+    } else {
+        std::printf("reference %zu keypoints; stage %llu keypoints from %llu candidates "
+                    "(border %llu, not maximum %llu, interpolation %llu)\n",
+                    reference.size(), (unsigned long long)st.keypoints, (unsigned long long)st.candidates,
+                    (unsigned long long)st.rejected_border, (unsigned long long)st.rejected_not_maximum,
+                    (unsigned long long)st.rejected_interpolation);
+        std::printf("matched %zu / %zu reference keypoints (%.1f %%), Laplacian agrees %zu\n", a.matched, reference.size(),
+                    100.0 * double(a.matched) / double(reference.size()), a.laplacian_agrees);
+        std::printf("position distance px: median %.4f p90 %.4f max %.4f\n", percentile(a.distance, 0.5),
+                    percentile(a.distance, 0.9), percentile(a.distance, 1.0));
+        std::printf("descriptor L2 distance: median %.4f p90 %.4f p99 %.4f max %.4f\n",
+                    percentile(a.descriptor_distance, 0.5), percentile(a.descriptor_distance, 0.9),
+                    percentile(a.descriptor_distance, 0.99), percentile(a.descriptor_distance, 1.0));
+        std::printf("orientation difference rad: median %.5f p90 %.5f max %.5f\n",
+                    percentile(a.orientation_difference, 0.5), percentile(a.orientation_difference, 0.9),
+                    percentile(a.orientation_difference, 1.0));
+    }
     const double per_kp = double(run.cycles) / double(std::max<uint64_t>(1, st.keypoints));
     std::printf("cycles %llu, per keypoint %.0f (%.3f ms at 400 MHz), cache hit rate %.4f (%llu misses)\n",
                 (unsigned long long)run.cycles, per_kp, per_kp / 400e3, run.breakdown.hit_rate,
@@ -266,6 +276,120 @@ TEST(SoftwareStage, RefusesWordsTheFhgNeverSends) {
     sw::FrameBuffers empty;
     EXPECT_THROW(stage.process(fhg::pack_candidate({1, 1, 1}), empty), std::invalid_argument);
     EXPECT_EQ(stage.stats().candidates, 0u);
+}
+
+// HaarMode::rounded end to end. The stage's keypoints are the exact mode's (detection does
+// not depend on the Haar mode); their orientation and descriptor are bit-identical to the
+// reference's rounded code run natively (IntegralView) at the stage's own position and scale;
+// against the reference's keypoints, whose positions differ by ~1e-3 px, a sample now and
+// then rounds to the other pixel, so descriptors agree less tightly than in the exact mode.
+void end_to_end_rounded(int target, bool upright) {
+    const cv::Mat gray = graf1_1024x768();
+    ASSERT_FALSE(gray.empty());
+    constexpr auto rounded = surf::HaarMode::rounded;
+    surf::Params params = reference_params(upright, rounded);
+    params.threshold = surf::threshold_for_count(gray, target, params);
+    const surf::Keypoints reference = surf::detect_and_describe(gray, params);
+    const HardwareFrame frame = run_hardware(gray, params.threshold);
+    const StageRun run = run_stage(frame, params.threshold, upright, rounded);
+    const Agreement a = agree(reference, run.keypoints);
+    char title[96];
+    std::snprintf(title, sizeof title, "graf1 1024x768, threshold %.3f, %s, rounded Haar", params.threshold,
+                  upright ? "upright" : "oriented");
+    report(title, reference, run, a);
+
+    ASSERT_GE(reference.size(), size_t(target) * 9 / 10);
+    EXPECT_GE(double(a.matched), 0.95 * double(reference.size()));
+    EXPECT_LE(double(run.stats.keypoints), 1.05 * double(reference.size()));
+    // Measured (~1000, oriented): median 0.0000, p90 0.0014, p99 0.014, max 0.048; (~100,
+    // upright): p99 < 1e-4, max 0.0008. Exact mode: median < 1e-4, p90 1e-4.
+    EXPECT_LT(percentile(a.descriptor_distance, 0.5), 0.001);
+    EXPECT_LT(percentile(a.descriptor_distance, 0.9), 0.01);
+
+    const surf::IntegralView native{frame.integral.data(), frame.width, frame.height, size_t(frame.width)};
+    size_t identical = 0;
+    for (const surf::Keypoint& kp : run.keypoints) {
+        const float o = upright ? 0.0f : surf::orientation(native, kp.x, kp.y, kp.scale, rounded);
+        const std::array<float, 64> d = surf::descriptor(native, kp, rounded);
+        const bool same = std::memcmp(&o, &kp.orientation, sizeof o) == 0 &&
+                          std::memcmp(d.data(), kp.descriptor.data(), sizeof(float) * 64) == 0;
+        EXPECT_TRUE(same) << kp.x << "," << kp.y << " scale " << kp.scale;
+        identical += same;
+    }
+    EXPECT_EQ(identical, run.keypoints.size());
+    ::testing::Test::RecordProperty("cycles_per_keypoint", std::to_string(double(run.cycles) / double(run.stats.keypoints)));
+}
+
+TEST(SoftwareStage, RoundedHaarAgreesWithReferenceAt1000Keypoints) { end_to_end_rounded(1000, false); }
+TEST(SoftwareStage, RoundedHaarAgreesWithReferenceUprightAt100Keypoints) { end_to_end_rounded(100, true); }
+
+// What rounding the wavelets saves: the same frame (~1000 keypoints) through the stage in
+// both modes, oriented and upright. The keypoints are the same; only the Haar wavelets'
+// operations and reads (8 instead of 32 per pair) change.
+TEST(SoftwareStage, RoundedHaarCostsLessPerKeypoint) {
+    const cv::Mat gray = graf1_1024x768();
+    ASSERT_FALSE(gray.empty());
+    surf::Params params = reference_params(false);
+    params.threshold = surf::threshold_for_count(gray, 1000, params);
+    const HardwareFrame frame = run_hardware(gray, params.threshold);
+    double per_kp[2][2] = {};  // [upright][rounded]
+    for (const bool upright : {false, true})
+        for (const surf::HaarMode mode : {surf::HaarMode::exact, surf::HaarMode::rounded}) {
+            const StageRun run = run_stage(frame, params.threshold, upright, mode);
+            ASSERT_GT(run.stats.keypoints, 900u);
+            const Agreement none;
+            char title[96];
+            std::snprintf(title, sizeof title, "cost, threshold %.3f, %s, %s Haar", params.threshold,
+                          upright ? "upright" : "oriented", mode == surf::HaarMode::rounded ? "rounded" : "exact");
+            report(title, {}, run, none);
+            per_kp[upright][mode == surf::HaarMode::rounded] = double(run.cycles) / double(run.stats.keypoints);
+        }
+    std::printf("cycles per keypoint: oriented exact %.0f rounded %.0f (%.2fx); upright exact %.0f rounded %.0f "
+                "(%.2fx)\n",
+                per_kp[0][0], per_kp[0][1], per_kp[0][0] / per_kp[0][1], per_kp[1][0], per_kp[1][1],
+                per_kp[1][0] / per_kp[1][1]);
+    ::testing::Test::RecordProperty("rounded_cycles_per_keypoint", std::to_string(per_kp[0][1]));
+    ::testing::Test::RecordProperty("exact_cycles_per_keypoint", std::to_string(per_kp[0][0]));
+    // Measured: oriented 966,700 -> 303,818 (3.18x), upright 725,501 -> 203,576 (3.56x).
+    EXPECT_LT(per_kp[0][1], per_kp[0][0] / 3);
+    EXPECT_LT(per_kp[1][1], per_kp[1][0] / 3);
+}
+
+// One interior keypoint in rounded mode reads 32 (hessian_at) + 109 x 8 + 400 x 8 integral
+// values.
+TEST(SoftwareStage, CountsTheRoundedWorkOfOneKeypoint) {
+    const cv::Mat gray = graf1_1024x768();
+    ASSERT_FALSE(gray.empty());
+    const HardwareFrame frame = run_hardware(gray, 300);
+    sw::StageParams params;
+    params.threshold = 300;
+    params.haar = surf::HaarMode::rounded;
+    SoftwareStage stage(params);
+    const sw::FrameBuffers buffers = frame.buffers();
+    bool found = false;
+    for (uint32_t word : frame.fifo) {
+        const fhg::Candidate c = fhg::unpack_candidate(word);
+        if (c.x < 200 || c.x > 800 || c.y < 200 || c.y > 560) continue;
+        const uint64_t ii0 = stage.cost().count(sw::Op::integral_read);
+        const uint64_t cvt0 = stage.cost().count(sw::Op::fcvt);
+        const auto kp = stage.process(word, buffers);
+        if (!kp) continue;
+        EXPECT_EQ(stage.cost().count(sw::Op::integral_read) - ii0, 32u + 109 * 8 + 400 * 8);
+        // fcvt: the solve and keypoint (27 + 4), hessian_at 4, the wavelets 6 each, the samples
+        // (3 per orientation sample, 1 per descriptor sample), the two half-sizes 1 each (atan2,
+        // sin and cos are counted as calls)
+        const uint64_t cvt = 27 + 4 + 4 + 509 * 6 + 109 * 3 + 400 * 1 + 2;
+        EXPECT_EQ(stage.cost().count(sw::Op::fcvt) - cvt0, cvt);
+        found = true;
+        break;
+    }
+    ASSERT_TRUE(found);
+    const auto& ph = stage.phase_cycles();
+    EXPECT_NEAR(ph.check + ph.interpolation + ph.laplacian + ph.orientation + ph.descriptor,
+                stage.cost().exact_cycles(), 1e-6 * stage.cost().exact_cycles());
+    sw::StageParams bad;
+    bad.haar = static_cast<surf::HaarMode>(7);
+    EXPECT_THROW(SoftwareStage{bad}, std::invalid_argument);
 }
 
 }  // namespace
