@@ -90,7 +90,9 @@ std::string scenario_dir() {
 
 std::string resolve_scenario(const std::string& argument) {
     std::error_code error;
-    if (fs::exists(argument, error) || argument.find('/') != std::string::npos ||
+    // A file, or anything that looks like a path, is taken as it is; a bare name (even one a
+    // folder in the current directory has, such as an earlier run's output) is a shipped one.
+    if (fs::is_regular_file(argument, error) || argument.find('/') != std::string::npos ||
         fs::path(argument).extension() == ".yaml")
         return argument;
     const fs::path shipped = fs::path(scenario_dir()) / (argument + ".yaml");
