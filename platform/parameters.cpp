@@ -180,9 +180,9 @@ std::vector<ParamSpec> make_table() {
     std::vector<ParamSpec> t;
     t.push_back({"run.workload", ParamKind::choice, "smoke", 0, 0, {"smoke", "surf"},
                  "What the CPU runs: the bus smoke test, or libSSA2 and SURF on frames", "[-] scenario choice"});
-    t.push_back({"run.max_time", ParamKind::duration, "10 s", 1, 3600 * s, {},
+    t.push_back({"run.max_time", ParamKind::duration, "600 s", 1, 36000 * s, {},
                  "Simulated time after which a run that has not finished is stopped as stalled",
-                 "[A] a guard, far above any scenario's length"});
+                 "[A] a guard against a livelocked run, far above any shipped scenario (castle, exact Haar: 11 s)"});
 
     t.push_back({"run.dma_granularity", ParamKind::choice, "line", 0, 0, {"line", "burst"},
                  "IP blocks' DMA: one TLM transaction per line (fast; the bus still charges each burst) or per burst "
