@@ -69,6 +69,8 @@ public:
         return keypoint;
     }
 
+    const sw::SoftwareStage& stage() const { return stage_; }
+
 private:
     sw::SoftwareStage stage_;
     unsigned det_frac_bits_;
@@ -76,6 +78,30 @@ private:
 };
 
 }  // namespace
+
+nlohmann::ordered_json describer_report(const sw::ssa2::Describer& describer) {
+    const auto* stage = dynamic_cast<const StageDescriber*>(&describer);
+    if (!stage) return nullptr;
+    const sw::SoftwareStage& s = stage->stage();
+    const auto& st = s.stats();
+    const auto& ph = s.phase_cycles();
+    const sw::CostBreakdown b = s.cost().breakdown();
+    nlohmann::ordered_json kinds = nlohmann::ordered_json::object();
+    for (const sw::CostLine& line : b.lines)
+        if (line.count) kinds[line.name] = {{"count", line.count}, {"cycles", line.cycles}};
+    const double keypoints = st.keypoints ? double(st.keypoints) : 1.0;
+    return {{"candidates", st.candidates},
+            {"keypoints", st.keypoints},
+            {"rejected", {{"not_maximum", st.rejected_not_maximum}, {"interpolation", st.rejected_interpolation},
+                          {"border", st.rejected_border}}},
+            {"cycles_per_keypoint_by_step", {{"check", ph.check / keypoints}, {"interpolation", ph.interpolation / keypoints},
+                                             {"laplacian", ph.laplacian / keypoints}, {"orientation", ph.orientation / keypoints},
+                                             {"descriptor", ph.descriptor / keypoints}}},
+            {"cycles_by_kind", kinds},
+            {"total_cycles", b.total_cycles},
+            {"dcache", {{"accesses", b.cache_accesses}, {"hits", b.cache_hits}, {"misses", b.cache_misses},
+                        {"hit_rate", b.hit_rate}}}};
+}
 
 std::unique_ptr<sw::ssa2::Describer> make_describer(const Config& config, float threshold) {
     sw::StageParams params;

@@ -1,6 +1,7 @@
 #pragma once
 // The software stage libSSA2 hands candidates to, built from the configuration.
 #include <memory>
+#include <nlohmann/json.hpp>
 
 #include "config.h"
 #include "sw/libssa2/libssa2.h"
@@ -8,5 +9,9 @@
 namespace surfvp {
 
 std::unique_ptr<sw::ssa2::Describer> make_describer(const Config& config, float threshold);
+
+// Where the software stage's cycles went (per step and per kind of work), its candidates
+// and rejections, and the L1 hit rate, for the report.
+nlohmann::ordered_json describer_report(const sw::ssa2::Describer& describer);
 
 }  // namespace surfvp

@@ -91,18 +91,19 @@ double share(const sc_core::sc_time& part, const sc_core::sc_time& whole) {
     return whole > sc_core::SC_ZERO_TIME ? part.to_seconds() / whole.to_seconds() : 0.0;
 }
 
-nlohmann::ordered_json iig_report(const Iig& iig) {
+nlohmann::ordered_json iig_report(const Iig& iig, const sc_core::sc_time& elapsed) {
     return {{"frames", iig.stats().frames}, {"errors", iig.stats().errors}, {"busy_s", seconds(iig.stats().busy)},
-            {"stalled_s", seconds(iig.stats().stalled)}};
+            {"stalled_s", seconds(iig.stats().stalled)},
+            {"utilisation", share(iig.stats().busy - iig.stats().stalled, elapsed)}};
 }
 
-nlohmann::ordered_json fhg_report(const Fhg& fhg) {
+nlohmann::ordered_json fhg_report(const Fhg& fhg, const sc_core::sc_time& elapsed) {
     const auto& s = fhg.stats();
     return {{"frames", s.frames}, {"errors", s.errors},
             {"cycles_per_block", fhg.block_cycles()}, {"block_limit", fhg.block_limit()},
             {"sequence_cycles_per_block", fhg.sequence().cycles},
             {"optimal_cycles_per_block", fhg.sequence().optimal_cycles},
-            {"busy_s", seconds(s.busy)}, {"computing_s", seconds(s.computing)},
+            {"busy_s", seconds(s.busy)}, {"utilisation", share(s.busy, elapsed)}, {"computing_s", seconds(s.computing)},
             {"waiting_for_lines_s", seconds(s.waiting_for_lines)},
             {"candidates", s.candidates}, {"candidates_dropped", s.dropped},
             {"maxima_fifo_high_water", s.fifo_high_water}, {"line_fifo_high_water", s.lines_high_water}};
@@ -110,10 +111,11 @@ nlohmann::ordered_json fhg_report(const Fhg& fhg) {
 
 // One block: its object; several: an array of them.
 template <typename Block, typename Report>
-nlohmann::ordered_json blocks_report(const std::vector<std::unique_ptr<Block>>& blocks, Report report) {
-    if (blocks.size() == 1) return report(*blocks[0]);
+nlohmann::ordered_json blocks_report(const std::vector<std::unique_ptr<Block>>& blocks, Report report,
+                                     const sc_core::sc_time& elapsed) {
+    if (blocks.size() == 1) return report(*blocks[0], elapsed);
     nlohmann::ordered_json all = nlohmann::ordered_json::array();
-    for (const auto& b : blocks) all.push_back(report(*b));
+    for (const auto& b : blocks) all.push_back(report(*b, elapsed));
     return all;
 }
 
@@ -248,8 +250,8 @@ nlohmann::ordered_json Soc::report(const sc_core::sc_time& elapsed) const {
                      {"irq_wait_s", seconds(s.irq_wait_time)}}},
             {"interrupts", {{"raised", intc_->interrupts_raised()}}},
             {"dma", {{"copies", dma_->copies()}, {"bytes_copied", dma_->bytes_copied()}}},
-            {"iig", blocks_report(iigs_, iig_report)},
-            {"fhg", blocks_report(fhgs_, fhg_report)}};
+            {"iig", blocks_report(iigs_, iig_report, elapsed)},
+            {"fhg", blocks_report(fhgs_, fhg_report, elapsed)}};
 }
 
 }  // namespace surfvp

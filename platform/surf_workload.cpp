@@ -252,7 +252,8 @@ nlohmann::ordered_json SurfWorkload::report() const {
         if (t.phase == sw::ssa2::Phase::failed) f["error"] = t.error;
         frames.push_back(f);
     }
-    return {{"source", config_.text("surf.source")}, {"evaluation", evaluation()}, {"per_frame", frames}};
+    return {{"source", config_.text("surf.source")}, {"evaluation", evaluation()},
+            {"software_stage", describer_report(*describer_)}, {"per_frame", frames}};
 }
 
 // Feature quality on the chip's own keypoints, when the scenario gives the geometry.
