@@ -22,8 +22,10 @@ DirectChip::DirectChip(const Config& config, unsigned accelerators)
       memory_(static_cast<uint8_t*>(std::calloc(memory_size_, 1)), std::free),
       pairs_(accelerators),
       sum_bits_(config.bits("iig.sum_bits")),
-      max_width_(unsigned(config.count("fhg.max_width"))),
-      max_height_(unsigned(config.count("fhg.max_height"))),
+      iig_max_width_(unsigned(config.count("iig.max_width"))),
+      iig_max_height_(unsigned(config.count("iig.max_height"))),
+      fhg_max_width_(unsigned(config.count("fhg.max_width"))),
+      fhg_max_height_(unsigned(config.count("fhg.max_height"))),
       core_(fhg_params(config).precision) {
     if (!memory_) throw std::runtime_error("direct mode: cannot allocate the memory");
 }
@@ -117,7 +119,7 @@ bool DirectChip::access_iig(Pair& p, uint32_t offset, uint32_t& value, bool writ
         value = offset == iig::STATUS ? r.status : offset == iig::ERROR_CODE ? r.error : field ? *field : 0;
         return true;
     }
-    if (offset == iig::STATUS) r.status &= ~value;
+    if (offset == iig::STATUS) r.status &= ~(value & (iig::STATUS_DONE | iig::STATUS_ERROR));
     else if (offset == iig::CTRL) {
         r.ctrl = value & (iig::CTRL_IRQ_EN | iig::CTRL_STREAM);
         if (value & iig::CTRL_START) run_frame(p);
@@ -141,7 +143,9 @@ bool DirectChip::access_fhg(Pair& p, uint32_t offset, uint32_t& value, bool writ
     }
     if (!write) {
         switch (offset) {
-            case f::STATUS: value = r.status; break;
+            case f::STATUS:
+                value = r.status | (r.fifo_threshold && r.fifo.size() >= r.fifo_threshold ? f::STATUS_FIFO_IRQ : 0);
+                break;
             case f::ERROR_CODE: value = r.error; break;
             case f::FIFO_LEVEL: value = uint32_t(r.fifo.size()); break;
             case f::OVERFLOW_COUNT: value = 0; break;
@@ -158,12 +162,17 @@ bool DirectChip::access_fhg(Pair& p, uint32_t offset, uint32_t& value, bool writ
     if (offset == f::STATUS) r.status &= ~(value & (f::STATUS_DONE | f::STATUS_ERROR | f::STATUS_FIFO_OVERFLOW));
     else if (offset == f::CTRL) {
         r.ctrl = value & (f::CTRL_IRQ_EN_DONE | f::CTRL_IRQ_EN_FIFO);
-        if ((value & f::CTRL_ABORT) && r.running) {
-            r.running = false;
-            r.error = f::ERR_ABORTED;
-            r.status = f::STATUS_ERROR;
+        if (value & f::CTRL_ABORT) {
+            if (r.running) {
+                r.running = false;
+                r.error = f::ERR_ABORTED;
+                r.status = f::STATUS_ERROR;
+            }
+        } else if ((value & f::CTRL_START) && r.running) {
+            r.error = f::ERR_START_BUSY;
+            r.status |= f::STATUS_ERROR;
         } else if (value & f::CTRL_START) {
-            const bool size_ok = r.width && r.height && r.width <= max_width_ && r.height <= max_height_;
+            const bool size_ok = r.width && r.height && r.width <= fhg_max_width_ && r.height <= fhg_max_height_;
             r.running = size_ok;
             r.fifo.clear();
             r.candidates = 0;
@@ -182,7 +191,7 @@ void DirectChip::run_frame(Pair& p) {
         i.error = code;
         i.status = iig::STATUS_ERROR;
     };
-    if (!i.width || !i.height || i.width > max_width_ || i.height > max_height_) return iig_error(iig::ERR_SIZE);
+    if (!i.width || !i.height || i.width > iig_max_width_ || i.height > iig_max_height_) return iig_error(iig::ERR_SIZE);
     const uint32_t src_stride = i.src_stride ? i.src_stride : i.width, dst_stride = i.dst_stride ? i.dst_stride : 4 * i.width;
     if (!in_memory(i.src, uint64_t(src_stride) * (i.height - 1) + i.width)) return iig_error(iig::ERR_READ);
     if (!in_memory(i.dst, uint64_t(dst_stride) * (i.height - 1) + 4ull * i.width)) return iig_error(iig::ERR_WRITE);

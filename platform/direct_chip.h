@@ -62,7 +62,7 @@ private:
     std::unique_ptr<uint8_t[], void (*)(void*)> memory_;
     std::vector<Pair> pairs_;
     uint32_t ier_ = 0, mer_ = 0;
-    unsigned sum_bits_, max_width_, max_height_;
+    unsigned sum_bits_, iig_max_width_, iig_max_height_, fhg_max_width_, fhg_max_height_;
     fhg::HessianCore core_;
     uint64_t cycles_ = 0;
 };

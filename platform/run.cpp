@@ -84,11 +84,10 @@ Outcome simulate(Soc& soc, const Config& config, ProgressLine& progress, WallClo
 // Busy time per frame of each resource; the largest limits the frame rate.
 void add_bottleneck(nlohmann::ordered_json& r, const sc_core::sc_time& elapsed) {
     const double frames = double(r["frames_done"].get<size_t>());
-    // One block or an array of them: the busiest; time stalled by another block is not its own.
+    // One block or an array of them: the busiest by its own time (busy, less the time it
+    // waited on another block: the IIG stalled by PixelBus, the FHG waiting for lines).
     auto busy = [&](const nlohmann::ordered_json& blocks) {
-        auto own = [](const nlohmann::ordered_json& b) {
-            return b["busy_s"].get<double>() - (b.contains("stalled_s") ? b["stalled_s"].get<double>() : 0.0);
-        };
+        auto own = [](const nlohmann::ordered_json& b) { return b["own_s"].get<double>(); };
         double most = 0;
         if (blocks.is_array()) {
             for (const auto& b : blocks) most = std::max(most, own(b));

@@ -94,6 +94,7 @@ double share(const sc_core::sc_time& part, const sc_core::sc_time& whole) {
 nlohmann::ordered_json iig_report(const Iig& iig, const sc_core::sc_time& elapsed) {
     return {{"frames", iig.stats().frames}, {"errors", iig.stats().errors}, {"busy_s", seconds(iig.stats().busy)},
             {"stalled_s", seconds(iig.stats().stalled)},
+            {"own_s", seconds(iig.stats().busy - iig.stats().stalled)},
             {"utilisation", share(iig.stats().busy - iig.stats().stalled, elapsed)}};
 }
 
@@ -105,6 +106,7 @@ nlohmann::ordered_json fhg_report(const Fhg& fhg, const sc_core::sc_time& elapse
             {"optimal_cycles_per_block", fhg.sequence().optimal_cycles},
             {"busy_s", seconds(s.busy)}, {"utilisation", share(s.busy, elapsed)}, {"computing_s", seconds(s.computing)},
             {"waiting_for_lines_s", seconds(s.waiting_for_lines)},
+            {"own_s", seconds(s.busy - s.waiting_for_lines)},
             {"candidates", s.candidates}, {"candidates_dropped", s.dropped},
             {"maxima_fifo_high_water", s.fifo_high_water}, {"line_fifo_high_water", s.lines_high_water}};
 }

@@ -85,7 +85,9 @@ public:
         driver_.intc_base = map::intc.base;
         for (unsigned k = 0; k < c.count("soc.accelerators"); ++k)
             driver_.accelerators.push_back({map::iig_base(k), map::fhg_base(k), map::irq::iig(k), map::irq::fhg(k)});
-        driver_.tasks_in_flight = unsigned(c.count("surf.tasks_in_flight"));
+        for (uint64_t set = 0; set < c.count("surf.tasks_in_flight"); ++set)
+            driver_.buffers.push_back({uint32_t(slots_base_ + set * slot_bytes_),
+                                       uint32_t(slots_base_ + set * slot_bytes_ + integral_bytes_)});
         driver_.fifo_irq_level = uint32_t(c.count("surf.fifo_irq_level"));
         driver_.threshold = core.from_float(threshold_);
         budget_fps_ = c.real("budget.fps");
@@ -104,10 +106,7 @@ public:
         return [this](sw::Hal& hal) {
             std::vector<sw::ssa2::Task> tasks(frames_.size());
             for (size_t i = 0; i < tasks.size(); ++i) {
-                const size_t slot = i % driver_.tasks_in_flight;
                 tasks[i].image = frame_address(i);
-                tasks[i].integral = uint32_t(slots_base_ + slot * slot_bytes_);
-                tasks[i].determinants = uint32_t(slots_base_ + slot * slot_bytes_ + integral_bytes_);
                 tasks[i].width = width_;
                 tasks[i].height = height_;
             }

@@ -120,7 +120,7 @@ void Fhg::start() {
     if (width_ == 0 || height_ == 0 || width_ > params_.max_width || height_ > params_.max_height)
         return flag(r::ERR_SIZE);
     frame_ = {det_addr_, width_, height_, (width_ + 1) / 2, (height_ + 1) / 2, int32_t(threshold_), true, false, 0, 0, 0,
-              0, sc_core::sc_time_stamp()};
+              0, 0, sc_core::sc_time_stamp()};
     lines_.assign(size_t(width_) * height_, 0);
     for (auto& slot : slots_) slot.assign(size_t(frame_.blocks_x) * fhg::kDeterminantsPerBlock, 0);
     maxima_.clear();
@@ -171,9 +171,12 @@ void Fhg::frame_thread() {
             frame_.oldest = std::max(frame_.oldest, int(2 * (by + 1)) - fhg::kReachBefore);
             trace_levels();
             room_.notify(sc_core::SC_ZERO_TIME);
+            ++frame_.rows_sent;
             det_rows_.write(int(by));
         }
-        while (frame_.rows_written < frame_.blocks_y && !frame_.failed) sc_core::wait(rows_written_);
+        // Failed or not, the writer finishes the rows it was given before the frame ends, so
+        // that nothing of this frame reaches the next one.
+        while (frame_.rows_written < frame_.rows_sent) sc_core::wait(rows_written_);
         sc_core::wait(cycles(params_.clock, params_.pipeline_latency_cycles));
         stats_.busy += sc_core::sc_time_stamp() - frame_.began;
         ++stats_.frames;

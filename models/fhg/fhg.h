@@ -94,6 +94,7 @@ private:
         uint32_t error;       // ErrorCode of the failure, shown at the frame's end
         int received;         // lines received: rows 0 .. received-1
         int oldest;           // first line still held in the FIFO
+        unsigned rows_sent;     // block rows handed to the writer
         unsigned rows_written;
         sc_core::sc_time began;
     } frame_{};

@@ -26,7 +26,10 @@ DdrMemory::DdrMemory(const sc_core::sc_module_name& name, const Params& params)
     ports.register_transport_dbg(this, &DdrMemory::transport_dbg);
 }
 
-void DdrMemory::name_port(const std::string& name) { port_stats_.push_back(PortStats{name}); }
+void DdrMemory::name_port(const std::string& name) {
+    port_stats_.emplace_back();
+    port_stats_.back().name = name;
+}
 
 DdrMemory::PortStats& DdrMemory::stats(int port) {
     while (port_stats_.size() <= static_cast<size_t>(port)) name_port(fmt::format("port{}", port_stats_.size()));

@@ -1,5 +1,6 @@
 #include "libssa2.h"
 
+#include <algorithm>
 #include <fmt/format.h>
 #include <stdexcept>
 
@@ -38,9 +39,10 @@ const char* iig_error(uint32_t code) {
 }  // namespace
 
 Driver::Driver(Hal& hal, DriverConfig config, Describer& describer)
-    : hal_(hal), config_(std::move(config)), describer_(describer), running_(config_.accelerators.size(), -1) {
+    : hal_(hal), config_(std::move(config)), describer_(describer), running_(config_.accelerators.size(), -1),
+      set_busy_(config_.buffers.size(), false) {
     if (config_.accelerators.empty()) throw std::invalid_argument("libSSA2 needs at least one accelerator");
-    if (config_.tasks_in_flight == 0) throw std::invalid_argument("libSSA2 needs at least one task in flight");
+    if (config_.buffers.empty()) throw std::invalid_argument("libSSA2 needs at least one buffer set");
 }
 
 void Driver::enable_interrupts() {
@@ -76,16 +78,19 @@ void Driver::run(std::vector<Task>& tasks, const Callback& callback) {
     }
 }
 
-// In flight: started and not yet finished. The next queued task starts on a free pair.
+// A queued task starts on a free pair when a buffer set is free: a set stays with its task
+// until the task is reported, so a failed task cannot let the next one overwrite buffers
+// the CPU is still reading.
 void Driver::start_hardware(std::vector<Task>& tasks) {
-    unsigned in_flight = 0;
-    for (const Task& t : tasks) in_flight += t.phase == Phase::hardware || t.phase == Phase::descriptors;
-    for (size_t a = 0; a < running_.size() && in_flight < config_.tasks_in_flight; ++a) {
+    for (size_t a = 0; a < running_.size(); ++a) {
         if (running_[a] >= 0) continue;
+        const auto set = std::find(set_busy_.begin(), set_busy_.end(), false);
+        if (set == set_busy_.end()) return;
         for (Task& t : tasks)
             if (t.phase == Phase::queued) {
+                t.buffer_set = int(set - set_busy_.begin());
+                *set = true;
                 start(t, int(a));
-                ++in_flight;
                 break;
             }
     }
@@ -99,6 +104,9 @@ void Driver::start(Task& task, int accelerator) {
     running_[accelerator] = task.id;
     hal_.mark(unsigned(accelerator), task.id);
     task.t_start = hal_.time_ps();
+    const BufferSet& buffers = config_.buffers[size_t(task.buffer_set)];
+    task.integral = buffers.integral;
+    if (task.determinants == 0) task.determinants = buffers.determinants;
     // The FHG first: it must be listening before the IIG streams.
     hal_.write32(a.fhg_base + f::DET_ADDR, task.determinants);
     hal_.write32(a.fhg_base + f::WIDTH, uint32_t(task.width));
@@ -208,6 +216,7 @@ void Driver::describe_one(Task& task, const Callback& callback) {
 }
 
 void Driver::finish(Task& task, const Callback& callback) {
+    if (task.buffer_set >= 0) set_busy_[size_t(task.buffer_set)] = false;
     task.t_done = hal_.time_ps();
     if (task.t_done == 0) task.t_done = 1;  // direct mode has no time: mark it reported
     callback(task, std::move(keypoints_[size_t(task.id)]));

@@ -10,7 +10,7 @@
 //                          what is left when the FHG is done        (CPU, interrupt-driven)
 //   4. descriptors         the software stage on every candidate     (CPU)
 // Phases overlap, and so do tasks: while the CPU describes task n, the accelerators already
-// work on task n+1 (up to `tasks_in_flight` tasks between start and end). With several
+// work on task n+1 (as many tasks between start and end as there are buffer sets). With several
 // accelerator pairs, tasks go to whichever pair is free. A hardware error (bus error, size,
 // FIFO overflow) fails that task with its reason; the others go on.
 #include <cstdint>
@@ -29,10 +29,15 @@ struct Accelerator {
     unsigned iig_irq, fhg_irq;    // INTC input numbers
 };
 
+// One set of result buffers in memory; a task holds one from its start until it is reported.
+struct BufferSet {
+    uint32_t integral, determinants;
+};
+
 struct DriverConfig {
     uint32_t intc_base = 0;
     std::vector<Accelerator> accelerators;
-    unsigned tasks_in_flight = 2;
+    std::vector<BufferSet> buffers;  // as many tasks are in flight as there are sets
     uint32_t fifo_irq_level = 256;  // FHG FIFO_THRESHOLD
     int32_t threshold = 0;          // FHG THRESHOLD (determinant fixed point)
     // HAL markers: accelerator k's task is marker k (-1 when idle); the task being described
@@ -59,11 +64,13 @@ enum class Phase { queued, hardware, descriptors, done, failed };
 
 struct Task {
     int id = 0;
-    uint32_t image = 0, integral = 0, determinants = 0;
+    uint32_t image = 0;
+    uint32_t integral = 0, determinants = 0;  // from a free buffer set at start (a preset determinants: fault injection)
     int width = 0, height = 0;
 
     Phase phase = Phase::queued;
     int accelerator = -1;
+    int buffer_set = -1;
     std::string error;                 // why it failed
     std::vector<uint32_t> candidates;  // maxima FIFO words, in FIFO order
     size_t described = 0;              // candidates handed to the describer so far
@@ -103,6 +110,7 @@ private:
     DriverConfig config_;
     Describer& describer_;
     std::vector<int> running_;  // per accelerator: the task it works on, or -1
+    std::vector<bool> set_busy_;  // per buffer set
     std::vector<surf::Keypoints> keypoints_;
     uint64_t interrupts_ = 0;
 };

@@ -19,10 +19,17 @@ using test::slurp;
 using test::surfvp;
 
 const std::string kBudget = std::string(SURFVP_SOURCE_DIR) + "/scenarios/budget_1024x768.yaml";
+const std::string kCastle = std::string(SURFVP_SOURCE_DIR) + "/scenarios/castle_sequence.yaml";
 
-nlohmann::json run(const std::string& name, const std::string& sets, int expected_exit) {
+// The folder fresh_dir(name) made, without emptying it.
+std::string fresh_path(const std::string& name) {
+    return (fs::temp_directory_path() / ("surfvp_test_" + std::to_string(::getpid())) / name).string();
+}
+
+nlohmann::json run(const std::string& name, const std::string& sets, int expected_exit,
+                   const std::string& scenario = kBudget) {
     const std::string out = fresh_dir(name);
-    const auto r = surfvp("run " + kBudget + " --trace none --quiet --out " + out + " " + sets);
+    const auto r = surfvp("run " + scenario + " --trace none --quiet --out " + out + " " + sets);
     EXPECT_EQ(r.exit_code, expected_exit) << r.err;
     return nlohmann::json::parse(slurp(out + "/report.json"));
 }
@@ -53,6 +60,13 @@ TEST(SurfRun, TwoTasksInFlightOverlapHardwareAndSoftware) {
     EXPECT_NEAR(two["throughput_fps"].get<double>(), 1000.0 / slowest_ms, 0.03 * 1000.0 / slowest_ms);
 }
 
+TEST(SurfRun, BottleneckIsTheBlockWithTheMostOwnTime) {
+    // A slow IIG: the FHG waits for its lines, and that waiting is not the FHG's own time.
+    const auto r = run("slow_iig", " --set surf.frames=3 --set iig.clock=5MHz --set budget.fps=0", 0);
+    EXPECT_EQ(r["bottleneck"], "iig") << r["busy_per_frame_ms"];
+    EXPECT_NEAR(r["busy_per_frame_ms"]["iig"].get<double>(), 1024.0 * 768 / 5e6 * 1e3, 5.0);  // 1 px a cycle
+}
+
 // With few keypoints the CPU keeps up and the FHG sets the rate: ~52 cycles a block.
 TEST(SurfRun, BudgetVerdictFollowsTheFhgClock) {
     const std::string sets = " --set surf.frames=4 --set surf.target_keypoints=20";
@@ -65,7 +79,14 @@ TEST(SurfRun, BudgetVerdictFollowsTheFhgClock) {
 }
 
 TEST(SurfRun, HardwareErrorFailsOnlyItsTask) {
-    const auto r = run("fault", " --set surf.frames=4 --set surf.width=512 --set surf.height=384 --set budget.fps=0 --set fault.frame=2", 1);
+    // Castle frames differ from each other, so a frame described from another's buffers shows.
+    const std::string sets = " --set surf.frames=4";
+    const auto r = run("fault", sets + " --set fault.frame=2", 1, kCastle);
+    run("no_fault", sets, 0, kCastle);
+    // The other frames' keypoints are those of a run without the fault: the failed task did not
+    // let a later one overwrite buffers the CPU was still reading.
+    for (const char* f : {"frame_0000.surf", "frame_0002.surf", "frame_0003.surf"})
+        EXPECT_EQ(slurp(fresh_path("fault") + "/keypoints/" + f), slurp(fresh_path("no_fault") + "/keypoints/" + f)) << f;
     const auto& frames = r["workload"]["per_frame"];
     ASSERT_EQ(frames.size(), 4u);
     EXPECT_NE(frames[1]["error"].get<std::string>().find("bus error"), std::string::npos) << frames[1];
