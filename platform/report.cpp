@@ -46,7 +46,8 @@ std::string frames_section(const nlohmann::ordered_json& r) {
         md += "\nBusy time per frame:\n\n| resource | ms |\n|---|---:|\n";
         for (const auto& [name, ms] : r["busy_per_frame_ms"].items()) md += fmt::format("| {} | {:.2f} |\n", name, ms.get<double>());
     }
-    md += "\nMean time from hardware start to the end of each phase:\n\n| phase | ms |\n|---|---:|\n";
+    md += "\nMean phase times (integral image and determinants: from the task's hardware start, in parallel; "
+          "descriptors: from the determinants' end to the last descriptor):\n\n| phase | ms |\n|---|---:|\n";
     for (const auto& [name, ms] : r["phases_ms"].items()) md += fmt::format("| {} | {:.2f} |\n", name, ms.get<double>());
     return md;
 }
