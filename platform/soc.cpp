@@ -92,7 +92,7 @@ double share(const sc_core::sc_time& part, const sc_core::sc_time& whole) {
 }
 
 nlohmann::ordered_json iig_report(const Iig& iig, const sc_core::sc_time& elapsed) {
-    return {{"frames", iig.stats().frames}, {"errors", iig.stats().errors}, {"busy_s", seconds(iig.stats().busy)},
+    return {{"frames", iig.stats().frames}, {"errors", iig.errors()}, {"busy_s", seconds(iig.stats().busy)},
             {"stalled_s", seconds(iig.stats().stalled)},
             {"own_s", seconds(iig.stats().busy - iig.stats().stalled)},
             {"utilisation", share(iig.stats().busy - iig.stats().stalled, elapsed)}};
@@ -100,7 +100,7 @@ nlohmann::ordered_json iig_report(const Iig& iig, const sc_core::sc_time& elapse
 
 nlohmann::ordered_json fhg_report(const Fhg& fhg, const sc_core::sc_time& elapsed) {
     const auto& s = fhg.stats();
-    return {{"frames", s.frames}, {"errors", s.errors},
+    return {{"frames", s.frames}, {"errors", fhg.errors()},
             {"cycles_per_block", fhg.block_cycles()}, {"block_limit", fhg.block_limit()},
             {"sequence_cycles_per_block", fhg.sequence().cycles},
             {"optimal_cycles_per_block", fhg.sequence().optimal_cycles},

@@ -4,6 +4,10 @@
 #include <fmt/format.h>
 
 #include "fhg_regs.h"
+
+static_assert(surfvp::fhg_regs::STATUS_BUSY == surfvp::FrameStatus::kBusy &&
+              surfvp::fhg_regs::STATUS_DONE == surfvp::FrameStatus::kDone &&
+              surfvp::fhg_regs::STATUS_ERROR == surfvp::FrameStatus::kError);
 #include "models/common/byte_order.h"
 #include "models/common/clock.h"
 #include "models/common/register_target.h"
@@ -65,9 +69,9 @@ bool Fhg::access(uint32_t offset, uint32_t& value, bool write) {
     if (!write) {
         switch (offset) {
             case r::STATUS:
-                value = status_ | (fifo_threshold_ && maxima_.size() >= fifo_threshold_ ? r::STATUS_FIFO_IRQ : 0);
+                value = status_.bits | (fifo_threshold_ && maxima_.size() >= fifo_threshold_ ? r::STATUS_FIFO_IRQ : 0);
                 break;
-            case r::ERROR_CODE: value = error_code_; break;
+            case r::ERROR_CODE: value = status_.error_code; break;
             case r::FIFO_DATA: value = pop_candidate(); break;
             case r::FIFO_LEVEL: value = uint32_t(maxima_.size()); break;
             case r::OVERFLOW_COUNT: value = overflow_count_; break;
@@ -78,7 +82,7 @@ bool Fhg::access(uint32_t offset, uint32_t& value, bool write) {
         return true;
     }
     if (offset == r::STATUS) {
-        status_ &= ~(value & (r::STATUS_DONE | r::STATUS_ERROR | r::STATUS_FIFO_OVERFLOW));
+        status_.write_one_to_clear(value, r::STATUS_FIFO_OVERFLOW);
     } else if (offset == r::CTRL) {
         ctrl_ = value & (r::CTRL_IRQ_EN_DONE | r::CTRL_IRQ_EN_FIFO);
         if (value & r::CTRL_ABORT) {
@@ -99,14 +103,8 @@ void Fhg::b_transport(tlm::tlm_generic_payload& tx, sc_time&) {
     });
 }
 
-void Fhg::flag(uint32_t code) {
-    error_code_ = code;
-    status_ |= r::STATUS_ERROR;
-    ++stats_.errors;
-}
-
 // Stops the frame: waiting units wake up and run out without doing more work; ERROR shows
-// when the frame thread has finished (BUSY clears), so the next START finds the FHG idle.
+// when the frame thread has finished (FrameStatus).
 void Fhg::fail(uint32_t code) {
     if (frame_.failed) return;  // the first cause stands
     frame_.failed = true;
@@ -116,16 +114,16 @@ void Fhg::fail(uint32_t code) {
 }
 
 void Fhg::start() {
-    if (frame_.running) return flag(r::ERR_START_BUSY);
+    if (frame_.running) return status_.flag(r::ERR_START_BUSY);
     if (width_ == 0 || height_ == 0 || width_ > params_.max_width || height_ > params_.max_height)
-        return flag(r::ERR_SIZE);
+        return status_.flag(r::ERR_SIZE);
     frame_ = {det_addr_, width_, height_, (width_ + 1) / 2, (height_ + 1) / 2, int32_t(threshold_), true, false, 0, 0, 0,
               0, 0, sc_core::sc_time_stamp()};
     lines_.assign(size_t(width_) * height_, 0);
     for (auto& slot : slots_) slot.assign(size_t(frame_.blocks_x) * fhg::kDeterminantsPerBlock, 0);
     maxima_.clear();
     overflow_count_ = candidate_count_ = 0;
-    status_ = r::STATUS_BUSY;
+    status_.start();
     busy_.write(true);
     start_.notify(sc_core::SC_ZERO_TIME);
 }
@@ -181,9 +179,7 @@ void Fhg::frame_thread() {
         stats_.busy += sc_core::sc_time_stamp() - frame_.began;
         ++stats_.frames;
         frame_.running = false;
-        status_ &= ~r::STATUS_BUSY;
-        if (frame_.failed) flag(frame_.error);
-        else status_ |= r::STATUS_DONE;
+        status_.end(frame_.failed, frame_.error);
         busy_.write(false);
         room_.notify(sc_core::SC_ZERO_TIME);  // a sender still waiting gives up
         if (tracer_.perfetto_on())
@@ -218,7 +214,7 @@ void Fhg::push_candidates(const std::vector<fhg::Candidate>& candidates) {
         if (maxima_.size() >= params_.maxima_fifo_depth) {
             ++overflow_count_;
             ++stats_.dropped;
-            status_ |= r::STATUS_FIFO_OVERFLOW;
+            status_.bits |= r::STATUS_FIFO_OVERFLOW;
             continue;
         }
         maxima_.push_back(fhg::pack_candidate(c));
@@ -249,7 +245,7 @@ void Fhg::trace_levels() {
 }
 
 void Fhg::update_irq() {
-    const bool done = (ctrl_ & r::CTRL_IRQ_EN_DONE) && (status_ & (r::STATUS_DONE | r::STATUS_ERROR));
+    const bool done = (ctrl_ & r::CTRL_IRQ_EN_DONE) && status_.finished();
     const bool fifo = (ctrl_ & r::CTRL_IRQ_EN_FIFO) && fifo_threshold_ && maxima_.size() >= fifo_threshold_;
     irq.write(done || fifo);
 }

@@ -21,6 +21,7 @@
 
 #include "hessian_core.h"
 #include "local_max_finder.h"
+#include "models/common/frame_status.h"
 #include "models/common/tracer.h"
 #include "models/common/units.h"
 #include "models/pixelbus/pixel_bus.h"
@@ -45,7 +46,7 @@ public:
     };
 
     struct Stats {
-        uint64_t frames = 0, errors = 0, candidates = 0, dropped = 0;
+        uint64_t frames = 0, candidates = 0, dropped = 0;
         unsigned fifo_high_water = 0, lines_high_water = 0;
         sc_core::sc_time busy, computing, waiting_for_lines;
     };
@@ -62,6 +63,7 @@ public:
     const char* block_limit() const;                    // "sequence" or "HessianCalc"
     const fhg::HessianCore& core() const { return core_; }
     const Stats& stats() const { return stats_; }
+    uint64_t errors() const { return status_.errors; }
     const Params& params() const { return params_; }
 
     void send_line(int y, const uint32_t* data, int width, const sc_core::sc_time& transfer) override;
@@ -70,7 +72,6 @@ private:
     void b_transport(tlm::tlm_generic_payload& tx, sc_core::sc_time& delay);
     bool access(uint32_t offset, uint32_t& value, bool write);
     void start();
-    void flag(uint32_t code);
     void fail(uint32_t code);
     void frame_thread();
     void writer_thread();
@@ -85,7 +86,8 @@ private:
     fhg::HessianCore core_;
     fhg::Sequence sequence_;
     int block_cycles_;
-    uint32_t ctrl_ = 0, status_ = 0, error_code_ = 0, det_addr_ = 0, width_ = 0, height_ = 0;
+    FrameStatus status_;
+    uint32_t ctrl_ = 0, det_addr_ = 0, width_ = 0, height_ = 0;
     uint32_t threshold_ = 0, fifo_threshold_ = 0, overflow_count_ = 0, candidate_count_ = 0;
     struct Frame {
         uint32_t det_addr, width, height, blocks_x, blocks_y;

@@ -3,6 +3,9 @@
 #include <fmt/format.h>
 
 #include "iig_regs.h"
+
+static_assert(surfvp::iig::STATUS_BUSY == surfvp::FrameStatus::kBusy && surfvp::iig::STATUS_DONE == surfvp::FrameStatus::kDone &&
+              surfvp::iig::STATUS_ERROR == surfvp::FrameStatus::kError);
 #include "models/common/byte_order.h"
 #include "models/common/clock.h"
 #include "models/common/register_target.h"
@@ -53,16 +56,16 @@ bool Iig::access(uint32_t offset, uint32_t& value, bool write) {
         default: return false;
     }
     if (!write) {
-        value = offset == iig::STATUS ? status_ : offset == iig::ERROR_CODE ? error_code_
+        value = offset == iig::STATUS ? status_.bits : offset == iig::ERROR_CODE ? status_.error_code
               : offset == iig::STALL_CYCLES ? stall_cycles_ : *reg;
         return true;
     }
     if (offset == iig::STATUS) {
-        status_ &= ~(value & (iig::STATUS_DONE | iig::STATUS_ERROR));
+        status_.write_one_to_clear(value);
     } else if (offset == iig::CTRL) {
         ctrl_ = value & (iig::CTRL_IRQ_EN | iig::CTRL_STREAM);
         if (value & iig::CTRL_ABORT) {
-            if (status_ & iig::STATUS_BUSY) fail(iig::ERR_ABORTED);
+            if (status_.busy()) fail(iig::ERR_ABORTED);
         } else if (value & iig::CTRL_START) {
             start();
         }
@@ -79,15 +82,7 @@ void Iig::b_transport(tlm::tlm_generic_payload& tx, sc_time&) {
     });
 }
 
-// Flags an error in STATUS at once (a refused command).
-void Iig::flag(uint32_t code) {
-    error_code_ = code;
-    status_ |= iig::STATUS_ERROR;
-    ++stats_.errors;
-}
-
-// Stops the frame in progress; its ERROR shows when the units have run out (BUSY clears),
-// so that the next START finds the IIG idle.
+// Stops the frame in progress; its ERROR shows when the units have run out (FrameStatus).
 void Iig::fail(uint32_t code) {
     if (frame_.failed) return;  // the first cause stands
     frame_.failed = true;
@@ -95,16 +90,16 @@ void Iig::fail(uint32_t code) {
 }
 
 void Iig::start() {
-    if (status_ & iig::STATUS_BUSY) return flag(iig::ERR_START_BUSY);
+    if (status_.busy()) return status_.flag(iig::ERR_START_BUSY);
     if (width_ == 0 || height_ == 0 || width_ > params_.max_width || height_ > params_.max_height)
-        return flag(iig::ERR_SIZE);
+        return status_.flag(iig::ERR_SIZE);
     frame_ = {src_, dst_, width_, height_, src_stride_ ? src_stride_ : width_, dst_stride_ ? dst_stride_ : 4 * width_,
               (ctrl_ & iig::CTRL_STREAM) != 0, false, 0, 0, sc_core::sc_time_stamp()};
     image_.assign(size_t(frame_.width) * frame_.height, 0);
     integral_.assign(size_t(frame_.width) * frame_.height, 0);
     bytes_.resize(size_t(frame_.width) * 4);
     stall_total_ = sc_core::SC_ZERO_TIME;
-    status_ = iig::STATUS_BUSY;
+    status_.start();
     busy_.write(true);
     start_.notify(sc_core::SC_ZERO_TIME);
 }
@@ -176,9 +171,7 @@ void Iig::finish_row() {
     stats_.stalled += stall_total_;
     stats_.busy += sc_core::sc_time_stamp() - frame_.began;
     ++stats_.frames;
-    status_ &= ~iig::STATUS_BUSY;
-    if (frame_.failed) flag(frame_.error);
-    else status_ |= iig::STATUS_DONE;
+    status_.end(frame_.failed, frame_.error);
     busy_.write(false);
     if (tracer_.perfetto_on())
         tracer_.slice(track_, fmt::format("integral {}x{}", frame_.width, frame_.height), frame_.began,
@@ -187,7 +180,7 @@ void Iig::finish_row() {
 }
 
 void Iig::update_irq() {
-    irq.write((ctrl_ & iig::CTRL_IRQ_EN) && (status_ & (iig::STATUS_DONE | iig::STATUS_ERROR)));
+    irq.write((ctrl_ & iig::CTRL_IRQ_EN) && status_.finished());
 }
 
 }  // namespace surfvp

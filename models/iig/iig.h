@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "integral_core.h"
+#include "models/common/frame_status.h"
 #include "models/common/tracer.h"
 #include "models/common/units.h"
 #include "models/pixelbus/pixel_bus.h"
@@ -38,7 +39,7 @@ public:
     };
 
     struct Stats {
-        uint64_t frames = 0, errors = 0;
+        uint64_t frames = 0;
         sc_core::sc_time busy, stalled;  // stalled: waiting on PixelBus back-pressure
     };
 
@@ -50,13 +51,13 @@ public:
     Iig(const sc_core::sc_module_name& name, const Params& params, Tracer& tracer);
 
     const Stats& stats() const { return stats_; }
+    uint64_t errors() const { return status_.errors; }
     const Params& params() const { return params_; }
 
 private:
     void b_transport(tlm::tlm_generic_payload& tx, sc_core::sc_time& delay);
     bool access(uint32_t offset, uint32_t& value, bool write);
     void start();
-    void flag(uint32_t code);
     void fail(uint32_t code);
     void fetch_thread();
     void compute_thread();
@@ -68,7 +69,8 @@ private:
     Params params_;
     Tracer& tracer_;
     IntegralCore core_;
-    uint32_t ctrl_ = 0, status_ = 0, error_code_ = 0, src_ = 0, dst_ = 0, width_ = 0, height_ = 0;
+    FrameStatus status_;
+    uint32_t ctrl_ = 0, src_ = 0, dst_ = 0, width_ = 0, height_ = 0;
     uint32_t src_stride_ = 0, dst_stride_ = 0, stall_cycles_ = 0;
     // The frame being worked on (its registers latched at START).
     struct Frame {
