@@ -12,13 +12,41 @@ void check(bool ok, const std::string& what) {
     if (!ok) throw std::invalid_argument("fhg precision: " + what);
 }
 
-int64_t round_shift(int64_t v, unsigned shift) {
+// The fixed-point steps 2 and 3 for a run of TripleMAC sums, as plain loops over arrays so
+// that the compiler vectorises them (with clones for AVX2 and AVX-512 picked at run time).
+// HessianCore::finish is this on a run of one.
+struct FinishConstants {
+    unsigned drop;  // 64 - accumulator_bits
+    int64_t k, weight;
+    unsigned recip_shift, weight_shift, det_shift;
+    int64_t response_max, det_max;
+};
+
+[[gnu::always_inline]] inline int64_t step_shift(int64_t v, unsigned shift) {
     return shift ? (v + (int64_t(1) << (shift - 1))) >> shift : v;
 }
 
-int64_t saturate(int64_t v, unsigned bits) {
-    const int64_t hi = (int64_t(1) << (bits - 1)) - 1;
-    return std::clamp(v, -hi - 1, hi);
+[[gnu::always_inline]] inline int64_t clamp_to(int64_t v, int64_t max) { return v > max ? max : (v < -max - 1 ? -max - 1 : v); }
+
+__attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
+void finish_run(const uint32_t* xx, const uint32_t* yy, const uint32_t* xy, int n, const FinishConstants& c,
+                int32_t* out) {
+    for (int i = 0; i < n; ++i) {
+        const int64_t sxx = int64_t(uint64_t(int64_t(int32_t(xx[i]))) << c.drop) >> c.drop;
+        const int64_t syy = int64_t(uint64_t(int64_t(int32_t(yy[i]))) << c.drop) >> c.drop;
+        const int64_t sxy = int64_t(uint64_t(int64_t(int32_t(xy[i]))) << c.drop) >> c.drop;
+        const int64_t rxx = clamp_to(step_shift(sxx * c.k, c.recip_shift), c.response_max);
+        const int64_t ryy = clamp_to(step_shift(syy * c.k, c.recip_shift), c.response_max);
+        const int64_t rxy = clamp_to(step_shift(sxy * c.k, c.recip_shift), c.response_max);
+        const int64_t det = rxx * ryy - step_shift(c.weight * rxy * rxy, c.weight_shift);
+        out[i] = int32_t(clamp_to(step_shift(det, c.det_shift), c.det_max));
+    }
+}
+
+FinishConstants finish_constants(const Precision& p, int64_t k, int64_t weight) {
+    return {64 - p.accumulator_bits, k, weight, p.recip_shift, p.weight_frac_bits,
+            2 * p.response_frac_bits - p.det_frac_bits, (int64_t(1) << (p.response_bits - 1)) - 1,
+            (int64_t(1) << (p.det_bits - 1)) - 1};
 }
 
 }  // namespace
@@ -55,13 +83,11 @@ int64_t HessianCore::wrap(int64_t sum) const {
 }
 
 int32_t HessianCore::finish(int64_t xx, int64_t yy, int64_t xy, int size) const {
-    const Precision& p = precision_;
-    const int64_t k = reciprocal_[size];
-    const int64_t rxx = saturate(round_shift(wrap(xx) * k, p.recip_shift), p.response_bits);
-    const int64_t ryy = saturate(round_shift(wrap(yy) * k, p.recip_shift), p.response_bits);
-    const int64_t rxy = saturate(round_shift(wrap(xy) * k, p.recip_shift), p.response_bits);
-    const int64_t det = rxx * ryy - round_shift(weight_ * rxy * rxy, p.weight_frac_bits);
-    return int32_t(saturate(round_shift(det, 2 * p.response_frac_bits - p.det_frac_bits), p.det_bits));
+    // The low 32 bits of each sum carry everything an accumulator of up to 32 bits keeps.
+    const uint32_t sxx = uint32_t(xx), syy = uint32_t(yy), sxy = uint32_t(xy);
+    int32_t det = 0;
+    finish_run(&sxx, &syy, &sxy, 1, finish_constants(precision_, reciprocal_[size], weight_), &det);
+    return det;
 }
 
 HessianCore::Sums HessianCore::sums(const IntegralView& ii, int x, int y, int size) const {
@@ -91,42 +117,10 @@ std::array<int32_t, kDeterminantsPerBlock> HessianCore::block(const IntegralView
 
 namespace {
 
-// The fixed-point steps 2 and 3 for a run of TripleMAC sums, as plain loops over arrays so
-// that the compiler vectorises them (with clones for AVX2 and AVX-512 picked at run time).
-// Same arithmetic as HessianCore::finish, element by element.
-struct FinishConstants {
-    unsigned drop;  // 64 - accumulator_bits
-    int64_t k, weight;
-    unsigned recip_shift, weight_shift, det_shift;
-    int64_t response_max, det_max;
-};
-
-[[gnu::always_inline]] inline int64_t step_shift(int64_t v, unsigned shift) {
-    return shift ? (v + (int64_t(1) << (shift - 1))) >> shift : v;
-}
-
-[[gnu::always_inline]] inline int64_t clamp_to(int64_t v, int64_t max) { return v > max ? max : (v < -max - 1 ? -max - 1 : v); }
-
-__attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
-void finish_run(const uint32_t* xx, const uint32_t* yy, const uint32_t* xy, int n, const FinishConstants& c,
-                int32_t* out) {
-    for (int i = 0; i < n; ++i) {
-        const int64_t sxx = int64_t(uint64_t(int64_t(int32_t(xx[i]))) << c.drop) >> c.drop;
-        const int64_t syy = int64_t(uint64_t(int64_t(int32_t(yy[i]))) << c.drop) >> c.drop;
-        const int64_t sxy = int64_t(uint64_t(int64_t(int32_t(xy[i]))) << c.drop) >> c.drop;
-        const int64_t rxx = clamp_to(step_shift(sxx * c.k, c.recip_shift), c.response_max);
-        const int64_t ryy = clamp_to(step_shift(syy * c.k, c.recip_shift), c.response_max);
-        const int64_t rxy = clamp_to(step_shift(sxy * c.k, c.recip_shift), c.response_max);
-        const int64_t det = rxx * ryy - step_shift(c.weight * rxy * rxy, c.weight_shift);
-        out[i] = int32_t(clamp_to(step_shift(det, c.det_shift), c.det_max));
-    }
-}
-
 // The same steps in double precision: every intermediate is an integer below 2^53 (the
 // constructor checks the bounds), so each product, sum and power-of-two scaling is exact and
 // floor() gives the arithmetic shift; the loop vectorises where int64 multiplies do not.
 struct FinishConstantsF {
-    double drop_scale, drop_inverse;  // 2^(64 - accumulator_bits) wrap, done in integers below
     double k, weight;
     double recip_half, recip_inverse, weight_half, weight_inverse, det_half, det_inverse;
     double response_max, det_max;
@@ -200,16 +194,14 @@ void HessianCore::row(const IntegralView& ii, int y, int size, int x0, int step,
         narrow(acc.data(), sums.data(), 3 * n, 32 - p.accumulator_bits);
         auto half = [](unsigned s) { return s ? std::ldexp(1.0, int(s) - 1) : 0.0; };
         const unsigned det_shift = 2 * p.response_frac_bits - p.det_frac_bits;
-        const FinishConstantsF c{0, 0, double(reciprocal_[size]), double(weight_), half(p.recip_shift),
+        const FinishConstantsF c{double(reciprocal_[size]), double(weight_), half(p.recip_shift),
                                  std::ldexp(1.0, -int(p.recip_shift)), half(p.weight_frac_bits),
                                  std::ldexp(1.0, -int(p.weight_frac_bits)), half(det_shift), std::ldexp(1.0, -int(det_shift)),
                                  std::ldexp(1.0, int(p.response_bits) - 1) - 1, std::ldexp(1.0, int(p.det_bits) - 1) - 1};
         finish_run_exact_double(sums.data(), sums.data() + n, sums.data() + 2 * n, n, c, dets.data());
     } else {
-        const FinishConstants c{64 - p.accumulator_bits, reciprocal_[size], weight_, p.recip_shift, p.weight_frac_bits,
-                                2 * p.response_frac_bits - p.det_frac_bits, (int64_t(1) << (p.response_bits - 1)) - 1,
-                                (int64_t(1) << (p.det_bits - 1)) - 1};
-        finish_run(acc.data(), acc.data() + n, acc.data() + 2 * n, n, c, dets.data());
+        finish_run(acc.data(), acc.data() + n, acc.data() + 2 * n, n, finish_constants(p, reciprocal_[size], weight_),
+                   dets.data());
     }
     for (int k = 0; k < n; ++k) out[(first + k) * out_stride] = dets[size_t(k)];
 }
@@ -232,7 +224,7 @@ void HessianCore::block_row(const IntegralView& ii, int by, int32_t* out) const 
 
 int32_t HessianCore::from_float(double det) const {
     const double scaled = std::round(det * double(int64_t(1) << precision_.det_frac_bits));
-    return int32_t(saturate(int64_t(std::clamp(scaled, -9.2e18, 9.2e18)), precision_.det_bits));
+    return int32_t(clamp_to(int64_t(std::clamp(scaled, -9.2e18, 9.2e18)), (int64_t(1) << (precision_.det_bits - 1)) - 1));
 }
 
 }  // namespace surfvp::fhg
