@@ -25,8 +25,7 @@ int seqgen_command(const SeqgenOptions& options) {
     } catch (const std::invalid_argument& e) {
         throw ConfigError(e.what());
     }
-    const int hessian = int(fhg::kDeterminantsPerBlock * p.hessian_cycles_per_triple_mac);
-    const int block = std::max(s.cycles, hessian);
+    const int block = Fhg::block_cycles(s, p);
     const double blocks = double((options.width + 1) / 2) * ((options.height + 1) / 2);
     const double frame_s = blocks * block / p.clock.hz;
     nlohmann::ordered_json out = {
@@ -39,9 +38,9 @@ int seqgen_command(const SeqgenOptions& options) {
         {"distinct_reads_per_block", s.distinct_reads_per_block},
         {"words_per_block", s.words_delivered},
         {"sequence_cycles_per_block", s.cycles},
-        {"hessian_cycles_per_block", hessian},
+        {"hessian_cycles_per_block", Fhg::hessian_cycles(p)},
         {"cycles_per_block", block},
-        {"block_limit", s.cycles >= hessian ? "sequence" : "HessianCalc"},
+        {"block_limit", Fhg::block_limit(s, p)},
         {"optimal_cycles_per_block", s.optimal_cycles},
         {"overhead", s.overhead()},
         {"bus_utilisation", double(s.words_delivered) / (double(s.cycles) * p.sequence.read_buses)},

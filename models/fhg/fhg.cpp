@@ -27,8 +27,7 @@ Fhg::Fhg(const sc_core::sc_module_name& name, const Params& params, Tracer& trac
       tracer_(tracer),
       core_(params.precision),
       sequence_(fhg::generate_sequence(params.sequence)),
-      block_cycles_(std::max(sequence_.cycles,
-                             int(fhg::kDeterminantsPerBlock * params.hessian_cycles_per_triple_mac))),
+      block_cycles_(block_cycles(sequence_, params)),
       slots_(params.det_row_buffers + 1),
       det_rows_("det_rows", int(params.det_row_buffers)) {
     if (params.maxima_fifo_depth == 0 || params.det_row_buffers == 0)
@@ -49,8 +48,16 @@ Fhg::Fhg(const sc_core::sc_module_name& name, const Params& params, Tracer& trac
     level_track_ = tracer_.track(basename(), "levels");
 }
 
-const char* Fhg::block_limit() const {
-    return sequence_.cycles >= block_cycles_ ? "sequence" : "HessianCalc";
+int Fhg::hessian_cycles(const Params& params) {
+    return int(fhg::kDeterminantsPerBlock * params.hessian_cycles_per_triple_mac);
+}
+
+int Fhg::block_cycles(const fhg::Sequence& sequence, const Params& params) {
+    return std::max(sequence.cycles, hessian_cycles(params));
+}
+
+const char* Fhg::block_limit(const fhg::Sequence& sequence, const Params& params) {
+    return sequence.cycles >= hessian_cycles(params) ? "sequence" : "HessianCalc";
 }
 
 bool Fhg::access(uint32_t offset, uint32_t& value, bool write) {

@@ -60,7 +60,13 @@ public:
 
     const fhg::Sequence& sequence() const { return sequence_; }
     int block_cycles() const { return block_cycles_; }  // per 2x2 block, at the FHG clock
-    const char* block_limit() const;                    // "sequence" or "HessianCalc"
+    const char* block_limit() const { return block_limit(sequence_, params_); }
+
+    // HessianCalc reading the 18 TripleMAC outputs; a block takes the longer of that and the
+    // sequence, and the longer one is its limit ("sequence" or "HessianCalc").
+    static int hessian_cycles(const Params& params);
+    static int block_cycles(const fhg::Sequence& sequence, const Params& params);
+    static const char* block_limit(const fhg::Sequence& sequence, const Params& params);
     const fhg::HessianCore& core() const { return core_; }
     const Stats& stats() const { return stats_; }
     uint64_t errors() const { return status_.errors; }
