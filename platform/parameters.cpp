@@ -92,8 +92,9 @@ void add_fhg(std::vector<ParamSpec>& t) {
                  "[A] PLATFORM_FACTS §5.4: the quad schedule needs ~105 MHz for 10 FPS; the standard EDK clock"});
     t.push_back({"fhg.read_buses", ParamKind::count, "4", 1, 64, {}, "MasterController read buses from the line FIFO",
                  "[S] paper §III-C: 4 independent buses"});
-    t.push_back({"fhg.bus_word", ParamKind::choice, "quad", 0, 0, {"quad", "scalar"},
-                 "What one read bus delivers per cycle: a 2x2 quad of integral values or one value",
+    t.push_back({"fhg.bus_word", ParamKind::choice, "quad", 0, 0, {"quad", "pair", "scalar"},
+                 "What one read bus delivers per cycle: a 2x2 quad of integral values (128 bit), two neighbours on "
+                 "one line (64 bit) or one value (32 bit)",
                  "[A] PLATFORM_FACTS §5.3(c): only quads reach ~10 FPS at 100 MHz"});
     t.push_back({"fhg.reuse", ParamKind::choice, "on", 0, 0, {"on", "off"},
                  "Whether one delivered value may serve several TripleMACs in the same cycle",
@@ -104,9 +105,23 @@ void add_fhg(std::vector<ParamSpec>& t) {
                  "[S] paper §III-C: three additions instead of a multiplication"});
     t.push_back({"fhg.fifo_lines", ParamKind::count, "56", 52, 1024, {}, "Integral lines the MasterController FIFO holds",
                  "[S] paper §III-C: 56 lines (52 for the largest filter + refill)"});
+    t.push_back({"fhg.line_ports", ParamKind::count, "2", 1, 8, {},
+                 "Reads one block RAM of a line-FIFO line serves per cycle (a quad word takes 2 of each of its 2 lines)",
+                 "[A] a RAMB36 in true dual-port mode has 2 ports (Virtex-5 UG190, recalled; PLATFORM_FACTS)"});
+    t.push_back({"fhg.line_banks", ParamKind::count, "1", 1, 2, {},
+                 "Block RAMs each line-FIFO line is interleaved over, by column (each with fhg.line_ports ports)",
+                 "[D] 56 lines x 1024 x 32 bit = one RAMB36 per line (PLATFORM_FACTS §5.6); 2 banks double the BRAMs"});
+    t.push_back({"fhg.scheduler", ParamKind::choice, "basic", 0, 0, {"basic", "improved"},
+                 "The MasterController sequence the chip runs: the paper's basic script (one greedy pass) or an "
+                 "improved one (what-if: a better script)",
+                 "[S] paper §III-C: \"only very basic algorithm has been written\" (~11 % above optimal)"});
     t.push_back({"fhg.sequence_attempts", ParamKind::count, "16", 1, 10000, {},
-                 "Greedy scheduling passes (different tie-breaks) the sequence generator tries",
-                 "[-] tool setting: more passes, shorter sequences, slower start-up"});
+                 "Greedy passes (different tie-breaks) per schedule: the basic script is their median, the improved "
+                 "one their best",
+                 "[-] tool setting: more passes, a better improved script and a steadier basic one, slower start-up"});
+    t.push_back({"fhg.cycles_per_block", ParamKind::cycles, "0 cycles", 0, 100000, {},
+                 "What-if: FHG cycles per 2x2 block instead of the generated sequence's (0: the sequence's)",
+                 "[-] what-if (the verdict's break-even search sets it)"});
     t.push_back({"fhg.hessian_cycles_per_triple_mac", ParamKind::cycles, "1 cycle", 1, 16, {},
                  "HessianCalc cycles to read one TripleMAC's three responses over the three-state bus",
                  "[A] one 3-response word per cycle: 18 cycles per block, below the sequence"});

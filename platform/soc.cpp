@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include "address_map.h"
+#include "seqgen.h"
 
 namespace surfvp {
 namespace {
@@ -61,7 +62,12 @@ Fhg::Params fhg_params(const Config& c) {
     p.sequence.triple_macs = unsigned(c.count("fhg.triple_macs"));
     p.sequence.fifo_lines = unsigned(c.count("fhg.fifo_lines"));
     p.sequence.x3_cycles = unsigned(c.cycles("fhg.x3_cycles"));
-    p.sequence.bus_word = c.choice("fhg.bus_word") == "quad" ? fhg::BusWord::quad : fhg::BusWord::scalar;
+    const std::string& word = c.choice("fhg.bus_word");
+    p.sequence.bus_word = word == "quad" ? fhg::BusWord::quad : word == "pair" ? fhg::BusWord::pair : fhg::BusWord::scalar;
+    p.sequence.line_ports = unsigned(c.count("fhg.line_ports"));
+    p.sequence.line_banks = unsigned(c.count("fhg.line_banks"));
+    p.sequence.scheduler = c.choice("fhg.scheduler") == "improved" ? fhg::Scheduler::improved : fhg::Scheduler::basic;
+    p.cycles_per_block = unsigned(c.cycles("fhg.cycles_per_block"));
     p.sequence.reuse = c.choice("fhg.reuse") == "on";
     p.sequence.attempts = unsigned(c.count("fhg.sequence_attempts"));
     p.precision.accumulator_bits = c.bits("fhg.accumulator_bits");
@@ -102,8 +108,7 @@ nlohmann::ordered_json fhg_report(const Fhg& fhg, const sc_core::sc_time& elapse
     const auto& s = fhg.stats();
     return {{"frames", s.frames}, {"errors", fhg.errors()},
             {"cycles_per_block", fhg.block_cycles()}, {"block_limit", fhg.block_limit()},
-            {"sequence_cycles_per_block", fhg.sequence().cycles},
-            {"optimal_cycles_per_block", fhg.sequence().optimal_cycles},
+            {"schedules", schedule_figures(fhg.params())},
             {"busy_s", seconds(s.busy)}, {"utilisation", share(s.busy, elapsed)}, {"computing_s", seconds(s.computing)},
             {"waiting_for_lines_s", seconds(s.waiting_for_lines)},
             {"own_s", seconds(s.busy - s.waiting_for_lines)},

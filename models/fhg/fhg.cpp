@@ -26,7 +26,7 @@ Fhg::Fhg(const sc_core::sc_module_name& name, const Params& params, Tracer& trac
       params_(params),
       tracer_(tracer),
       core_(params.precision),
-      sequence_(fhg::generate_sequence(params.sequence)),
+      sequence_(fhg::cached_sequence(params.sequence)),
       block_cycles_(block_cycles(sequence_, params)),
       slots_(params.det_row_buffers + 1),
       det_rows_("det_rows", int(params.det_row_buffers)) {
@@ -53,11 +53,13 @@ int Fhg::hessian_cycles(const Params& params) {
 }
 
 int Fhg::block_cycles(const fhg::Sequence& sequence, const Params& params) {
-    return std::max(sequence.cycles, hessian_cycles(params));
+    if (params.cycles_per_block) return int(params.cycles_per_block);
+    return std::max(sequence.interval, hessian_cycles(params));
 }
 
 const char* Fhg::block_limit(const fhg::Sequence& sequence, const Params& params) {
-    return sequence.cycles >= hessian_cycles(params) ? "sequence" : "HessianCalc";
+    if (params.cycles_per_block) return "fhg.cycles_per_block";
+    return sequence.interval >= hessian_cycles(params) ? "sequence" : "HessianCalc";
 }
 
 bool Fhg::access(uint32_t offset, uint32_t& value, bool write) {
@@ -182,7 +184,8 @@ void Fhg::frame_thread() {
         // Failed or not, the writer finishes the rows it was given before the frame ends, so
         // that nothing of this frame reaches the next one.
         while (frame_.rows_written < frame_.rows_sent) sc_core::wait(rows_written_);
-        sc_core::wait(cycles(params_.clock, params_.pipeline_latency_cycles));
+        const int tail = std::max(0, sequence_.span - sequence_.interval);  // the last block's x3 still adding
+        sc_core::wait(cycles(params_.clock, double(tail + int(params_.pipeline_latency_cycles))));
         stats_.busy += sc_core::sc_time_stamp() - frame_.began;
         ++stats_.frames;
         frame_.running = false;

@@ -5,12 +5,14 @@
 // Integral lines arrive over PixelBus into the MasterController's line FIFO (`fifo_lines`
 // lines; a sender waits while it is full). A block row (2 image rows) starts when the FIFO
 // holds every line its 52-line window needs; it takes blocks x block_cycles FHG cycles,
-// where block_cycles is the generated sequence's length or HessianCalc's reading of the 18
-// TripleMAC outputs, whichever is longer. Then the lines no later block row needs leave
+// where block_cycles is the generated sequence's steady-state interval (blocks follow each
+// other back to back) or HessianCalc's reading of the 18 TripleMAC outputs, whichever is
+// longer (or `cycles_per_block` when a what-if sets it). Then the lines no later block row needs leave
 // the FIFO, the block row's determinants go to the writer (DMA over PLB2, 72-byte records),
 // and LocMaxFinder's candidates enter the maxima FIFO, which raises the interrupt at its
 // threshold and counts what it drops when full. The frame is done when the last
-// determinants are written plus the HessianCalc/LocMaxFinder pipeline latency.
+// determinants are written plus the last block's tail (x3 additions still running after its
+// last word) and the HessianCalc/LocMaxFinder pipeline latency.
 #include <cstdint>
 #include <deque>
 #include <systemc>
@@ -37,6 +39,7 @@ public:
         fhg::Precision precision;
         unsigned hessian_cycles_per_triple_mac = 1;  // HessianCalc reads one TripleMAC's 3 responses per cycle
         unsigned pipeline_latency_cycles = 8;
+        unsigned cycles_per_block = 0;  // what-if: a block's cycles instead of the sequence's (0: the sequence)
         unsigned maxima_fifo_depth = 1024;
         unsigned burst_beats = 16;
         unsigned bus_width_bits = 128;
@@ -58,12 +61,13 @@ public:
 
     Fhg(const sc_core::sc_module_name& name, const Params& params, Tracer& tracer);
 
-    const fhg::Sequence& sequence() const { return sequence_; }
+    const fhg::Sequence& sequence() const { return sequence_; }  // the one `sequence.scheduler` generates
     int block_cycles() const { return block_cycles_; }  // per 2x2 block, at the FHG clock
     const char* block_limit() const { return block_limit(sequence_, params_); }
 
     // HessianCalc reading the 18 TripleMAC outputs; a block takes the longer of that and the
-    // sequence, and the longer one is its limit ("sequence" or "HessianCalc").
+    // sequence's interval, and the longer one is its limit ("sequence" or "HessianCalc"),
+    // unless `cycles_per_block` sets it ("fhg.cycles_per_block").
     static int hessian_cycles(const Params& params);
     static int block_cycles(const fhg::Sequence& sequence, const Params& params);
     static const char* block_limit(const fhg::Sequence& sequence, const Params& params);
@@ -90,7 +94,7 @@ private:
     Params params_;
     Tracer& tracer_;
     fhg::HessianCore core_;
-    fhg::Sequence sequence_;
+    const fhg::Sequence& sequence_;
     int block_cycles_;
     FrameStatus status_;
     uint32_t ctrl_ = 0, det_addr_ = 0, width_ = 0, height_ = 0;

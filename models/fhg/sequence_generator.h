@@ -5,20 +5,38 @@
 // as a number. Plain C++.
 //
 // The machine it schedules:
-// - `read_buses` buses each deliver one bus word per cycle: one 32-bit value (scalar), or a
-//   2x2 quad of values at (x, y), (x+1, y), (x, y+1), (x+1, y+1) (the line FIFO banked by
-//   row and column parity can read any 2x2 window at once).
+// - `read_buses` buses each deliver one bus word per cycle: one 32-bit value (scalar), two
+//   neighbours on one line (pair: (x, y), (x+1, y)), or a 2x2 quad ((x, y), (x+1, y),
+//   (x, y+1), (x+1, y+1)).
+// - The line FIFO holds each integral line in block RAM: `line_banks` BRAMs per line
+//   (columns interleaved, x mod banks), each serving `line_ports` reads per cycle (a RAMB36
+//   has two ports). A word reads every value it carries, so a quad takes two reads of each
+//   of its two lines; the reads all words of one cycle take from one BRAM may not exceed
+//   its ports.
 // - TripleMAC t forms the three responses of block determinant t (filter_geometry.h): it
 //   snoops every bus, takes at most one value per cycle, and a coefficient of +-3 keeps it
 //   busy `x3_cycles` cycles (three additions; it does not report busy, so the sequence
 //   must never hand it a value then).
-// - Without reuse each determinant's 32 reads are delivered for it alone (a quad word serves
-//   the four pixels' determinants of one size at once). With reuse one delivered word is
-//   taken by every free TripleMAC that needs a value in it.
-// The generator is a greedy list scheduler: each cycle each bus carries the word whose free
-// consumers have the most work left. Its length is compared with a lower bound (the busiest
-// TripleMAC's work, or the words the buses must carry); the paper's basic script was ~11 %
-// above optimal.
+// - Without reuse each value a determinant needs is delivered for it alone (a quad or pair
+//   word serves the same read of the neighbouring pixels' determinants of one size at
+//   once). With reuse one delivered word is taken by every free TripleMAC that needs a value
+//   in it.
+// - Blocks follow each other without a gap: the sequence runs again `interval` cycles after
+//   it started. The end-of-sequence signal makes each TripleMAC latch its result into its
+//   output buffer once its last addition is done (paper §III-C), so a x3 still being added
+//   overlaps the next block's first cycles; a TripleMAC's first value of the next block must
+//   come after its last addition of this one. HessianCalc reads the output buffers while the
+//   next block accumulates (Fhg::block_cycles takes the longer of the two).
+//
+// Two schedulers, both list schedulers that fill cycle after cycle (each bus carries the
+// word whose free consumers have the most work left; ties are broken by a seeded draw):
+// - `basic`, the paper's "very basic algorithm" (§III-C) as we reconstruct it: one such pass,
+//   no reuse, nothing else. Its ties are arbitrary, so one pass is a draw: the sequence used
+//   is the median of `attempts` passes, and their spread is reported.
+// - `improved`, a what-if "better script": the same pass also weighing how much each BRAM it
+//   reads still has to serve, with reuse where the machine allows it; the best of `attempts`.
+// Both are compared with a lower bound under the same limits: the busiest TripleMAC's work,
+// the words the buses must carry, or the reads the busiest BRAM must serve.
 #include <array>
 #include <string>
 #include <vector>
@@ -27,7 +45,8 @@
 
 namespace surfvp::fhg {
 
-enum class BusWord { scalar, quad };
+enum class BusWord { scalar, pair, quad };
+enum class Scheduler { basic, improved };
 
 struct SequenceParams {
     unsigned read_buses = 4;
@@ -36,12 +55,15 @@ struct SequenceParams {
     unsigned x3_cycles = 3;
     BusWord bus_word = BusWord::quad;
     bool reuse = true;
-    unsigned attempts = 16;  // greedy passes with different tie-breaks; the shortest is kept
+    unsigned line_ports = 2;  // reads one BRAM of a line serves per cycle
+    unsigned line_banks = 1;  // BRAMs a line is interleaved over, by column (1 or 2)
+    Scheduler scheduler = Scheduler::basic;
+    unsigned attempts = 16;  // improved: passes with different tie-breaks; the shortest is kept
 };
 
 struct Tap {
     int triple_mac;
-    int lane;         // quad lane 0..3 = 2 ly + lx (0 for scalar words)
+    int lane;         // the value's position in the word: scalar 0; pair 0, 1 (x, x+1); quad 2 ly + lx
     int coefficient;  // +1, -1, +3, -3
     Response response;
 };
@@ -55,20 +77,35 @@ struct Step {
 
 struct Sequence {
     std::vector<Step> steps;  // sorted by cycle, then bus
-    int cycles = 0;           // until the last TripleMAC has finished its last addition
-    int optimal_cycles = 0;   // lower bound
-    int reads_per_block = 0;  // values the TripleMACs take: 18 x 32
+    int interval = 0;         // cycles per block in the steady state: when the sequence starts again
+    int span = 0;             // from its first cycle until the last TripleMAC's last addition
+    int optimal_cycles = 0;   // lower bound on the interval under the same limits
+    std::string optimal_limit;         // what sets that bound (every limit that reaches it)
+    std::array<int, 2> spread{};       // basic: the shortest and longest interval of its passes
+    int reads_per_block = 0;           // values the TripleMACs take: 18 x 32
     int distinct_reads_per_block = 0;  // distinct integral points among them
     int words_delivered = 0;           // bus words issued
-    double overhead() const { return optimal_cycles ? double(cycles) / optimal_cycles - 1 : 0; }
+    double overhead() const { return optimal_cycles ? double(interval) / optimal_cycles - 1 : 0; }
 };
 
-// Throws std::invalid_argument for a configuration that cannot work, naming the parameter.
+// With params.scheduler. Throws std::invalid_argument for a configuration that cannot work,
+// naming the parameter.
 Sequence generate_sequence(const SequenceParams& params);
 
-// Replays a sequence: every TripleMAC gets exactly the reads its determinant needs, with the
-// right coefficient and response, at most one per cycle and never while busy. Returns ""
-// when it holds, otherwise the first violation in words.
+// The same, remembered per configuration for the life of the process (a platform with
+// several FHGs, and re-simulations forked from one process, generate each sequence once).
+const Sequence& cached_sequence(const SequenceParams& params);
+
+// Values of a bus word, as (dy, dx) offsets from its top-left point, in lane order.
+std::vector<std::array<int, 2>> word_shape(BusWord word);
+const char* bus_word_name(BusWord word);
+const char* scheduler_name(Scheduler scheduler);
+
+// Replays a sequence against every limit of the machine: each TripleMAC gets exactly the
+// reads its determinant needs with the right coefficient and response, at most one value a
+// cycle and never while busy, also across the step to the next block; one word per bus and
+// cycle; no BRAM of a line serves more reads in a cycle than its ports; every word lies in
+// the 52-line window. Returns "" when it holds, otherwise the first violation in words.
 std::string check_sequence(const Sequence& sequence, const SequenceParams& params);
 
 }  // namespace surfvp::fhg

@@ -134,7 +134,7 @@ TEST(IigFhg, FrameGivesTheCoresResultsInMemoryAndFifo) {
     // Computing time is exactly blocks x block cycles at the FHG clock.
     EXPECT_EQ(b.fhg.stats().computing,
               sc_core::sc_time(double(blocks) * (image.rows / 2) * b.fhg.block_cycles() * 10, sc_core::SC_NS));
-    EXPECT_EQ(b.fhg.block_cycles(), b.fhg.sequence().cycles);
+    EXPECT_EQ(b.fhg.block_cycles(), b.fhg.sequence().interval);
 }
 
 TEST(IigFhg, SlowFhgStallsTheIigThroughPixelBus) {

@@ -176,30 +176,42 @@ TEST(Cli, ParameterDocMatchesTheTable) {
 namespace surfvp {
 namespace {
 
-TEST(Cli, SeqgenPrintsTheScheduleAndItsImpliedFrameRate) {
+TEST(Cli, SeqgenPrintsTheThreeSchedulesAndTheImpliedFrameRate) {
     const auto r = test::surfvp("seqgen --width 1024 --height 768");
     ASSERT_EQ(r.exit_code, 0) << r.err;
     const auto j = nlohmann::json::parse(r.out);
-    for (const char* key : {"reads_per_block", "distinct_reads_per_block", "cycles_per_block", "optimal_cycles_per_block",
-                            "overhead"})
-        EXPECT_TRUE(j.contains(key)) << key;
     EXPECT_EQ(j["reads_per_block"], 576);
     EXPECT_EQ(j["distinct_reads_per_block"], 405);
-    EXPECT_EQ(j["optimal_cycles_per_block"], 48);
+    EXPECT_EQ(j["optimal"]["cycles_per_block"], 48);
+    EXPECT_EQ(j["machine"]["line_ports"], 2);
+    EXPECT_EQ(j["machine"]["bus_word_bits"], 128);
+    const int basic = j["basic"]["cycles_per_block"], improved = j["improved"]["cycles_per_block"];
+    EXPECT_GE(basic, improved);
+    EXPECT_GE(improved, 48);
+    EXPECT_EQ(j["scheduler"], "basic");
     const int cycles = j["cycles_per_block"];
+    EXPECT_EQ(cycles, basic);  // the chip runs the basic script by default
     EXPECT_NEAR(j["frame"]["frames_per_second"].get<double>(), 100e6 / (512.0 * 384 * cycles), 1e-9);
-    EXPECT_NEAR(j["overhead"].get<double>(), cycles / 48.0 - 1, 1e-12);
+    EXPECT_NEAR(j["basic"]["overhead"].get<double>(), basic / 48.0 - 1, 1e-12);
 }
 
 TEST(Cli, SeqgenFollowsParameters) {
     const auto scalar = nlohmann::json::parse(test::surfvp("seqgen --set fhg.bus_word=scalar --set fhg.reuse=off").out);
-    EXPECT_EQ(scalar["cycles_per_block"], 144);  // 576 reads over 4 buses, no idle cycle
+    EXPECT_EQ(scalar["optimal"]["cycles_per_block"], 144);  // 576 reads over 4 buses
+    EXPECT_EQ(scalar["improved"]["cycles_per_block"], 144);
+    const auto improved = nlohmann::json::parse(test::surfvp("seqgen --set fhg.scheduler=improved").out);
+    EXPECT_EQ(improved["cycles_per_block"], improved["improved"]["cycles_per_block"]);
+    const auto forced = nlohmann::json::parse(test::surfvp("seqgen --set 'fhg.cycles_per_block=50 cycles'").out);
+    EXPECT_EQ(forced["cycles_per_block"], 50);
+    EXPECT_EQ(forced["block_limit"], "fhg.cycles_per_block");
     const auto six = nlohmann::json::parse(test::surfvp("seqgen --set fhg.bus_word=scalar --set fhg.read_buses=6").out);
-    EXPECT_LT(six["cycles_per_block"].get<int>(), 103);
-    EXPECT_GE(six["cycles_per_block"].get<int>(), six["optimal_cycles_per_block"].get<int>());
-    const auto r = test::surfvp("seqgen --set fhg.fifo_lines=40");
-    EXPECT_EQ(r.exit_code, 2);
-    EXPECT_NE(r.err.find("fhg.fifo_lines"), std::string::npos) << r.err;
+    EXPECT_LT(six["improved"]["cycles_per_block"].get<int>(), 103);
+    EXPECT_GE(six["improved"]["cycles_per_block"].get<int>(), six["optimal"]["cycles_per_block"].get<int>());
+    for (const char* bad : {"fhg.fifo_lines=40", "fhg.line_ports=1", "fhg.line_banks=3"}) {
+        const auto r = test::surfvp(std::string("seqgen --set ") + bad);
+        EXPECT_EQ(r.exit_code, 2) << bad;
+        EXPECT_NE(r.err.find(std::string(bad).substr(0, std::string(bad).find('='))), std::string::npos) << r.err;
+    }
 }
 
 }  // namespace
