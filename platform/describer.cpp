@@ -1,5 +1,7 @@
 #include "describer.h"
 
+#include <cmath>
+
 #include "models/fhg/fhg_regs.h"
 #include "soc.h"
 #include "sw/stage/software_stage.h"
@@ -7,25 +9,12 @@
 namespace surfvp {
 namespace {
 
-// A line fill: the CPU's request over PLB1 (arbitration and address phase), the DDR's
-// latency, and 32 bytes at the slower of PLB1 and DDR, in CPU cycles [D].
-double miss_cycles(const Config& c) {
-    const double plb_hz = c.frequency("plb1.clock").hz;
-    const double overhead_s = double(c.cycles("plb1.arbitration_latency") + c.cycles("plb1.address_latency")) / plb_hz;
-    const double latency_s = double(c.cycles("memory.latency")) / c.frequency("memory.clock").hz;
-    const double line = double(c.bytes("cpu.cache_line").n);
-    const double ddr_rate = c.bits("memory.width") / 8.0 * double(c.count("memory.transfers_per_clock")) *
-                            c.frequency("memory.clock").hz * c.real("memory.efficiency");
-    const double plb_rate = c.bits("plb1.width") / 8.0 * plb_hz;
-    return (overhead_s + latency_s + line / std::min(ddr_rate, plb_rate)) * c.frequency("cpu.clock").hz;
-}
-
 sw::CostParams cost_params(const Config& c) {
     sw::CostParams p;
     p.int_op_cycles = double(c.cycles("cpu.int_op"));
     p.branch_cycles = double(c.cycles("cpu.branch"));
     p.load_cycles = double(c.cycles("cpu.load"));
-    p.miss_cycles = miss_cycles(c);
+    p.miss_cycles = 0;  // the platform times each fill on the memory path (Hal::compute)
     p.fpu_clock_ratio = double(c.count("cpu.fpu_ratio"));
     p.fpu_issue_cycles = double(c.cycles("cpu.fpu_issue"));
     p.fpu_dependent_fraction = c.real("cpu.fpu_dependent_fraction");
@@ -48,33 +37,52 @@ sw::CostParams cost_params(const Config& c) {
 }
 
 // libSSA2's phase 4 on the software stage: the frame's buffers read in place (DMI), the
-// stage's counted cycles handed back for the CPU to spend.
+// stage's counted work and its L1 fills handed back for the CPU to spend, and the described
+// keypoint's record written back to the task's ring.
 class StageDescriber : public sw::ssa2::Describer {
 public:
-    StageDescriber(const sw::StageParams& params, unsigned det_frac_bits) : stage_(params), det_frac_bits_(det_frac_bits) {}
+    StageDescriber(const sw::StageParams& params, unsigned det_frac_bits, unsigned line_bytes)
+        : stage_(params), det_frac_bits_(det_frac_bits), line_bytes_(line_bytes) {
+        stage_.cost().log_misses(true);
+    }
 
     std::optional<surf::Keypoint> describe(sw::Hal& hal, uint32_t word, const sw::ssa2::FrameInMemory& frame,
-                                           uint64_t& cycles) override {
+                                           sw::ssa2::Work& work) override {
         if (frame.task != task_) {  // new DMA'd buffers: the cached lines are stale
             stage_.begin_frame();
             task_ = frame.task;
+            records_ = 0;
         }
         const size_t integral_bytes = size_t(frame.width) * frame.height * 4;
         const size_t det_bytes = size_t((frame.width + 1) / 2) * ((frame.height + 1) / 2) * fhg_regs::kRecordBytes;
         const sw::FrameBuffers buffers{hal.map(frame.integral, integral_bytes), frame.integral, size_t(frame.width) * 4,
                                        hal.map(frame.determinants, det_bytes), frame.determinants, frame.width,
                                        frame.height, det_frac_bits_};
+        const double start = stage_.cost().exact_cycles();
         auto keypoint = stage_.process(word, buffers);
-        cycles = stage_.cost().take_cycles();
+        work.cycles = stage_.cost().take_cycles();
+        for (const sw::CostCounter::Miss& m : stage_.cost().misses())
+            work.lines.push_back({m.line, uint64_t(std::llround(m.cycle - start)), false});
+        stage_.cost().clear_misses();
+        if (keypoint) write_back_record(frame, work);
         return keypoint;
     }
 
     const sw::SoftwareStage& stage() const { return stage_; }
 
 private:
+    // The record is written in whole lines that are never read again: they leave the L1 as
+    // write-backs (counted when the record is complete), without a fill [A].
+    void write_back_record(const sw::ssa2::FrameInMemory& frame, sw::ssa2::Work& work) {
+        const uint32_t at = frame.records + (records_++ % sw::ssa2::kRecordRing) * sw::ssa2::kRecordBytes;
+        for (uint32_t line = at / line_bytes_ * line_bytes_; line < at + sw::ssa2::kRecordBytes; line += line_bytes_)
+            work.lines.push_back({line, work.cycles, true});
+    }
+
     sw::SoftwareStage stage_;
-    unsigned det_frac_bits_;
+    unsigned det_frac_bits_, line_bytes_;
     int task_ = -1;
+    uint32_t records_ = 0;
 };
 
 }  // namespace
@@ -110,7 +118,8 @@ std::unique_ptr<sw::ssa2::Describer> make_describer(const Config& config, float 
     params.threshold = threshold;
     params.cost = cost_params(config);
     try {
-        return std::make_unique<StageDescriber>(params, config.bits("fhg.det_frac_bits"));
+        return std::make_unique<StageDescriber>(params, config.bits("fhg.det_frac_bits"),
+                                                unsigned(config.bytes("cpu.cache_line").n));
     } catch (const std::invalid_argument& e) {
         throw ConfigError(e.what());
     }

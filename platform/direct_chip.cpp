@@ -1,5 +1,6 @@
 #include "direct_chip.h"
 
+#include <cmath>
 #include <cstdlib>
 #include <cstring>
 #include <fmt/format.h>
@@ -26,7 +27,8 @@ DirectChip::DirectChip(const Config& config, unsigned accelerators)
       iig_max_height_(unsigned(config.count("iig.max_height"))),
       fhg_max_width_(unsigned(config.count("fhg.max_width"))),
       fhg_max_height_(unsigned(config.count("fhg.max_height"))),
-      core_(fhg_params(config).precision) {
+      core_(fhg_params(config).precision),
+      fill_cycles_(uncontended_fill(config).to_seconds() * config.frequency("cpu.clock").hz) {
     if (!memory_) throw std::runtime_error("direct mode: cannot allocate the memory");
 }
 
@@ -50,6 +52,14 @@ void DirectChip::write(uint32_t address, const void* data, size_t bytes) {
 const uint8_t* DirectChip::map(uint32_t address, size_t bytes) {
     if (!in_memory(address, bytes)) throw sw::BusError(fmt::format("no memory at {:#010x}", address), address);
     return memory_.get() + address;
+}
+
+uint64_t DirectChip::compute(uint64_t cycles, const std::vector<sw::LineTransfer>& lines) {
+    size_t fills = 0;
+    for (const sw::LineTransfer& line : lines) fills += !line.write_back;
+    const uint64_t spent = cycles + uint64_t(std::llround(double(fills) * fill_cycles_));
+    cycles_ += spent;
+    return spent;
 }
 
 uint32_t DirectChip::pending() const {

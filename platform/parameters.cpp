@@ -208,8 +208,21 @@ std::vector<ParamSpec> make_table() {
     t.push_back({"cpu.quantum", ParamKind::duration, "1 us", 1, 1000 * us, {},
                  "Temporal-decoupling quantum: how far the CPU runs ahead of the kernel between synchronisations",
                  "[A] 100 PLB cycles: coarse enough to be fast, fine against millisecond frame phases"});
-    t.push_back({"cpu.cache_line", ParamKind::bytes, "32 B", 4, 256, {}, "Cache line; memory accesses without DMI go in lines",
+    t.push_back({"cpu.cache_line", ParamKind::bytes, "32 B", 4, 256, {}, "L1 cache line: the CPU's memory traffic goes in lines",
                  "[S] ML507 DTS: 32-byte L1 lines"});
+    t.push_back({"cpu.memory_path", ParamKind::choice, "mci", 0, 0, {"mci", "plb1"},
+                 "How the CPU's line fills, write-backs and copies reach DDR: its crossbar and memory controller "
+                 "interface (the MPMC's PPC440MC port), or PLB1",
+                 "[A] the PPC440 block has a PPC440MC interface (PLATFORM_FACTS §2); EDK designs for the ML507 wire "
+                 "the MPMC to it (recalled, not retrieved)"});
+    t.push_back({"mci.clock", ParamKind::frequency, "200 MHz", 1 * MHz, 1000 * MHz, {},
+                 "Clock of the PPC440's memory controller interface (CPMMCCLK)",
+                 "[A] the MPMC's clock, which the PPC440MC port runs at (memory.clock)"});
+    t.push_back({"mci.width", ParamKind::bits, "128 bit", 32, 128, {}, "Data width of the memory controller interface",
+                 "[A] the PPC440 crossbar's 128-bit interfaces (PLATFORM_FACTS §2)"});
+    t.push_back({"mci.latency", ParamKind::cycles, "4 cycles", 0, 1000, {},
+                 "Cycles of mci.clock the crossbar and the MCI add to an access before the DDR sees it",
+                 "[A] a request through the crossbar and the interface's address phase, like a PLB burst's overhead"});
 
     add_cpu_cost(t);
 
@@ -227,8 +240,11 @@ std::vector<ParamSpec> make_table() {
                  "Fraction of the peak bandwidth that sustained traffic gets",
                  "[A] ~80 % burst efficiency (PLATFORM_FACTS §5.5)"});
     t.push_back({"memory.latency", ParamKind::cycles, "25 cycles", 0, 1000, {},
-                 "Access latency at the DDR clock, before the first data",
+                 "Read latency at the DDR clock, before the first data",
                  "[A] PLATFORM_FACTS: ~20-30 MPMC cycles read latency (no DS643 table retrieved)"});
+    t.push_back({"memory.write_latency", ParamKind::cycles, "0 cycles", 0, 1000, {},
+                 "Latency a write's master sees at the DDR clock (it still waits for the DRAM and its transfer)",
+                 "[A] the MPMC's ports take writes into a write FIFO (DS643: ports with FIFOs): posted"});
 
     t.push_back({"intc.inputs", ParamKind::count, "12", 1, 32, {}, "Interrupt inputs of the XPS INTC",
                  "[S] ML507 DTS: xps_intc with 12 inputs"});

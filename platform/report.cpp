@@ -14,16 +14,16 @@ std::string percent(double share) { return fmt::format("{:.1f} %", share * 100);
 void bus_section(std::string& md, const std::string& name, const nlohmann::ordered_json& bus) {
     md += fmt::format("\n### {} ({} bit at {} MHz)\n\n", name, bus["width_bits"].get<unsigned>(),
                       bus["clock_hz"].get<double>() / 1e6);
-    md += "| path | transactions | bytes | busy | utilisation |\n|---|---:|---:|---:|---:|\n";
+    md += "| path | bursts | bytes | busy | utilisation |\n|---|---:|---:|---:|---:|\n";
     for (const char* path : {"read", "write"}) {
         const auto& p = bus[path];
-        md += fmt::format("| {} | {} | {} | {} | {} |\n", path, p["transactions"].get<uint64_t>(),
+        md += fmt::format("| {} | {} | {} | {} | {} |\n", path, p["bursts"].get<uint64_t>(),
                           p["bytes"].get<uint64_t>(), ms(p["busy_s"]), percent(p["utilisation"]));
     }
-    md += "\n| master | transactions | bytes read | bytes written | busy | waited | errors |\n"
+    md += "\n| master | bursts | bytes read | bytes written | busy | waited | errors |\n"
           "|---|---:|---:|---:|---:|---:|---:|\n";
     for (const auto& [master, m] : bus["masters"].items())
-        md += fmt::format("| {} | {} | {} | {} | {} | {} | {} |\n", master, m["transactions"].get<uint64_t>(),
+        md += fmt::format("| {} | {} | {} | {} | {} | {} | {} |\n", master, m["bursts"].get<uint64_t>(),
                           m["bytes_read"].get<uint64_t>(), m["bytes_written"].get<uint64_t>(), ms(m["busy_s"]),
                           ms(m["wait_s"]), m["errors"].get<uint64_t>());
 }
@@ -68,20 +68,26 @@ std::string report_markdown(const nlohmann::ordered_json& r) {
     md += fmt::format("| simulated time | {} |\n", ms(r["sim_time_s"]));
     md += fmt::format("| wall time | {} |\n", ms(r["wall_time_s"]));
     md += fmt::format("| real-time factor (simulated / wall) | {:.4g} |\n", r["real_time_factor"].get<double>());
-    md += fmt::format("| bus transactions | {} ({:.3g} per wall second) |\n", r["transactions"].get<uint64_t>(),
+    md += fmt::format("| TLM transactions on the PLBs | {} ({:.3g} per wall second) |\n", r["transactions"].get<uint64_t>(),
                       r["transactions_per_second"].get<double>());
     md += "\n## Buses\n";
     for (const auto& [name, bus] : r["buses"].items()) bus_section(md, name, bus);
     const auto& mem = r["memory"];
-    md += fmt::format("\n## Memory\n\n{} B read, {} B written over the bus ports; DRAM busy {} ({}).\n",
+    md += fmt::format("\n## Memory\n\n{} B read, {} B written over the DDR's ports; DRAM busy {} ({}).\n",
                       mem["bytes_read"].get<uint64_t>(), mem["bytes_written"].get<uint64_t>(), ms(mem["busy_s"]),
                       percent(mem["utilisation"]));
     const auto& cpu = r["cpu"];
-    md += fmt::format("\n## CPU\n\n{} register reads, {} register writes, {} B read and {} B written through DMI, "
-                      "{} cycles of computation, {} interrupt waits ({} asleep).\n",
+    const auto& cpu_mem = cpu["memory"];
+    md += fmt::format("\n## CPU\n\n{} register reads and {} register writes over PLB1; {} cycles of computation; "
+                      "{} interrupt waits ({} asleep).\n\nMemory over {}: {} B read ({} line fills), {} B written "
+                      "({} write-backs); the CPU stalled {} for its fills, of which {} waiting for the DRAM behind "
+                      "other traffic.\n",
                       cpu["mmio_reads"].get<uint64_t>(), cpu["mmio_writes"].get<uint64_t>(),
-                      cpu["memory_bytes_read"].get<uint64_t>(), cpu["memory_bytes_written"].get<uint64_t>(),
-                      cpu["cycles_consumed"].get<uint64_t>(), cpu["irq_waits"].get<uint64_t>(), ms(cpu["irq_wait_s"]));
+                      cpu["cycles_consumed"].get<uint64_t>(), cpu["irq_waits"].get<uint64_t>(), ms(cpu["irq_wait_s"]),
+                      cpu_mem["path"].get<std::string>() == "mci" ? "the memory controller interface (MCI)" : "PLB1",
+                      cpu_mem["bytes_read"].get<uint64_t>(), cpu_mem["line_fills"].get<uint64_t>(),
+                      cpu_mem["bytes_written"].get<uint64_t>(), cpu_mem["write_backs"].get<uint64_t>(), ms(cpu_mem["fill_stall_s"]),
+                      ms(cpu_mem["ddr_wait_s"]));
     md += "\n## Workload\n\n| | |\n|---|---:|\n";
     for (const auto& [key, value] : r["workload"].items()) md += fmt::format("| {} | {} |\n", key, value.dump());
     md += "\n## Files\n\n";

@@ -30,8 +30,15 @@ DdrMemory::Params memory_params(const Config& c) {
     p.transfers_per_clock = static_cast<unsigned>(c.count("memory.transfers_per_clock"));
     p.efficiency = c.real("memory.efficiency");
     p.latency_cycles = static_cast<unsigned>(c.cycles("memory.latency"));
+    p.write_latency_cycles = static_cast<unsigned>(c.cycles("memory.write_latency"));
     return p;
 }
+
+MciLink::Params mci_params(const Config& c) {
+    return {c.frequency("mci.clock"), c.bits("mci.width"), unsigned(c.cycles("mci.latency"))};
+}
+
+bool cpu_memory_on_plb1(const Config& c) { return c.choice("cpu.memory_path") == "plb1"; }
 
 // One TLM transaction per line (fast) or per burst (finest contention).
 uint64_t dma_transaction_bytes(const Config& c, unsigned burst_beats) {
@@ -39,6 +46,13 @@ uint64_t dma_transaction_bytes(const Config& c, unsigned burst_beats) {
 }
 
 }  // namespace
+
+sc_core::sc_time uncontended_fill(const Config& c) {
+    const uint64_t line = c.bytes("cpu.cache_line").n;
+    const sc_core::sc_time ddr = DdrMemory::read_time(memory_params(c), line);
+    return cpu_memory_on_plb1(c) ? PlbBus::burst_time(plb_params(c, "plb1"), line, ddr)
+                                 : MciLink::access_time(mci_params(c), line, ddr);
+}
 
 Iig::Params iig_params(const Config& c) {
     Iig::Params p;
@@ -129,15 +143,15 @@ nlohmann::ordered_json blocks_report(const std::vector<std::unique_ptr<Block>>& 
 nlohmann::ordered_json bus_report(const PlbBus& bus, const sc_core::sc_time& elapsed) {
     nlohmann::ordered_json masters = nlohmann::ordered_json::object();
     for (const auto& m : bus.master_stats())
-        masters[m.name] = {{"transactions", m.transactions}, {"bytes_read", m.bytes_read},
+        masters[m.name] = {{"bursts", m.bursts}, {"bytes_read", m.bytes_read},
                            {"bytes_written", m.bytes_written}, {"errors", m.errors},
                            {"busy_s", seconds(m.busy)}, {"wait_s", seconds(m.wait)}};
     const auto& p = bus.params();
     return {{"clock_hz", p.clock.hz},
             {"width_bits", p.width_bits},
-            {"read", {{"transactions", bus.read_stats().transactions}, {"bytes", bus.read_stats().bytes},
+            {"read", {{"bursts", bus.read_stats().bursts}, {"bytes", bus.read_stats().bytes},
                       {"busy_s", seconds(bus.read_stats().busy)}, {"utilisation", share(bus.read_stats().busy, elapsed)}}},
-            {"write", {{"transactions", bus.write_stats().transactions}, {"bytes", bus.write_stats().bytes},
+            {"write", {{"bursts", bus.write_stats().bursts}, {"bytes", bus.write_stats().bytes},
                        {"busy_s", seconds(bus.write_stats().busy)}, {"utilisation", share(bus.write_stats().busy, elapsed)}}},
             {"decode_errors", bus.decode_errors()},
             {"masters", masters}};
@@ -156,9 +170,11 @@ Soc::Soc(const Config& c, Tracer& tracer) : workload_(make_workload(c)) {
 
 void Soc::build(const Config& c, Tracer& tracer) {
     const unsigned pairs = unsigned(c.count("soc.accelerators"));
+    cpu_memory_path_ = c.choice("cpu.memory_path");
     memory_ = std::make_unique<DdrMemory>("memory", memory_params(c));
     plb1_ = std::make_unique<PlbBus>("plb1", plb_params(c, "plb1"), tracer);
     plb2_ = std::make_unique<PlbBus>("plb2", plb_params(c, "plb2"), tracer);
+    mci_ = std::make_unique<MciLink>("mci", mci_params(c));
     intc_ = std::make_unique<Intc>("intc", Intc::Params{static_cast<unsigned>(c.count("intc.inputs"))}, tracer);
     dma_ = std::make_unique<Dma>("dma", Dma::Params{c.beats("dma.burst"), c.bits("plb2.width")}, tracer);
     for (unsigned k = 0; k < pairs; ++k) {
@@ -177,6 +193,12 @@ void Soc::build(const Config& c, Tracer& tracer) {
 
     // PLB1: the CPU's MPLB; DDR, the INTC and the register slaves.
     plb1_->connect_master(cpu_->bus, "cpu");
+    // The CPU's memory: its crossbar and MCI to the MPMC (or, as a what-if, PLB1).
+    if (cpu_memory_on_plb1(c)) {
+        plb1_->connect_master(cpu_->mem, "cpu memory");
+    } else {
+        cpu_->mem.bind(mci_->cpu);
+    }
     unsigned slave = 0;
     auto attach = [&](auto& socket, uint64_t base, uint64_t size, const std::string& name) {
         plb1_->slaves.bind(socket);
@@ -201,6 +223,8 @@ void Soc::build(const Config& c, Tracer& tracer) {
     plb2_->slaves.bind(memory_->ports);
     memory_->name_port("plb2");
     plb2_->map(map::ddr.base, ddr_size, 0, map::ddr.name);
+    mci_->memory.bind(memory_->ports);
+    memory_->name_port("mci");
 
     wire_interrupts(tracer);
 }
@@ -231,10 +255,7 @@ void Soc::wire_interrupts(Tracer& tracer) {
     tracer.signal(cpu_irq_, "irq.cpu");
 }
 
-uint64_t Soc::bus_transactions() const {
-    return plb1_->read_stats().transactions + plb1_->write_stats().transactions + plb2_->read_stats().transactions +
-           plb2_->write_stats().transactions;
-}
+uint64_t Soc::bus_transactions() const { return plb1_->tlm_transactions() + plb2_->tlm_transactions(); }
 
 nlohmann::ordered_json Soc::report(const sc_core::sc_time& elapsed) const {
     nlohmann::ordered_json ports = nlohmann::ordered_json::object();
@@ -246,13 +267,23 @@ nlohmann::ordered_json Soc::report(const sc_core::sc_time& elapsed) const {
         bytes_written += p.bytes_written;
     }
     const auto& s = cpu_->stats();
+    const std::string& path = cpu_memory_path_;  // the CPU is the only master behind that DDR port
+    sc_core::sc_time ddr_wait;
+    for (const auto& p : memory_->port_stats())
+        if (p.name == path) ddr_wait = p.wait;
     return {{"buses", {{"plb1", bus_report(*plb1_, elapsed)}, {"plb2", bus_report(*plb2_, elapsed)}}},
+            {"mci", {{"clock_hz", mci_->params().clock.hz}, {"width_bits", mci_->params().width_bits},
+                     {"reads", mci_->stats().reads}, {"writes", mci_->stats().writes},
+                     {"bytes_read", mci_->stats().bytes_read}, {"bytes_written", mci_->stats().bytes_written},
+                     {"busy_s", seconds(mci_->stats().busy)}, {"utilisation", share(mci_->stats().busy, elapsed)},
+                     {"wait_s", seconds(mci_->stats().wait)}}},
             {"memory", {{"bytes_read", bytes_read}, {"bytes_written", bytes_written},
                         {"busy_s", seconds(memory_->busy())}, {"utilisation", share(memory_->busy(), elapsed)},
-                        {"note", "bus-port traffic; the CPU's DMI accesses are counted under cpu"},
                         {"ports", ports}}},
             {"cpu", {{"mmio_reads", s.mmio_reads}, {"mmio_writes", s.mmio_writes},
-                     {"memory_bytes_read", s.bytes_read}, {"memory_bytes_written", s.bytes_written},
+                     {"memory", {{"path", path}, {"bytes_read", s.bytes_read}, {"bytes_written", s.bytes_written},
+                                 {"line_fills", s.fills}, {"write_backs", s.write_backs},
+                                 {"fill_stall_s", seconds(s.fill_stall)}, {"ddr_wait_s", seconds(ddr_wait)}}},
                      {"cycles_consumed", s.cycles_consumed}, {"irq_waits", s.irq_waits},
                      {"irq_wait_s", seconds(s.irq_wait_time)}}},
             {"interrupts", {{"raised", intc_->interrupts_raised()}}},

@@ -13,6 +13,7 @@
 #include "models/fhg/fhg.h"
 #include "models/iig/iig.h"
 #include "models/intc/intc.h"
+#include "models/mci/mci_link.h"
 #include "models/memory/ddr_memory.h"
 #include "models/plb/plb_bus.h"
 #include "models/ppc440/ppc440.h"
@@ -23,6 +24,10 @@ namespace surfvp {
 // The IP blocks' parameters from a configuration (also used by `surfvp seqgen`).
 Iig::Params iig_params(const Config& config);
 Fhg::Params fhg_params(const Config& config);
+
+// One line fill on the CPU's memory path with nothing else on it: the MCI link (or PLB1) and
+// the DDR's read, by the models' own formulas (direct mode charges this per fill).
+sc_core::sc_time uncontended_fill(const Config& config);
 
 class Soc {
 public:
@@ -45,6 +50,8 @@ private:
     std::unique_ptr<Workload> workload_;
     std::unique_ptr<DdrMemory> memory_;
     std::unique_ptr<PlbBus> plb1_, plb2_;
+    std::unique_ptr<MciLink> mci_;
+    std::string cpu_memory_path_;  // "mci" or "plb1"
     std::unique_ptr<Intc> intc_;
     std::unique_ptr<Dma> dma_;
     std::vector<std::unique_ptr<Iig>> iigs_;

@@ -87,7 +87,8 @@ public:
             driver_.accelerators.push_back({map::iig_base(k), map::fhg_base(k), map::irq::iig(k), map::irq::fhg(k)});
         for (uint64_t set = 0; set < c.count("surf.tasks_in_flight"); ++set)
             driver_.buffers.push_back({uint32_t(slots_base_ + set * slot_bytes_),
-                                       uint32_t(slots_base_ + set * slot_bytes_ + integral_bytes_)});
+                                       uint32_t(slots_base_ + set * slot_bytes_ + integral_bytes_),
+                                       uint32_t(slots_base_ + set * slot_bytes_ + integral_bytes_ + det_bytes_)});
         driver_.fifo_irq_level = uint32_t(c.count("surf.fifo_irq_level"));
         driver_.threshold = core.from_float(threshold_);
         budget_fps_ = c.real("budget.fps");
@@ -165,11 +166,12 @@ public:
 private:
     uint32_t frame_address(size_t i) const { return uint32_t(frames_base_ + i * frame_bytes_); }
 
-    // Frames, then one set of integral image and determinant buffers per task in flight.
+    // Frames, then one set of integral image, determinant and descriptor buffers per task in flight.
     void layout(const Config& c) {
         frame_bytes_ = round_up(uint64_t(width_) * height_);
         integral_bytes_ = round_up(uint64_t(width_) * height_ * 4);
-        slot_bytes_ = integral_bytes_ + round_up(uint64_t((width_ + 1) / 2) * ((height_ + 1) / 2) * fhg_regs::kRecordBytes);
+        det_bytes_ = round_up(uint64_t((width_ + 1) / 2) * ((height_ + 1) / 2) * fhg_regs::kRecordBytes);
+        slot_bytes_ = integral_bytes_ + det_bytes_ + round_up(uint64_t(sw::ssa2::kRecordRing) * sw::ssa2::kRecordBytes);
         frames_base_ = 0x0010'0000;
         slots_base_ = frames_base_ + frames_.size() * frame_bytes_;
         const uint64_t end = slots_base_ + c.count("surf.tasks_in_flight") * slot_bytes_;
@@ -189,7 +191,7 @@ private:
     std::vector<FrameResult> results_;
     sw::ssa2::DriverConfig driver_;
     int width_ = 0, height_ = 0;
-    uint64_t frame_bytes_ = 0, integral_bytes_ = 0, slot_bytes_ = 0, frames_base_ = 0, slots_base_ = 0;
+    uint64_t frame_bytes_ = 0, integral_bytes_ = 0, det_bytes_ = 0, slot_bytes_ = 0, frames_base_ = 0, slots_base_ = 0;
     uint64_t done_ = 0, fault_frame_ = 0;
     double budget_fps_ = 0, cpu_hz_ = 0;
 };

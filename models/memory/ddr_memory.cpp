@@ -7,7 +7,6 @@
 #include <stdexcept>
 
 #include "models/common/clock.h"
-#include "models/common/dmi_rate.h"
 
 namespace surfvp {
 using sc_core::sc_time;
@@ -38,11 +37,15 @@ DdrMemory::PortStats& DdrMemory::stats(int port) {
 
 sc_time DdrMemory::latency() const { return cycles(params_.clock, params_.latency_cycles); }
 
-double DdrMemory::bytes_per_second() const {
-    return params_.width_bits / 8.0 * params_.transfers_per_clock * params_.clock.hz * params_.efficiency;
+double DdrMemory::bytes_per_second(const Params& p) {
+    return p.width_bits / 8.0 * p.transfers_per_clock * p.clock.hz * p.efficiency;
 }
 
-sc_time DdrMemory::access_time(uint64_t bytes) const { return latency() + transfer_time(bytes, bytes_per_second()); }
+double DdrMemory::bytes_per_second() const { return bytes_per_second(params_); }
+
+sc_time DdrMemory::read_time(const Params& p, uint64_t bytes) {
+    return cycles(p.clock, p.latency_cycles) + transfer_time(bytes, bytes_per_second(p));
+}
 
 uint8_t* DdrMemory::backdoor(uint64_t address, uint64_t bytes) {
     if (address + bytes > params_.size.n)
@@ -81,12 +84,13 @@ void DdrMemory::b_transport(int port, tlm::tlm_generic_payload& tx, sc_time& del
         s.bytes_read += bytes;
     }
     const sc_time request = sc_core::sc_time_stamp() + delay;
-    const sc_time start = std::max(request, dram_free_);
     const sc_time transfer = transfer_time(bytes, bytes_per_second());
-    dram_free_ = start + transfer;
+    dram_.forget_before(sc_core::sc_time_stamp().value());
+    const sc_time start(double(dram_.reserve(request.value(), transfer.value())), sc_core::SC_PS);
     busy_ += transfer;
     s.wait += start - request;
-    delay += (start - request) + access_time(bytes);
+    const unsigned latency = tx.is_write() ? params_.write_latency_cycles : params_.latency_cycles;
+    delay += (start - request) + cycles(params_.clock, latency) + transfer;
     tx.set_response_status(tlm::TLM_OK_RESPONSE);
 }
 
@@ -96,8 +100,7 @@ bool DdrMemory::get_direct_mem_ptr(int, tlm::tlm_generic_payload& tx, tlm::tlm_d
     dmi.set_end_address(params_.size.n - 1);
     dmi.allow_read_write();
     dmi.set_read_latency(latency());
-    dmi.set_write_latency(latency());
-    if (DmiRate* rate = tx.get_extension<DmiRate>()) rate->limit(bytes_per_second());
+    dmi.set_write_latency(cycles(params_.clock, params_.write_latency_cycles));
     return tx.get_address() < params_.size.n;
 }
 

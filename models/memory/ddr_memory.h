@@ -1,15 +1,17 @@
 #pragma once
 // DDR memory behind a multi-port controller (the EDK MPMC, DS643; PLATFORM_FACTS §2).
-// Each bus binds its own port. The DRAM itself is one shared resource: an access waits
-// until the DRAM is free, then streams its bytes at the controller's bandwidth after the
-// access latency. The latency of one access overlaps the transfer of the one before
-// (the controller pipelines commands), so only the transfers occupy the DRAM:
+// Each path to it binds its own port (PLB2 for the DMA masters, the PPC440's memory
+// controller interface or PLB1 for the CPU). The DRAM itself is one shared resource: an
+// access takes the DRAM for its transfer at the controller's bandwidth, at the earliest
+// free interval from its request (BusyTimeline), and is done after the access latency:
 //   bandwidth = width x clock x transfers_per_clock x efficiency
-//   start     = max(request, dram_free);   dram_free = start + bytes / bandwidth
-//   done      = start + latency cycles + bytes / bandwidth
-// DMI gives direct access to the storage (one array, byte order as in byte_order.h); its
-// latency and DmiRate carry the same formula (transfer_time()) for an uncontended access, so the time is
-// still accounted by the DMI user (without the contention).
+//   start     = the first gap >= request that fits bytes / bandwidth
+//   done      = start + latency + bytes / bandwidth
+// The latency of one access overlaps the transfers of others (the controller pipelines
+// commands), so only transfers occupy the DRAM. A read waits out `latency_cycles`; a write is
+// posted into the port's write FIFO and sees `write_latency_cycles` (it still waits for the
+// DRAM and takes its transfer time). DMI gives a pointer to the storage (one array, byte
+// order as in byte_order.h) for reading in place; its users account their time separately.
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -18,7 +20,7 @@
 #include <tlm_utils/multi_passthrough_target_socket.h>
 #include <vector>
 
-#include "models/common/tracer.h"
+#include "busy_timeline.h"
 #include "models/common/units.h"
 
 namespace surfvp {
@@ -31,14 +33,15 @@ public:
         unsigned width_bits = 64;
         unsigned transfers_per_clock = 2;  // DDR: two transfers per clock
         double efficiency = 0.8;           // fraction of the peak that sustained traffic gets
-        unsigned latency_cycles = 25;
+        unsigned latency_cycles = 25;       // a read's, before the first data
+        unsigned write_latency_cycles = 0;  // a write's, as its master sees it (posted)
     };
 
     struct PortStats {
         std::string name;
         uint64_t reads = 0, writes = 0;
         uint64_t bytes_read = 0, bytes_written = 0;
-        sc_core::sc_time wait;  // time spent waiting for the DRAM behind another access
+        sc_core::sc_time wait;  // time spent waiting for the DRAM behind other accesses
     };
 
     tlm_utils::multi_passthrough_target_socket<DdrMemory> ports;
@@ -48,8 +51,10 @@ public:
     // Names the next port binding (for the report); call in binding order.
     void name_port(const std::string& name);
 
-    // Uncontended time of one access of `bytes`, the formula above.
-    sc_core::sc_time access_time(uint64_t bytes) const;
+    // Uncontended time of one read of `bytes`, the formula above.
+    sc_core::sc_time access_time(uint64_t bytes) const { return read_time(params_, bytes); }
+    static sc_core::sc_time read_time(const Params& params, uint64_t bytes);
+    static double bytes_per_second(const Params& params);
     sc_core::sc_time latency() const;
     double bytes_per_second() const;
 
@@ -75,7 +80,7 @@ private:
     Params params_;
     std::unique_ptr<uint8_t[], FreeDeleter> storage_;  // zero pages from calloc: untouched memory costs nothing
     std::vector<PortStats> port_stats_;
-    sc_core::sc_time dram_free_;
+    BusyTimeline dram_;
     sc_core::sc_time busy_;
 };
 

@@ -5,7 +5,6 @@
 #include <stdexcept>
 
 #include "models/common/clock.h"
-#include "models/common/dmi_rate.h"
 
 namespace surfvp {
 using sc_core::sc_time;
@@ -25,7 +24,7 @@ PlbBus::PlbBus(const sc_core::sc_module_name& name, const Params& params, Tracer
     slaves.register_invalidate_direct_mem_ptr(this, &PlbBus::invalidate_direct_mem_ptr);
 
     for (Path* path : {&read_, &write_}) {
-        path->busy = std::make_unique<sc_core::sc_signal<bool>>(fmt::format("{}_busy", path->name).c_str());
+        path->busy = std::make_unique<sc_core::sc_signal<bool, sc_core::SC_UNCHECKED_WRITERS>>(fmt::format("{}_busy", path->name).c_str());
         tracer_.signal(*path->busy, fmt::format("{}.{}_busy", basename(), path->name));
         path->track = tracer_.track(basename(), fmt::format("{} data", path->name));
         sc_core::sc_spawn_options options;
@@ -59,13 +58,15 @@ void PlbBus::start_of_simulation() {
         throw std::logic_error(fmt::format("{}: bind masters with connect_master()", basename()));
 }
 
-sc_time PlbBus::occupancy(uint64_t bytes, const sc_time& slave_time) const {
-    const uint64_t width_bytes = params_.width_bits / 8;
+sc_time PlbBus::burst_time(const Params& p, uint64_t bytes, const sc_time& slave_time) {
+    const uint64_t width_bytes = p.width_bits / 8;
     const uint64_t beats = std::max<uint64_t>(1, (bytes + width_bytes - 1) / width_bytes);
-    const uint64_t bursts = (beats + params_.max_burst_beats - 1) / params_.max_burst_beats;
-    const sc_time overhead = cycles(params_.clock, double(bursts * (params_.arbitration_cycles + params_.address_cycles)));
-    return overhead + std::max(cycles(params_.clock, double(beats)), slave_time);
+    const uint64_t bursts = (beats + p.max_burst_beats - 1) / p.max_burst_beats;
+    const sc_time overhead = cycles(p.clock, double(bursts * (p.arbitration_cycles + p.address_cycles)));
+    return overhead + std::max(cycles(p.clock, double(beats)), slave_time);
 }
+
+sc_time PlbBus::occupancy(uint64_t bytes, const sc_time& slave_time) const { return burst_time(params_, bytes, slave_time); }
 
 sc_time PlbBus::transaction_time(uint64_t bytes) const { return occupancy(bytes, SC_ZERO_TIME); }
 
@@ -123,10 +124,34 @@ void PlbBus::await_grant(Path& path, int master) {
     sc_core::wait(path.granted[master]);
 }
 
+// The grant of a burst requested now: at once when the path is free and no other process can
+// make a request at this instant (what the arbiter would decide after its settling delta),
+// else through the arbiter.
+sc_time PlbBus::acquire(Path& path, int master) {
+    if (!path.in_flight && sc_core::sc_time_stamp() >= path.free_at && path.pending.empty() &&
+        !sc_core::sc_pending_activity_at_current_time()) {
+        path.in_flight = true;
+        path.last_master = master;
+        if (tracer_.vcd_on()) path.busy->write(true);
+    } else {
+        await_grant(path, master);
+    }
+    return sc_core::sc_time_stamp();
+}
+
+// Whether the master that holds the path may take it again for a burst starting at `at`
+// (later than now) without going back to the kernel: no request is waiting, nothing can run
+// before `at`, so no one else could have asked by then.
+bool PlbBus::keeps_path(const Path& path, const sc_time& at) const {
+    return path.pending.empty() && !sc_core::sc_pending_activity_at_current_time() &&
+           at < sc_core::sc_time_stamp() + sc_core::sc_time_to_pending_activity();
+}
+
 void PlbBus::b_transport(int master, tlm::tlm_generic_payload& tx, sc_time& delay) {
     MasterStats& stats = master_stats_[master];
     const uint64_t address = tx.get_address();
     const uint64_t bytes = tx.get_data_length();
+    ++tlm_transactions_;
     const Route* route = decode(address, bytes);
     if (route == nullptr) {
         // No slave claims the address: the bus answers after its address phase.
@@ -141,31 +166,53 @@ void PlbBus::b_transport(int master, tlm::tlm_generic_payload& tx, sc_time& dela
         sc_core::wait(delay);
         delay = SC_ZERO_TIME;
     }
-    const sc_time requested = sc_core::sc_time_stamp();
     Path& path = tx.is_write() ? write_ : read_;
-    await_grant(path, master);
-    const sc_time granted = sc_core::sc_time_stamp();
-
-    sc_time slave_time = SC_ZERO_TIME;
-    tx.set_address(address - route->base);
-    slaves[route->slave]->b_transport(tx, slave_time);
+    unsigned char* data = tx.get_data_ptr();
+    const uint64_t burst_bytes = uint64_t(params_.max_burst_beats) * params_.width_bits / 8;
+    const sc_time requested = sc_core::sc_time_stamp();
+    sc_time first_grant, end = requested;  // `end`: the last granted burst's end
+    for (uint64_t done = 0; done < std::max<uint64_t>(bytes, 1);) {
+        const uint64_t n = std::min(burst_bytes, bytes - done);
+        const sc_time asked = end;  // the next burst is requested as the one before ends
+        sc_time granted;
+        if (end > sc_core::sc_time_stamp() && keeps_path(path, end)) {
+            granted = end;
+        } else {
+            if (end > sc_core::sc_time_stamp()) sc_core::wait(end - sc_core::sc_time_stamp());
+            granted = acquire(path, master);
+        }
+        if (done == 0) first_grant = granted;
+        // The slave serves this burst from its grant (annotated: it may lie ahead of now).
+        const sc_time ahead = granted - sc_core::sc_time_stamp();
+        sc_time slave_time = ahead;
+        tx.set_address(address + done - route->base);
+        tx.set_data_ptr(data + done);
+        tx.set_data_length(unsigned(n));
+        tx.set_streaming_width(unsigned(n));
+        slaves[route->slave]->b_transport(tx, slave_time);
+        const sc_time duration = occupancy(n, slave_time - ahead);
+        end = granted + duration;
+        path.free_at = end;
+        path.in_flight = false;
+        ++stats.bursts;
+        stats.wait += granted - asked;
+        stats.busy += duration;
+        ++path.stats.bursts;
+        path.stats.busy += duration;
+        if (!tx.is_response_ok()) break;
+        done += std::max<uint64_t>(n, 1);
+    }
     tx.set_address(address);
+    tx.set_data_ptr(data);
+    tx.set_data_length(unsigned(bytes));
+    tx.set_streaming_width(unsigned(bytes));
+    if (!path.pending.empty() || tracer_.vcd_on()) path.arbitrate.notify(end - sc_core::sc_time_stamp());
+    delay = end - sc_core::sc_time_stamp();
 
-    const sc_time duration = occupancy(bytes, slave_time);
-    path.free_at = granted + duration;
-    path.in_flight = false;
-    if (!path.pending.empty() || tracer_.vcd_on()) path.arbitrate.notify(duration);
-    delay = duration;
-
-    ++stats.transactions;
     (tx.is_write() ? stats.bytes_written : stats.bytes_read) += bytes;
     if (tx.get_response_status() != tlm::TLM_OK_RESPONSE) ++stats.errors;
-    stats.wait += granted - requested;
-    stats.busy += duration;
-    ++path.stats.transactions;
     path.stats.bytes += bytes;
-    path.stats.busy += duration;
-    if (tracer_.perfetto_on()) trace_transaction(master, tx.is_write(), bytes, requested, granted, granted + duration);
+    if (tracer_.perfetto_on()) trace_transaction(master, tx.is_write(), bytes, requested, first_grant, end);
 }
 
 void PlbBus::trace_transaction(int master, bool write, uint64_t bytes, const sc_time& requested,
@@ -186,13 +233,12 @@ bool PlbBus::get_direct_mem_ptr(int, tlm::tlm_generic_payload& tx, tlm::tlm_dmi&
     const bool granted = slaves[route->slave]->get_direct_mem_ptr(tx, dmi);
     tx.set_address(address);
     if (!granted) return false;
-    // Back to bus addresses, clipped to the region; the bus adds its own cost (DmiRate).
+    // Back to bus addresses, clipped to the region, with the bus's own per-access cost.
     dmi.set_start_address(dmi.get_start_address() + route->base);
     dmi.set_end_address(std::min<uint64_t>(dmi.get_end_address() + route->base, route->base + route->size - 1));
     const sc_time overhead = cycles(params_.clock, params_.arbitration_cycles + params_.address_cycles);
     dmi.set_read_latency(dmi.get_read_latency() + overhead);
     dmi.set_write_latency(dmi.get_write_latency() + overhead);
-    if (DmiRate* rate = tx.get_extension<DmiRate>()) rate->limit(params_.width_bits / 8.0 * params_.clock.hz);
     return true;
 }
 

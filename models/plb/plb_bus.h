@@ -3,17 +3,21 @@
 // arbitration among several masters (round-robin or fixed priority), a data width and a
 // clock, fixed bursts of up to `max_burst_beats`, separate read and write data paths.
 //
-// Timing of one transaction of B bytes granted at time g (README.md has the derivation):
-//   beats  = ceil(B / (width/8)),  bursts = ceil(beats / max_burst_beats)
-//   end    = g + bursts x (arbitration + address) cycles + max(beats cycles, slave time)
-// The slave's time (its latency and its own transfer time, which the memory model returns)
-// overlaps the data beats: the data stream runs at the slower of the two.
+// The unit of the bus is the burst. A transaction of any length is carried as the bursts it
+// stands for (beats = ceil(B / (width/8)), up to max_burst_beats each), and every burst is
+// arbitrated on its own: another master's request is granted at the next burst boundary,
+// exactly as if the first master had issued one transaction per burst. One burst of b beats
+// granted at time g:
+//   end = g + (arbitration + address) cycles + max(b cycles, slave time)
+// The slave's time (its wait, latency and transfer, which the memory model returns) overlaps
+// the data beats: the data stream runs at the slower of the two.
 //
-// Contention is exact at transaction granularity: a master's request waits until its
-// local time, joins the path's queue, and an arbiter grants the path when it is free,
-// picking among the requests present by the policy. Wait time and busy time are recorded
-// per master. A transaction is granted whole (its bursts are not interleaved with other
-// masters'). Slaves must answer without calling wait().
+// Contention is exact at burst granularity: a master's request waits until its local time,
+// joins the path's queue, and an arbiter grants the path when it is free, picking among the
+// requests present by the policy. For speed, a master keeps the path for its next burst
+// without a kernel event when nothing else can happen before that burst starts (no other
+// request, no process runnable now, no event due earlier): the result is the same. Wait time
+// and busy time are recorded per master and per burst. Slaves must answer without wait().
 #include <cstdint>
 #include <deque>
 #include <memory>
@@ -44,7 +48,7 @@ public:
 
     struct MasterStats {
         std::string name;
-        uint64_t transactions = 0;
+        uint64_t bursts = 0;
         uint64_t bytes_read = 0;
         uint64_t bytes_written = 0;
         uint64_t errors = 0;
@@ -53,7 +57,7 @@ public:
     };
 
     struct PathStats {
-        uint64_t transactions = 0;
+        uint64_t bursts = 0;
         uint64_t bytes = 0;
         sc_core::sc_time busy;
     };
@@ -71,12 +75,15 @@ public:
 
     // The documented formula for an uncontended transaction with a zero-time slave.
     sc_core::sc_time transaction_time(uint64_t bytes) const;
+    // One burst of `bytes` whose slave takes `slave_time`: overhead + max(beats, slave).
+    static sc_core::sc_time burst_time(const Params& params, uint64_t bytes, const sc_core::sc_time& slave_time);
 
     const Params& params() const { return params_; }
     const std::vector<MasterStats>& master_stats() const { return master_stats_; }
     const PathStats& read_stats() const { return read_.stats; }
     const PathStats& write_stats() const { return write_.stats; }
     uint64_t decode_errors() const { return decode_errors_; }
+    uint64_t tlm_transactions() const { return tlm_transactions_; }  // a simulation figure: depends on how masters batch
 
 private:
     struct Route {
@@ -100,7 +107,7 @@ private:
         int last_master = -1;
         sc_core::sc_event arbitrate;
         std::deque<sc_core::sc_event> granted;  // one per master
-        std::unique_ptr<sc_core::sc_signal<bool>> busy;
+        std::unique_ptr<sc_core::sc_signal<bool, sc_core::SC_UNCHECKED_WRITERS>> busy;  // written by the arbiter and by a master granted at once
         PathStats stats;
         int track = -1;
     };
@@ -113,6 +120,8 @@ private:
     void arbitrate(Path* path);
     int pick(const Path& path) const;
     void await_grant(Path& path, int master);
+    sc_core::sc_time acquire(Path& path, int master);
+    bool keeps_path(const Path& path, const sc_core::sc_time& at) const;
     sc_core::sc_time occupancy(uint64_t bytes, const sc_core::sc_time& slave_time) const;
     const Route* decode(uint64_t address, uint64_t length) const;
     void trace_transaction(int master, bool write, uint64_t bytes, const sc_core::sc_time& requested,
@@ -127,6 +136,7 @@ private:
     Path read_{Path("read")};
     Path write_{Path("write")};
     uint64_t decode_errors_ = 0;
+    uint64_t tlm_transactions_ = 0;
 };
 
 }  // namespace surfvp

@@ -1,19 +1,20 @@
 #include "ppc440.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <fmt/format.h>
 
 #include "models/common/clock.h"
-#include "models/common/dmi_rate.h"
 
 namespace surfvp {
 using sc_core::sc_time;
 
 Ppc440::Ppc440(const sc_core::sc_module_name& name, const Params& params, Software software, Tracer& tracer)
-    : sc_module(name), bus("bus"), irq("irq"), params_(params), software_(std::move(software)), tracer_(tracer) {
+    : sc_module(name), bus("bus"), mem("mem"), irq("irq"), params_(params), software_(std::move(software)), tracer_(tracer),
+      line_(params.line_bytes) {
     tlm_utils::tlm_quantumkeeper::set_global_quantum(sc_time(double(params.quantum.ps), sc_core::SC_PS));
-    bus.register_invalidate_direct_mem_ptr(this, &Ppc440::invalidate_dmi);
+    mem.register_invalidate_direct_mem_ptr(this, &Ppc440::invalidate_dmi);
     SC_HAS_PROCESS(Ppc440);
     SC_THREAD(run);
     tracer_.signal(waiting_, fmt::format("{}.waiting_irq", basename()));
@@ -76,72 +77,93 @@ void Ppc440::write32(uint32_t address, uint32_t value) {
     ++stats_.mmio_writes;
 }
 
-bool Ppc440::dmi_covers(uint32_t address, size_t bytes, tlm::tlm_command command) {
+bool Ppc440::dmi_covers(uint32_t address, size_t bytes) {
     if (!dmi_valid_ || address < dmi_.get_start_address() || address + bytes - 1 > dmi_.get_end_address()) {
         tlm::tlm_generic_payload tx;
-        DmiRate rate;
-        tx.set_command(command);
+        tx.set_command(tlm::TLM_READ_COMMAND);
         tx.set_address(address);
-        tx.set_extension(&rate);
-        dmi_valid_ = bus->get_direct_mem_ptr(tx, dmi_);
-        tx.clear_extension(&rate);
-        dmi_rate_ = rate.bytes_per_second;
+        dmi_valid_ = mem->get_direct_mem_ptr(tx, dmi_);
         if (!dmi_valid_) return false;
     }
-    const bool allowed = command == tlm::TLM_READ_COMMAND ? dmi_.is_read_allowed() : dmi_.is_write_allowed();
-    return allowed && address >= dmi_.get_start_address() && address + bytes - 1 <= dmi_.get_end_address();
+    return dmi_.is_read_allowed() && address >= dmi_.get_start_address() && address + bytes - 1 <= dmi_.get_end_address();
 }
 
 void Ppc440::invalidate_dmi(sc_dt::uint64, sc_dt::uint64) { dmi_valid_ = false; }
 
+// One line on the memory path, requested at time `at` (>= now); returns when it is done.
+sc_time Ppc440::line_access(tlm::tlm_command command, uint32_t address, uint8_t* data, size_t bytes, const sc_time& at) {
+    tlm::tlm_generic_payload tx;
+    tx.set_command(command);
+    tx.set_address(address);
+    tx.set_data_ptr(data);
+    tx.set_data_length(static_cast<unsigned>(bytes));
+    tx.set_streaming_width(static_cast<unsigned>(bytes));
+    tx.set_response_status(tlm::TLM_INCOMPLETE_RESPONSE);
+    sc_time delay = at - sc_core::sc_time_stamp();
+    mem->b_transport(tx, delay);  // the MCI link annotates; PLB1 synchronises first
+    if (!tx.is_response_ok())
+        throw sw::BusError(fmt::format("memory {} at {:#010x}: {}", command == tlm::TLM_READ_COMMAND ? "read" : "write",
+                                       address, tx.get_response_string()),
+                           address);
+    (command == tlm::TLM_READ_COMMAND ? stats_.bytes_read : stats_.bytes_written) += bytes;
+    return sc_core::sc_time_stamp() + delay;
+}
+
+// A copy through the caches: line after line on the memory path, each after the one before.
 void Ppc440::memory(tlm::tlm_command command, uint32_t address, uint8_t* data, size_t bytes) {
-    if (bytes == 0) return;
-    if (dmi_covers(address, bytes, command)) {
-        uint8_t* cell = dmi_.get_dmi_ptr() + (address - dmi_.get_start_address());
-        if (command == tlm::TLM_READ_COMMAND) std::memcpy(data, cell, bytes);
-        else std::memcpy(cell, data, bytes);
-        const sc_time latency = command == tlm::TLM_READ_COMMAND ? dmi_.get_read_latency() : dmi_.get_write_latency();
-        keeper_.inc(latency + transfer_time(bytes, dmi_rate_));
-        if (keeper_.need_sync()) keeper_.sync();
-        return;
-    }
-    // No DMI here: one bus transaction per cache line.
+    sc_time at = now();
     for (size_t done = 0; done < bytes;) {
-        const size_t n = std::min<size_t>(params_.line_bytes, bytes - done);
-        tlm::tlm_generic_payload tx;
-        tx.set_command(command);
-        tx.set_address(address + done);
-        tx.set_data_ptr(data + done);
-        tx.set_data_length(static_cast<unsigned>(n));
-        tx.set_streaming_width(static_cast<unsigned>(n));
-        tx.set_response_status(tlm::TLM_INCOMPLETE_RESPONSE);
-        sc_time delay = keeper_.get_local_time();
-        bus->b_transport(tx, delay);
-        keeper_.set(delay);
-        if (!tx.is_response_ok())
-            throw sw::BusError(fmt::format("memory {} at {:#010x}: {}", command == tlm::TLM_READ_COMMAND ? "read" : "write",
-                                           address + done, tx.get_response_string()),
-                               static_cast<uint32_t>(address + done));
+        const size_t n = std::min<size_t>(params_.line_bytes - (address + done) % params_.line_bytes, bytes - done);
+        at = line_access(command, uint32_t(address + done), data + done, n, at);
         done += n;
     }
+    keeper_.set(at - sc_core::sc_time_stamp());
     if (keeper_.need_sync()) keeper_.sync();
 }
 
 void Ppc440::read(uint32_t address, void* data, size_t bytes) {
     memory(tlm::TLM_READ_COMMAND, address, static_cast<uint8_t*>(data), bytes);
-    stats_.bytes_read += bytes;
 }
 
 void Ppc440::write(uint32_t address, const void* data, size_t bytes) {
     // A write command only reads through the payload's pointer.
     memory(tlm::TLM_WRITE_COMMAND, address, static_cast<uint8_t*>(const_cast<void*>(data)), bytes);
-    stats_.bytes_written += bytes;
 }
 
 const uint8_t* Ppc440::map(uint32_t address, size_t bytes) {
-    if (bytes == 0 || !dmi_covers(address, bytes, tlm::TLM_READ_COMMAND))
+    if (bytes == 0 || !dmi_covers(address, bytes))
         throw sw::BusError(fmt::format("no direct memory at {:#010x} (+{} B)", address, bytes), address);
     return dmi_.get_dmi_ptr() + (address - dmi_.get_start_address());
+}
+
+// The step starts at the kernel's time (synchronised), so that its fills meet the other
+// masters' traffic in order whatever the quantum. A write-back carries the line's current
+// contents (the model keeps no dirty data of its own, so memory is unchanged).
+uint64_t Ppc440::compute(uint64_t count, const std::vector<sw::LineTransfer>& lines) {
+    keeper_.sync();
+    const sc_time start = sc_core::sc_time_stamp();
+    sc_time at = start;  // where the step has got to
+    uint64_t done = 0;   // cycles of work so far
+    for (const sw::LineTransfer& line : lines) {
+        const uint64_t cycle = std::min(std::max(line.at_cycle, done), count);
+        at += cycles(params_.clock, double(cycle - done));
+        done = cycle;
+        if (line.write_back) {
+            if (dmi_covers(line.address, line_.size())) std::memcpy(line_.data(), map(line.address, line_.size()), line_.size());
+            line_access(tlm::TLM_WRITE_COMMAND, line.address, line_.data(), line_.size(), at);
+            ++stats_.write_backs;
+        } else {
+            const sc_time filled = line_access(tlm::TLM_READ_COMMAND, line.address, line_.data(), line_.size(), at);
+            stats_.fill_stall += filled - at;
+            at = filled;
+            ++stats_.fills;
+        }
+    }
+    at += cycles(params_.clock, double(count - done));
+    stats_.cycles_consumed += count;
+    keeper_.set(at - sc_core::sc_time_stamp());
+    if (keeper_.need_sync()) keeper_.sync();
+    return uint64_t(std::llround((at - start).to_seconds() * params_.clock.hz));
 }
 
 bool Ppc440::irq_pending() {

@@ -1,11 +1,13 @@
 #pragma once
 // The PPC440 "ISS stub" (DESIGN: models/ppc440): it does not interpret PowerPC code; it runs
 // the software natively in an SC_THREAD and gives it the HAL (sw/hal/hal.h). Time comes
-// from what the software does: MMIO is a timed PLB1 transaction, memory copies go through
-// DMI and are charged the memory's and bus's latency and rate, and computation is charged
-// through consume(cycles) at the CPU clock. Local time runs ahead of the kernel up to the
-// global quantum (TLM-2.0 temporal decoupling) and is synchronised at every bus access and
-// interrupt wait.
+// from what the software does: MMIO is a timed PLB1 transaction; memory goes line by line
+// over the CPU's memory path (`mem`: the MCI link to DDR, or PLB1), and so do the L1 fills
+// and write-backs the software's counted work reports (compute()), each at the time the work
+// needs it, a fill stalling the CPU until it is in; computation is charged at the CPU clock.
+// Local time runs ahead of the kernel up to the global quantum (TLM-2.0 temporal
+// decoupling); it is synchronised at every register access, interrupt wait and compute step,
+// so what the CPU puts on the memory path does not depend on the quantum.
 #include <cstdint>
 #include <functional>
 #include <string>
@@ -26,20 +28,23 @@ public:
     struct Params {
         Frequency clock{400e6};
         Duration quantum{1000000};  // 1 us
-        unsigned line_bytes = 32;   // memory accesses without DMI go in lines of this size
+        unsigned line_bytes = 32;   // the L1 line: memory goes in lines of this size
         std::vector<std::string> markers;  // names of the software's markers (HAL mark())
     };
     using Software = std::function<void(sw::Hal&)>;
 
     struct Stats {
         uint64_t mmio_reads = 0, mmio_writes = 0;
-        uint64_t bytes_read = 0, bytes_written = 0;
-        uint64_t cycles_consumed = 0;
+        uint64_t bytes_read = 0, bytes_written = 0;  // on the memory path: copies, fills, write-backs
+        uint64_t fills = 0, write_backs = 0;
+        sc_core::sc_time fill_stall;  // the CPU waiting for its line fills
+        uint64_t cycles_consumed = 0;  // work, without the stalls
         uint64_t irq_waits = 0;
         sc_core::sc_time irq_wait_time;
     };
 
-    tlm_utils::simple_initiator_socket<Ppc440> bus;  // MPLB on PLB1
+    tlm_utils::simple_initiator_socket<Ppc440> bus;  // MPLB on PLB1: registers
+    tlm_utils::simple_initiator_socket<Ppc440> mem;  // memory: the MCI link (or PLB1)
     sc_core::sc_in<bool> irq;
 
     Ppc440(const sc_core::sc_module_name& name, const Params& params, Software software, Tracer& tracer);
@@ -61,13 +66,16 @@ private:
     bool irq_pending() override;
     uint64_t time_ps() override;
     void consume(uint64_t cycles) override;
+    uint64_t compute(uint64_t cycles, const std::vector<sw::LineTransfer>& lines) override;
     void begin(const char* what) override;
     void end() override;
     void mark(unsigned index, int value) override;
 
     void mmio(tlm::tlm_command command, uint32_t address, uint8_t* data);
     void memory(tlm::tlm_command command, uint32_t address, uint8_t* data, size_t bytes);
-    bool dmi_covers(uint32_t address, size_t bytes, tlm::tlm_command command);
+    sc_core::sc_time line_access(tlm::tlm_command command, uint32_t address, uint8_t* data, size_t bytes,
+                                 const sc_core::sc_time& at);
+    bool dmi_covers(uint32_t address, size_t bytes);
     void invalidate_dmi(sc_dt::uint64 start, sc_dt::uint64 end);
     sc_core::sc_time now() const;
 
@@ -75,9 +83,9 @@ private:
     Software software_;
     Tracer& tracer_;
     tlm_utils::tlm_quantumkeeper keeper_;
-    tlm::tlm_dmi dmi_;
-    double dmi_rate_ = 0;  // bytes per second along the DMI path
+    tlm::tlm_dmi dmi_;  // for map(): reading memory in place
     bool dmi_valid_ = false;
+    std::vector<uint8_t> line_;  // a fill's data (the software reads in place) or a write-back's
     bool finished_ = false;
     sc_core::sc_event done_;
     sc_core::sc_time finish_time_;

@@ -37,14 +37,18 @@ void CacheModel::invalidate() {
     last_valid_ = false;
 }
 
-CacheModel::Result CacheModel::access(uint32_t address, uint32_t bytes) {
+CacheModel::Result CacheModel::access(uint32_t address, uint32_t bytes, std::vector<uint32_t>* missed) {
     Result r;
     if (bytes == 0) return r;
     const uint32_t first = address >> line_shift_;
     const uint32_t last = uint32_t((uint64_t(address) + bytes - 1) >> line_shift_);
     for (uint32_t line = first;; ++line) {
-        if (touch(line)) ++r.hits;
-        else ++r.misses;
+        if (touch(line)) {
+            ++r.hits;
+        } else {
+            ++r.misses;
+            if (missed) missed->push_back(line << line_shift_);
+        }
         if (line == last) break;
     }
     hits_ += r.hits;

@@ -31,8 +31,9 @@ public:
         uint32_t hits = 0, misses = 0;  // lines touched
     };
     // A read of `bytes` bytes at `address`: every line it touches is one hit or one miss
-    // (a miss fills the line). bytes == 0 touches nothing.
-    Result access(uint32_t address, uint32_t bytes);
+    // (a miss fills the line). bytes == 0 touches nothing. The bus address of each line
+    // that missed is appended to `missed` when given.
+    Result access(uint32_t address, uint32_t bytes, std::vector<uint32_t>* missed = nullptr);
 
     // Drops every line (e.g. after DMA rewrote the buffers: the PPC440 L1 is not coherent
     // with DMA, so the driver invalidates before reading). Counters are kept.

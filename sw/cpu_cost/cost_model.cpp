@@ -83,6 +83,12 @@ void CostCounter::add(const OpCounts& ops, uint64_t times) {
     for (size_t k = 0; k < kOpKinds; ++k) counts_[k] += uint64_t(ops.n[k]) * times;
 }
 
+void CostCounter::stamp_misses(size_t from) {
+    const double now = exact_cycles();
+    for (size_t i = from; i < missed_.size(); ++i) misses_.push_back({missed_[i], now});
+    missed_.clear();
+}
+
 double CostCounter::exact_cycles() const {
     double cycles = double(cache_.misses()) * params_.miss_cycles;
     for (size_t k = 0; k < kOpKinds; ++k) cycles += double(counts_[k]) * unit_[k];
@@ -115,6 +121,7 @@ CostBreakdown CostCounter::breakdown() const {
 
 void CostCounter::reset() {
     counts_.fill(0);
+    misses_.clear();
     cache_.invalidate();
     cache_.reset_counters();
     taken_ = 0;

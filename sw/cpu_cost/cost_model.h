@@ -119,8 +119,24 @@ public:
     // and the lines it touches go through the cache model.
     void load(Op kind, uint32_t address, unsigned bytes) {
         add(kind);
-        cache_.access(address, bytes);
+        if (!log_misses_) {
+            cache_.access(address, bytes);
+            return;
+        }
+        const size_t before = missed_.size();
+        cache_.access(address, bytes, &missed_);
+        if (missed_.size() > before) stamp_misses(before);
     }
+
+    // With a log, every line fill is also recorded with the exact cycles counted when it was
+    // needed, so that a platform can time the fills itself (then give miss_cycles = 0).
+    struct Miss {
+        uint32_t line;  // bus address of the line
+        double cycle;   // exact_cycles() when it missed
+    };
+    void log_misses(bool on) { log_misses_ = on; }
+    const std::vector<Miss>& misses() const { return misses_; }
+    void clear_misses() { misses_.clear(); }
 
     uint64_t count(Op op) const { return counts_[static_cast<size_t>(op)]; }
     double unit_cycles(Op op) const { return unit_[static_cast<size_t>(op)]; }  // per operation
@@ -139,12 +155,16 @@ public:
 
 private:
     double mix_cycles(const OpCounts& ops) const;  // basic kinds only
+    void stamp_misses(size_t from);
 
     CostParams params_;
     CacheModel cache_;
     std::array<double, kOpKinds> unit_{};
     std::array<uint64_t, kOpKinds> counts_{};
     uint64_t taken_ = 0;
+    bool log_misses_ = false;
+    std::vector<uint32_t> missed_;  // lines of the current load that missed
+    std::vector<Miss> misses_;
 };
 
 }  // namespace surfvp::sw

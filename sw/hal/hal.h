@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "models/common/byte_order.h"
 
@@ -19,6 +20,14 @@ struct BusError : std::runtime_error {
     uint32_t address;
 };
 
+// One cache line the L1 moves while the software computes (sw/cpu_cost counts them): a fill
+// the CPU waits for, or a write-back it does not wait for.
+struct LineTransfer {
+    uint32_t address;   // the line's bus address
+    uint64_t at_cycle;  // cycles of work into the step when it is needed (non-decreasing)
+    bool write_back;
+};
+
 class Hal {
 public:
     virtual ~Hal() = default;
@@ -27,13 +36,15 @@ public:
     virtual uint32_t read32(uint32_t address) = 0;
     virtual void write32(uint32_t address, uint32_t value) = 0;
 
-    // Memory (DDR), bytes in address order (byte_order.h), timed as the memory serves them.
+    // Memory (DDR), bytes in address order (byte_order.h), timed as the memory serves them: a
+    // copy through the caches, line by line over the CPU's memory path.
     virtual void read(uint32_t address, void* data, size_t bytes) = 0;
     virtual void write(uint32_t address, const void* data, size_t bytes) = 0;
 
     // Memory for reading in place: a pointer to `bytes` bytes at `address`, valid until the
-    // next HAL call, without time. Software that reads through it counts its own accesses
-    // (sw/cpu_cost) and charges them with consume(). Throws BusError outside memory.
+    // next HAL call, without time. Software that reads through it counts its own accesses and
+    // their cache misses (sw/cpu_cost) and charges them with compute(). Throws BusError
+    // outside memory.
     virtual const uint8_t* map(uint32_t address, size_t bytes) = 0;
 
     // Blocks until the CPU's interrupt input is high.
@@ -47,6 +58,11 @@ public:
 
     // The software's own computation: `cycles` CPU clock cycles.
     virtual void consume(uint64_t cycles) = 0;
+    // Computation with the L1 traffic it causes: `cycles` cycles of work during which each of
+    // `lines` is filled (the CPU stalls until it is in) or written back (posted), at the work's
+    // cycle that needed it. Returns the CPU cycles it all took: the work plus the stalls, as
+    // the memory path serves the fills.
+    virtual uint64_t compute(uint64_t cycles, const std::vector<LineTransfer>& lines) = 0;
 
     // Marks a span of software work on the CPU's timeline (spans may nest).
     virtual void begin(const char* what) = 0;

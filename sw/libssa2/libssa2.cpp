@@ -106,6 +106,7 @@ void Driver::start(Task& task, int accelerator) {
     task.t_start = hal_.time_ps();
     const BufferSet& buffers = config_.buffers[size_t(task.buffer_set)];
     task.integral = buffers.integral;
+    task.records = buffers.records;
     if (task.determinants == 0) task.determinants = buffers.determinants;
     // The FHG first: it must be listening before the IIG streams.
     hal_.write32(a.fhg_base + f::DET_ADDR, task.determinants);
@@ -201,11 +202,10 @@ void Driver::describe_one(Task& task, const Callback& callback) {
     if (task.described == 0) hal_.mark(unsigned(config_.accelerators.size()), task.id);
     if (task.described < task.candidates.size()) {
         Span span(hal_, "describe");
-        const FrameInMemory frame{task.id, task.integral, task.determinants, task.width, task.height};
-        uint64_t cycles = 0;
-        auto keypoint = describer_.describe(hal_, task.candidates[task.described++], frame, cycles);
-        hal_.consume(cycles);
-        task.descriptor_cycles += cycles;
+        const FrameInMemory frame{task.id, task.integral, task.determinants, task.records, task.width, task.height};
+        Work work;
+        auto keypoint = describer_.describe(hal_, task.candidates[task.described++], frame, work);
+        task.descriptor_cycles += hal_.compute(work.cycles, work.lines);
         if (keypoint) keypoints_[size_t(task.id)].push_back(*keypoint);
     }
     if (task.described == task.candidates.size()) {

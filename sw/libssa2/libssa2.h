@@ -32,7 +32,14 @@ struct Accelerator {
 // One set of result buffers in memory; a task holds one from its start until it is reported.
 struct BufferSet {
     uint32_t integral, determinants;
+    uint32_t records;  // the ring the descriptors are written to for the application (kRecordRing records)
 };
+
+// A described keypoint as libSSA2 hands it over: x, y, scale, orientation, response,
+// Laplacian and 64 descriptor values, 32-bit each, in a per-task ring of kRecordRing records
+// (the application consumes them through the callback before the ring wraps).
+constexpr uint32_t kRecordBytes = (6 + 64) * 4;
+constexpr uint32_t kRecordRing = 256;
 
 struct DriverConfig {
     uint32_t intc_base = 0;
@@ -48,16 +55,25 @@ struct DriverConfig {
 struct FrameInMemory {
     int task;                         // which task: new buffers when it changes
     uint32_t integral, determinants;  // bus addresses
+    uint32_t records;                 // the task's descriptor ring
     int width, height;
 };
 
+// What describing one candidate cost: the CPU's work and the L1 traffic it caused (line
+// fills of the buffers it read, write-backs of the descriptor it wrote), which the driver
+// hands to Hal::compute.
+struct Work {
+    uint64_t cycles = 0;
+    std::vector<LineTransfer> lines;
+};
+
 // The CPU's part of phase 4 (sw/stage): one candidate word -> a keypoint or none. It reads
-// the frame through hal.map() and returns the CPU cycles its work cost.
+// the frame through hal.map() and says what its work cost.
 class Describer {
 public:
     virtual ~Describer() = default;
     virtual std::optional<surf::Keypoint> describe(Hal& hal, uint32_t candidate, const FrameInMemory& frame,
-                                                   uint64_t& cycles) = 0;
+                                                   Work& work) = 0;
 };
 
 enum class Phase { queued, hardware, descriptors, done, failed };
@@ -66,6 +82,7 @@ struct Task {
     int id = 0;
     uint32_t image = 0;
     uint32_t integral = 0, determinants = 0;  // from a free buffer set at start (a preset determinants: fault injection)
+    uint32_t records = 0;
     int width = 0, height = 0;
 
     Phase phase = Phase::queued;

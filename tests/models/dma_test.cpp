@@ -64,7 +64,7 @@ TEST(Dma, CopiesInBurstsAndRaisesItsInterrupt) {
     for (int i = 0; i < 1000; ++i) ddr[0x1000 + i] = uint8_t(i ^ 0x5A);
     sc_core::sc_start();
     EXPECT_EQ(0, std::memcmp(ddr + 0x1000, ddr + 0x8000, 1000));
-    EXPECT_EQ(bench.bus.master_stats()[0].transactions, 8u);
+    EXPECT_EQ(bench.bus.master_stats()[0].bursts, 8u);
     EXPECT_EQ(bench.dma.bytes_copied(), 1000u);
 }
 

@@ -13,10 +13,12 @@ using test::ZeroTarget;
 struct Bench {
     Tracer tracer;
     PlbBus bus;
-    ZeroTarget target{"target", 1 << 20};
+    ZeroTarget target;
     std::vector<std::unique_ptr<Initiator>> masters;
 
-    explicit Bench(const PlbBus::Params& p) : bus("bus", p, tracer) {
+    // Several benches may share one simulation under different names.
+    explicit Bench(const PlbBus::Params& p, const std::string& name = "bus")
+        : bus(name.c_str(), p, tracer), target((name + "_target").c_str(), 1 << 20) {
         bus.slaves.bind(target.socket);
         bus.map(0x1000'0000, 1 << 20, 0, "target");
     }
@@ -126,6 +128,60 @@ TEST(PlbArbitration, FixedPriorityServesTheFirstMasterFirst) {
     EXPECT_EQ(c.ends[1], (std::vector<sc_core::sc_time>{5 * D, 6 * D, 7 * D, 8 * D}));
     EXPECT_EQ(bench->bus.master_stats()[0].wait, sc_core::SC_ZERO_TIME);
     EXPECT_EQ(bench->bus.master_stats()[1].wait, 4 * D);
+}
+
+// A 4-burst write from m0 at t = 0 and a 1-burst write from m1 at 50 ns: m1 gets the bus at
+// m0's first burst boundary (round robin), and m0's last three bursts follow it. m0 issues
+// it as one transaction, or as one per burst.
+struct Interleaving {
+    explicit Interleaving(bool line_as_bursts, const std::string& name) : bench(PlbBus::Params{}, name) {
+        bench.add(name + "_m0", [this, line_as_bursts](Initiator& m) {
+            static uint8_t data[1024];
+            const unsigned step = line_as_bursts ? 256 : 1024;
+            for (unsigned done = 0; done < 1024; done += step)
+                m.transact(tlm::TLM_WRITE_COMMAND, 0x1000'0000 + done, data + done, step);
+            end[0] = m.end_time();
+            sc_core::wait(m.local);
+        });
+        bench.add(name + "_m1", [this](Initiator& m) {
+            static uint8_t data[256];
+            m.local = ns(50);
+            m.transact(tlm::TLM_WRITE_COMMAND, 0x1000'8000, data, sizeof data);
+            end[1] = m.end_time();
+            sc_core::wait(m.local);
+        });
+    }
+    const PlbBus::MasterStats& stats(int m) const { return bench.bus.master_stats()[size_t(m)]; }
+
+    Bench bench;
+    sc_core::sc_time end[2];
+};
+
+TEST(PlbArbitration, ALongTransactionYieldsTheBusAtBurstBoundaries) {
+    Interleaving r(false, "line");
+    sc_core::sc_start();
+    const sc_core::sc_time D = ns(200);
+    EXPECT_EQ(r.end[1], 2 * D);  // granted at D, when m0's first burst ends
+    EXPECT_EQ(r.end[0], 5 * D);
+    EXPECT_EQ(r.stats(1).wait, D - ns(50));
+    EXPECT_EQ(r.stats(0).wait, D);  // its second burst waited for m1's
+    EXPECT_EQ(r.stats(0).bursts, 4u);
+    EXPECT_EQ(r.bench.bus.write_stats().busy, 5 * D);
+}
+
+// Whether a master issues one transaction per line or per burst is a simulation setting: the
+// bus gives the same figures.
+TEST(PlbArbitration, OneTransactionPerLineOrPerBurstGivesTheSameFigures) {
+    Interleaving line(false, "line"), bursts(true, "bursts");
+    sc_core::sc_start();
+    for (int m = 0; m < 2; ++m) {
+        EXPECT_EQ(line.end[m], bursts.end[m]) << m;
+        EXPECT_EQ(line.stats(m).wait, bursts.stats(m).wait) << m;
+        EXPECT_EQ(line.stats(m).busy, bursts.stats(m).busy) << m;
+        EXPECT_EQ(line.stats(m).bursts, bursts.stats(m).bursts) << m;
+    }
+    EXPECT_EQ(line.bench.bus.write_stats().busy, bursts.bench.bus.write_stats().busy);
+    EXPECT_LT(line.bench.bus.tlm_transactions(), bursts.bench.bus.tlm_transactions());
 }
 
 TEST(PlbBus, ReadAndWriteDataPathsDoNotContend) {

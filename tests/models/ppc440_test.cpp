@@ -1,6 +1,7 @@
 // The CPU stub: byte order through the HAL, MMIO and memory timing, interrupts, errors.
 #include "harness.h"
-#include "models/common/dmi_rate.h"
+#include "models/common/clock.h"
+#include "models/mci/mci_link.h"
 #include "models/memory/ddr_memory.h"
 #include "models/plb/plb_bus.h"
 #include "models/ppc440/ppc440.h"
@@ -12,23 +13,27 @@ using test::ZeroTarget;
 
 constexpr uint32_t kRegs = 0x8000'0000;
 
-// CPU -> PLB1 -> {DDR at 0, a register-like target at kRegs}.
+// CPU -> PLB1 -> a register-like target at kRegs; CPU memory -> MCI link -> DDR.
 struct Bench {
     Tracer tracer;
     DdrMemory memory{"memory", DdrMemory::Params{}};
     PlbBus bus{"bus", PlbBus::Params{}, tracer};
+    MciLink mci{"mci", MciLink::Params{}};
     ZeroTarget regs{"regs", 0x100};
     sc_core::sc_signal<bool> irq;
     Ppc440 cpu;
 
     explicit Bench(Ppc440::Software software) : cpu("cpu", Ppc440::Params{}, std::move(software), tracer) {
         bus.connect_master(cpu.bus, "cpu");
-        bus.slaves.bind(memory.ports);
         bus.slaves.bind(regs.socket);
-        bus.map(0, 256u << 20, 0, "ddr");
-        bus.map(kRegs, 0x100, 1, "regs");
+        bus.map(kRegs, 0x100, 0, "regs");
+        cpu.mem.bind(mci.cpu);
+        mci.memory.bind(memory.ports);
         cpu.irq.bind(irq);
     }
+    // One line over the MCI link whose DDR time is `ddr`.
+    sc_core::sc_time line(uint64_t bytes, const sc_core::sc_time& ddr) const { return MciLink::access_time(mci.params(), bytes, ddr); }
+    sc_core::sc_time transfer(uint64_t bytes) const { return transfer_time(bytes, memory.bytes_per_second()); }
     void poke(uint32_t address, const std::vector<uint8_t>& bytes) {
         std::copy(bytes.begin(), bytes.end(), memory.backdoor(address, bytes.size()));
     }
@@ -70,22 +75,39 @@ TEST(ByteOrder, RegisterWordsTravelMostSignificantByteFirst) {
 }
 
 TEST(Ppc440, TimeIsMmioPlusMemoryPlusConsumedCycles) {
-    Bench* b = nullptr;
     Bench bench([&](sw::Hal& hal) {
         hal.write32(kRegs, 1);  // one beat: (3 + 1 + 1) x 10 ns
         hal.consume(400);       // 400 cycles at 400 MHz: 1 us
         std::vector<uint8_t> data(1000);
-        hal.write(0x1000, data.data(), data.size());  // DMI: bus + DDR latency, slower rate
-        (void)b;
+        hal.write(0x1000, data.data(), data.size());  // 31 whole lines and one of 8 B, one after the other
     });
-    b = &bench;
     sc_core::sc_start();
-    const sc_core::sc_time dmi = ns(40) + bench.memory.latency() +
-                                 transfer_time(1000, std::min(bench.memory.bytes_per_second(), 16 * 100e6));
-    EXPECT_EQ(bench.cpu.finish_time(), ns(50) + ns(1000) + dmi);
+    // A posted write line: the link's overhead and beats, or the DRAM's transfer if longer.
+    const sc_core::sc_time copy = 31 * bench.line(32, bench.transfer(32)) + bench.line(8, bench.transfer(8));
+    EXPECT_EQ(bench.cpu.finish_time(), ns(50) + ns(1000) + copy);
     EXPECT_EQ(bench.cpu.stats().cycles_consumed, 400u);
     EXPECT_EQ(bench.cpu.stats().mmio_writes, 1u);
     EXPECT_EQ(bench.cpu.stats().bytes_written, 1000u);
+    EXPECT_EQ(bench.mci.stats().writes, 32u);
+}
+
+// A step of work with its L1 traffic: every fill stalls the CPU for the line's way to DDR
+// and back; a write-back does not.
+TEST(Ppc440, ComputeStallsForEachFillAndPostsWriteBacks) {
+    uint64_t spent = 0;
+    Bench bench([&](sw::Hal& hal) {
+        spent = hal.compute(1000, {{0x2000, 100, false}, {0x2020, 100, false}, {0x3000, 900, true}, {0x2040, 950, false}});
+    });
+    sc_core::sc_start();
+    const sc_core::sc_time fill = bench.line(32, bench.memory.access_time(32));  // 20 ns + 125 ns + 12.5 ns
+    EXPECT_EQ(fill, ns(157.5));
+    EXPECT_EQ(bench.cpu.finish_time(), ns(2500) + 3 * fill);  // 1000 cycles at 400 MHz, three stalls
+    EXPECT_EQ(spent, 1000u + 3 * 63);                        // 157.5 ns = 63 cycles
+    EXPECT_EQ(bench.cpu.stats().fills, 3u);
+    EXPECT_EQ(bench.cpu.stats().write_backs, 1u);
+    EXPECT_EQ(bench.cpu.stats().fill_stall, 3 * fill);
+    EXPECT_EQ(bench.cpu.stats().bytes_read, 96u);
+    EXPECT_EQ(bench.cpu.stats().bytes_written, 32u);
 }
 
 TEST(Ppc440, WaitForIrqSleepsUntilTheLineRises) {

@@ -1,0 +1,55 @@
+#include "mci_link.h"
+
+#include <algorithm>
+#include <fmt/format.h>
+#include <stdexcept>
+
+#include "models/common/clock.h"
+
+namespace surfvp {
+using sc_core::sc_time;
+
+MciLink::MciLink(const sc_core::sc_module_name& name, const Params& params)
+    : sc_module(name), cpu("cpu"), memory("memory"), params_(params) {
+    if (params.width_bits == 0 || params.width_bits % 8)
+        throw std::invalid_argument(fmt::format("{}: width must be a whole number of bytes", basename()));
+    cpu.register_b_transport(this, &MciLink::b_transport);
+    cpu.register_get_direct_mem_ptr(this, &MciLink::get_direct_mem_ptr);
+    cpu.register_transport_dbg(this, &MciLink::transport_dbg);
+}
+
+sc_time MciLink::access_time(const Params& p, uint64_t bytes, const sc_time& memory_time) {
+    const uint64_t width = p.width_bits / 8;
+    const double beats = double(std::max<uint64_t>(1, (bytes + width - 1) / width));
+    return cycles(p.clock, p.latency_cycles) + std::max(cycles(p.clock, beats), memory_time);
+}
+
+void MciLink::b_transport(tlm::tlm_generic_payload& tx, sc_time& delay) {
+    const sc_time now = sc_core::sc_time_stamp();
+    const sc_time request = now + delay;
+    const sc_time start = std::max(request, free_at_);
+    const sc_time overhead = cycles(params_.clock, params_.latency_cycles);
+    sc_time memory_time = start + overhead - now;  // the DDR sees the request after the address phase
+    memory->b_transport(tx, memory_time);
+    memory_time -= start + overhead - now;
+    const sc_time end = start + access_time(params_, tx.get_data_length(), memory_time);
+    free_at_ = end;
+    stats_.wait += start - request;
+    stats_.busy += end - start;
+    if (tx.is_write()) {
+        ++stats_.writes;
+        stats_.bytes_written += tx.get_data_length();
+    } else {
+        ++stats_.reads;
+        stats_.bytes_read += tx.get_data_length();
+    }
+    delay = end - now;
+}
+
+bool MciLink::get_direct_mem_ptr(tlm::tlm_generic_payload& tx, tlm::tlm_dmi& dmi) {
+    return memory->get_direct_mem_ptr(tx, dmi);
+}
+
+unsigned MciLink::transport_dbg(tlm::tlm_generic_payload& tx) { return memory->transport_dbg(tx); }
+
+}  // namespace surfvp

@@ -1,0 +1,27 @@
+#pragma once
+// The busy intervals of one shared resource (the DRAM behind the memory controller), in
+// picoseconds. reserve() places a piece of work at the earliest start, at or after its
+// request, where it fits between the intervals already reserved. Requests normally arrive in
+// time order (the buses synchronise), and then this is first-come first-served; a master
+// that hands over work ahead of time (the CPU's batch of line fills) takes the gaps the
+// others have left, and whoever asks later for a time it has taken waits behind it. Plain
+// C++.
+#include <cstddef>
+#include <cstdint>
+#include <map>
+
+namespace surfvp {
+
+class BusyTimeline {
+public:
+    // Reserves `length` ps at the earliest start >= `request`; returns the start.
+    uint64_t reserve(uint64_t request, uint64_t length);
+    // Forgets intervals that end at or before `time` (no request can come before it).
+    void forget_before(uint64_t time);
+    size_t intervals() const { return busy_.size(); }
+
+private:
+    std::map<uint64_t, uint64_t> busy_;  // start -> end; disjoint, never touching
+};
+
+}  // namespace surfvp
