@@ -41,8 +41,7 @@ sw::CostParams cost_params(const Config& c) {
 // keypoint's record written back to the task's ring.
 class StageDescriber : public sw::ssa2::Describer {
 public:
-    StageDescriber(const sw::StageParams& params, unsigned det_frac_bits, unsigned line_bytes)
-        : stage_(params), det_frac_bits_(det_frac_bits), line_bytes_(line_bytes) {
+    StageDescriber(const sw::StageParams& params, unsigned line_bytes) : stage_(params), line_bytes_(line_bytes) {
         stage_.cost().log_misses(true);
     }
 
@@ -54,10 +53,10 @@ public:
             records_ = 0;
         }
         const size_t integral_bytes = size_t(frame.width) * frame.height * 4;
-        const size_t det_bytes = size_t((frame.width + 1) / 2) * ((frame.height + 1) / 2) * fhg_regs::kRecordBytes;
+        const size_t det_bytes = size_t((frame.width + 1) / 2) * ((frame.height + 1) / 2) * fhg_regs::record_bytes(frame.det_bytes);
         const sw::FrameBuffers buffers{hal.map(frame.integral, integral_bytes), frame.integral, size_t(frame.width) * 4,
                                        hal.map(frame.determinants, det_bytes), frame.determinants, frame.width,
-                                       frame.height, det_frac_bits_};
+                                       frame.height, frame.det_frac_bits, frame.det_bytes};
         const double start = stage_.cost().exact_cycles();
         auto keypoint = stage_.process(word, buffers);
         work.cycles = stage_.cost().take_cycles();
@@ -80,7 +79,7 @@ private:
     }
 
     sw::SoftwareStage stage_;
-    unsigned det_frac_bits_, line_bytes_;
+    unsigned line_bytes_;
     int task_ = -1;
     uint32_t records_ = 0;
 };
@@ -118,8 +117,7 @@ std::unique_ptr<sw::ssa2::Describer> make_describer(const Config& config, float 
     params.threshold = threshold;
     params.cost = cost_params(config);
     try {
-        return std::make_unique<StageDescriber>(params, config.bits("fhg.det_frac_bits"),
-                                                unsigned(config.bytes("cpu.cache_line").n));
+        return std::make_unique<StageDescriber>(params, unsigned(config.bytes("cpu.cache_line").n));
     } catch (const std::invalid_argument& e) {
         throw ConfigError(e.what());
     }

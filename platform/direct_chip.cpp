@@ -148,7 +148,7 @@ bool DirectChip::access_fhg(Pair& p, uint32_t offset, uint32_t& value, bool writ
         case f::FIFO_THRESHOLD: field = &r.fifo_threshold; break;
         case f::CTRL: field = &r.ctrl; break;
         case f::STATUS: case f::ERROR_CODE: case f::FIFO_DATA: case f::FIFO_LEVEL: case f::OVERFLOW_COUNT:
-        case f::CANDIDATES: case f::DET_FRAC_BITS: break;
+        case f::CANDIDATES: case f::DET_FRAC_BITS: case f::DET_BYTES: break;
         default: return false;
     }
     if (!write) {
@@ -161,6 +161,7 @@ bool DirectChip::access_fhg(Pair& p, uint32_t offset, uint32_t& value, bool writ
             case f::OVERFLOW_COUNT: value = 0; break;
             case f::CANDIDATES: value = r.candidates; break;
             case f::DET_FRAC_BITS: value = core_.precision().det_frac_bits; break;
+            case f::DET_BYTES: value = f::det_bytes_for(core_.precision().det_bits); break;
             case f::FIFO_DATA:
                 value = r.fifo.empty() ? 0 : r.fifo.front();
                 if (!r.fifo.empty()) r.fifo.pop_front();
@@ -230,14 +231,15 @@ void DirectChip::run_frame(Pair& p) {
     for (uint32_t by = 0; by < blocks_y; ++by) {
         core_.block_row(view, int(by), records.data());
         finder.block_row(records.data(), int(blocks_x), int(by), found);
-        const uint64_t at = h.det + uint64_t(by) * blocks_x * f::kRecordBytes;
-        if (!in_memory(at, records.size() * 4)) {
+        const uint32_t n = f::det_bytes_for(core_.precision().det_bits);
+        const uint64_t at = h.det + uint64_t(by) * blocks_x * f::record_bytes(n);
+        if (!in_memory(at, records.size() * n)) {
             h.running = false;
             h.error = f::ERR_WRITE;
             h.status = f::STATUS_ERROR;
             return;
         }
-        for (size_t k = 0; k < records.size(); ++k) store_be32(memory_.get() + at + 4 * k, uint32_t(records[k]));
+        for (size_t k = 0; k < records.size(); ++k) f::store_det(memory_.get() + at + n * k, records[k], n);
     }
     for (const fhg::Candidate& c : found) h.fifo.push_back(fhg::pack_candidate(c));
     h.candidates = uint32_t(found.size());

@@ -36,6 +36,14 @@ void add_plb(std::vector<ParamSpec>& t, const std::string& bus, const std::strin
                  "[A] one address cycle; with arbitration, 4 cycles of overhead per burst"});
 }
 
+// A register slave's answer time on PLB1 (each block's own parameter).
+void add_register_latency(std::vector<ParamSpec>& t, const std::string& block, const std::string& what) {
+    t.push_back({block + ".register_latency", ParamKind::cycles, "2 cycles", 0, 64, {},
+                 what + ": PLB1 cycles from the address phase to the register's data",
+                 "[A] an XPS PLBv46 slave (IPIF) decodes the address and registers its data: a few cycles (DS561 "
+                 "timing not retrieved)"});
+}
+
 // The software stage's cost model (sw/cpu_cost/README.md has the reasoning of each).
 void add_cpu_cost(std::vector<ParamSpec>& t) {
     t.push_back({"cpu.dcache_size", ParamKind::bytes, "32 KiB", 1024, 1 << 20, {}, "L1 data cache",
@@ -81,6 +89,7 @@ void add_iig(std::vector<ParamSpec>& t) {
     t.push_back({"iig.line_buffers", ParamKind::count, "2", 1, 64, {},
                  "Lines queued between the IIG's fetch, compute, write and send units",
                  "[A] double buffering: one line in work, one waiting"});
+    add_register_latency(t, "iig", "SSA IIG registers");
     t.push_back({"iig.max_width", ParamKind::count, "1024", 1, 4096, {}, "Widest image the IIG accepts",
                  "[S] paper §III: image size limit 1024 x 1024"});
     t.push_back({"iig.max_height", ParamKind::count, "1024", 1, 4096, {}, "Tallest image the IIG accepts",
@@ -133,6 +142,7 @@ void add_fhg(std::vector<ParamSpec>& t) {
     t.push_back({"fhg.det_row_buffers", ParamKind::count, "2", 1, 64, {}, "Block rows of determinants waiting for the DMA writer",
                  "[A] double buffering"});
     t.push_back({"fhg.burst", ParamKind::beats, "16 beats", 1, 16, {}, "FHG DMA burst length on PLB2", "[A] the longest PLB burst"});
+    add_register_latency(t, "fhg", "SSA FHG registers");
     t.push_back({"fhg.max_width", ParamKind::count, "1024", 1, 4096, {}, "Widest image the FHG accepts",
                  "[S] paper §III: 1024 x 1024, BRAM sized by the width (MVA 2014)"});
     t.push_back({"fhg.max_height", ParamKind::count, "1024", 1, 4096, {}, "Tallest image the FHG accepts",
@@ -248,9 +258,11 @@ std::vector<ParamSpec> make_table() {
 
     t.push_back({"intc.inputs", ParamKind::count, "12", 1, 32, {}, "Interrupt inputs of the XPS INTC",
                  "[S] ML507 DTS: xps_intc with 12 inputs"});
+    add_register_latency(t, "intc", "XPS INTC registers");
 
     t.push_back({"dma.burst", ParamKind::beats, "16 beats", 1, 16, {}, "Burst length of the test DMA on PLB2",
                  "[A] the longest PLB burst"});
+    add_register_latency(t, "dma", "Test DMA registers");
 
     add_iig(t);
     t.push_back({"pixelbus.width", ParamKind::bits, "32 bit", 8, 128, {}, "PixelBus width: integral values per IIG cycle x 32",

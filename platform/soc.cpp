@@ -1,5 +1,6 @@
 #include "soc.h"
 
+#include <cmath>
 #include <fmt/format.h>
 
 #include "address_map.h"
@@ -40,6 +41,11 @@ MciLink::Params mci_params(const Config& c) {
 
 bool cpu_memory_on_plb1(const Config& c) { return c.choice("cpu.memory_path") == "plb1"; }
 
+// A register slave's answer on PLB1: its `block.register_latency` cycles of the bus clock.
+Duration register_latency(const Config& c, const std::string& block) {
+    return Duration{uint64_t(std::llround(double(c.cycles(block + ".register_latency")) * c.frequency("plb1.clock").period_ps()))};
+}
+
 // One TLM transaction per line (fast) or per burst (finest contention).
 uint64_t dma_transaction_bytes(const Config& c, unsigned burst_beats) {
     return c.choice("run.dma_granularity") == "burst" ? uint64_t(burst_beats) * c.bits("plb2.width") / 8 : 0;
@@ -66,6 +72,7 @@ Iig::Params iig_params(const Config& c) {
     p.max_width = unsigned(c.count("iig.max_width"));
     p.max_height = unsigned(c.count("iig.max_height"));
     p.dma_transaction_bytes = dma_transaction_bytes(c, p.burst_beats);
+    p.register_latency = register_latency(c, "iig");
     return p;
 }
 
@@ -100,6 +107,7 @@ Fhg::Params fhg_params(const Config& c) {
     p.max_width = unsigned(c.count("fhg.max_width"));
     p.max_height = unsigned(c.count("fhg.max_height"));
     p.dma_transaction_bytes = dma_transaction_bytes(c, p.burst_beats);
+    p.register_latency = register_latency(c, "fhg");
     return p;
 }
 
@@ -175,8 +183,9 @@ void Soc::build(const Config& c, Tracer& tracer) {
     plb1_ = std::make_unique<PlbBus>("plb1", plb_params(c, "plb1"), tracer);
     plb2_ = std::make_unique<PlbBus>("plb2", plb_params(c, "plb2"), tracer);
     mci_ = std::make_unique<MciLink>("mci", mci_params(c));
-    intc_ = std::make_unique<Intc>("intc", Intc::Params{static_cast<unsigned>(c.count("intc.inputs"))}, tracer);
-    dma_ = std::make_unique<Dma>("dma", Dma::Params{c.beats("dma.burst"), c.bits("plb2.width")}, tracer);
+    intc_ = std::make_unique<Intc>("intc", Intc::Params{unsigned(c.count("intc.inputs")), register_latency(c, "intc")}, tracer);
+    dma_ = std::make_unique<Dma>("dma", Dma::Params{c.beats("dma.burst"), c.bits("plb2.width"), register_latency(c, "dma")},
+                                 tracer);
     for (unsigned k = 0; k < pairs; ++k) {
         const std::string suffix = pairs > 1 ? std::to_string(k) : "";
         iigs_.push_back(std::make_unique<Iig>(("iig" + suffix).c_str(), iig_params(c), tracer));

@@ -170,7 +170,8 @@ private:
     void layout(const Config& c) {
         frame_bytes_ = round_up(uint64_t(width_) * height_);
         integral_bytes_ = round_up(uint64_t(width_) * height_ * 4);
-        det_bytes_ = round_up(uint64_t((width_ + 1) / 2) * ((height_ + 1) / 2) * fhg_regs::kRecordBytes);
+        det_bytes_ = round_up(uint64_t((width_ + 1) / 2) * ((height_ + 1) / 2) *
+                              fhg_regs::record_bytes(fhg_regs::det_bytes_for(c.bits("fhg.det_bits"))));
         slot_bytes_ = integral_bytes_ + det_bytes_ + round_up(uint64_t(sw::ssa2::kRecordRing) * sw::ssa2::kRecordBytes);
         frames_base_ = 0x0010'0000;
         slots_base_ = frames_base_ + frames_.size() * frame_bytes_;

@@ -7,6 +7,7 @@
 #include <tlm>
 
 #include "byte_order.h"
+#include "units.h"
 
 namespace surfvp {
 
@@ -37,6 +38,15 @@ void answer_register_access(tlm::tlm_generic_payload& tx, Access&& access) {
         ok = true;  // TLM_IGNORE_COMMAND
     }
     tx.set_response_status(ok ? tlm::TLM_OK_RESPONSE : tlm::TLM_ADDRESS_ERROR_RESPONSE);
+}
+
+// The same over a bus: the slave takes `latency` to answer (its interface's decode and
+// registered data), which the bus sees as the slave's time.
+template <typename Access>
+void answer_register_access(tlm::tlm_generic_payload& tx, sc_core::sc_time& delay, const Duration& latency,
+                            Access&& access) {
+    answer_register_access(tx, std::forward<Access>(access));
+    delay += sc_core::sc_time(double(latency.ps), sc_core::SC_PS);
 }
 
 }  // namespace surfvp

@@ -54,8 +54,8 @@ bool Dma::access(uint32_t offset, uint32_t& value, bool write) {
     return true;
 }
 
-void Dma::b_transport(tlm::tlm_generic_payload& tx, sc_core::sc_time&) {
-    answer_register_access(tx, [this](uint32_t offset, uint32_t& value, bool write) {
+void Dma::b_transport(tlm::tlm_generic_payload& tx, sc_core::sc_time& delay) {
+    answer_register_access(tx, delay, params_.register_latency, [this](uint32_t offset, uint32_t& value, bool write) {
         return access(offset, value, write);
     });
 }

@@ -13,6 +13,7 @@
 
 #include "dma_engine.h"
 #include "models/common/tracer.h"
+#include "models/common/units.h"
 
 namespace surfvp {
 
@@ -21,6 +22,7 @@ public:
     struct Params {
         unsigned burst_beats = 16;
         unsigned bus_width_bits = 128;  // of the bus the MPLB port is on
+        Duration register_latency{};    // a register access, as PLB1 sees it
     };
 
     tlm_utils::simple_target_socket<Dma> regs;     // SPLB on PLB1

@@ -62,6 +62,8 @@ const char* Fhg::block_limit(const fhg::Sequence& sequence, const Params& params
     return sequence.interval >= hessian_cycles(params) ? "sequence" : "HessianCalc";
 }
 
+uint32_t Fhg::det_bytes() const { return r::det_bytes_for(params_.precision.det_bits); }
+
 bool Fhg::access(uint32_t offset, uint32_t& value, bool write) {
     uint32_t* reg = nullptr;
     switch (offset) {
@@ -72,7 +74,7 @@ bool Fhg::access(uint32_t offset, uint32_t& value, bool write) {
         case r::THRESHOLD: reg = &threshold_; break;
         case r::FIFO_THRESHOLD: reg = &fifo_threshold_; break;
         case r::STATUS: case r::ERROR_CODE: case r::FIFO_DATA: case r::FIFO_LEVEL:
-        case r::OVERFLOW_COUNT: case r::CANDIDATES: case r::DET_FRAC_BITS: break;
+        case r::OVERFLOW_COUNT: case r::CANDIDATES: case r::DET_FRAC_BITS: case r::DET_BYTES: break;
         default: return false;
     }
     if (!write) {
@@ -86,6 +88,7 @@ bool Fhg::access(uint32_t offset, uint32_t& value, bool write) {
             case r::OVERFLOW_COUNT: value = overflow_count_; break;
             case r::CANDIDATES: value = candidate_count_; break;
             case r::DET_FRAC_BITS: value = params_.precision.det_frac_bits; break;
+            case r::DET_BYTES: value = det_bytes(); break;
             default: value = *reg;
         }
         return true;
@@ -106,8 +109,8 @@ bool Fhg::access(uint32_t offset, uint32_t& value, bool write) {
     return true;
 }
 
-void Fhg::b_transport(tlm::tlm_generic_payload& tx, sc_time&) {
-    answer_register_access(tx, [this](uint32_t offset, uint32_t& value, bool write) {
+void Fhg::b_transport(tlm::tlm_generic_payload& tx, sc_time& delay) {
+    answer_register_access(tx, delay, params_.register_latency, [this](uint32_t offset, uint32_t& value, bool write) {
         return access(offset, value, write);
     });
 }
@@ -207,9 +210,10 @@ void Fhg::writer_thread() {
         det_rows_.read(by);  // read(T&): the returning read() trips -Wmaybe-uninitialized in sc_fifo.h
         if (!frame_.failed) {
             const std::vector<int32_t>& records = slots_[size_t(by) % slots_.size()];
-            bytes.resize(records.size() * 4);
-            for (size_t i = 0; i < records.size(); ++i) store_be32(bytes.data() + 4 * i, uint32_t(records[i]));
-            const uint64_t at = frame_.det_addr + uint64_t(by) * frame_.blocks_x * r::kRecordBytes;
+            const uint32_t n = det_bytes();
+            bytes.resize(records.size() * n);
+            for (size_t i = 0; i < records.size(); ++i) r::store_det(bytes.data() + n * i, records[i], n);
+            const uint64_t at = frame_.det_addr + uint64_t(by) * frame_.blocks_x * r::record_bytes(n);
             if (!dma.write(at, bytes.data(), bytes.size()).ok) fail(r::ERR_WRITE);
         }
         ++frame_.rows_written;

@@ -46,6 +46,7 @@ public:
         unsigned det_row_buffers = 2;  // block rows of determinants waiting for the writer
         unsigned max_width = 1024, max_height = 1024;
         uint64_t dma_transaction_bytes = 0;  // bytes per TLM transaction: 0 = a whole line (DmaEngine)
+        Duration register_latency{};         // a register access, as PLB1 sees it
     };
 
     struct Stats {
@@ -72,6 +73,7 @@ public:
     static int block_cycles(const fhg::Sequence& sequence, const Params& params);
     static const char* block_limit(const fhg::Sequence& sequence, const Params& params);
     const fhg::HessianCore& core() const { return core_; }
+    uint32_t det_bytes() const;  // bytes of one determinant in memory (fhg_regs.h)
     const Stats& stats() const { return stats_; }
     uint64_t errors() const { return status_.errors; }
     const Params& params() const { return params_; }

@@ -3,6 +3,8 @@
 // and libSSA2. 32-bit registers, big-endian on the bus (models/common/byte_order.h).
 #include <cstdint>
 
+#include "models/common/byte_order.h"
+
 namespace surfvp::fhg_regs {
 
 constexpr uint32_t CTRL = 0x00;            // START, IRQ_EN_DONE, IRQ_EN_FIFO, ABORT
@@ -18,6 +20,7 @@ constexpr uint32_t FIFO_THRESHOLD = 0x24;  // FIFO_IRQ while FIFO_LEVEL >= this 
 constexpr uint32_t OVERFLOW_COUNT = 0x28;  // candidates dropped on a full FIFO this frame (read only)
 constexpr uint32_t CANDIDATES = 0x2C;      // candidates marked this frame (read only)
 constexpr uint32_t DET_FRAC_BITS = 0x30;   // fraction bits of determinants and THRESHOLD (read only)
+constexpr uint32_t DET_BYTES = 0x34;       // bytes of one determinant in the buffer: 1, 2 or 4 (read only)
 
 constexpr uint32_t CTRL_START = 1u << 0;
 constexpr uint32_t CTRL_IRQ_EN_DONE = 1u << 1;
@@ -39,14 +42,29 @@ enum ErrorCode : uint32_t {
     ERR_PIXELBUS = 5,    // a PixelBus line of another width than WIDTH
 };
 
-// The determinant buffer: one 72-byte record per 2x2 block, blocks in raster order
-// (record of block (bx, by) at DET_ADDR + (by x ceil(WIDTH/2) + bx) x 72). A record is 18
-// signed 32-bit big-endian determinants, index k:
+// The determinant buffer: one record of 18 determinants per 2x2 block, blocks in raster order
+// (record of block (bx, by) at DET_ADDR + (by x ceil(WIDTH/2) + bx) x record_bytes). Each
+// determinant is a signed big-endian word of DET_BYTES bytes: the smallest of 1, 2 or 4 that
+// holds the FHG's det_bits. Index k within a record:
 //   k = 4 i + 2 py + px  octave 1, size 9, 15, 21, 27 (i = 0..3) at pixel (2 bx + px, 2 by + py)
 //   k = 16, 17           octave 2, size 39, 51 at pixel (2 bx, 2 by)
 // (octave 2's sizes 15 and 27 are k = 4 and k = 12). A determinant whose filter does not
 // fit inside the image is 0.
-constexpr uint32_t kRecordBytes = 18 * 4;
+constexpr uint32_t kDeterminantsPerRecord = 18;
+constexpr uint32_t det_bytes_for(unsigned det_bits) { return det_bits <= 8 ? 1 : det_bits <= 16 ? 2 : 4; }
+constexpr uint32_t record_bytes(uint32_t det_bytes) { return kDeterminantsPerRecord * det_bytes; }
+
+inline void store_det(uint8_t* p, int32_t value, uint32_t det_bytes) {
+    if (det_bytes == 4) store_be32(p, uint32_t(value));
+    else if (det_bytes == 2) store_be16(p, uint16_t(value));
+    else p[0] = uint8_t(value);
+}
+
+inline int32_t load_det(const uint8_t* p, uint32_t det_bytes) {
+    if (det_bytes == 4) return int32_t(load_be32(p));
+    if (det_bytes == 2) return int16_t(load_be16(p));
+    return int8_t(p[0]);
+}
 
 // Maxima FIFO word: [31] valid, [27] octave 2, [26:24] size index into 9, 15, 21, 27, 39, 51,
 // [23:12] y, [11:0] x (pixel of the candidate).

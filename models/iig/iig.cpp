@@ -76,8 +76,8 @@ bool Iig::access(uint32_t offset, uint32_t& value, bool write) {
     return true;
 }
 
-void Iig::b_transport(tlm::tlm_generic_payload& tx, sc_time&) {
-    answer_register_access(tx, [this](uint32_t offset, uint32_t& value, bool write) {
+void Iig::b_transport(tlm::tlm_generic_payload& tx, sc_time& delay) {
+    answer_register_access(tx, delay, params_.register_latency, [this](uint32_t offset, uint32_t& value, bool write) {
         return access(offset, value, write);
     });
 }

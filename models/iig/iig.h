@@ -36,6 +36,7 @@ public:
         unsigned line_buffers = 2;
         unsigned max_width = 1024, max_height = 1024;
         uint64_t dma_transaction_bytes = 0;  // bytes per TLM transaction: 0 = a whole line (DmaEngine)
+        Duration register_latency{};         // a register access, as PLB1 sees it
     };
 
     struct Stats {

@@ -10,6 +10,7 @@
 #include <tlm_utils/simple_target_socket.h>
 
 #include "models/common/tracer.h"
+#include "models/common/units.h"
 
 namespace surfvp {
 
@@ -17,6 +18,7 @@ class Intc : public sc_core::sc_module {
 public:
     struct Params {
         unsigned inputs = 12;
+        Duration register_latency{};  // a register access, as PLB1 sees it
     };
 
     tlm_utils::simple_target_socket<Intc> regs;  // SPLB on PLB1

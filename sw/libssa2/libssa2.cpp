@@ -50,6 +50,9 @@ void Driver::enable_interrupts() {
     uint32_t mask = 0;
     for (const Accelerator& a : config_.accelerators) mask |= 1u << a.iig_irq | 1u << a.fhg_irq;
     hal_.write32(config_.intc_base + intc::IER, mask);
+    formats_.clear();
+    for (const Accelerator& a : config_.accelerators)
+        formats_.push_back({hal_.read32(a.fhg_base + f::DET_BYTES), hal_.read32(a.fhg_base + f::DET_FRAC_BITS)});
     hal_.write32(config_.intc_base + intc::MER, intc::MER_ME | intc::MER_HIE);
 }
 
@@ -101,6 +104,7 @@ void Driver::start(Task& task, int accelerator) {
     const Accelerator& a = config_.accelerators[accelerator];
     task.phase = Phase::hardware;
     task.accelerator = accelerator;
+    task.described_on = accelerator;
     running_[accelerator] = task.id;
     hal_.mark(unsigned(accelerator), task.id);
     task.t_start = hal_.time_ps();
@@ -202,7 +206,9 @@ void Driver::describe_one(Task& task, const Callback& callback) {
     if (task.described == 0) hal_.mark(unsigned(config_.accelerators.size()), task.id);
     if (task.described < task.candidates.size()) {
         Span span(hal_, "describe");
-        const FrameInMemory frame{task.id, task.integral, task.determinants, task.records, task.width, task.height};
+        const Format& format = formats_[size_t(task.described_on)];
+        const FrameInMemory frame{task.id,    task.integral,    task.determinants,       task.records,
+                                  task.width, task.height,      format.det_bytes,        format.det_frac_bits};
         Work work;
         auto keypoint = describer_.describe(hal_, task.candidates[task.described++], frame, work);
         task.descriptor_cycles += hal_.compute(work.cycles, work.lines);

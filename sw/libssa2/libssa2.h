@@ -57,6 +57,7 @@ struct FrameInMemory {
     uint32_t integral, determinants;  // bus addresses
     uint32_t records;                 // the task's descriptor ring
     int width, height;
+    uint32_t det_bytes, det_frac_bits;  // the FHG's determinant format (its DET_BYTES, DET_FRAC_BITS)
 };
 
 // What describing one candidate cost: the CPU's work and the L1 traffic it caused (line
@@ -86,7 +87,8 @@ struct Task {
     int width = 0, height = 0;
 
     Phase phase = Phase::queued;
-    int accelerator = -1;
+    int accelerator = -1;   // the pair working on it, -1 once it is done with it
+    int described_on = -1;  // the pair whose results it holds (its determinant format)
     int buffer_set = -1;
     std::string error;                 // why it failed
     std::vector<uint32_t> candidates;  // maxima FIFO words, in FIFO order
@@ -127,6 +129,10 @@ private:
     DriverConfig config_;
     Describer& describer_;
     std::vector<int> running_;  // per accelerator: the task it works on, or -1
+    struct Format {
+        uint32_t det_bytes, det_frac_bits;
+    };
+    std::vector<Format> formats_;  // per accelerator, read from its registers at the start
     std::vector<bool> set_busy_;  // per buffer set
     std::vector<surf::Keypoints> keypoints_;
     uint64_t interrupts_ = 0;

@@ -34,6 +34,7 @@ struct IntegralProbe {
 
 void check_frame(const FrameBuffers& f) {
     if (!f.integral || !f.determinants || f.width <= 0 || f.height <= 0 ||
+        (f.det_bytes != 1 && f.det_bytes != 2 && f.det_bytes != 4) ||
         f.integral_stride < static_cast<size_t>(f.width) * 4)
         throw std::invalid_argument("software stage: frame buffers missing or smaller than the image");
 }
@@ -48,11 +49,11 @@ struct SoftwareStage::Scan {
 
     int size(int layer_index) const { return fhg::kSizes[kOctaveSizes[octave][layer_index]]; }
     // Byte offset in the determinant buffer of scale `layer_index` at pixel (px, py).
-    size_t offset(int px, int py, int layer_index, int width) const {
+    size_t offset(int px, int py, int layer_index, int width, unsigned det_bytes) const {
         const size_t blocks_per_row = static_cast<size_t>(width + 1) / 2;
         const size_t record = static_cast<size_t>(py / 2) * blocks_per_row + static_cast<size_t>(px / 2);
         const int k = octave == 0 ? 4 * layer_index + 2 * (py % 2) + px % 2 : kOctave2Record[layer_index];
-        return record * fhg_regs::kRecordBytes + static_cast<size_t>(k) * 4;
+        return record * fhg_regs::record_bytes(det_bytes) + static_cast<size_t>(k) * det_bytes;
     }
 };
 
@@ -136,10 +137,10 @@ bool SoftwareStage::inside(const Scan& s, const FrameBuffers& f) const {
 // as the code on the CPU would.
 bool SoftwareStage::is_maximum(const Scan& s, const FrameBuffers& f, Cube& values) {
     auto load = [&](int dx, int dy, int dl) {
-        const size_t offset = s.offset(s.x + dx * s.step, s.y + dy * s.step, s.layer + dl, f.width);
-        cost_.load(Op::determinant_read, f.determinants_address + static_cast<uint32_t>(offset), 4);
+        const size_t offset = s.offset(s.x + dx * s.step, s.y + dy * s.step, s.layer + dl, f.width, f.det_bytes);
+        cost_.load(Op::determinant_read, f.determinants_address + static_cast<uint32_t>(offset), f.det_bytes);
         cost_.add(surf_ops::kDeterminantCompare);
-        return values[dl + 1][dy + 1][dx + 1] = static_cast<int32_t>(load_be32(f.determinants + offset));
+        return values[dl + 1][dy + 1][dx + 1] = fhg_regs::load_det(f.determinants + offset, f.det_bytes);
     };
     // v > threshold <=> v > floor(threshold x 2^F) for an integer v (the driver's one-off
     // conversion, not counted).

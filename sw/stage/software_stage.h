@@ -26,6 +26,7 @@ struct FrameBuffers {
     uint32_t determinants_address = 0;      // bus address of determinants[0] (DET_ADDR)
     int width = 0, height = 0;              // pixels
     unsigned det_frac_bits = 0;             // FHG DET_FRAC_BITS
+    unsigned det_bytes = 4;                 // FHG DET_BYTES: 1, 2 or 4 bytes per determinant
 };
 
 struct StageParams {

@@ -120,7 +120,7 @@ TEST(IigFhg, FrameGivesTheCoresResultsInMemoryAndFifo) {
     const int blocks = image.cols / 2;
     std::vector<int32_t> records(size_t(blocks) * fhg::kDeterminantsPerBlock);
     std::vector<fhg::Candidate> expected;
-    const uint8_t* dets = b.memory.backdoor(kDets, size_t(blocks) * (image.rows / 2) * r::kRecordBytes);
+    const uint8_t* dets = b.memory.backdoor(kDets, size_t(blocks) * (image.rows / 2) * r::record_bytes(4));
     for (int by = 0; by < image.rows / 2; ++by) {
         core.block_row(view, by, records.data());
         fhg::LocalMaxFinder(threshold).block_row(records.data(), blocks, by, expected);

@@ -143,3 +143,22 @@ TEST(SurfRun, ChipKeypointsMatchTheFloatReference) {
 
 }  // namespace
 }  // namespace surfvp
+
+namespace surfvp {
+namespace {
+
+// fhg.det_bits changes the determinant record in memory: 16-bit words halve what the FHG
+// writes over PLB2 and into DDR, and the CPU reads them back from half the bytes.
+TEST(SurfRun, DeterminantWidthSetsTheTrafficItCauses) {
+    const std::string sets = " --set surf.frames=2 --set budget.fps=0 --set surf.target_keypoints=50";
+    const auto wide = run("det32", sets, 0);
+    const auto narrow = run("det16", sets + " --set 'fhg.det_bits=16 bit' --set 'fhg.det_frac_bits=4 bit'", 0);
+    const uint64_t blocks = 512 * 384;
+    EXPECT_EQ(wide["buses"]["plb2"]["masters"]["fhg"]["bytes_written"].get<uint64_t>(), 2 * blocks * 18 * 4);
+    EXPECT_EQ(narrow["buses"]["plb2"]["masters"]["fhg"]["bytes_written"].get<uint64_t>(), 2 * blocks * 18 * 2);
+    EXPECT_LT(narrow["buses"]["plb2"]["write"]["busy_s"].get<double>(), 0.6 * wide["buses"]["plb2"]["write"]["busy_s"].get<double>());
+    EXPECT_LT(narrow["cpu"]["memory"]["line_fills"].get<uint64_t>(), wide["cpu"]["memory"]["line_fills"].get<uint64_t>());
+}
+
+}  // namespace
+}  // namespace surfvp

@@ -394,3 +394,64 @@ TEST(SoftwareStage, CountsTheRoundedWorkOfOneKeypoint) {
 
 }  // namespace
 }  // namespace surfvp::stage_test
+
+namespace surfvp::stage_test {
+namespace {
+
+// fhg.det_bits = 16 packs each determinant into two bytes: the stage reads the same values
+// from half the memory (fewer line fills) and finds the same keypoints as from 4-byte words.
+TEST(SoftwareStage, ReadsDeterminantsPackedToTheirWidth) {
+    const cv::Mat gray = graf1_1024x768();
+    ASSERT_FALSE(gray.empty());
+    fhg::Precision narrow;
+    narrow.det_bits = 16;
+    narrow.det_frac_bits = 4;  // 16-bit words hold determinants up to 2047.9 threshold units
+    const HardwareFrame packed = run_hardware(gray, 300, narrow);
+    ASSERT_EQ(packed.det_bytes, 2u);
+    HardwareFrame wide = packed;
+    wide.det_bytes = 4;
+    wide.determinants.assign(packed.determinants.size() * 2, 0);
+    for (size_t i = 0; i < packed.determinants.size() / 2; ++i)
+        fhg_regs::store_det(&wide.determinants[4 * i], fhg_regs::load_det(&packed.determinants[2 * i], 2), 4);
+
+    sw::StageParams params;
+    params.threshold = 300;
+    params.upright = true;
+    SoftwareStage from_packed(params), from_wide(params);
+    size_t keypoints = 0;
+    for (uint32_t word : packed.fifo) {
+        const auto a = from_packed.process(word, packed.buffers());
+        const auto b = from_wide.process(word, wide.buffers());
+        ASSERT_EQ(a.has_value(), b.has_value());
+        if (!a) continue;
+        EXPECT_EQ(a->x, b->x);
+        EXPECT_EQ(a->descriptor, b->descriptor);
+        ++keypoints;
+    }
+    EXPECT_GT(keypoints, 50u);
+    EXPECT_EQ(from_packed.cost().count(sw::Op::determinant_read), from_wide.cost().count(sw::Op::determinant_read));
+    EXPECT_LT(from_packed.cost().cache().misses(), from_wide.cost().cache().misses());
+}
+
+// With a miss log, each fill is recorded with the cycles counted when it was needed.
+TEST(CostCounterLog, RecordsEveryMissWithItsCycle) {
+    sw::CostParams p;
+    p.miss_cycles = 0;
+    sw::CostCounter c(p);
+    c.log_misses(true);
+    c.add(sw::Op::int_op, 10);
+    c.load(sw::Op::integral_read, 0x1000, 4);   // miss at 11 cycles (10 ops + the load)
+    c.load(sw::Op::integral_read, 0x1004, 4);   // hit
+    c.load(sw::Op::integral_read, 0x101E, 4);   // spans two lines: 0x1000 (hit) and 0x1020 (miss)
+    ASSERT_EQ(c.misses().size(), 2u);
+    EXPECT_EQ(c.misses()[0].line, 0x1000u);
+    EXPECT_DOUBLE_EQ(c.misses()[0].cycle, 11);
+    EXPECT_EQ(c.misses()[1].line, 0x1020u);
+    EXPECT_DOUBLE_EQ(c.misses()[1].cycle, 13);
+    c.clear_misses();
+    EXPECT_TRUE(c.misses().empty());
+    EXPECT_EQ(c.cache().misses(), 2u);
+}
+
+}  // namespace
+}  // namespace surfvp::stage_test

@@ -52,6 +52,7 @@ struct HardwareFrame {
     std::vector<uint8_t> determinants;  // as in DDR
     std::vector<uint32_t> fifo;         // maxima-FIFO words in the order the FHG pushes them
     unsigned det_frac_bits = 0;
+    unsigned det_bytes = 4;
 
     sw::FrameBuffers buffers() const {
         sw::FrameBuffers b;
@@ -63,13 +64,14 @@ struct HardwareFrame {
         b.width = width;
         b.height = height;
         b.det_frac_bits = det_frac_bits;
+        b.det_bytes = det_bytes;
         return b;
     }
 };
 
-// IIG (28-bit sums) and FHG (default precision) on `gray`; the FHG's threshold register holds
+// IIG (28-bit sums) and FHG (`precision`) on `gray`; the FHG's threshold register holds
 // `threshold` (float units) in its fixed point, as the driver would program it.
-inline HardwareFrame run_hardware(const cv::Mat& gray, float threshold) {
+inline HardwareFrame run_hardware(const cv::Mat& gray, float threshold, const fhg::Precision& precision = {}) {
     HardwareFrame f;
     f.width = gray.cols;
     f.height = gray.rows;
@@ -84,17 +86,19 @@ inline HardwareFrame run_hardware(const cv::Mat& gray, float threshold) {
     for (size_t i = 0; i < f.integral.size(); ++i) store_be32(&f.integral_be[i * 4], f.integral[i]);
 
     const IntegralView view{f.integral.data(), f.width, f.height, size_t(f.width)};
-    const fhg::HessianCore core{fhg::Precision{}};
+    const fhg::HessianCore core{precision};
     f.det_frac_bits = core.precision().det_frac_bits;
+    f.det_bytes = fhg_regs::det_bytes_for(precision.det_bits);
+    const uint32_t record = fhg_regs::record_bytes(f.det_bytes);
     const fhg::LocalMaxFinder finder(core.from_float(threshold));
     const int blocks = (f.width + 1) / 2, block_rows = (f.height + 1) / 2;
-    f.determinants.resize(size_t(blocks) * block_rows * fhg_regs::kRecordBytes);
+    f.determinants.resize(size_t(blocks) * block_rows * record);
     std::vector<int32_t> row(size_t(blocks) * fhg::kDeterminantsPerBlock);
     std::vector<fhg::Candidate> candidates;
     for (int by = 0; by < block_rows; ++by) {
         core.block_row(view, by, row.data());
-        uint8_t* out = &f.determinants[size_t(by) * blocks * fhg_regs::kRecordBytes];
-        for (size_t i = 0; i < row.size(); ++i) store_be32(out + i * 4, uint32_t(row[i]));
+        uint8_t* out = &f.determinants[size_t(by) * blocks * record];
+        for (size_t i = 0; i < row.size(); ++i) fhg_regs::store_det(out + i * f.det_bytes, row[i], f.det_bytes);
         finder.block_row(row.data(), blocks, by, candidates);
     }
     for (const fhg::Candidate& c : candidates) f.fifo.push_back(fhg::pack_candidate(c));
