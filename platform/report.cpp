@@ -28,6 +28,25 @@ void bus_section(std::string& md, const std::string& name, const nlohmann::order
                           ms(m["wait_s"]), m["errors"].get<uint64_t>());
 }
 
+// Per resource: its frame period, busy, each wait, idle, and what it alone would allow.
+std::string time_table(const nlohmann::ordered_json& table, bool budget) {
+    std::string md = "\nWhere each resource's frame goes (ms; an accelerator pair's frame is the frames it takes, "
+                     "pairs x the frame period):\n\n| resource | period | busy | waiting | idle | busy share | alone | " +
+                     std::string(budget ? "slack |\n|---|---:|---:|---|---:|---:|---:|---:|\n" : "\n|---|---:|---:|---|---:|---:|---:|\n");
+    for (const auto& [name, row] : table.items()) {
+        std::string waits;
+        for (const auto& [cause, ms] : row["waits_ms"].items())
+            if (ms.get<double>() >= 0.005) waits += fmt::format("{}{} {:.2f}", waits.empty() ? "" : "; ", cause, ms.get<double>());
+        const std::string alone = row["alone_fps"].is_null() ? "-" : fmt::format("{:.2f} frames/s", row["alone_fps"].get<double>());
+        md += fmt::format("| {} | {:.2f} | {:.2f} | {} | {:.2f} | {} | {} |", name, row["period_ms"].get<double>(),
+                          row["busy_ms"].get<double>(), waits.empty() ? "-" : waits, row["idle_ms"].get<double>(),
+                          percent(row["busy_share"]), alone);
+        if (budget) md += row.contains("slack") ? fmt::format(" {:+.1f} % |", 100 * row["slack"].get<double>()) : " - |";
+        md += "\n";
+    }
+    return md;
+}
+
 // The verdict on frames: rate, budget, latency, where the time goes.
 std::string frames_section(const nlohmann::ordered_json& r) {
     std::string md = "\n## Frames\n\n| | |\n|---|---:|\n";
@@ -41,10 +60,11 @@ std::string frames_section(const nlohmann::ordered_json& r) {
     md += fmt::format("| keypoints per frame | {:.1f} |\n", r["keypoints_per_frame"].get<double>());
     md += fmt::format("| software per keypoint | {:.1f} us ({:.0f} cycles) |\n",
                       r["software_time_per_keypoint_us"].get<double>(), r["software_cycles_per_keypoint"].get<double>());
-    if (r.contains("bottleneck")) {
-        md += fmt::format("| bottleneck | **{}** |\n", r["bottleneck"].get<std::string>());
-        md += "\nBusy time per frame:\n\n| resource | ms |\n|---|---:|\n";
-        for (const auto& [name, ms] : r["busy_per_frame_ms"].items()) md += fmt::format("| {} | {:.2f} |\n", name, ms.get<double>());
+    if (r.contains("limit")) {
+        md += fmt::format("| limited by | **{}** ({}) |\n", r["limit"]["resource"].get<std::string>(),
+                          r["limit"]["cause"].get<std::string>());
+        md += fmt::format("\n**What limits the frame rate:** {}.\n", r["limit"]["reason"].get<std::string>());
+        md += time_table(r["time_per_frame"], !r["budget"].is_null());
     }
     md += "\nMean phase times (integral image and determinants: from the task's hardware start, in parallel; "
           "descriptors: from the determinants' end to the last descriptor):\n\n| phase | ms |\n|---|---:|\n";

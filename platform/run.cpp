@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include "direct_chip.h"
+#include "frame_limits.h"
 #include "report.h"
 #include "scenario.h"
 #include "soc.h"
@@ -81,36 +82,6 @@ Outcome simulate(Soc& soc, const Config& config, ProgressLine& progress, WallClo
     return {soc.cpu().finish_time(), ""};
 }
 
-// Busy time per frame of each resource; the largest limits the frame rate.
-void add_bottleneck(nlohmann::ordered_json& r, const sc_core::sc_time& elapsed) {
-    const double frames = double(r["frames_done"].get<size_t>());
-    // One block or an array of them: the busiest by its own time (busy, less the time it
-    // waited on another block: the IIG stalled by PixelBus, the FHG waiting for lines).
-    auto busy = [&](const nlohmann::ordered_json& blocks) {
-        auto own = [](const nlohmann::ordered_json& b) { return b["own_s"].get<double>(); };
-        double most = 0;
-        if (blocks.is_array()) {
-            for (const auto& b : blocks) most = std::max(most, own(b));
-        } else {
-            most = own(blocks);
-        }
-        return most;
-    };
-    // With several pairs the frames are shared out: the busiest pair's time over all frames.
-    const auto& plb2 = r["buses"]["plb2"];
-    nlohmann::ordered_json per_frame = {
-        {"iig", busy(r["iig"]) / frames * 1e3},
-        {"fhg", busy(r["fhg"]) / frames * 1e3},
-        {"cpu", (elapsed.to_seconds() - r["cpu"]["irq_wait_s"].get<double>()) / frames * 1e3},
-        {"plb2", std::max(plb2["read"]["busy_s"].get<double>(), plb2["write"]["busy_s"].get<double>()) / frames * 1e3}};
-    std::string worst;
-    double most = -1;
-    for (const auto& [name, ms] : per_frame.items())
-        if (ms.get<double>() > most) most = ms.get<double>(), worst = name;
-    r["busy_per_frame_ms"] = per_frame;
-    r["bottleneck"] = worst;
-}
-
 nlohmann::ordered_json build_report(const Config& config, Soc& soc, const Outcome& outcome, double wall_s,
                                     const std::vector<std::string>& outputs) {
     nlohmann::ordered_json checks = nlohmann::ordered_json::array();
@@ -138,7 +109,7 @@ nlohmann::ordered_json build_report(const Config& config, Soc& soc, const Outcom
     for (const auto& [key, value] : summary.items()) r[key] = value;
     const nlohmann::ordered_json platform = soc.report(outcome.sim_time);
     for (const auto& [key, value] : platform.items()) r[key] = value;
-    if (summary.contains("frames_done") && summary["frames_done"].get<size_t>() > 0) add_bottleneck(r, outcome.sim_time);
+    if (summary.contains("frames_done") && summary["frames_done"].get<size_t>() > 1) add_limits(r, config);
     r["workload"] = soc.workload().report();
     r["outputs"] = outputs;
     return r;

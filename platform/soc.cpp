@@ -120,10 +120,11 @@ double share(const sc_core::sc_time& part, const sc_core::sc_time& whole) {
 }
 
 nlohmann::ordered_json iig_report(const Iig& iig, const sc_core::sc_time& elapsed) {
-    return {{"frames", iig.stats().frames}, {"errors", iig.errors()}, {"busy_s", seconds(iig.stats().busy)},
-            {"stalled_s", seconds(iig.stats().stalled)},
-            {"own_s", seconds(iig.stats().busy - iig.stats().stalled)},
-            {"utilisation", share(iig.stats().busy - iig.stats().stalled, elapsed)}};
+    const auto& s = iig.stats();
+    return {{"frames", s.frames}, {"errors", iig.errors()}, {"busy_s", seconds(s.busy)},
+            {"computing_s", seconds(s.computing)}, {"utilisation", share(s.computing, elapsed)},
+            {"waiting_for_image_s", seconds(s.waiting_for_image)}, {"blocked_by_write_s", seconds(s.blocked_by_write)},
+            {"blocked_by_pixelbus_s", seconds(s.blocked_by_pixelbus)}, {"send_stalled_s", seconds(s.stalled)}};
 }
 
 nlohmann::ordered_json fhg_report(const Fhg& fhg, const sc_core::sc_time& elapsed) {
@@ -131,9 +132,8 @@ nlohmann::ordered_json fhg_report(const Fhg& fhg, const sc_core::sc_time& elapse
     return {{"frames", s.frames}, {"errors", fhg.errors()},
             {"cycles_per_block", fhg.block_cycles()}, {"block_limit", fhg.block_limit()},
             {"schedules", schedule_figures(fhg.params())},
-            {"busy_s", seconds(s.busy)}, {"utilisation", share(s.busy, elapsed)}, {"computing_s", seconds(s.computing)},
-            {"waiting_for_lines_s", seconds(s.waiting_for_lines)},
-            {"own_s", seconds(s.busy - s.waiting_for_lines)},
+            {"busy_s", seconds(s.busy)}, {"computing_s", seconds(s.computing)}, {"utilisation", share(s.computing, elapsed)},
+            {"waiting_for_lines_s", seconds(s.waiting_for_lines)}, {"waiting_for_writer_s", seconds(s.waiting_for_writer)},
             {"candidates", s.candidates}, {"candidates_dropped", s.dropped},
             {"maxima_fifo_high_water", s.fifo_high_water}, {"line_fifo_high_water", s.lines_high_water}};
 }

@@ -120,6 +120,7 @@ public:
                 r.reported = true;
                 ++done_;
             });
+            accelerator_time_ = driver.accelerator_time();
         };
     }
 
@@ -195,6 +196,7 @@ private:
     uint64_t frame_bytes_ = 0, integral_bytes_ = 0, det_bytes_ = 0, slot_bytes_ = 0, frames_base_ = 0, slots_base_ = 0;
     uint64_t done_ = 0, fault_frame_ = 0;
     double budget_fps_ = 0, cpu_hz_ = 0;
+    std::vector<sw::ssa2::AcceleratorTime> accelerator_time_;
 };
 
 // Steady state: frames finished per second between the first and the last to finish.
@@ -227,6 +229,10 @@ nlohmann::ordered_json SurfWorkload::summary() const {
     const double fps = throughput();
     nlohmann::ordered_json budget = nullptr;
     if (budget_fps_ > 0) budget = {{"fps", budget_fps_}, {"met", fps >= budget_fps_}};
+    nlohmann::ordered_json pairs = nlohmann::ordered_json::array();
+    for (const auto& a : accelerator_time_)
+        pairs.push_back({{"working_s", a.working_ps * 1e-12}, {"waiting_for_buffers_s", a.waiting_for_buffers_ps * 1e-12},
+                         {"idle_s", a.idle_ps * 1e-12}});
     return {{"image", {{"width", width_}, {"height", height_}}},
             {"frames", frames_.size()},
             {"frames_done", n},
@@ -240,7 +246,8 @@ nlohmann::ordered_json SurfWorkload::summary() const {
                            {"determinants", determinants * per * 1e-9},
                            {"descriptors", describe * per * 1e-9}}},
             {"software_time_per_keypoint_us", keypoints > 0 ? cycles / keypoints / cpu_hz_ * 1e6 : 0.0},
-            {"software_cycles_per_keypoint", keypoints > 0 ? cycles / keypoints : 0.0}};
+            {"software_cycles_per_keypoint", keypoints > 0 ? cycles / keypoints : 0.0},
+            {"accelerator_pairs", pairs}};
 }
 
 nlohmann::ordered_json SurfWorkload::report() const {

@@ -182,7 +182,9 @@ void Fhg::frame_thread() {
             trace_levels();
             room_.notify(sc_core::SC_ZERO_TIME);
             ++frame_.rows_sent;
+            const sc_time handing = sc_core::sc_time_stamp();
             det_rows_.write(int(by));
+            stats_.waiting_for_writer += sc_core::sc_time_stamp() - handing;
         }
         // Failed or not, the writer finishes the rows it was given before the frame ends, so
         // that nothing of this frame reaches the next one.

@@ -49,10 +49,13 @@ public:
         Duration register_latency{};         // a register access, as PLB1 sees it
     };
 
+    // busy: the frames' whole time; computing: block rows; waiting for lines: the line FIFO
+    // did not yet hold the next block row's window (the IIG and PixelBus behind); waiting for
+    // the writer: every determinant row buffer still waiting for the DMA (PLB2 behind).
     struct Stats {
         uint64_t frames = 0, candidates = 0, dropped = 0;
         unsigned fifo_high_water = 0, lines_high_water = 0;
-        sc_core::sc_time busy, computing, waiting_for_lines;
+        sc_core::sc_time busy, computing, waiting_for_lines, waiting_for_writer;
     };
 
     tlm_utils::simple_target_socket<Fhg> regs;     // SPLB on PLB1

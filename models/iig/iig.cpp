@@ -121,15 +121,23 @@ void Iig::fetch_thread() {
 void Iig::compute_thread() {
     for (;;) {
         int y = 0;
+        sc_time mark = sc_core::sc_time_stamp();
         fetched_.read(y);  // read(T&): the returning read() trips -Wmaybe-uninitialized in sc_fifo.h
+        if (y > 0) stats_.waiting_for_image += sc_core::sc_time_stamp() - mark;  // before row 0: no frame yet
         if (!frame_.failed) {
             const size_t at = size_t(y) * frame_.width;
             const uint32_t* above = y ? integral_.data() + at - frame_.width : nullptr;
             if (!core_.row(image_.data() + at, above, integral_.data() + at, int(frame_.width))) fail(iig::ERR_OVERFLOW);
-            sc_core::wait(cycles(params_.clock, double((frame_.width + params_.pixels_per_clock - 1) / params_.pixels_per_clock)));
+            const sc_time row = cycles(params_.clock, double((frame_.width + params_.pixels_per_clock - 1) / params_.pixels_per_clock));
+            sc_core::wait(row);
+            stats_.computing += row;
         }
+        mark = sc_core::sc_time_stamp();
         computed_for_write_.write(y);
+        stats_.blocked_by_write += sc_core::sc_time_stamp() - mark;
+        mark = sc_core::sc_time_stamp();
         if (frame_.stream) computed_for_send_.write(y);
+        stats_.blocked_by_pixelbus += sc_core::sc_time_stamp() - mark;
     }
 }
 

@@ -39,9 +39,15 @@ public:
         Duration register_latency{};         // a register access, as PLB1 sees it
     };
 
+    // Where the integral core's time goes (its compute unit's view of the pipeline): adding
+    // rows, waiting for the fetch unit's image rows (image DMA), or waiting for room to hand a
+    // row on because the write unit (integral DMA) or the send unit (PixelBus back-pressure) is
+    // behind; `busy` is the frames' whole time, start to last row written and sent.
     struct Stats {
         uint64_t frames = 0;
-        sc_core::sc_time busy, stalled;  // stalled: waiting on PixelBus back-pressure
+        sc_core::sc_time busy;
+        sc_core::sc_time stalled;  // the send unit waiting on PixelBus back-pressure
+        sc_core::sc_time computing, waiting_for_image, blocked_by_write, blocked_by_pixelbus;
     };
 
     tlm_utils::simple_target_socket<Iig> regs;     // SPLB on PLB1

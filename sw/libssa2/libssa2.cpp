@@ -40,7 +40,7 @@ const char* iig_error(uint32_t code) {
 
 Driver::Driver(Hal& hal, DriverConfig config, Describer& describer)
     : hal_(hal), config_(std::move(config)), describer_(describer), running_(config_.accelerators.size(), -1),
-      set_busy_(config_.buffers.size(), false) {
+      set_busy_(config_.buffers.size(), false), time_(config_.accelerators.size()), since_(config_.accelerators.size(), 0) {
     if (config_.accelerators.empty()) throw std::invalid_argument("libSSA2 needs at least one accelerator");
     if (config_.buffers.empty()) throw std::invalid_argument("libSSA2 needs at least one buffer set");
 }
@@ -67,6 +67,8 @@ void Driver::run(std::vector<Task>& tasks, const Callback& callback) {
     };
     while (unfinished()) {
         start_hardware(tasks);
+        for (size_t a = 0; a < running_.size(); ++a)
+            if (running_[a] < 0) account(a, queued(tasks) ? time_[a].waiting_for_buffers_ps : time_[a].idle_ps);
         if (hal_.irq_pending()) {
             service_interrupts(tasks);
         } else if (Task* t = describing(tasks)) {
@@ -79,6 +81,17 @@ void Driver::run(std::vector<Task>& tasks, const Callback& callback) {
         for (Task& t : tasks)
             if (t.phase == Phase::failed && t.accelerator < 0 && t.t_done == 0) finish(t, callback);
     }
+}
+
+// Adds the time since the last account of pair `a` to `bucket`.
+void Driver::account(size_t a, uint64_t& bucket) {
+    const uint64_t now = hal_.time_ps();
+    bucket += now - since_[a];
+    since_[a] = now;
+}
+
+bool Driver::queued(const std::vector<Task>& tasks) {
+    return std::any_of(tasks.begin(), tasks.end(), [](const Task& t) { return t.phase == Phase::queued; });
 }
 
 // A queued task starts on a free pair when a buffer set is free: a set stays with its task
@@ -105,6 +118,7 @@ void Driver::start(Task& task, int accelerator) {
     task.phase = Phase::hardware;
     task.accelerator = accelerator;
     task.described_on = accelerator;
+    account(size_t(accelerator), time_[size_t(accelerator)].waiting_for_buffers_ps);  // free until now, a task waiting
     running_[accelerator] = task.id;
     hal_.mark(unsigned(accelerator), task.id);
     task.t_start = hal_.time_ps();
@@ -189,6 +203,7 @@ void Driver::fail(Task& task, const std::string& why) {
 
 // Both units are done with the task: the pair is free, and the CPU may describe it.
 void Driver::hardware_finished(Task& task) {
+    account(size_t(task.accelerator), time_[size_t(task.accelerator)].working_ps);
     running_[size_t(task.accelerator)] = -1;
     hal_.mark(unsigned(task.accelerator), -1);
     task.accelerator = -1;

@@ -101,6 +101,13 @@ struct Task {
 
 using Callback = std::function<void(const Task& task, surf::Keypoints&& keypoints)>;
 
+// Where one accelerator pair's time went, by the driver's clock (Hal::time_ps): working on a
+// task, free while a task was queued but every buffer set was still held by a task not yet
+// reported (the tasks-in-flight limit), or free with nothing queued.
+struct AcceleratorTime {
+    uint64_t working_ps = 0, waiting_for_buffers_ps = 0, idle_ps = 0;
+};
+
 class Driver {
 public:
     Driver(Hal& hal, DriverConfig config, Describer& describer);
@@ -110,6 +117,7 @@ public:
     void run(std::vector<Task>& tasks, const Callback& callback);
 
     uint64_t interrupts_served() const { return interrupts_; }
+    const std::vector<AcceleratorTime>& accelerator_time() const { return time_; }
 
 private:
     void enable_interrupts();
@@ -134,6 +142,10 @@ private:
     };
     std::vector<Format> formats_;  // per accelerator, read from its registers at the start
     std::vector<bool> set_busy_;  // per buffer set
+    std::vector<AcceleratorTime> time_;
+    std::vector<uint64_t> since_;   // per accelerator: when it last started or stopped a task
+    void account(size_t accelerator, uint64_t& bucket);
+    static bool queued(const std::vector<Task>& tasks);
     std::vector<surf::Keypoints> keypoints_;
     uint64_t interrupts_ = 0;
 };
