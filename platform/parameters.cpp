@@ -201,23 +201,98 @@ void add_surf(std::vector<ParamSpec>& t) {
                  "Folder of Camera_NNN.txt poses (ViSP castle): report distinguishability with the true F too", "[-] evaluation"});
 }
 
+// The assumption band: for each assumed value the plausible low and high and why (the verdict
+// re-simulates with each, one at a time). A low or high equal to the default means no
+// plausible value on that side.
+struct BandEntry {
+    const char* key;
+    const char* low;
+    const char* high;
+    const char* why;
+};
+constexpr BandEntry kBands[] = {
+    {"cpu.clock", "300 MHz", "550 MHz", "the seed's CPU clock is not given: the ML507 design runs 400, FX designs run 250-400, the device allows 550"},
+    {"cpu.memory_path", "plb1", "mci", "if the DDR were on PLB1 rather than the PPC440's MCI"},
+    {"mci.clock", "100 MHz", "266 MHz", "the MCI at the PLB clock, or with a DDR2-533 MPMC"},
+    {"mci.width", "64 bit", "128 bit", "a narrower memory interface than the crossbar's"},
+    {"mci.latency", "2 cycles", "8 cycles", "crossbar and clock-crossing cycles are not retrieved"},
+    {"cpu.dcache_replacement", "round_robin", "lru", "the PPC440 itself is round robin per set"},
+    {"cpu.int_op", "1 cycle", "2 cycles", "more stalls than co-issue in the counted integer mix"},
+    {"cpu.branch", "1 cycle", "4 cycles", "well predicted loops, or frequent mispredictions"},
+    {"cpu.fpu_issue", "2 cycles", "6 cycles", "the DS693 issue rate was not retrieved (Virtex-4 proxy: 4)"},
+    {"cpu.fpu_dependent_fraction", "0", "1", "fully overlapped to fully serial FPU operations"},
+    {"cpu.int_float_convert", "12 cycles", "30 cycles", "the store-load round trip could overlap more, or stall longer"},
+    {"cpu.call", "4 cycles", "16 cycles", "leaf calls, or calls that save many registers"},
+    {"fpu.fadd", "4 cycles", "8 cycles", "the Virtex-5 FPU's latencies are not retrieved (Virtex-4 proxy), +-2"},
+    {"fpu.fmul", "3 cycles", "7 cycles", "as fpu.fadd"},
+    {"fpu.fmadd", "6 cycles", "12 cycles", "as fpu.fadd (no fmadd is counted)"},
+    {"fpu.fdiv", "12 cycles", "28 cycles", "an iterative divider, faster or slower than the proxy"},
+    {"fpu.fsqrt", "12 cycles", "28 cycles", "as fpu.fdiv"},
+    {"fpu.fcmp", "2 cycles", "4 cycles", "as fpu.fadd, +-1"},
+    {"fpu.fmove", "1 cycle", "3 cycles", "as fpu.fadd, +-1"},
+    {"fpu.fload", "2 cycles", "4 cycles", "as fpu.fadd, +-1"},
+    {"fpu.fstore", "3 cycles", "5 cycles", "as fpu.fadd, +-1"},
+    {"plb1.arbitration", "fixed_priority", "round_robin", "the other PLB v4.6 arbitration mode"},
+    {"plb1.arbitration_latency", "1 cycle", "4 cycles", "PLATFORM_FACTS: ~3-4 cycles, not retrieved; overlapped arbitration would hide most"},
+    {"plb1.address_latency", "0 cycles", "2 cycles", "address pipelining would hide it; a slow slave decode would add one"},
+    {"plb2.width", "64 bit", "128 bit", "\"increased capacity\" could be 64 bit (PLATFORM_FACTS §5.5: enough)"},
+    {"plb2.arbitration", "fixed_priority", "round_robin", "the other PLB v4.6 arbitration mode"},
+    {"plb2.arbitration_latency", "1 cycle", "4 cycles", "as plb1.arbitration_latency"},
+    {"plb2.address_latency", "0 cycles", "2 cycles", "as plb1.address_latency"},
+    {"memory.clock", "133 MHz", "266 MHz", "DDR2-266 to DDR2-533 on the ML507 class of boards"},
+    {"memory.width", "32 bit", "64 bit", "a 32-bit DDR2 component instead of the 64-bit DIMM"},
+    {"memory.efficiency", "0.6", "0.9", "row misses and refresh: 60-90 % of the peak"},
+    {"memory.latency", "20 cycles", "30 cycles", "PLATFORM_FACTS: ~20-30 MPMC cycles"},
+    {"memory.write_latency", "0 cycles", "25 cycles", "posted into a write FIFO, or as slow as a read"},
+    {"intc.register_latency", "1 cycle", "4 cycles", "a registered or a pipelined IPIF answer"},
+    {"dma.burst", "8 beats", "16 beats", "the test DMA's own bursts"},
+    {"dma.register_latency", "1 cycle", "4 cycles", "as intc.register_latency"},
+    {"iig.clock", "50 MHz", "125 MHz", "Fig. 3's clocks are lost: half the PLB clock to the FHG's upper guess"},
+    {"iig.pixels_per_clock", "1", "2", "one adder chain, or two"},
+    {"iig.burst", "8 beats", "16 beats", "a DMA with shorter bursts"},
+    {"iig.line_buffers", "1", "4", "single buffering, or deeper queues"},
+    {"iig.register_latency", "1 cycle", "4 cycles", "as intc.register_latency"},
+    {"pixelbus.width", "32 bit", "64 bit", "one value a cycle is the least that keeps up; two would be wider"},
+    {"fhg.clock", "90 MHz", "125 MHz", "PLATFORM_FACTS: 100-125 MHz; a complex design may close timing a little lower"},
+    {"fhg.bus_word", "pair", "quad", "64-bit read buses (two values of one line) instead of 2x2 quads"},
+    {"fhg.reuse", "off", "on", "whether the TripleMACs may take a value delivered for another (the basic script does not use it)"},
+    {"fhg.line_ports", "2", "2", "a RAMB36 has exactly two ports; more reads per line need more BRAMs (fhg.line_banks)"},
+    {"fhg.line_banks", "1", "2", "one RAMB36 per line (56 in all), or two (112 of the FX70T's 148)"},
+    {"fhg.hessian_cycles_per_triple_mac", "1 cycle", "3 cycles", "HessianCalc may read one response, not three, per cycle"},
+    {"fhg.pipeline_latency", "4 cycles", "32 cycles", "a short or a deep HessianCalc/LocMaxFinder pipeline"},
+    {"fhg.maxima_fifo_depth", "512", "2048", "half or two RAMB36 of 32-bit words"},
+    {"fhg.det_row_buffers", "1", "4", "single buffering, or deeper"},
+    {"fhg.burst", "8 beats", "16 beats", "a DMA with shorter bursts"},
+    {"fhg.register_latency", "1 cycle", "4 cycles", "as intc.register_latency"},
+    {"fhg.recip_shift", "12 bit", "20 bit", "coarser or finer 1/L^2 constants"},
+    {"fhg.response_frac_bits", "8 bit", "10 bit", "one fraction bit less or more in the responses"},
+    {"fhg.response_bits", "18 bit", "24 bit", "the DSP48E's 18-bit input, or 25 bits of its other port"},
+    {"fhg.weight_frac_bits", "8 bit", "16 bit", "a coarser or finer 0.81"},
+    {"fhg.det_frac_bits", "14 bit", "16 bit", "two fraction bits less still hold the threshold's resolution"},
+    {"fhg.det_bits", "32 bit", "32 bit", "narrower words need det_frac_bits lowered with them (a two-parameter what-if); alone they saturate"},
+    {"surf.target_keypoints", "80", "140", "~100 descriptors per image (TePRA 2009), ~140 (MVA 2014)"},
+    {"surf.threshold", "400", "600", "used only when surf.target_keypoints is 0"},
+    {"surf.haar", "exact", "rounded", "exact sub-pixel wavelets like the float reference"},
+    {"surf.fifo_irq_level", "64", "512", "the driver drains the maxima FIFO earlier or later"},
+};
+
 std::vector<ParamSpec> make_table() {
     std::vector<ParamSpec> t;
     t.push_back({"run.workload", ParamKind::choice, "smoke", 0, 0, {"smoke", "surf"},
                  "What the CPU runs: the bus smoke test, or libSSA2 and SURF on frames", "[-] scenario choice"});
     t.push_back({"run.max_time", ParamKind::duration, "600 s", 1, 36000 * s, {},
                  "Simulated time after which a run that has not finished is stopped as stalled",
-                 "[A] a guard against a livelocked run, far above any shipped scenario (castle, exact Haar: 11 s)"});
+                 "[-] tool setting: a guard against a livelocked run, far above any shipped scenario (castle, exact Haar: 11 s)"});
 
     t.push_back({"run.dma_granularity", ParamKind::choice, "line", 0, 0, {"line", "burst"},
-                 "IP blocks' DMA: one TLM transaction per line (fast; the bus still charges each burst) or per burst "
-                 "(other masters may slip in between bursts)",
-                 "[-] simulation setting (DESIGN: one transaction per burst or per line)"});
+                 "IP blocks' DMA: one TLM transaction per line or per burst; the bus arbitrates every burst either "
+                 "way, so the figures are the same",
+                 "[-] simulation setting (no figure depends on it)"});
     t.push_back({"cpu.clock", ParamKind::frequency, "400 MHz", 1 * MHz, 550 * MHz, {}, "PowerPC 440 core clock",
                  "[S] ML507 reference design (Linux virtex440-ml507.dts, QEMU virtex_ml507): 400 MHz; 550 MHz is the device maximum"});
     t.push_back({"cpu.quantum", ParamKind::duration, "1 us", 1, 1000 * us, {},
                  "Temporal-decoupling quantum: how far the CPU runs ahead of the kernel between synchronisations",
-                 "[A] 100 PLB cycles: coarse enough to be fast, fine against millisecond frame phases"});
+                 "[-] simulation setting (no figure depends on it): 100 PLB cycles, coarse enough to be fast"});
     t.push_back({"cpu.cache_line", ParamKind::bytes, "32 B", 4, 256, {}, "L1 cache line: the CPU's memory traffic goes in lines",
                  "[S] ML507 DTS: 32-byte L1 lines"});
     t.push_back({"cpu.memory_path", ParamKind::choice, "mci", 0, 0, {"mci", "plb1"},
@@ -274,17 +349,22 @@ std::vector<ParamSpec> make_table() {
     add_surf(t);
 
     t.push_back({"smoke.buffer", ParamKind::bytes, "64 KiB", 1, 16 * MiB, {}, "Bytes the test DMA copies per copy",
-                 "[A] test size: many bursts, well inside the L1-sized buffers of the chip's drivers"});
+                 "[-] test size: many bursts, well inside the L1-sized buffers of the chip's drivers"});
     t.push_back({"smoke.copies", ParamKind::count, "4", 1, 1000000, {}, "Copies the smoke software runs one after another",
-                 "[A] test size"});
+                 "[-] test size"});
     t.push_back({"smoke.polls", ParamKind::count, "3", 0, 1000000, {},
-                 "Status polls over PLB1 per copy before the CPU sleeps on the interrupt", "[A] test size"});
+                 "Status polls over PLB1 per copy before the CPU sleeps on the interrupt", "[-] test size"});
     t.push_back({"smoke.poll_interval", ParamKind::cycles, "200 cycles", 0, 1e9, {}, "CPU cycles between status polls",
-                 "[A] a short delay loop"});
+                 "[-] test setting: a short delay loop"});
     t.push_back({"smoke.src", ParamKind::address, "0x0010_0000", 0, 0xFFFFFFFF, {}, "Source buffer address in DDR",
                  "[-] placement"});
     t.push_back({"smoke.dst", ParamKind::address, "0x0020_0000", 0, 0xFFFFFFFF, {}, "Destination buffer address in DDR",
                  "[-] placement"});
+    for (const BandEntry& b : kBands) {
+        auto it = std::find_if(t.begin(), t.end(), [&](const ParamSpec& p) { return p.key == b.key; });
+        if (it == t.end()) throw std::logic_error(std::string("parameter band for an unknown parameter: ") + b.key);
+        it->band = {b.low, b.high, b.why};
+    }
     return t;
 }
 
@@ -352,6 +432,13 @@ std::string format_base(const ParamSpec& spec, double value) {
 const std::vector<ParamSpec>& parameter_table() {
     static const std::vector<ParamSpec> table = make_table();
     return table;
+}
+
+std::vector<const ParamSpec*> band_parameters() {
+    std::vector<const ParamSpec*> out;
+    for (const ParamSpec& p : parameter_table())
+        if (!p.band.low.empty()) out.push_back(&p);
+    return out;
 }
 
 const ParamSpec* find_parameter(std::string_view key) {
@@ -426,6 +513,12 @@ std::string parameters_markdown() {
         out += fmt::format("| `{}` | `{}` | {} | {} | {} | {} |\n", p.key, p.default_value, range, describe_kind(p),
                            p.description, p.source);
     }
+    out += "\n## Assumption band\n\n"
+           "Every assumed value, and a few uncertain others, with a plausible low and high. The budget\n"
+           "verdict re-simulates with each at its low and at its high, one at a time (`verdict.band`).\n\n"
+           "| key | default | low | high | why |\n|---|---|---|---|---|\n";
+    for (const ParamSpec* p : band_parameters())
+        out += fmt::format("| `{}` | `{}` | `{}` | `{}` | {} |\n", p->key, p->default_value, p->band.low, p->band.high, p->band.why);
     return out;
 }
 

@@ -20,6 +20,11 @@ struct ParamSpec {
     std::vector<std::string> choices;  // for ParamKind::choice
     std::string description;
     std::string source;
+    // The assumption band (every [A] parameter has one; a few uncertain others too): the
+    // plausible low and high values and why. Empty when the parameter has none.
+    struct Band {
+        std::string low, high, why;
+    } band{};
 };
 
 const std::vector<ParamSpec>& parameter_table();
@@ -34,6 +39,9 @@ double parse_value(const ParamSpec& spec, const std::string& text);
 
 // What values of this kind look like, for messages and docs ("a frequency, e.g. 100 MHz").
 std::string describe_kind(const ParamSpec& spec);
+
+// The parameters that have an assumption band, in table order.
+std::vector<const ParamSpec*> band_parameters();
 
 // docs/parameters.md: the whole table as Markdown.
 std::string parameters_markdown();
