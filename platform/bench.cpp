@@ -27,7 +27,9 @@ struct Measure {
 // One child run; its wall time and peak resident memory (from wait4's rusage).
 Measure child_run(const BenchOptions& o, const std::string& trace, unsigned frames, const fs::path& out) {
     std::vector<std::string> args{o.self, "run", resolve_scenario(o.scenario), "--quiet", "--trace", trace,
-                                  "--out", out.string(), "--set", fmt::format("surf.frames={}", frames)};
+                                  "--out", out.string(), "--set", fmt::format("surf.frames={}", frames),
+                                  // the simulator's speed, not the verdict's re-simulations
+                                  "--set", "verdict.band=off", "--set", "verdict.break_even=off"};
     std::vector<char*> argv;
     for (auto& a : args) argv.push_back(a.data());
     argv.push_back(nullptr);

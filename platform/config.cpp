@@ -41,6 +41,11 @@ unsigned Config::bits(const std::string& key) const { return parse_bits(entry(ke
 Bytes Config::bytes(const std::string& key) const { return parse_bytes(entry(key, ParamKind::bytes).value); }
 uint64_t Config::cycles(const std::string& key) const { return parse_cycles(entry(key, ParamKind::cycles).value); }
 unsigned Config::beats(const std::string& key) const { return parse_beats(entry(key, ParamKind::beats).value); }
+const std::string& Config::value(const std::string& key) const { return entry(key, find_parameter(key)->kind).value; }
+double Config::base_value(const std::string& key) const {
+    const Entry& e = entry(key, find_parameter(key)->kind);
+    return parse_value(*e.spec, e.value);
+}
 const std::string& Config::choice(const std::string& key) const { return entry(key, ParamKind::choice).value; }
 const std::string& Config::text(const std::string& key) const { return entry(key, ParamKind::text).value; }
 

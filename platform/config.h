@@ -42,6 +42,10 @@ public:
     uint32_t address(const std::string& key) const;
     const std::string& choice(const std::string& key) const;
     const std::string& text(const std::string& key) const;
+    // Any parameter: its value as written, and as a number in its kind's base unit (0 for
+    // choices and texts).
+    const std::string& value(const std::string& key) const;
+    double base_value(const std::string& key) const;
 
     const std::vector<Entry>& entries() const { return entries_; }
 

@@ -192,6 +192,21 @@ void add_surf(std::vector<ParamSpec>& t) {
                  "Maxima FIFO level that interrupts the CPU to drain it", "[A] a quarter of the default FIFO"});
     t.push_back({"budget.fps", ParamKind::real, "10", 0, 1e6, {}, "Frames per second the scenario must sustain (0: no budget)",
                  "[S] paper: ~10 FPS at 1024 x 768"});
+    t.push_back({"verdict.break_even", ParamKind::choice, "off", 0, 0, {"on", "off"},
+                 "Find the limiting block's clock (and the FHG's cycles per block) that just meets budget.fps, by "
+                 "re-simulation, and check it with one more run of the whole scenario",
+                 "[-] analysis (DESIGN principle 7)"});
+    t.push_back({"verdict.band", ParamKind::choice, "off", 0, 0, {"on", "off"},
+                 "Re-simulate with every banded parameter at its low and at its high, one at a time: the frames/s range, "
+                 "the assumptions that flip the verdict, tornado.svg",
+                 "[-] analysis (DESIGN principle 7)"});
+    t.push_back({"verdict.frames", ParamKind::count, "2", 2, 1000, {},
+                 "Frames each of the verdict's re-simulations runs (at least soc.accelerators + 1, at most surf.frames)",
+                 "[-] the pipeline is in steady state once each pair has done its first frame (every frame alike in the "
+                 "budget scenario: the 2-frame rate equals the 20-frame rate to 0.01 %)"});
+    t.push_back({"verdict.jobs", ParamKind::count, "0", 0, 256, {},
+                 "Re-simulations run at once (0: one per core); no figure depends on it",
+                 "[-] simulation setting"});
     t.push_back({"fault.frame", ParamKind::count, "0", 0, 100000, {},
                  "Fault injection: frame number (from 1) whose determinant buffer is placed outside memory; 0: none",
                  "[-] test hook: a DMA bus error in one task"});

@@ -72,6 +72,64 @@ std::string frames_section(const nlohmann::ordered_json& r) {
     return md;
 }
 
+std::string fps_or_dash(const nlohmann::ordered_json& side) {
+    if (side.contains("error")) return "invalid";
+    return side["fps"].is_null() ? "(current)" : fmt::format("{:.2f}", side["fps"].get<double>());
+}
+
+// The verdict and its doubt: the statement, the break-even values, the assumption band.
+std::string verdict_section(const nlohmann::ordered_json& v) {
+    std::string md = "\n## Verdict\n\n";
+    if (v.contains("statement")) md += fmt::format("**{}.**\n", v["statement"].get<std::string>());
+    if (v.contains("limit")) md += fmt::format("\nLimited by {}: {}.\n", v["limit"]["resource"].get<std::string>(),
+                                               v["limit"]["reason"].get<std::string>());
+    if (v.contains("break_even")) {
+        md += "\nBreak-even (the value that just meets the budget, found by re-simulation; checked by one run of the "
+              "whole scenario):\n\n| parameter | now | break-even | frames/s there | check |\n|---|---|---|---:|---|\n";
+        for (const auto& b : v["break_even"]) {
+            if (b["value"].is_null()) {
+                md += fmt::format("| `{}` | {} | none | - | {} |\n", b["parameter"].get<std::string>(),
+                                  b["default"].get<std::string>(), b["note"].get<std::string>());
+                continue;
+            }
+            const auto& c = b["check"];
+            const std::string check = c.is_null() ? "-" : c.contains("error") ? "failed: " + c["error"].get<std::string>()
+                                                        : fmt::format("{:.3f} frames/s over {} frames: {}", c["fps"].get<double>(),
+                                                                      c["frames"].get<uint64_t>(), c["met"].get<bool>() ? "met" : "MISSED");
+            md += fmt::format("| `{}` | {} | **{}** | {:.3f} | {} |\n", b["parameter"].get<std::string>(),
+                              b["default"].get<std::string>(), b["value"].get<std::string>(), b["fps"].get<double>(), check);
+        }
+    }
+    if (v.contains("band")) {
+        const auto& band = v["band"];
+        md += fmt::format("\nAssumption band: {} assumptions, each at its low and its high ({} frames a run, reference "
+                          "{:.2f} frames/s): **{:.2f} to {:.2f} frames/s**.\n",
+                          band["axes"].size(), band["frames"].get<unsigned>(), band["reference_fps"].get<double>(),
+                          band["low_fps"].get<double>(), band["high_fps"].get<double>());
+        if (!band["flipping"].empty()) {
+            std::vector<std::string> names;
+            for (const auto& n : band["flipping"]) names.push_back(n.get<std::string>());
+            md += fmt::format("Values that flip the verdict: {}.\n", fmt::join(names, ", "));
+        }
+        if (!band["failed_points"].empty()) {
+            std::vector<std::string> names;
+            for (const auto& n : band["failed_points"]) names.push_back(n.get<std::string>());
+            md += fmt::format("Values the platform refused (see report.json): {}.\n", fmt::join(names, ", "));
+        }
+        md += "\n![tornado](tornado.svg)\n\n| assumption | now | low | frames/s | high | frames/s | effect |\n"
+              "|---|---|---|---:|---|---:|---:|\n";
+        size_t shown = 0;
+        for (const auto& a : band["axes"]) {
+            if (shown++ == 12) break;
+            md += fmt::format("| `{}` | {} | {} | {} | {} | {} | {:.2f} |\n", a["parameter"].get<std::string>(),
+                              a["value"].get<std::string>(), a["low"]["value"].get<std::string>(), fps_or_dash(a["low"]),
+                              a["high"]["value"].get<std::string>(), fps_or_dash(a["high"]), a["effect_fps"].get<double>());
+        }
+        if (band["axes"].size() > 12) md += fmt::format("\n({} more with smaller effects in report.json.)\n", band["axes"].size() - 12);
+    }
+    return md;
+}
+
 }  // namespace
 
 std::string report_markdown(const nlohmann::ordered_json& r) {
@@ -83,6 +141,7 @@ std::string report_markdown(const nlohmann::ordered_json& r) {
     for (const auto& c : r["checks"])
         md += fmt::format("| {} | {} | {} |\n", c["name"].get<std::string>(), c["passed"].get<bool>() ? "pass" : "FAIL",
                           c["detail"].get<std::string>());
+    if (r.contains("verdict")) md += verdict_section(r["verdict"]);
     if (r.contains("throughput_fps")) md += frames_section(r);
     md += "\n## Time\n\n| | |\n|---|---:|\n";
     md += fmt::format("| simulated time | {} |\n", ms(r["sim_time_s"]));

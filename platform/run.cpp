@@ -8,6 +8,7 @@
 
 #include "direct_chip.h"
 #include "frame_limits.h"
+#include "verdict.h"
 #include "report.h"
 #include "scenario.h"
 #include "soc.h"
@@ -163,19 +164,16 @@ int run_direct(const Config& config, const fs::path& dir, const RunOptions& opti
 
 }  // namespace
 
-int run_scenario(const RunOptions& options) {
-    const Config config = load_scenario(resolve_scenario(options.scenario), options.sets);
-    const Tracer::Options traces = trace_options(options.trace, "");
-    const fs::path dir = output_dir(options, config);
-    if (options.direct) return run_direct(config, dir, options);
-    Tracer tracer({traces.vcd, traces.perfetto, dir.string()});
+nlohmann::ordered_json simulate_scenario(const Config& config, const std::string& out, const std::string& trace, bool quiet) {
+    const Tracer::Options traces = trace_options(trace, out);
+    Tracer tracer(traces);
     Soc soc(config, tracer);
     soc.workload().preload([&soc](uint64_t address, uint64_t bytes) { return soc.memory().backdoor(address, bytes); });
 
     const auto start = WallClock::now();
     Outcome outcome;
     {
-        ProgressLine progress(options.quiet, config.name);
+        ProgressLine progress(quiet, config.name);
         outcome = simulate(soc, config, progress, start);
     }
     const double wall_s = since(start);
@@ -183,19 +181,31 @@ int run_scenario(const RunOptions& options) {
 
     std::vector<std::string> outputs{"report.json", "report.md", "config.yaml"};
     for (const std::string& f : tracer.finish()) outputs.push_back(fs::path(f).filename().string());
-    for (const std::string& f : soc.workload().write_files(dir.string())) outputs.push_back(f);
-    const nlohmann::ordered_json report = build_report(config, soc, outcome, wall_s, outputs);
+    if (!out.empty())
+        for (const std::string& f : soc.workload().write_files(out)) outputs.push_back(f);
+    return build_report(config, soc, outcome, wall_s, outputs);
+}
+
+int write_run(const Config& config, const std::string& out, const nlohmann::ordered_json& report, bool quiet) {
+    const fs::path dir(out);
     write_file_atomically((dir / "config.yaml").string(), config.to_yaml());
     write_file_atomically((dir / "report.md").string(), report_markdown(report));
     write_file_atomically((dir / "report.json").string(), report.dump(2) + "\n");
-
-    if (!options.quiet)
+    if (!quiet)
         std::fprintf(stderr, "surfvp: %s: %s in %.3f ms simulated (%.3f s wall); report in %s\n", config.name.c_str(),
-                     report["passed"].get<bool>() ? "passed" : "FAILED", outcome.sim_time.to_seconds() * 1e3, wall_s,
-                     (dir / "report.md").c_str());
+                     report["passed"].get<bool>() ? "passed" : "FAILED", report["sim_time_s"].get<double>() * 1e3,
+                     report["wall_time_s"].get<double>(), (dir / "report.md").c_str());
     return report["passed"].get<bool>() ? kExitOk : kExitFailed;
 }
 
+int run_scenario(const RunOptions& options) {
+    const Config config = load_scenario(resolve_scenario(options.scenario), options.sets);
+    trace_options(options.trace, "");  // a bad --trace is bad input before anything is written
+    const fs::path dir = output_dir(options, config);
+    if (options.direct) return run_direct(config, dir, options);
+    if (verdict_requested(config)) return run_with_verdict(config, dir.string(), options.trace, options.quiet);
+    return write_run(config, dir.string(), simulate_scenario(config, dir.string(), options.trace, options.quiet), options.quiet);
+}
 
 int validate_scenario(const RunOptions& options) {
     const std::string path = resolve_scenario(options.scenario);

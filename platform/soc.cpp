@@ -138,6 +138,14 @@ nlohmann::ordered_json fhg_report(const Fhg& fhg, const sc_core::sc_time& elapse
             {"maxima_fifo_high_water", s.fifo_high_water}, {"line_fifo_high_water", s.lines_high_water}};
 }
 
+// The CPU's memory link; all zero when the CPU's memory goes over PLB1 instead.
+nlohmann::ordered_json mci_report(const MciLink* mci, const sc_core::sc_time& elapsed) {
+    const MciLink::Stats s = mci ? mci->stats() : MciLink::Stats{};
+    return {{"present", mci != nullptr}, {"reads", s.reads}, {"writes", s.writes}, {"bytes_read", s.bytes_read},
+            {"bytes_written", s.bytes_written}, {"busy_s", seconds(s.busy)}, {"utilisation", share(s.busy, elapsed)},
+            {"wait_s", seconds(s.wait)}};
+}
+
 // One block: its object; several: an array of them.
 template <typename Block, typename Report>
 nlohmann::ordered_json blocks_report(const std::vector<std::unique_ptr<Block>>& blocks, Report report,
@@ -182,7 +190,7 @@ void Soc::build(const Config& c, Tracer& tracer) {
     memory_ = std::make_unique<DdrMemory>("memory", memory_params(c));
     plb1_ = std::make_unique<PlbBus>("plb1", plb_params(c, "plb1"), tracer);
     plb2_ = std::make_unique<PlbBus>("plb2", plb_params(c, "plb2"), tracer);
-    mci_ = std::make_unique<MciLink>("mci", mci_params(c));
+    if (!cpu_memory_on_plb1(c)) mci_ = std::make_unique<MciLink>("mci", mci_params(c));
     intc_ = std::make_unique<Intc>("intc", Intc::Params{unsigned(c.count("intc.inputs")), register_latency(c, "intc")}, tracer);
     dma_ = std::make_unique<Dma>("dma", Dma::Params{c.beats("dma.burst"), c.bits("plb2.width"), register_latency(c, "dma")},
                                  tracer);
@@ -232,8 +240,10 @@ void Soc::build(const Config& c, Tracer& tracer) {
     plb2_->slaves.bind(memory_->ports);
     memory_->name_port("plb2");
     plb2_->map(map::ddr.base, ddr_size, 0, map::ddr.name);
-    mci_->memory.bind(memory_->ports);
-    memory_->name_port("mci");
+    if (mci_) {
+        mci_->memory.bind(memory_->ports);
+        memory_->name_port("mci");
+    }
 
     wire_interrupts(tracer);
 }
@@ -281,11 +291,7 @@ nlohmann::ordered_json Soc::report(const sc_core::sc_time& elapsed) const {
     for (const auto& p : memory_->port_stats())
         if (p.name == path) ddr_wait = p.wait;
     return {{"buses", {{"plb1", bus_report(*plb1_, elapsed)}, {"plb2", bus_report(*plb2_, elapsed)}}},
-            {"mci", {{"clock_hz", mci_->params().clock.hz}, {"width_bits", mci_->params().width_bits},
-                     {"reads", mci_->stats().reads}, {"writes", mci_->stats().writes},
-                     {"bytes_read", mci_->stats().bytes_read}, {"bytes_written", mci_->stats().bytes_written},
-                     {"busy_s", seconds(mci_->stats().busy)}, {"utilisation", share(mci_->stats().busy, elapsed)},
-                     {"wait_s", seconds(mci_->stats().wait)}}},
+            {"mci", mci_report(mci_.get(), elapsed)},
             {"memory", {{"bytes_read", bytes_read}, {"bytes_written", bytes_written},
                         {"busy_s", seconds(memory_->busy())}, {"utilisation", share(memory_->busy(), elapsed)},
                         {"ports", ports}}},

@@ -103,12 +103,20 @@ Keypoints detect_and_describe(const cv::Mat& gray8, const Params& params) {
     return detect_and_describe(gray8, params, workspace);
 }
 
-float threshold_for_count(const cv::Mat& gray8, int target, Params params) {
+std::vector<float> ranked_responses(const cv::Mat& gray8, Params params) {
     Workspace workspace;
     const IntegralView ii = prepare(gray8, params, workspace);
     std::vector<float> responses;
     for (const Keypoint& kp : refined_maxima(ii, params, 0.0f, workspace.responses)) responses.push_back(kp.response);
     std::sort(responses.begin(), responses.end(), std::greater<>());
+    return responses;
+}
+
+float threshold_for_count(const cv::Mat& gray8, int target, Params params) {
+    return threshold_for_rank(ranked_responses(gray8, params), target);
+}
+
+float threshold_for_rank(const std::vector<float>& responses, int target) {
     if (target <= 0) return responses.empty() ? 0.0f : responses.front();
     if (static_cast<size_t>(target) >= responses.size()) return 0.0f;
     const size_t t = static_cast<size_t>(target);

@@ -50,5 +50,9 @@ Keypoints detect_and_describe(const cv::Mat& gray8, const Params& params, Worksp
 // the threshold is placed halfway between the target-th and the next largest response:
 // the count is exact unless responses tie there. params.threshold is ignored.
 float threshold_for_count(const cv::Mat& gray8, int target, Params params);
+// The same in two steps, for callers that try several targets on one image: the refined
+// maxima's responses, largest first, and the threshold that keeps `target` of them.
+std::vector<float> ranked_responses(const cv::Mat& gray8, Params params);
+float threshold_for_rank(const std::vector<float>& ranked, int target);
 
 }  // namespace surfvp::surf
