@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "models/common/clock.h"
+#include "models/common/end_of_instant.h"
 
 namespace surfvp {
 using sc_core::sc_time;
@@ -23,6 +24,7 @@ PlbBus::PlbBus(const sc_core::sc_module_name& name, const Params& params, Tracer
     masters.register_transport_dbg(this, &PlbBus::transport_dbg);
     slaves.register_invalidate_direct_mem_ptr(this, &PlbBus::invalidate_direct_mem_ptr);
 
+    EndOfInstant::get();  // made during elaboration
     for (Path* path : {&read_, &write_}) {
         path->busy = std::make_unique<sc_core::sc_signal<bool, sc_core::SC_UNCHECKED_WRITERS>>(fmt::format("{}_busy", path->name).c_str());
         tracer_.signal(*path->busy, fmt::format("{}.{}_busy", basename(), path->name));
@@ -88,23 +90,26 @@ int PlbBus::pick(const Path& path) const {
     return best;
 }
 
-// The path's arbiter: runs after a request and when the path becomes free. It decides one
-// delta after its first activation at a time, so that every request made at that time
-// (by masters whose processes run after it) is present when the policy picks.
+// The path's arbiter: runs after a request and when the path becomes free. It decides at the
+// end of the instant (EndOfInstant), so that every request made at that time, in any delta,
+// is present when the policy picks.
 void PlbBus::arbitrate(Path* path) {
     const sc_time now = sc_core::sc_time_stamp();
-    if (path->in_flight) return;  // the winner re-arms us when its end is known
+    if (path->in_flight || path->deciding) return;  // the winner re-arms us when its end is known
     if (now < path->free_at) {
         path->arbitrate.notify(path->free_at - now);
         return;
     }
-    if (!path->settling || path->settle_time != now) {
-        path->settling = true;
-        path->settle_time = now;
+    path->deciding = true;
+    EndOfInstant::get().at_end([this, path] { decide(path); });
+}
+
+void PlbBus::decide(Path* path) {
+    path->deciding = false;
+    if (path->in_flight || sc_core::sc_time_stamp() < path->free_at) {
         path->arbitrate.notify(SC_ZERO_TIME);
         return;
     }
-    path->settling = false;
     if (path->pending.empty()) {
         if (tracer_.vcd_on()) path->busy->write(false);
         return;
@@ -125,7 +130,7 @@ void PlbBus::await_grant(Path& path, int master) {
 }
 
 // The grant of a burst requested now: at once when the path is free and no other process can
-// make a request at this instant (what the arbiter would decide after its settling delta),
+// make a request at this instant (what the arbiter would decide at the end of the instant),
 // else through the arbiter.
 sc_time PlbBus::acquire(Path& path, int master) {
     if (!path.in_flight && sc_core::sc_time_stamp() >= path.free_at && path.pending.empty() &&

@@ -102,8 +102,7 @@ private:
         std::vector<Request> pending;
         sc_core::sc_time free_at;
         bool in_flight = false;  // granted, end not yet known
-        bool settling = false;   // waiting one delta for same-time requests
-        sc_core::sc_time settle_time;
+        bool deciding = false;   // waiting for the end of the instant (every same-time request in)
         int last_master = -1;
         sc_core::sc_event arbitrate;
         std::deque<sc_core::sc_event> granted;  // one per master
@@ -118,6 +117,7 @@ private:
     void invalidate_direct_mem_ptr(int slave, sc_dt::uint64 start, sc_dt::uint64 end);
 
     void arbitrate(Path* path);
+    void decide(Path* path);
     int pick(const Path& path) const;
     void await_grant(Path& path, int master);
     sc_core::sc_time acquire(Path& path, int master);

@@ -1,0 +1,110 @@
+// Settings that exist for simulation speed never move a figure (DESIGN principle 6): the
+// budget scenario and a contention scenario at every DMA granularity and several quanta give
+// the same report.json, field by field, but for the wall-clock and simulation fields it names;
+// direct mode gives the VP's keypoints and the software's cycles within DDR contention.
+#include <cmath>
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+#include <set>
+
+#include "cli.h"
+
+namespace surfvp {
+namespace {
+using test::fresh_dir;
+using test::slurp;
+using test::surfvp;
+
+const std::string kBudget = std::string(SURFVP_SOURCE_DIR) + "/scenarios/budget_1024x768.yaml";
+const std::string kOneRun = " --set verdict.band=off --set verdict.break_even=off --set surf.frames=4";
+// Two accelerator pairs on a 32-bit PLB2 and a slower DDR: the DMA masters wait for the bus
+// and the DRAM, and the CPU's fills meet them there.
+const std::string kContention =
+    " --set soc.accelerators=2 --set surf.tasks_in_flight=3 --set 'plb2.width=32 bit' --set 'memory.clock=100 MHz'"
+    " --set 'memory.width=32 bit'";
+
+nlohmann::json report(const std::string& name, const std::string& sets) {
+    const std::string out = fresh_dir(name);
+    const auto r = surfvp("run " + kBudget + " --trace none --quiet --out " + out + kOneRun + sets);
+    EXPECT_LE(r.exit_code, 1) << r.err;
+    return nlohmann::json::parse(slurp(out + "/report.json"));
+}
+
+// Every number and text of `a` against `b` (relative tolerance for numbers), but the fields
+// that name themselves wall-clock or simulation figures, and the outputs' list; the paths
+// where they differ.
+void compare(const nlohmann::json& a, const nlohmann::json& b, const std::set<std::string>& skip, const std::string& path,
+             std::vector<std::string>& differences) {
+    if (a.is_object()) {
+        for (const auto& [key, value] : a.items()) {
+            if (path.empty() && skip.count(key)) continue;
+            if (!b.contains(key)) differences.push_back(path + "/" + key + " missing");
+            else compare(value, b[key], skip, path + "/" + key, differences);
+        }
+    } else if (a.is_array()) {
+        if (a.size() != b.size()) differences.push_back(path + " sizes differ");
+        else
+            for (size_t i = 0; i < a.size(); ++i) compare(a[i], b[i], skip, path + "/" + std::to_string(i), differences);
+    } else if (a.is_number() && b.is_number()) {
+        const double x = a.get<double>(), y = b.get<double>();
+        if (std::abs(x - y) > 1e-9 * std::max({std::abs(x), std::abs(y), 1e-12}))
+            differences.push_back(path + ": " + a.dump() + " vs " + b.dump());
+    } else if (a != b) {
+        differences.push_back(path + ": " + a.dump() + " vs " + b.dump());
+    }
+}
+
+void expect_same_figures(const nlohmann::json& a, const nlohmann::json& b, const std::string& what) {
+    std::set<std::string> skip{"wall_clock_fields", "simulation_fields", "outputs"};
+    for (const auto& f : a["wall_clock_fields"]) skip.insert(f.get<std::string>());
+    for (const auto& f : a["simulation_fields"]) skip.insert(f.get<std::string>());
+    std::vector<std::string> differences;
+    compare(a, b, skip, "", differences);
+    EXPECT_TRUE(differences.empty()) << what << ": " << differences.size() << " figures differ, first: " << differences[0];
+}
+
+class SpeedSettings : public testing::TestWithParam<const char*> {};
+
+TEST_P(SpeedSettings, DmaGranularityAndQuantumMoveNoFigure) {
+    const std::string scenario = GetParam() == std::string("contention") ? kContention : "";
+    const auto reference = report("line_1us", scenario);
+    for (const char* setting : {" --set run.dma_granularity=burst", " --set 'cpu.quantum=10 ns'",
+                                " --set 'cpu.quantum=100 us'", " --set run.dma_granularity=burst --set 'cpu.quantum=1 ms'"}) {
+        const auto other = report("other", scenario + setting);
+        expect_same_figures(reference, other, std::string(GetParam()) + setting);
+        // The TLM transactions are what a granularity changes.
+        const bool bursts = std::string(setting).find("burst") != std::string::npos;
+        EXPECT_EQ(reference["transactions"] == other["transactions"], !bursts) << setting;
+    }
+}
+
+INSTANTIATE_TEST_SUITE_P(BudgetAndContention, SpeedSettings, testing::Values("budget", "contention"),
+                         [](const auto& info) { return std::string(info.param); });
+
+// The contention scenario really contends: DMA masters wait for PLB2, ports for the DRAM.
+TEST(SpeedSettings, ContentionScenarioContends) {
+    const auto r = report("contention", kContention);
+    EXPECT_GT(r["buses"]["plb2"]["masters"]["iig0"]["wait_s"].get<double>(), 1e-3);
+    EXPECT_GT(r["memory"]["ports"]["plb2"]["wait_s"].get<double>(), 1e-4);
+    EXPECT_GT(r["cpu"]["memory"]["ddr_wait_s"].get<double>(), 0.0);
+}
+
+// Direct mode has no time, but the software's cycles (work plus its fills, uncontended there)
+// are the VP's within the DDR contention the VP adds.
+TEST(SpeedSettings, DirectModeGivesTheSoftwareCyclesWithinContention) {
+    const auto vp = report("vp", "");
+    const std::string out = fresh_dir("direct");
+    ASSERT_LE(surfvp("run " + kBudget + " --direct --quiet --out " + out + kOneRun).exit_code, 1);
+    const auto direct = nlohmann::json::parse(slurp(out + "/report.json"));
+    const auto& a = vp["workload"]["per_frame"];
+    const auto& b = direct["workload"]["per_frame"];
+    ASSERT_EQ(a.size(), b.size());
+    for (size_t i = 0; i < a.size(); ++i) {
+        EXPECT_EQ(a[i]["keypoints"], b[i]["keypoints"]) << i;
+        const double x = a[i]["descriptor_cycles"].get<double>(), y = b[i]["descriptor_cycles"].get<double>();
+        EXPECT_NEAR(x, y, 0.005 * y) << "frame " << i;
+    }
+}
+
+}  // namespace
+}  // namespace surfvp
