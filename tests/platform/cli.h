@@ -35,6 +35,11 @@ inline Cli surfvp(const std::string& args) {
     return result;
 }
 
+// The default scenario, and the settings that make it one run (it asks for its verdict's
+// re-simulations).
+inline const std::string kBudget = std::string(SURFVP_SOURCE_DIR) + "/scenarios/budget_1024x768.yaml";
+inline const std::string kOneRun = " --set verdict.band=off --set verdict.break_even=off";
+
 // A fresh empty folder under the temporary directory, unique to this test process.
 inline std::string fresh_dir(const std::string& name) {
     const auto dir = std::filesystem::temp_directory_path() / ("surfvp_test_" + std::to_string(::getpid())) / name;

@@ -12,11 +12,11 @@
 namespace surfvp {
 namespace {
 using test::fresh_dir;
+using test::kBudget;
 using test::slurp;
 using test::surfvp;
 
-const std::string kBudget = std::string(SURFVP_SOURCE_DIR) + "/scenarios/budget_1024x768.yaml";
-const std::string kOneRun = " --set verdict.band=off --set verdict.break_even=off --set surf.frames=4";
+const std::string kOneRun = test::kOneRun + " --set surf.frames=4";
 // Two accelerator pairs on a 32-bit PLB2 and a slower DDR: the DMA masters wait for the bus
 // and the DRAM, and the CPU's fills meet them there.
 const std::string kContention =

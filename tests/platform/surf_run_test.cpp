@@ -18,7 +18,8 @@ using test::fresh_dir;
 using test::slurp;
 using test::surfvp;
 
-const std::string kBudget = std::string(SURFVP_SOURCE_DIR) + "/scenarios/budget_1024x768.yaml";
+using test::kBudget;
+using test::kOneRun;
 const std::string kCastle = std::string(SURFVP_SOURCE_DIR) + "/scenarios/castle_sequence.yaml";
 
 // The folder fresh_dir(name) made, without emptying it.
@@ -26,8 +27,6 @@ std::string fresh_path(const std::string& name) {
     return (fs::temp_directory_path() / ("surfvp_test_" + std::to_string(::getpid())) / name).string();
 }
 
-// The budget scenario asks for its verdict's re-simulations; these tests look at one run.
-const std::string kOneRun = " --set verdict.band=off --set verdict.break_even=off";
 
 nlohmann::json run(const std::string& name, const std::string& sets, int expected_exit,
                    const std::string& scenario = kBudget) {

@@ -11,10 +11,10 @@
 namespace surfvp {
 namespace {
 using test::fresh_dir;
+using test::kBudget;
 using test::slurp;
 using test::surfvp;
 
-const std::string kBudget = std::string(SURFVP_SOURCE_DIR) + "/scenarios/budget_1024x768.yaml";
 // 512x384 at ~30 keypoints, FHG-bound: 60 cycles x 49,152 blocks at 100 MHz, 33.7 frames/s.
 const std::string kSmall = " --set surf.width=512 --set surf.height=384 --set surf.target_keypoints=30 --set surf.frames=4";
 
@@ -27,8 +27,7 @@ nlohmann::json verdict(const std::string& name, const std::string& sets, int exp
 
 double fps_at(const std::string& name, const std::string& sets) {
     const std::string out = fresh_dir(name);
-    const auto r = surfvp("run " + kBudget + " --trace none --quiet --out " + out + kSmall +
-                          " --set verdict.band=off --set verdict.break_even=off " + sets);
+    const auto r = surfvp("run " + kBudget + " --trace none --quiet --out " + out + kSmall + test::kOneRun + " " + sets);
     EXPECT_LE(r.exit_code, 1) << r.err;
     return nlohmann::json::parse(slurp(out + "/report.json"))["throughput_fps"].get<double>();
 }
