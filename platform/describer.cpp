@@ -70,11 +70,12 @@ public:
     const sw::SoftwareStage& stage() const { return stage_; }
 
 private:
-    // The record is written in whole lines that are never read again: they leave the L1 as
-    // write-backs (counted when the record is complete), without a fill [A].
+    // Each record has lines of its own (ring slots are whole lines, kRecordSlot), written once
+    // and never read again: they leave the L1 as write-backs, counted when the record is
+    // complete, without a fill (the driver allocates them, as with dcbz) [A].
     void write_back_record(const sw::ssa2::FrameInMemory& frame, sw::ssa2::Work& work) {
-        const uint32_t at = frame.records + (records_++ % sw::ssa2::kRecordRing) * sw::ssa2::kRecordBytes;
-        for (uint32_t line = at / line_bytes_ * line_bytes_; line < at + sw::ssa2::kRecordBytes; line += line_bytes_)
+        const uint32_t at = frame.records + (records_++ % sw::ssa2::kRecordRing) * sw::ssa2::kRecordSlot;
+        for (uint32_t line = at; line < at + sw::ssa2::kRecordBytes; line += line_bytes_)
             work.lines.push_back({line, work.cycles, true});
     }
 

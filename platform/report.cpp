@@ -102,10 +102,11 @@ std::string verdict_section(const nlohmann::ordered_json& v) {
     }
     if (v.contains("band")) {
         const auto& band = v["band"];
-        md += fmt::format("\nAssumption band: {} assumptions, each at its low and its high ({} frames a run, reference "
-                          "{:.2f} frames/s): **{:.2f} to {:.2f} frames/s**.\n",
-                          band["axes"].size(), band["frames"].get<unsigned>(), band["reference_fps"].get<double>(),
-                          band["low_fps"].get<double>(), band["high_fps"].get<double>());
+        md += fmt::format("\nAssumption band: {} assumptions, each at its low and its high, one at a time: **{:.2f} to "
+                          "{:.2f} frames/s** (the run's rate plus each change's effect, measured in {}-frame runs against "
+                          "a reference of {:.3f} frames/s).\n",
+                          band["axes"].size(), band["low_fps"].get<double>(), band["high_fps"].get<double>(),
+                          band["frames"].get<unsigned>(), band["reference_fps"].get<double>());
         if (!band["flipping"].empty()) {
             std::vector<std::string> names;
             for (const auto& n : band["flipping"]) names.push_back(n.get<std::string>());

@@ -33,6 +33,7 @@ Resimulation::~Resimulation() {
 Json Resimulation::point_summary(const Json& r) {
     Json s = {{"fps", r.value("throughput_fps", 0.0)}, {"passed", r["passed"]},
               {"limit", r.contains("limit") ? r["limit"]["resource"] : Json()},
+              {"limit_cause", r.contains("limit") ? r["limit"]["cause"] : Json()},
               {"keypoints_per_frame", r.value("keypoints_per_frame", 0.0)}};
     if (r.contains("failure")) s["failure"] = r["failure"];
     return s;
@@ -81,6 +82,7 @@ void Resimulation::run(const std::function<void(size_t, size_t)>& progress) {
         }
         int status = 0;
         const pid_t pid = waitpid(-1, &status, 0);
+        if (pid < 0 && errno == EINTR) continue;
         if (pid < 0) throw std::runtime_error(std::string("waiting for a re-simulation: ") + std::strerror(errno));
         auto it = running_.find(pid);
         if (it == running_.end()) continue;

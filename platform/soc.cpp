@@ -231,10 +231,10 @@ void Soc::build(const Config& c, Tracer& tracer) {
     }
 
     // PLB2: the DMA masters to DDR.
-    plb2_->connect_master(dma_->mplb, "dma");
+    plb2_->connect_master(dma_->mplb, "dma", c.beats("dma.burst"));
     for (unsigned k = 0; k < pairs; ++k) {
-        plb2_->connect_master(iigs_[k]->mplb, iigs_[k]->basename());
-        plb2_->connect_master(fhgs_[k]->mplb, fhgs_[k]->basename());
+        plb2_->connect_master(iigs_[k]->mplb, iigs_[k]->basename(), iigs_[k]->params().burst_beats);
+        plb2_->connect_master(fhgs_[k]->mplb, fhgs_[k]->basename(), fhgs_[k]->params().burst_beats);
         iigs_[k]->pixels.bind(fhgs_[k]->pixels);  // PixelBus: IIG -> FHG
     }
     plb2_->slaves.bind(memory_->ports);

@@ -113,6 +113,11 @@ public:
         driver_.fifo_irq_level = uint32_t(c.count("surf.fifo_irq_level"));
         driver_.threshold = core.from_float(threshold_);
         budget_fps_ = c.real("budget.fps");
+        // A frame rate needs one whole round of the pairs after the first frame.
+        if (budget_fps_ > 0 && frames_.size() <= c.count("soc.accelerators"))
+            throw ConfigError(fmt::format("surf.frames: {} frames cannot give a frame rate with {} accelerator pair(s): "
+                                          "the steady-state rate needs {}; set more frames or budget.fps = 0",
+                                          frames_.size(), c.count("soc.accelerators"), c.count("soc.accelerators") + 1));
         fault_frame_ = c.count("fault.frame");
         cpu_hz_ = c.frequency("cpu.clock").hz;
     }
@@ -194,7 +199,7 @@ private:
         integral_bytes_ = round_up(uint64_t(width_) * height_ * 4);
         det_bytes_ = round_up(uint64_t((width_ + 1) / 2) * ((height_ + 1) / 2) *
                               fhg_regs::record_bytes(fhg_regs::det_bytes_for(c.bits("fhg.det_bits"))));
-        slot_bytes_ = integral_bytes_ + det_bytes_ + round_up(uint64_t(sw::ssa2::kRecordRing) * sw::ssa2::kRecordBytes);
+        slot_bytes_ = integral_bytes_ + det_bytes_ + round_up(uint64_t(sw::ssa2::kRecordRing) * sw::ssa2::kRecordSlot);
         frames_base_ = 0x0010'0000;
         slots_base_ = frames_base_ + frames_.size() * frame_bytes_;
         const uint64_t end = slots_base_ + c.count("surf.tasks_in_flight") * slot_bytes_;

@@ -23,7 +23,7 @@ std::string escape(const std::string& text) {
 }  // namespace
 
 std::string tornado_svg(const nlohmann::ordered_json& band, double budget, size_t rows) {
-    const double ref = band["reference_fps"].get<double>();
+    const double ref = band["run_fps"].get<double>();
     std::vector<const nlohmann::ordered_json*> shown;
     for (const auto& axis : band["axes"])
         if (shown.size() < rows && axis["effect_fps"].get<double>() > 0) shown.push_back(&axis);
@@ -41,11 +41,11 @@ std::string tornado_svg(const nlohmann::ordered_json& band, double budget, size_
         "font-family=\"sans-serif\" font-size=\"12\">\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n",
         width, height);
     svg += fmt::format("<text x=\"10\" y=\"20\" font-size=\"15\" font-weight=\"bold\">Frames/s under each assumption at its "
-                       "low and its high ({} frames a run)</text>\n",
+                       "low and its high (the run's rate plus each change's effect in {} frames)</text>\n",
                        band["frames"].get<unsigned>());
     svg += fmt::format("<rect x=\"10\" y=\"30\" width=\"12\" height=\"10\" fill=\"#4e79a7\"/><text x=\"27\" y=\"39\">low</text>"
                        "<rect x=\"65\" y=\"30\" width=\"12\" height=\"10\" fill=\"#f28e2b\"/><text x=\"82\" y=\"39\">high</text>"
-                       "<text x=\"125\" y=\"39\">reference {:.2f}</text>\n",
+                       "<text x=\"125\" y=\"39\">the run: {:.2f}</text>\n",
                        ref);
     for (size_t i = 0; i < shown.size(); ++i) {
         const auto& a = *shown[i];

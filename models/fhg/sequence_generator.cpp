@@ -359,6 +359,27 @@ Sequence schedule_improved(const Problem& problem, const SequenceParams& p) {
     return best;
 }
 
+// Without reuse a word is one group's delivery: the same read (size, place relative to each
+// pixel, coefficient, response) of every pixel the word serves, in full.
+std::string check_one_group(const Step& step, const SequenceParams& p) {
+    const auto shape = word_shape(p.bus_word);
+    std::set<std::tuple<int, int, int, int, int>> reads;
+    std::set<int> tms;
+    for (const Tap& tap : step.taps) {
+        if (tap.triple_mac < 0 || tap.triple_mac >= kDeterminantsPerBlock || tap.lane < 0 || tap.lane >= int(shape.size()))
+            return "a tap outside the block's determinants or the word's lanes";
+        const BlockDeterminant d = block_determinant(tap.triple_mac);
+        reads.insert({d.size, step.x + shape[size_t(tap.lane)][1] - d.px, step.y + shape[size_t(tap.lane)][0] - d.py,
+                      tap.coefficient, int(tap.response)});
+        tms.insert(tap.triple_mac);
+    }
+    const int tm = step.taps.empty() ? 0 : step.taps.front().triple_mac;
+    const size_t members = tm >= 16 || p.bus_word == BusWord::scalar ? 1 : p.bus_word == BusWord::pair ? 2 : 4;
+    if (reads.size() > 1 || tms.size() != step.taps.size() || step.taps.size() != members)
+        return "without reuse, a word that is not one read of its pixels' determinants of one size";
+    return "";
+}
+
 }  // namespace
 
 std::vector<std::array<int, 2>> word_shape(BusWord word) {
@@ -394,7 +415,7 @@ const Sequence& cached_sequence(const SequenceParams& p) {
     static std::map<Key, Sequence> cache;
     static std::mutex mutex;
     const Key key{p.read_buses, p.triple_macs, p.fifo_lines, p.x3_cycles, int(p.bus_word), p.reuse,
-                  p.line_ports, p.line_banks, int(p.scheduler), p.scheduler == Scheduler::improved ? p.attempts : 0};
+                  p.line_ports, p.line_banks, int(p.scheduler), p.attempts};
     std::lock_guard<std::mutex> lock(mutex);
     auto it = cache.find(key);
     if (it == cache.end()) it = cache.emplace(key, generate_sequence(p)).first;
@@ -425,6 +446,10 @@ std::string check_sequence(const Sequence& sequence, const SequenceParams& param
             if (++bram_use[{step.cycle, bram}] > int(params.line_ports))
                 return "line " + std::to_string(step.y + dy) + " (BRAM " + std::to_string(bram % int(params.line_banks)) +
                        ") serves more than " + std::to_string(params.line_ports) + " reads" + where;
+        }
+        if (!params.reuse) {
+            const std::string why = check_one_group(step, params);
+            if (!why.empty()) return why + where;
         }
         for (const Tap& tap : step.taps) {
             const std::string who = "TripleMAC " + std::to_string(tap.triple_mac) + where;

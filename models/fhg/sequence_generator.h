@@ -58,7 +58,7 @@ struct SequenceParams {
     unsigned line_ports = 2;  // reads one BRAM of a line serves per cycle
     unsigned line_banks = 1;  // BRAMs a line is interleaved over, by column (1 or 2)
     Scheduler scheduler = Scheduler::basic;
-    unsigned attempts = 16;  // improved: passes with different tie-breaks; the shortest is kept
+    unsigned attempts = 16;  // passes with different tie-breaks: basic takes their median, improved the shortest
 };
 
 struct Tap {

@@ -38,8 +38,9 @@ PlbBus::PlbBus(const sc_core::sc_module_name& name, const Params& params, Tracer
     }
 }
 
-void PlbBus::connect_master(tlm::tlm_base_initiator_socket<>& socket, const std::string& name) {
+void PlbBus::connect_master(tlm::tlm_base_initiator_socket<>& socket, const std::string& name, unsigned burst_beats) {
     socket.bind(masters);
+    master_burst_.push_back(burst_beats ? std::min(burst_beats, params_.max_burst_beats) : params_.max_burst_beats);
     master_stats_.emplace_back();
     master_stats_.back().name = name;
     master_tracks_.push_back(tracer_.track(basename(), name));
@@ -173,7 +174,7 @@ void PlbBus::b_transport(int master, tlm::tlm_generic_payload& tx, sc_time& dela
     }
     Path& path = tx.is_write() ? write_ : read_;
     unsigned char* data = tx.get_data_ptr();
-    const uint64_t burst_bytes = uint64_t(params_.max_burst_beats) * params_.width_bits / 8;
+    const uint64_t burst_bytes = uint64_t(master_burst_[size_t(master)]) * params_.width_bits / 8;
     const sc_time requested = sc_core::sc_time_stamp();
     sc_time first_grant, end = requested;  // `end`: the last granted burst's end
     for (uint64_t done = 0; done < std::max<uint64_t>(bytes, 1);) {

@@ -4,7 +4,7 @@
 // clock, fixed bursts of up to `max_burst_beats`, separate read and write data paths.
 //
 // The unit of the bus is the burst. A transaction of any length is carried as the bursts it
-// stands for (beats = ceil(B / (width/8)), up to max_burst_beats each), and every burst is
+// stands for (beats = ceil(B / (width/8)), up to the master's burst length each), and every burst is
 // arbitrated on its own: another master's request is granted at the next burst boundary,
 // exactly as if the first master had issued one transaction per burst. One burst of b beats
 // granted at time g:
@@ -67,8 +67,10 @@ public:
 
     PlbBus(const sc_core::sc_module_name& name, const Params& params, Tracer& tracer);
 
-    // Masters are numbered in the order they connect; with fixed priority, 0 is highest.
-    void connect_master(tlm::tlm_base_initiator_socket<>& socket, const std::string& name);
+    // Masters are numbered in the order they connect; with fixed priority, 0 is highest. A
+    // master's bursts are at most `burst_beats` long (its DMA's own burst length; 0: the
+    // bus's max_burst_beats), whatever the length of its transactions.
+    void connect_master(tlm::tlm_base_initiator_socket<>& socket, const std::string& name, unsigned burst_beats = 0);
     // The region [base, base+size) goes to `slave` (the index of its slaves binding); the
     // slave sees addresses relative to base.
     void map(uint64_t base, uint64_t size, unsigned slave, const std::string& name);
@@ -133,6 +135,7 @@ private:
     std::vector<Route> routes_;
     std::vector<MasterStats> master_stats_;
     std::vector<int> master_tracks_;
+    std::vector<unsigned> master_burst_;  // beats per burst, per master
     Path read_{Path("read")};
     Path write_{Path("write")};
     uint64_t decode_errors_ = 0;

@@ -90,7 +90,8 @@ bool Ppc440::dmi_covers(uint32_t address, size_t bytes) {
 
 void Ppc440::invalidate_dmi(sc_dt::uint64, sc_dt::uint64) { dmi_valid_ = false; }
 
-// One line on the memory path, requested at time `at` (>= now); returns when it is done.
+// One line on the memory path, requested at time `at`, or now if the kernel has passed it (a
+// synchronising path such as PLB1 waits for its grant); returns when it is done.
 sc_time Ppc440::line_access(tlm::tlm_command command, uint32_t address, uint8_t* data, size_t bytes, const sc_time& at) {
     tlm::tlm_generic_payload tx;
     tx.set_command(command);
@@ -99,7 +100,7 @@ sc_time Ppc440::line_access(tlm::tlm_command command, uint32_t address, uint8_t*
     tx.set_data_length(static_cast<unsigned>(bytes));
     tx.set_streaming_width(static_cast<unsigned>(bytes));
     tx.set_response_status(tlm::TLM_INCOMPLETE_RESPONSE);
-    sc_time delay = at - sc_core::sc_time_stamp();
+    sc_time delay = std::max(at, sc_core::sc_time_stamp()) - sc_core::sc_time_stamp();
     mem->b_transport(tx, delay);  // the MCI link annotates; PLB1 synchronises first
     if (!tx.is_response_ok())
         throw sw::BusError(fmt::format("memory {} at {:#010x}: {}", command == tlm::TLM_READ_COMMAND ? "read" : "write",
@@ -109,14 +110,17 @@ sc_time Ppc440::line_access(tlm::tlm_command command, uint32_t address, uint8_t*
     return sc_core::sc_time_stamp() + delay;
 }
 
-// A copy through the caches: line after line on the memory path, each after the one before.
+// A copy through the caches: line after line on the memory path, each after the one before,
+// from the kernel's time (synchronised, so that the quantum does not move the traffic).
 void Ppc440::memory(tlm::tlm_command command, uint32_t address, uint8_t* data, size_t bytes) {
-    sc_time at = now();
+    keeper_.sync();
+    sc_time at = sc_core::sc_time_stamp();
     for (size_t done = 0; done < bytes;) {
         const size_t n = std::min<size_t>(params_.line_bytes - (address + done) % params_.line_bytes, bytes - done);
         at = line_access(command, uint32_t(address + done), data + done, n, at);
         done += n;
     }
+    at = std::max(at, sc_core::sc_time_stamp());
     keeper_.set(at - sc_core::sc_time_stamp());
     if (keeper_.need_sync()) keeper_.sync();
 }
@@ -138,7 +142,8 @@ const uint8_t* Ppc440::map(uint32_t address, size_t bytes) {
 
 // The step starts at the kernel's time (synchronised), so that its fills meet the other
 // masters' traffic in order whatever the quantum. A write-back carries the line's current
-// contents (the model keeps no dirty data of its own, so memory is unchanged).
+// contents (the model keeps no dirty data of its own, so memory is unchanged); it is posted
+// over the MCI link, while over PLB1 (a synchronising bus) the CPU waits for its grant.
 uint64_t Ppc440::compute(uint64_t count, const std::vector<sw::LineTransfer>& lines) {
     keeper_.sync();
     const sc_time start = sc_core::sc_time_stamp();
@@ -151,6 +156,7 @@ uint64_t Ppc440::compute(uint64_t count, const std::vector<sw::LineTransfer>& li
         if (line.write_back) {
             if (dmi_covers(line.address, line_.size())) std::memcpy(line_.data(), map(line.address, line_.size()), line_.size());
             line_access(tlm::TLM_WRITE_COMMAND, line.address, line_.data(), line_.size(), at);
+            at = std::max(at, sc_core::sc_time_stamp());
             ++stats_.write_backs;
         } else {
             const sc_time filled = line_access(tlm::TLM_READ_COMMAND, line.address, line_.data(), line_.size(), at);
@@ -159,7 +165,7 @@ uint64_t Ppc440::compute(uint64_t count, const std::vector<sw::LineTransfer>& li
             ++stats_.fills;
         }
     }
-    at += cycles(params_.clock, double(count - done));
+    at = std::max(at, sc_core::sc_time_stamp()) + cycles(params_.clock, double(count - done));
     stats_.cycles_consumed += count;
     keeper_.set(at - sc_core::sc_time_stamp());
     if (keeper_.need_sync()) keeper_.sync();

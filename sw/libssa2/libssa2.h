@@ -36,9 +36,11 @@ struct BufferSet {
 };
 
 // A described keypoint as libSSA2 hands it over: x, y, scale, orientation, response,
-// Laplacian and 64 descriptor values, 32-bit each, in a per-task ring of kRecordRing records
-// (the application consumes them through the callback before the ring wraps).
+// Laplacian and 64 descriptor values, 32-bit each, in a per-task ring of kRecordRing slots of
+// kRecordSlot bytes (whole cache lines of up to 256 bytes, so no two records share a line; the
+// application consumes them through the callback before the ring wraps).
 constexpr uint32_t kRecordBytes = (6 + 64) * 4;
+constexpr uint32_t kRecordSlot = 512;
 constexpr uint32_t kRecordRing = 256;
 
 struct DriverConfig {

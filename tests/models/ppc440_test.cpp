@@ -1,5 +1,7 @@
 // The CPU stub: byte order through the HAL, MMIO and memory timing, interrupts, errors.
 #include "harness.h"
+#include <cmath>
+
 #include "models/common/clock.h"
 #include "models/mci/mci_link.h"
 #include "models/memory/ddr_memory.h"
@@ -108,6 +110,34 @@ TEST(Ppc440, ComputeStallsForEachFillAndPostsWriteBacks) {
     EXPECT_EQ(bench.cpu.stats().fill_stall, 3 * fill);
     EXPECT_EQ(bench.cpu.stats().bytes_read, 96u);
     EXPECT_EQ(bench.cpu.stats().bytes_written, 32u);
+}
+
+// Over PLB1 (a bus that synchronises) the CPU waits for each line's grant: write-backs
+// queued behind each other push the step's end later, never before the kernel's time.
+TEST(Ppc440, WriteBacksOverASynchronisingBusKeepTimeForward) {
+    Tracer tracer;
+    DdrMemory memory{"memory", DdrMemory::Params{}};
+    PlbBus bus{"plb", PlbBus::Params{}, tracer};
+    sc_core::sc_signal<bool> irq;
+    uint64_t spent = 0;
+    Ppc440 cpu("cpu", Ppc440::Params{}, [&](sw::Hal& hal) {
+        std::vector<sw::LineTransfer> lines;
+        for (uint32_t i = 0; i < 10; ++i) lines.push_back({0x4000 + 32 * i, 100, true});  // one record's lines at once
+        spent = hal.compute(200, lines);
+    }, tracer);
+    bus.connect_master(cpu.bus, "cpu");
+    bus.connect_master(cpu.mem, "cpu memory");
+    bus.slaves.bind(memory.ports);
+    bus.map(0, 256u << 20, 0, "ddr");
+    cpu.irq.bind(irq);
+    sc_core::sc_start();
+    // Ten posted writes of 2 beats each over PLB1: 40 + 20 ns a burst, one after the other from
+    // cycle 100 (250 ns), then the remaining 100 cycles.
+    const sc_core::sc_time burst = PlbBus::burst_time(PlbBus::Params{}, 32, sc_core::sc_time(12.5, sc_core::SC_NS));
+    EXPECT_EQ(burst, ns(60));
+    EXPECT_EQ(cpu.finish_time(), ns(250) + 9 * burst + ns(250));
+    EXPECT_EQ(spent, uint64_t(std::llround((cpu.finish_time().to_seconds()) * 400e6)));
+    EXPECT_EQ(cpu.stats().write_backs, 10u);
 }
 
 TEST(Ppc440, WaitForIrqSleepsUntilTheLineRises) {

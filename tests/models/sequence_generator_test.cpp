@@ -170,6 +170,21 @@ TEST(SequenceGenerator, CheckerCatchesEveryBrokenLimit) {
     EXPECT_FALSE(check_sequence(early, p).empty());
 }
 
+// Without reuse every word is one group's delivery; a word that also feeds another size's
+// TripleMAC is refused.
+TEST(SequenceGenerator, CheckerHoldsAMachineWithoutReuseToWholeGroups) {
+    SequenceParams p;
+    p.reuse = false;
+    Sequence s = generate_sequence(p);
+    ASSERT_EQ(check_sequence(s, p), "");
+    Step& first = s.steps.front();
+    const int other = first.taps.front().triple_mac < 4 ? 16 : 0;  // a TripleMAC of another size
+    first.taps.push_back({other, 0, 1, Response::xy});
+    EXPECT_NE(check_sequence(s, p).find("without reuse"), std::string::npos) << check_sequence(s, p);
+    p.reuse = true;
+    EXPECT_EQ(check_sequence(s, p).find("without reuse"), std::string::npos);
+}
+
 TEST(SequenceGenerator, ImpossibleConfigurationsAreNamed) {
     auto message = [](SequenceParams p) {
         try {

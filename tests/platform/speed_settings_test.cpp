@@ -66,7 +66,10 @@ void expect_same_figures(const nlohmann::json& a, const nlohmann::json& b, const
 class SpeedSettings : public testing::TestWithParam<const char*> {};
 
 TEST_P(SpeedSettings, DmaGranularityAndQuantumMoveNoFigure) {
-    const std::string scenario = GetParam() == std::string("contention") ? kContention : "";
+    const std::string which = GetParam();
+    const std::string scenario = which == "contention" ? kContention
+                                 : which == "short_bursts" ? " --set 'iig.burst=8 beats' --set 'fhg.burst=4 beats'"
+                                                           : "";
     const auto reference = report("line_1us", scenario);
     for (const char* setting : {" --set run.dma_granularity=burst", " --set 'cpu.quantum=10 ns'",
                                 " --set 'cpu.quantum=100 us'", " --set run.dma_granularity=burst --set 'cpu.quantum=1 ms'"}) {
@@ -78,7 +81,8 @@ TEST_P(SpeedSettings, DmaGranularityAndQuantumMoveNoFigure) {
     }
 }
 
-INSTANTIATE_TEST_SUITE_P(BudgetAndContention, SpeedSettings, testing::Values("budget", "contention"),
+// short_bursts: DMA masters whose own bursts are shorter than the bus allows.
+INSTANTIATE_TEST_SUITE_P(BudgetAndContention, SpeedSettings, testing::Values("budget", "contention", "short_bursts"),
                          [](const auto& info) { return std::string(info.param); });
 
 // The contention scenario really contends: DMA masters wait for PLB2, ports for the DRAM.

@@ -176,6 +176,26 @@ TEST(SurfRun, ChipKeypointsMatchTheFloatReference) {
 namespace surfvp {
 namespace {
 
+// The CPU's memory over PLB1 instead of the MCI: its fills and write-backs show on PLB1, and
+// the FHG-bound frame rate hardly moves.
+TEST(SurfRun, CpuMemoryOverPlb1) {
+    const std::string sets = " --set surf.frames=3 --set budget.fps=0";
+    const auto mci = run("mem_mci", sets, 0);
+    const auto plb1 = run("mem_plb1", sets + " --set cpu.memory_path=plb1", 0);
+    EXPECT_EQ(plb1["cpu"]["memory"]["path"], "plb1");
+    EXPECT_EQ(plb1["buses"]["plb1"]["masters"]["cpu memory"]["bytes_read"], mci["cpu"]["memory"]["bytes_read"]);
+    EXPECT_EQ(plb1["mci"]["present"], false);
+    EXPECT_NEAR(plb1["throughput_fps"].get<double>(), mci["throughput_fps"].get<double>(), 0.01 * mci["throughput_fps"].get<double>());
+    EXPECT_GT(plb1["cpu"]["memory"]["fill_stall_s"].get<double>(), mci["cpu"]["memory"]["fill_stall_s"].get<double>());
+}
+
+TEST(SurfRun, TooFewFramesForTheRateAreBadInput) {
+    const auto r = surfvp("run " + kBudget + " --trace none --quiet --out " + fresh_dir("few") + kOneRun +
+                          " --set surf.frames=2 --set soc.accelerators=2");
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_NE(r.err.find("surf.frames"), std::string::npos) << r.err;
+}
+
 // fhg.det_bits changes the determinant record in memory: 16-bit words halve what the FHG
 // writes over PLB2 and into DDR, and the CPU reads them back from half the bytes.
 TEST(SurfRun, DeterminantWidthSetsTheTrafficItCauses) {
