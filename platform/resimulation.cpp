@@ -39,9 +39,11 @@ Json Resimulation::point_summary(const Json& r) {
     return s;
 }
 
-void Resimulation::submit(Config config, Done done, bool full, std::string out, std::string trace) {
+void Resimulation::submit(Config config, Done done, bool full, std::string out, std::string trace, bool urgent) {
     ++submitted_;
-    queue_.push_back({std::move(config), std::move(done), full, std::move(out), std::move(trace)});
+    Job job{std::move(config), std::move(done), full, std::move(out), std::move(trace)};
+    if (urgent) queue_.push_front(std::move(job));
+    else queue_.push_back(std::move(job));
 }
 
 // The child simulates, writes its result as JSON and leaves at once (no destructors of the

@@ -29,8 +29,10 @@ public:
     Resimulation& operator=(const Resimulation&) = delete;
 
     // One re-simulation of `config`; `out`/`trace` as simulate_scenario's (empty/none for a
-    // point that writes nothing).
-    void submit(Config config, Done done, bool full = false, std::string out = "", std::string trace = "none");
+    // point that writes nothing). An urgent one starts before those already waiting (a
+    // search whose next step waits for it).
+    void submit(Config config, Done done, bool full = false, std::string out = "", std::string trace = "none",
+                bool urgent = false);
     // Runs until every submitted re-simulation, and every one their callbacks submit, is done;
     // `progress(done, submitted)` after each.
     void run(const std::function<void(size_t, size_t)>& progress);

@@ -294,15 +294,21 @@ int run_with_verdict(const Config& config, const std::string& out, const std::st
     std::function<void(size_t)> step = [&](size_t i) {
         BreakEven& s = *searches[i];
         if (const auto v = s.next()) {
-            pool.submit(with(reference, {{s.axis().key, format_value(s.spec(), *v)}}), [&, i, v](const Json& r) {
-                searches[i]->record(*v, r.contains("error") ? -1.0 : r["fps"].get<double>());
-                step(i);
-            });
+            pool.submit(
+                with(reference, {{s.axis().key, format_value(s.spec(), *v)}}),
+                [&, i, v](const Json& r) {
+                    searches[i]->record(*v, r.contains("error") ? -1.0 : r["fps"].get<double>());
+                    step(i);
+                },
+                false, "", "none", true);
         } else if (const auto answer = s.answer()) {
-            pool.submit(with(config, {{s.axis().key, format_value(s.spec(), *answer)}}), [&, i](const Json& r) {
-                checks[i] = r.contains("error") ? r : Json{{"frames", config.count("surf.frames")}, {"fps", r["fps"]},
-                                                            {"met", r["fps"].get<double>() >= budget}};
-            });
+            pool.submit(
+                with(config, {{s.axis().key, format_value(s.spec(), *answer)}}),
+                [&, i](const Json& r) {
+                    checks[i] = r.contains("error") ? r : Json{{"frames", config.count("surf.frames")}, {"fps", r["fps"]},
+                                                                {"met", r["fps"].get<double>() >= budget}};
+                },
+                false, "", "none", true);
         }
     };
     // The reference (the scenario at the re-simulations' frame count) first: it names the
