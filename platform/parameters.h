@@ -36,6 +36,8 @@ std::string closest_parameter(std::string_view key);
 // Parses `text` as a value of `spec` and checks its range; returns the value in the kind's
 // base unit. Throws UnitError with a message naming what is wrong.
 double parse_value(const ParamSpec& spec, const std::string& text);
+// The other way: a value in the kind's base unit as a scenario writes it ("118.353 MHz").
+std::string format_value(const ParamSpec& spec, double value);
 
 // What values of this kind look like, for messages and docs ("a frequency, e.g. 100 MHz").
 std::string describe_kind(const ParamSpec& spec);

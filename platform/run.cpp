@@ -4,10 +4,10 @@
 #include <cstdio>
 #include <filesystem>
 #include <fmt/format.h>
-#include <unistd.h>
 
 #include "direct_chip.h"
 #include "frame_limits.h"
+#include "progress_line.h"
 #include "verdict.h"
 #include "report.h"
 #include "scenario.h"
@@ -29,37 +29,13 @@ Tracer::Options trace_options(const std::string& mode, const std::string& dir) {
     return {mode == "vcd" || mode == "all", mode == "perfetto" || mode == "all", dir};
 }
 
-// A progress line on stderr once a run has taken a second of wall time.
-class ProgressLine {
-public:
-    ProgressLine(bool quiet, std::string name) : quiet_(quiet), name_(std::move(name)), tty_(isatty(2)) {}
-    ~ProgressLine() {
-        if (shown_ && tty_) std::fputc('\n', stderr);
-    }
-    void update(const Progress& p, double sim_s, double wall_s) {
-        if (quiet_ || wall_s < 1.0 || wall_s - last_ < 0.5) return;
-        last_ = wall_s;
-        shown_ = true;
-        std::fprintf(stderr, "%ssurfvp: %s: %llu/%llu %s, %.3f ms simulated, %.1f s wall, %.3gx real time%s",
-                     tty_ ? "\r" : "", name_.c_str(), (unsigned long long)p.done, (unsigned long long)p.total,
-                     p.unit.c_str(), sim_s * 1e3, wall_s, sim_s / wall_s, tty_ ? "" : "\n");
-    }
-
-private:
-    bool quiet_;
-    std::string name_;
-    bool tty_;
-    bool shown_ = false;
-    double last_ = 0;
-};
-
 struct Outcome {
     sc_core::sc_time sim_time;
     std::string failure;  // empty when the software ran to its end
 };
 
 // Simulates in slices until the software returns, a stall, or run.max_time.
-Outcome simulate(Soc& soc, const Config& config, ProgressLine& progress, WallClock::time_point start) {
+Outcome simulate(Soc& soc, const Config& config, ProgressLine& progress) {
     const sc_core::sc_time limit(double(config.duration("run.max_time").ps), sc_core::SC_PS);
     const sc_core::sc_time slice(100, sc_core::SC_US);
     sc_core::sc_spawn_options pause_when_done;
@@ -77,7 +53,12 @@ Outcome simulate(Soc& soc, const Config& config, ProgressLine& progress, WallClo
                     "stalled: nothing is left to simulate but the software has not finished "
                     "(is it waiting for an interrupt that never comes?)"};
         sc_core::sc_start(slice);
-        progress.update(soc.workload().progress(), sc_core::sc_time_stamp().to_seconds(), since(start));
+        const Progress p = soc.workload().progress();
+        const double sim_s = sc_core::sc_time_stamp().to_seconds();
+        progress.update([&](double wall_s) {
+            return fmt::format("{}/{} {}, {:.3f} ms simulated, {:.1f} s wall, {:.3g}x real time", p.done, p.total, p.unit,
+                               sim_s * 1e3, wall_s, sim_s / wall_s);
+        });
     }
     if (!soc.cpu().error().empty()) return {soc.cpu().finish_time(), "software error: " + soc.cpu().error()};
     return {soc.cpu().finish_time(), ""};
@@ -176,8 +157,8 @@ nlohmann::ordered_json simulate_scenario(const Config& config, const std::string
     const auto start = WallClock::now();
     Outcome outcome;
     {
-        ProgressLine progress(quiet, config.name);
-        outcome = simulate(soc, config, progress, start);
+        ProgressLine progress(quiet, config.name, 1.0, 0.5, 0.5);  // a line once a run has taken a second
+        outcome = simulate(soc, config, progress);
     }
     const double wall_s = since(start);
     soc.workload().trace(tracer);

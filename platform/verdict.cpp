@@ -1,7 +1,6 @@
 #include "verdict.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -11,6 +10,7 @@
 #include <optional>
 #include <unistd.h>
 
+#include "progress_line.h"
 #include "report.h"
 #include "resimulation.h"
 #include "run.h"
@@ -55,13 +55,11 @@ std::vector<Axis> break_even_axes(const std::string& resource, const std::string
     return {};
 }
 
-// A value of `spec` as a scenario would write it (frequencies to the kHz).
-std::string format_value(const ParamSpec& spec, double value) {
-    switch (spec.kind) {
-        case ParamKind::frequency: return fmt::format("{:.3f} MHz", std::round(value / 1e3) / 1e3);
-        case ParamKind::cycles: return fmt::format("{} cycles", int64_t(std::llround(value)));
-        default: return fmt::format("{}", int64_t(std::llround(value)));
-    }
+// A search value as a scenario writes it: a clock in MHz to the kHz (format_value would pick
+// the unit that makes it whole, "118353 kHz"), a count whole.
+std::string as_text(const ParamSpec& spec, double value) {
+    if (spec.kind == ParamKind::frequency) return fmt::format("{} MHz", std::round(value / 1e3) / 1e3);
+    return format_value(spec, std::round(value));
 }
 
 // The search for the value at which the frame rate just meets the budget: in u = direction x
@@ -120,9 +118,9 @@ public:
     const ParamSpec& spec() const { return spec_; }
 
     Json result(const Json& check) const {
-        Json r = {{"parameter", axis_.key}, {"default", format_value(spec_, start_)}, {"runs", runs_ - 1}};
+        Json r = {{"parameter", axis_.key}, {"default", as_text(spec_, start_)}, {"runs", runs_ - 1}};
         if (hi_) {
-            r["value"] = format_value(spec_, value(*hi_));
+            r["value"] = as_text(spec_, value(*hi_));
             r["fps"] = hi_fps_;
             r["bound"] = !lo_ ? (*hi_ <= u_min_ ? "met at the end of its range" : "") : "";
             r["check"] = check;
@@ -130,7 +128,7 @@ public:
             r["value"] = nullptr;
             r["note"] = runs_ > kMaxRuns ? fmt::format("no value found in {} re-simulations", kMaxRuns)
                                          : fmt::format("not met anywhere in {}'s range (up to {})", axis_.key,
-                                                       format_value(spec_, value(u_max_)));
+                                                       as_text(spec_, value(u_max_)));
         }
         return r;
     }
@@ -239,29 +237,6 @@ std::string statement(double fps, double budget, const Json& band) {
     return s + fmt::format("; {} under assumptions {}", met ? "at risk" : "met", fmt::join(names, ", "));
 }
 
-class ProgressLine {
-public:
-    ProgressLine(bool quiet, std::string name) : quiet_(quiet), name_(std::move(name)), tty_(isatty(2)) {}
-    ~ProgressLine() {
-        if (shown_ && tty_) std::fputc('\n', stderr);
-    }
-    void update(size_t done, size_t total) {
-        const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
-        if (quiet_ || wall - last_ < (tty_ ? 0.5 : 5.0)) return;
-        last_ = wall;
-        shown_ = true;
-        std::fprintf(stderr, "%ssurfvp: %s: verdict: %zu/%zu re-simulations, %.1f s%s", tty_ ? "\r" : "", name_.c_str(),
-                     done, total, wall, tty_ ? "" : "\n");
-    }
-
-private:
-    bool quiet_;
-    std::string name_;
-    bool tty_, shown_ = false;
-    double last_ = 0;
-    std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
-};
-
 }  // namespace
 
 bool verdict_requested(const Config& config) {
@@ -295,7 +270,7 @@ int run_with_verdict(const Config& config, const std::string& out, const std::st
         BreakEven& s = *searches[i];
         if (const auto v = s.next()) {
             pool.submit(
-                with(reference, {{s.axis().key, format_value(s.spec(), *v)}}),
+                with(reference, {{s.axis().key, as_text(s.spec(), *v)}}),
                 [&, i, v](const Json& r) {
                     searches[i]->record(*v, r.contains("error") ? -1.0 : r["fps"].get<double>());
                     step(i);
@@ -303,7 +278,7 @@ int run_with_verdict(const Config& config, const std::string& out, const std::st
                 false, "", "none", true);
         } else if (const auto answer = s.answer()) {
             pool.submit(
-                with(config, {{s.axis().key, format_value(s.spec(), *answer)}}),
+                with(config, {{s.axis().key, as_text(s.spec(), *answer)}}),
                 [&, i](const Json& r) {
                     checks[i] = r.contains("error") ? r : Json{{"frames", config.count("surf.frames")}, {"fps", r["fps"]},
                                                                 {"met", r["fps"].get<double>() >= budget}};
@@ -338,8 +313,10 @@ int run_with_verdict(const Config& config, const std::string& out, const std::st
             pool.submit(with(reference, {{axis.spec->key, side->value}}), [side](const Json& r) { side->result = r; });
         }
     {
-        ProgressLine progress(quiet, config.name);
-        pool.run([&](size_t done, size_t total) { progress.update(done, total); });
+        ProgressLine progress(quiet, config.name, 0.0, 0.5, 5.0);
+        pool.run([&](size_t done, size_t total) {
+            progress.update([&](double wall) { return fmt::format("verdict: {}/{} re-simulations, {:.1f} s", done, total, wall); });
+        });
     }
     if (base.contains("error")) {
         if (base["exit"] == 2) throw ConfigError(base["error"].get<std::string>());

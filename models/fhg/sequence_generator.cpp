@@ -180,7 +180,7 @@ std::pair<int, std::string> lower_bound(const Problem& problem, const SequencePa
 
 // The lane of word `w` that holds need `n`'s value.
 int lane_of(const SequenceParams& p, const Need& n, const Word& w) {
-    const auto shape = word_shape(p.bus_word);
+    const auto& shape = word_shape(p.bus_word);
     for (size_t l = 0; l < shape.size(); ++l)
         if (w.y + shape[l][0] == n.y && w.x + shape[l][1] == n.x) return int(l);
     throw std::logic_error("sequence generator: a value outside its word");
@@ -234,7 +234,6 @@ public:
     }
 
 private:
-
     const Problem& problem_;
     const SequenceParams& p_;
     std::vector<bool> pending_;
@@ -244,8 +243,9 @@ private:
 
 constexpr int kCycleLimit = 1 << 16;  // far beyond any schedule; a guard against a scheduler bug
 
-// The improved script: each bus carries the word whose free consumers have the most work
-// left (the most loaded TripleMAC decides the length), then the one serving the most, then a
+// One pass of the list scheduler both scripts use: each bus carries the word whose free
+// consumers have the most work left (the most loaded TripleMAC decides the length; with
+// `port_aware`, also the most loaded BRAM it reads), then the one serving the most, then a
 // seeded jitter (seed 0: none).
 std::vector<Step> schedule_list(const Problem& problem, const SequenceParams& p, bool reuse, unsigned seed,
                                 bool port_aware = false) {
@@ -324,7 +324,6 @@ Sequence finish(std::vector<Step> steps, const Problem& problem, const SequenceP
         if (first[t] >= 0) s.interval = std::max(s.interval, last[t] - first[t]);
     s.steps = std::move(steps);
     s.words_delivered = int(s.steps.size());
-    std::tie(s.optimal_cycles, s.optimal_limit) = lower_bound(problem, p);
     s.reads_per_block = int(problem.needs.size());
     s.distinct_reads_per_block = problem.distinct;
     return s;
@@ -362,7 +361,7 @@ Sequence schedule_improved(const Problem& problem, const SequenceParams& p) {
 // Without reuse a word is one group's delivery: the same read (size, place relative to each
 // pixel, coefficient, response) of every pixel the word serves, in full.
 std::string check_one_group(const Step& step, const SequenceParams& p) {
-    const auto shape = word_shape(p.bus_word);
+    const auto& shape = word_shape(p.bus_word);
     std::set<std::tuple<int, int, int, int, int>> reads;
     std::set<int> tms;
     for (const Tap& tap : step.taps) {
@@ -382,13 +381,9 @@ std::string check_one_group(const Step& step, const SequenceParams& p) {
 
 }  // namespace
 
-std::vector<std::array<int, 2>> word_shape(BusWord word) {
-    switch (word) {
-        case BusWord::scalar: return {{0, 0}};
-        case BusWord::pair: return {{0, 0}, {0, 1}};
-        case BusWord::quad: return {{0, 0}, {0, 1}, {1, 0}, {1, 1}};
-    }
-    return {};
+const std::vector<std::array<int, 2>>& word_shape(BusWord word) {
+    static const std::vector<std::array<int, 2>> scalar{{0, 0}}, pair{{0, 0}, {0, 1}}, quad{{0, 0}, {0, 1}, {1, 0}, {1, 1}};
+    return word == BusWord::scalar ? scalar : word == BusWord::pair ? pair : quad;
 }
 
 const char* bus_word_name(BusWord word) {
@@ -406,8 +401,9 @@ Sequence generate_sequence(const SequenceParams& params) {
     validate(params);
     check_word_fits(params);
     const Problem problem = make_problem(params);
-    if (params.scheduler == Scheduler::basic) return schedule_basic(problem, params);
-    return schedule_improved(problem, params);
+    Sequence s = params.scheduler == Scheduler::basic ? schedule_basic(problem, params) : schedule_improved(problem, params);
+    std::tie(s.optimal_cycles, s.optimal_limit) = lower_bound(problem, params);
+    return s;
 }
 
 const Sequence& cached_sequence(const SequenceParams& p) {
@@ -432,7 +428,7 @@ std::string check_sequence(const Sequence& sequence, const SequenceParams& param
     }
     std::vector<Step> steps = sequence.steps;
     std::stable_sort(steps.begin(), steps.end(), [](const Step& a, const Step& b) { return a.cycle < b.cycle; });
-    const auto shape = word_shape(params.bus_word);
+    const auto& shape = word_shape(params.bus_word);
     std::vector<int> busy_until(params.triple_macs, 0), last_cycle(params.triple_macs, -1), first(params.triple_macs, -1);
     std::map<std::pair<int, int>, int> bus_use, bram_use;  // (cycle, bus) / (cycle, BRAM) -> count
     for (const Step& step : steps) {

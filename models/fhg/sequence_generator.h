@@ -97,7 +97,7 @@ Sequence generate_sequence(const SequenceParams& params);
 const Sequence& cached_sequence(const SequenceParams& params);
 
 // Values of a bus word, as (dy, dx) offsets from its top-left point, in lane order.
-std::vector<std::array<int, 2>> word_shape(BusWord word);
+const std::vector<std::array<int, 2>>& word_shape(BusWord word);
 const char* bus_word_name(BusWord word);
 const char* scheduler_name(Scheduler scheduler);
 

@@ -69,9 +69,7 @@ sc_time PlbBus::burst_time(const Params& p, uint64_t bytes, const sc_time& slave
     return overhead + std::max(cycles(p.clock, double(beats)), slave_time);
 }
 
-sc_time PlbBus::occupancy(uint64_t bytes, const sc_time& slave_time) const { return burst_time(params_, bytes, slave_time); }
-
-sc_time PlbBus::transaction_time(uint64_t bytes) const { return occupancy(bytes, SC_ZERO_TIME); }
+sc_time PlbBus::transaction_time(uint64_t bytes) const { return burst_time(params_, bytes, SC_ZERO_TIME); }
 
 const PlbBus::Route* PlbBus::decode(uint64_t address, uint64_t length) const {
     for (const Route& r : routes_)
@@ -196,7 +194,7 @@ void PlbBus::b_transport(int master, tlm::tlm_generic_payload& tx, sc_time& dela
         tx.set_data_length(unsigned(n));
         tx.set_streaming_width(unsigned(n));
         slaves[route->slave]->b_transport(tx, slave_time);
-        const sc_time duration = occupancy(n, slave_time - ahead);
+        const sc_time duration = burst_time(params_, n, slave_time - ahead);
         end = granted + duration;
         path.free_at = end;
         path.in_flight = false;

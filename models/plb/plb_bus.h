@@ -124,7 +124,6 @@ private:
     void await_grant(Path& path, int master);
     sc_core::sc_time acquire(Path& path, int master);
     bool keeps_path(const Path& path, const sc_core::sc_time& at) const;
-    sc_core::sc_time occupancy(uint64_t bytes, const sc_core::sc_time& slave_time) const;
     const Route* decode(uint64_t address, uint64_t length) const;
     void trace_transaction(int master, bool write, uint64_t bytes, const sc_core::sc_time& requested,
                            const sc_core::sc_time& granted, const sc_core::sc_time& end);
