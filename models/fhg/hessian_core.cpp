@@ -72,11 +72,6 @@ HessianCore::HessianCore(const Precision& p) : precision_(p) {
     double_exact_ = bound < 52;
 }
 
-bool HessianCore::inside(int width, int height, int x, int y, int size) {
-    const int b = (size - 1) / 2;
-    return x >= b && y >= b && x + b < width && y + b < height;
-}
-
 int64_t HessianCore::wrap(int64_t sum) const {
     const unsigned drop = 64 - precision_.accumulator_bits;
     return int64_t(uint64_t(sum) << drop) >> drop;

@@ -48,7 +48,10 @@ public:
 
     double to_float(int64_t det) const { return double(det) / double(int64_t(1) << precision_.det_frac_bits); }
     int32_t from_float(double det) const;  // a threshold in OpenCV's units, as the hardware compares it
-    static bool inside(int width, int height, int x, int y, int size);
+    static bool inside(int width, int height, int x, int y, int size) {
+        const int b = (size - 1) / 2;
+        return x >= b && y >= b && x + b < width && y + b < height;
+    }
     const Precision& precision() const { return precision_; }
 
 private:

@@ -4,13 +4,16 @@
 // the determinant buffer (LocMaxFinder only compared two blocks, paper §III-C), interpolates
 // position and scale (eqs. 4-5), and builds the Laplacian sign, orientation and SURF-64
 // descriptor from the integral image in DDR, reusing the float reference's code (sw/surf)
-// through a MemoryView. Every step counts its work into a CostCounter (sw/cpu_cost), which the
-// driver turns into CPU time. Plain C++: no SystemC, no HAL (the caller maps the buffers).
+// through a MemoryView. Every step tells a meter what it did (sw/cpu_cost/work_units.h): on the
+// platform a CostCounter, which the driver turns into CPU time; in the PPC440 build of the same
+// code (sw/cpu_cost/firmware) a meter that only marks the steps for the instruction trace.
+// Plain C++: no SystemC, no HAL (the caller maps the buffers).
 #include <cstddef>
 #include <cstdint>
 #include <optional>
 
 #include "sw/cpu_cost/cost_model.h"
+#include "sw/cpu_cost/work_units.h"
 #include "sw/surf/fast_hessian.h"
 #include "sw/surf/keypoint.h"
 #include "sw/surf/params.h"
@@ -36,17 +39,20 @@ struct StageParams {
     // integer sums). Charged by the mode in use (sw/cpu_cost/surf_op_counts.h).
     surf::HaarMode haar = surf::HaarMode::exact;
     float threshold = 0;   // determinant threshold in float units (sw/surf/README.md)
-    CostParams cost;
 };
 
-class SoftwareStage {
+// Meter: void enter(Step), void leave() (the candidate is done), void count(Unit, uint64_t),
+// void load(Read, uint32_t address, unsigned bytes), void begin_frame() (work_units.h).
+template <class Meter>
+class BasicSoftwareStage {
 public:
-    explicit SoftwareStage(const StageParams& params);  // throws std::invalid_argument (cost params, haar)
+    // Throws std::invalid_argument for a Haar mode other than exact or rounded.
+    explicit BasicSoftwareStage(const StageParams& params, Meter meter = Meter());
 
     // One maxima-FIFO word -> a keypoint (position, scale, response = the candidate's own
     // determinant, Laplacian, orientation, descriptor), or nothing when the candidate touches
     // the border, is not above the threshold and all 26 neighbours, or the interpolation
-    // rejects it. Counts its work into cost(). Throws std::invalid_argument for a word
+    // rejects it. Tells the meter its work. Throws std::invalid_argument for a word
     // without the valid bit or with a size index the FHG never sends, or for empty buffers.
     std::optional<surf::Keypoint> process(uint32_t fifo_word, const FrameBuffers& frame);
 
@@ -54,25 +60,14 @@ public:
     // not coherent with DMA; the cost of the invalidation itself is the driver's).
     void begin_frame();
 
-    CostCounter& cost() { return cost_; }  // the driver calls cost().take_cycles() and consume()s them
-    const CostCounter& cost() const { return cost_; }
+    Meter& cost() { return meter_; }  // the driver calls cost().take_cycles() and consume()s them
+    const Meter& cost() const { return meter_; }
 
     struct Stats {
         uint64_t candidates = 0, rejected_not_maximum = 0, rejected_interpolation = 0, rejected_border = 0,
                  keypoints = 0;
     };
     const Stats& stats() const { return stats_; }
-
-    // Cycles spent in each step so far (cost model, un-rounded); they add up to
-    // cost().exact_cycles() while nothing else is counted into cost().
-    struct PhaseCycles {
-        double check = 0;          // decode, border, threshold and the 26 neighbours
-        double interpolation = 0;  // the 3x3 solve and the keypoint's position and scale
-        double laplacian = 0;
-        double orientation = 0;
-        double descriptor = 0;
-    };
-    const PhaseCycles& phase_cycles() const { return phases_; }
 
 private:
     struct Scan;  // one decoded candidate and its neighbourhood's geometry
@@ -82,13 +77,16 @@ private:
     bool is_maximum(const Scan& scan, const FrameBuffers& frame, Cube& values);
     std::optional<surf::Keypoint> interpolate(const Scan& scan, const Cube& values, unsigned det_frac_bits);
     void describe(const Scan& scan, const FrameBuffers& frame, surf::Keypoint& kp);
-    void charge(double& phase, double& since);  // phase += cycles since `since`; since = now
 
     StageParams params_;
-    CostCounter cost_;
+    Meter meter_;
     Stats stats_;
-    PhaseCycles phases_;
     surf::ResponseStack stack_;  // a 3x3x3 stack: how sw/surf's interpolation takes the values
 };
+
+// The platform's stage: priced by the calibrated cost model (software_stage.cpp instantiates it;
+// the member definitions are in software_stage_impl.h for the firmware's own instantiation).
+using SoftwareStage = BasicSoftwareStage<CostCounter>;
+extern template class BasicSoftwareStage<CostCounter>;
 
 }  // namespace surfvp::sw

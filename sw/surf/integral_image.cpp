@@ -2,6 +2,8 @@
 
 #include <stdexcept>
 
+#include <opencv2/core/mat.hpp>
+
 namespace surfvp::surf {
 
 void IntegralImage::compute(const cv::Mat& gray8) {

@@ -14,7 +14,9 @@
 #include <cstdint>
 #include <vector>
 
-#include <opencv2/core/mat.hpp>
+namespace cv {
+class Mat;  // only IntegralImage::compute needs OpenCV; the views compile without it (the PPC440 build)
+}
 
 namespace surfvp::surf {
 

@@ -36,12 +36,13 @@ inline float wrap_angle(float a) {
 
 // The orientation proper, with the Haar wavelet pair at a sample position given by `haar`.
 template <class Haar>
-[[gnu::always_inline]] inline float dominant_direction(float x, float y, float scale, const Haar& haar) {
+[[gnu::always_inline]] inline float dominant_direction(float x, float y, float scale, const Haar& haar, int* angles) {
     std::array<float, kBins> bin_dx{}, bin_dy{};
     for (const Sample& s : samples()) {
         const HaarResponse r = haar(x + s.i * scale, y + s.j * scale);
         const float dx = s.weight * r.dx, dy = s.weight * r.dy;
         if (dx == 0 && dy == 0) continue;
+        if (angles) ++*angles;
         int bin = static_cast<int>(wrap_angle(std::atan2(dy, dx)) * (kBins / kTwoPi));
         if (bin >= kBins) bin = kBins - 1;  // an angle that rounds up to 2 pi
         bin_dx[static_cast<size_t>(bin)] += dx;
@@ -79,17 +80,19 @@ template <class Haar>
 // `mode` (params.h): exact wavelets of size 4s at the real sample positions, or rounded ones
 // (haar_response_rounded) of size 2 round(2s), the even whole size nearest to 4s, centred on
 // the pixel corner nearest to each sample. OpenSURF uses 4 round(s), up to 2 px from 4s
-// (s = 1.4: 4 vs 5.6); 2 round(2s) is within 1 px. Everything else is the same.
+// (s = 1.4: 4 vs 5.6); 2 round(2s) is within 1 px. Everything else is the same. `angles`,
+// when given, counts the samples whose angle was computed (not both responses 0): the
+// software stage's cost model prices them (sw/cpu_cost/work_units.h).
 template <class View>
-float orientation(const View& ii, float x, float y, float scale, HaarMode mode = HaarMode::exact) {
+float orientation(const View& ii, float x, float y, float scale, HaarMode mode = HaarMode::exact, int* angles = nullptr) {
     using namespace orientation_detail;
     if (mode == HaarMode::rounded) {
         const int half = haar_detail::rounded_half(kWaveletSize / 2 * scale);
         return dominant_direction(x, y, scale,
-                                  [&](float px, float py) { return haar_response_rounded(ii, px, py, half); });
+                                  [&](float px, float py) { return haar_response_rounded(ii, px, py, half); }, angles);
     }
     const float size = kWaveletSize * scale;
-    return dominant_direction(x, y, scale, [&](float px, float py) { return haar_response(ii, px, py, size); });
+    return dominant_direction(x, y, scale, [&](float px, float py) { return haar_response(ii, px, py, size); }, angles);
 }
 
 }  // namespace surfvp::surf
