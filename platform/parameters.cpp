@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "models/common/units.h"
+#include "sw/cpu_cost/ppc440_pipeline.h"
 
 namespace surfvp {
 namespace {
@@ -52,29 +53,21 @@ void add_cpu_cost(std::vector<ParamSpec>& t) {
                  "[S] PPC440x5 manual Table 4-2: 32 KB, 64 ways"});
     t.push_back({"cpu.dcache_replacement", ParamKind::choice, "lru", 0, 0, {"lru", "round_robin"},
                  "L1 data cache replacement", "[A] LRU; the PPC440's round robin differs by 0.25 % in cycles"});
-    t.push_back({"cpu.int_op", ParamKind::cycles, "1 cycle", 0, 100, {}, "CPU cycles per counted integer operation",
-                 "[A] dual-issue core, mix of co-issued and stalled ops"});
-    t.push_back({"cpu.branch", ParamKind::cycles, "2 cycles", 0, 100, {}, "CPU cycles per branch or loop iteration",
-                 "[A] 1 issue cycle plus a share of mispredictions"});
-    t.push_back({"cpu.load", ParamKind::cycles, "1 cycle", 0, 100, {}, "CPU cycles per 32-bit load that hits L1",
-                 "[S] PPC440 datasheet: single-cycle throughput on a hit"});
-    t.push_back({"cpu.fpu_ratio", ParamKind::count, "2", 1, 8, {}, "CPU cycles per FPU cycle",
-                 "[S] DS693: optimised for 2:1 and 3:1"});
-    t.push_back({"cpu.fpu_issue", ParamKind::cycles, "4 cycles", 1, 100, {}, "CPU cycles between two FPU instructions",
-                 "[A] proxy: Virtex-4 APU FPU issues once per 4 CPU cycles"});
-    t.push_back({"cpu.fpu_dependent_fraction", ParamKind::real, "0.5", 0, 1, {},
-                 "Share of an FPU operation's latency beyond issue that is not hidden",
-                 "[A] between fully overlapped (0) and fully serial (1)"});
-    t.push_back({"cpu.int_float_convert", ParamKind::cycles, "20 cycles", 0, 1000, {}, "CPU cycles per int <-> float conversion",
-                 "[D] no conversion instruction: store, load, dependent FPU op"});
-    t.push_back({"cpu.call", ParamKind::cycles, "8 cycles", 0, 1000, {}, "CPU cycles of a libm call's own overhead",
-                 "[A] branch-and-link, return, prologue, epilogue"});
-    const std::pair<const char*, const char*> latencies[] = {{"fadd", "6"}, {"fmul", "5"}, {"fmadd", "10"}, {"fdiv", "17"},
-                                                             {"fsqrt", "17"}, {"fcmp", "3"}, {"fmove", "2"},
-                                                             {"fload", "3"}, {"fstore", "4"}};
-    for (const auto& [op, cycles] : latencies)
-        t.push_back({std::string("fpu.") + op, ParamKind::cycles, std::string(cycles) + " cycles", 1, 1000, {},
-                     std::string("FPU cycles of ") + op, "[A] proxy: Virtex-4 APU FPU v3.1 latencies (PLATFORM_FACTS §2)"});
+    // The PPC440 pipeline the calibration priced the stage's instruction stream with
+    // (sw/cpu_cost/ppc440_pipeline.h); its probes are the band where it has one.
+    for (const sw::PipelineKnob& k : sw::pipeline_knobs()) {
+        const std::string unit = k.unit;
+        auto text = [&](double v) {
+            if (unit == "switch") return std::string(v > 0.5 ? "on" : "off");
+            if (unit == "count") return fmt::format("{}", v);
+            return fmt::format("{} {}", v, v == 1 ? "cycle" : "cycles");
+        };
+        ParamSpec spec{k.key, ParamKind::cycles, text(sw::PipelineParams{}.*k.field), 0, 1000, {}, k.help, k.source};
+        if (unit == "switch") spec.kind = ParamKind::choice, spec.choices = {"on", "off"};
+        if (unit == "count") spec.kind = ParamKind::count, spec.min = 1, spec.max = 8;
+        if (k.band) spec.band = {text(k.low), text(k.high), k.why};
+        t.push_back(spec);
+    }
 }
 
 void add_iig(std::vector<ParamSpec>& t) {
@@ -200,6 +193,10 @@ void add_surf(std::vector<ParamSpec>& t) {
                  "Re-simulate with every banded parameter at its low and at its high, one at a time: the frames/s range, "
                  "the assumptions that flip the verdict, tornado.svg",
                  "[-] analysis (DESIGN principle 7)"});
+    t.push_back({"verdict.software", ParamKind::choice, "off", 0, 0, {"on", "off"},
+                 "Re-simulate with the software settings that move the CPU's time (surf.haar, surf.upright, "
+                 "surf.target_keypoints): the frames/s and CPU time under each",
+                 "[-] analysis: what the verdict rests on"});
     t.push_back({"verdict.frames", ParamKind::count, "2", 2, 1000, {},
                  "Frames each of the verdict's re-simulations runs (at least soc.accelerators + 1, at most surf.frames)",
                  "[-] the pipeline is in steady state once each pair has done its first frame (every frame alike in the "
@@ -232,21 +229,6 @@ constexpr BandEntry kBands[] = {
     {"mci.width", "64 bit", "128 bit", "a narrower memory interface than the crossbar's"},
     {"mci.latency", "2 cycles", "8 cycles", "crossbar and clock-crossing cycles are not retrieved"},
     {"cpu.dcache_replacement", "round_robin", "lru", "the PPC440 itself is round robin per set"},
-    {"cpu.int_op", "1 cycle", "2 cycles", "more stalls than co-issue in the counted integer mix"},
-    {"cpu.branch", "1 cycle", "4 cycles", "well predicted loops, or frequent mispredictions"},
-    {"cpu.fpu_issue", "2 cycles", "6 cycles", "the DS693 issue rate was not retrieved (Virtex-4 proxy: 4)"},
-    {"cpu.fpu_dependent_fraction", "0", "1", "fully overlapped to fully serial FPU operations"},
-    {"cpu.int_float_convert", "12 cycles", "30 cycles", "the store-load round trip could overlap more, or stall longer"},
-    {"cpu.call", "4 cycles", "16 cycles", "leaf calls, or calls that save many registers"},
-    {"fpu.fadd", "4 cycles", "8 cycles", "the Virtex-5 FPU's latencies are not retrieved (Virtex-4 proxy), +-2"},
-    {"fpu.fmul", "3 cycles", "7 cycles", "as fpu.fadd"},
-    {"fpu.fmadd", "6 cycles", "12 cycles", "as fpu.fadd (no fmadd is counted)"},
-    {"fpu.fdiv", "12 cycles", "28 cycles", "an iterative divider, faster or slower than the proxy"},
-    {"fpu.fsqrt", "12 cycles", "28 cycles", "as fpu.fdiv"},
-    {"fpu.fcmp", "2 cycles", "4 cycles", "as fpu.fadd, +-1"},
-    {"fpu.fmove", "1 cycle", "3 cycles", "as fpu.fadd, +-1"},
-    {"fpu.fload", "2 cycles", "4 cycles", "as fpu.fadd, +-1"},
-    {"fpu.fstore", "3 cycles", "5 cycles", "as fpu.fadd, +-1"},
     {"plb1.arbitration", "fixed_priority", "round_robin", "the other PLB v4.6 arbitration mode"},
     {"plb1.arbitration_latency", "1 cycle", "4 cycles", "PLATFORM_FACTS: ~3-4 cycles, not retrieved; overlapped arbitration would hide most"},
     {"plb1.address_latency", "0 cycles", "2 cycles", "address pipelining would hide it; a slow slave decode would add one"},

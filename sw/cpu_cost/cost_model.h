@@ -1,95 +1,26 @@
 #pragma once
-// CPU cost model of the software stage: counted work -> PPC440 CPU cycles. Plain C++.
+// CPU cost model of the software stage: units of work -> PPC440 CPU cycles. Plain C++.
 //
-// Not an ISS and not cycle-accurate: the software runs natively and says what it did, in
-// operations of the algorithm (a Haar wavelet, a Gaussian-weighted sample, a 3x3 solve: see
-// surf_op_counts.h). Each kind of operation has a cost in CPU cycles from CostParams; the
-// integral-image and determinant reads also go, with their bus addresses, through a model of
-// the L1 data cache, and each line fill costs `miss_cycles`. Every constant is a named field
-// with its source in README.md; the CPU clock is not one of them (the platform turns cycles
-// into time).
+// Not an ISS: the software runs natively and tells the counter, per step, how many units of
+// work it did (work_units.h: a candidate checked, a determinant compared, a descriptor...).
+// Each unit costs the cycles the calibration measured on the same code compiled for the
+// PPC440 and run under an instruction-set simulator (calibration.h: its instruction stream
+// priced by the PPC440 pipeline model, ppc440_pipeline.h). The DDR reads of the integral image
+// and of the determinant buffer also go, with their bus addresses, through the L1 model: a
+// line fill costs `miss_cycles`, or, with the log on, is timed by the platform on the memory
+// path. The CPU clock is not a parameter here (the platform turns cycles into time).
 #include <array>
-#include <cstddef>
 #include <cstdint>
-#include <initializer_list>
-#include <utility>
 #include <vector>
 
 #include "sw/cpu_cost/cache_model.h"
+#include "sw/cpu_cost/work_units.h"
 
 namespace surfvp::sw {
 
-enum class Op : uint8_t {
-    integral_read,     // 32-bit load from the integral image in DDR (through the cache model)
-    determinant_read,  // 32-bit load from the determinant buffer in DDR (through the cache model)
-    int_op,            // integer ALU operation: add, compare, shift, address arithmetic
-    branch,            // branch, loop iteration
-    fload,             // FPU load of the CPU's own data (tables, accumulators, spills)
-    fstore,            // FPU store
-    fadd,              // add or subtract
-    fmul,
-    fmadd,             // fused multiply-add (counted 0 so far: ISO C++ builds do not contract)
-    fdiv,
-    fsqrt,
-    fcmp,
-    fmove,             // fabs, fneg, fmr
-    fcvt,              // int <-> float conversion (no direct instruction on 32-bit PowerPC)
-    gaussian_weight,   // one sample's Gaussian weight: a table load, or exp() (CostParams)
-    exp,               // libm calls, costed as the operations they execute (CostParams)
-    atan2,
-    sin_cos,           // one sin() or one cos()
-    count_
-};
-constexpr size_t kOpKinds = static_cast<size_t>(Op::count_);
-const char* op_name(Op op);
-
-// How many operations of each kind one step of the algorithm performs.
-struct OpCounts {
-    std::array<uint32_t, kOpKinds> n{};
-
-    constexpr OpCounts() = default;
-    constexpr OpCounts(std::initializer_list<std::pair<Op, uint32_t>> counts) {
-        for (const auto& c : counts) n[static_cast<size_t>(c.first)] += c.second;
-    }
-    constexpr uint32_t operator[](Op op) const { return n[static_cast<size_t>(op)]; }
-};
-
-// Every constant of the model (README.md has the table with sources). Cycles are CPU cycles
-// unless a name says FPU cycles.
 struct CostParams {
-    // Integer pipeline.
-    double int_op_cycles = 1;  // [A] single-issue equivalent of the dual-issue PPC440
-    double branch_cycles = 2;  // [A] 1 + share of mispredictions
-    double load_cycles = 1;    // [S] a load that hits L1: single-cycle throughput (PPC440 datasheet)
-    double miss_cycles = 60;   // [D/A] one 32-byte line fill from DDR; the platform passes its own
-
-    // FPU (APU FPU of the Virtex-5; Virtex-4 APU FPU latencies as proxy, PLATFORM_FACTS §2).
-    double fpu_clock_ratio = 2;           // [S] CPU cycles per FPU cycle (DS693: 2:1 and 3:1)
-    double fpu_issue_cycles = 4;          // [S, proxy] CPU cycles between two FPU instructions
-    double fpu_dependent_fraction = 0.5;  // [A] share of an op's latency beyond issue not hidden
-    double fadd_latency = 6;              // FPU cycles [A, proxy]
-    double fmul_latency = 5;
-    double fmadd_latency = 10;
-    double fdiv_latency = 17;  // div and sqrt block the FPU for their whole latency [A]
-    double fsqrt_latency = 17;
-    double fcmp_latency = 3;
-    double fmove_latency = 2;
-    double fload_latency = 3;   // FPU cycles, L1 hit
-    double fstore_latency = 4;
-    double fcvt_cycles = 20;  // [D] int<->float via a store/load through the stack + one FPU op
-
-    // libm calls, as the operations they execute (basic kinds only) plus the call itself.
-    double call_cycles = 8;  // [A] branch-and-link, return, prologue/epilogue
-    OpCounts exp_ops{{Op::fmul, 10}, {Op::fadd, 8}, {Op::fcvt, 2}, {Op::fcmp, 2},
-                     {Op::int_op, 4}, {Op::branch, 2}, {Op::fload, 1}, {Op::fstore, 1}};
-    OpCounts atan2_ops{{Op::fdiv, 1}, {Op::fmul, 10}, {Op::fadd, 11}, {Op::fcmp, 6},
-                       {Op::fmove, 2}, {Op::int_op, 6}, {Op::branch, 6}, {Op::fload, 2}};
-    OpCounts sin_cos_ops{{Op::fmul, 11}, {Op::fadd, 9}, {Op::fcvt, 2}, {Op::fcmp, 2},
-                         {Op::int_op, 4}, {Op::branch, 2}, {Op::fload, 1}};
-    // sw/surf reads the Gaussian weights of orientation (109) and descriptor (400) samples
-    // from tables built once; false charges an exp() per sample instead (OpenSURF's way).
-    bool gaussian_from_table = true;
-
+    std::array<double, kUnits> unit_cycles{};  // CPU cycles per unit (calibration.h: unit_prices)
+    double miss_cycles = 60;  // [D/A] one 32-byte line fill from DDR; the platform passes 0 and times the fills
     CacheParams cache;
 };
 
@@ -101,7 +32,7 @@ struct CostLine {
 };
 
 struct CostBreakdown {
-    std::vector<CostLine> lines;  // every Op kind in enum order, then "cache_miss"
+    std::vector<CostLine> lines;  // every unit in enum order, then "cache_miss"
     double total_cycles = 0;      // sum of the lines
     uint64_t cache_accesses = 0, cache_hits = 0, cache_misses = 0;
     double hit_rate = 0;
@@ -109,24 +40,20 @@ struct CostBreakdown {
 
 class CostCounter {
 public:
-    // Throws std::invalid_argument for a negative constant, a library call whose operations
-    // are not basic kinds, or an invalid cache geometry.
+    // Throws std::invalid_argument for a negative or non-finite price or an invalid cache geometry.
     explicit CostCounter(const CostParams& params);
 
-    void add(Op op, uint64_t n = 1) { counts_[static_cast<size_t>(op)] += n; }
-    void add(const OpCounts& ops, uint64_t times = 1);
-    // A read of `bytes` at bus `address`: one `kind` (integral_read or determinant_read),
-    // and the lines it touches go through the cache model.
-    void load(Op kind, uint32_t address, unsigned bytes) {
-        add(kind);
-        if (!log_misses_) {
-            cache_.access(address, bytes);
-            return;
-        }
+    // The stage's meter (sw/stage/software_stage.h).
+    void enter(Step s) { step_ = s; }
+    void leave() {}
+    void count(Unit u, uint64_t n = 1);
+    void load(Read kind, uint32_t address, unsigned bytes) {
+        ++reads_[static_cast<size_t>(kind)];
         const size_t before = missed_.size();
-        cache_.access(address, bytes, &missed_);
-        if (missed_.size() > before) stamp_misses(before);
+        const CacheModel::Result r = cache_.access(address, bytes, log_misses_ ? &missed_ : nullptr);
+        if (r.misses) charge_misses(r.misses, before);
     }
+    void begin_frame() { cache_.invalidate(); }  // DMA rewrote the buffers: the L1 is not coherent
 
     // With a log, every line fill is also recorded with the exact cycles counted when it was
     // needed, so that a platform can time the fills itself (then give miss_cycles = 0).
@@ -138,13 +65,16 @@ public:
     const std::vector<Miss>& misses() const { return misses_; }
     void clear_misses() { misses_.clear(); }
 
-    uint64_t count(Op op) const { return counts_[static_cast<size_t>(op)]; }
-    double unit_cycles(Op op) const { return unit_[static_cast<size_t>(op)]; }  // per operation
-    double exact_cycles() const;  // sum of count x unit + misses x miss_cycles
-    uint64_t cycles() const;      // exact_cycles() rounded to the nearest cycle
+    uint64_t counted(Unit u) const { return units_[static_cast<size_t>(u)]; }
+    uint64_t reads(Read kind) const { return reads_[static_cast<size_t>(kind)]; }
+    double unit_cycles(Unit u) const { return params_.unit_cycles[static_cast<size_t>(u)]; }
+    double exact_cycles() const { return cycles_; }  // units x prices + misses x miss_cycles
+    uint64_t cycles() const;                         // exact_cycles() rounded to the nearest cycle
     // Cycles accumulated since the last take (the driver consume()s them); the takes add up
     // to cycles() exactly.
     uint64_t take_cycles();
+    // Where the cycles went: each step's units and the fills charged while it ran.
+    const std::array<double, kSteps>& step_cycles() const { return steps_; }
 
     CostBreakdown breakdown() const;
     void reset();  // counts, cache contents and cache counters, takes
@@ -154,14 +84,16 @@ public:
     const CostParams& params() const { return params_; }
 
 private:
-    double mix_cycles(const OpCounts& ops) const;  // basic kinds only
-    void stamp_misses(size_t from);
+    void charge_misses(uint32_t misses, size_t logged_from);
 
     CostParams params_;
     CacheModel cache_;
-    std::array<double, kOpKinds> unit_{};
-    std::array<uint64_t, kOpKinds> counts_{};
+    std::array<uint64_t, kUnits> units_{};
+    std::array<uint64_t, 2> reads_{};
+    std::array<double, kSteps> steps_{};
+    double cycles_ = 0;
     uint64_t taken_ = 0;
+    Step step_ = Step::check;
     bool log_misses_ = false;
     std::vector<uint32_t> missed_;  // lines of the current load that missed
     std::vector<Miss> misses_;

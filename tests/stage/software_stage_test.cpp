@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "stage_fixture.h"
-#include "sw/cpu_cost/surf_op_counts.h"
+#include "sw/cpu_cost/calibration.h"
 #include "sw/surf/descriptor.h"
 #include "sw/surf/orientation.h"
 #include "sw/surf/surf.h"
@@ -22,6 +22,11 @@ namespace surfvp::stage_test {
 namespace {
 
 using sw::SoftwareStage;
+
+// The stage as the platform prices it: the recorded calibration at the default pipeline.
+SoftwareStage make_stage(const sw::StageParams& params) {
+    return SoftwareStage(params, sw::CostCounter(sw::calibrated_cost_params(params.haar)));
+}
 
 surf::Params reference_params(bool upright, surf::HaarMode haar = surf::HaarMode::exact) {
     surf::Params p;
@@ -35,7 +40,7 @@ surf::Params reference_params(bool upright, surf::HaarMode haar = surf::HaarMode
 struct StageRun {
     surf::Keypoints keypoints;
     SoftwareStage::Stats stats;
-    SoftwareStage::PhaseCycles phases;
+    std::array<double, sw::kSteps> steps{};
     sw::CostBreakdown breakdown;
     std::vector<uint64_t> counts;
     uint64_t cycles = 0;
@@ -47,7 +52,7 @@ StageRun run_stage(const HardwareFrame& frame, float threshold, bool upright,
     params.threshold = threshold;
     params.upright = upright;
     params.haar = haar;
-    SoftwareStage stage(params);
+    SoftwareStage stage = make_stage(params);
     stage.begin_frame();
     StageRun run;
     const sw::FrameBuffers buffers = frame.buffers();
@@ -57,9 +62,10 @@ StageRun run_stage(const HardwareFrame& frame, float threshold, bool upright,
         taken += stage.cost().take_cycles();  // as the driver would, per candidate
     }
     run.stats = stage.stats();
-    run.phases = stage.phase_cycles();
+    run.steps = stage.cost().step_cycles();
     run.breakdown = stage.cost().breakdown();
-    for (size_t k = 0; k < sw::kOpKinds; ++k) run.counts.push_back(stage.cost().count(static_cast<sw::Op>(k)));
+    for (size_t k = 0; k < sw::kUnits; ++k) run.counts.push_back(stage.cost().counted(sw::Unit(k)));
+    for (sw::Read r : {sw::Read::integral, sw::Read::determinant}) run.counts.push_back(stage.cost().reads(r));
     run.cycles = stage.cost().cycles();
     EXPECT_EQ(taken, run.cycles);
     return run;
@@ -129,13 +135,10 @@ void report(const char* title, const surf::Keypoints& reference, const StageRun&
     std::printf("cycles %llu, per keypoint %.0f (%.3f ms at 400 MHz), cache hit rate %.4f (%llu misses)\n",
                 (unsigned long long)run.cycles, per_kp, per_kp / 400e3, run.breakdown.hit_rate,
                 (unsigned long long)run.breakdown.cache_misses);
-    const auto& ph = run.phases;
-    std::printf("per keypoint by phase: check %.0f, interpolation %.0f, laplacian %.0f, orientation %.0f, "
-                "descriptor %.0f\n",
-                ph.check / double(st.keypoints), ph.interpolation / double(st.keypoints),
-                ph.laplacian / double(st.keypoints), ph.orientation / double(st.keypoints),
-                ph.descriptor / double(st.keypoints));
-    std::printf("per keypoint by kind:");
+    std::printf("per keypoint by step:");
+    for (size_t k = 0; k < sw::kSteps; ++k)
+        std::printf(" %s %.0f", sw::step_name(sw::Step(k)), run.steps[k] / double(st.keypoints));
+    std::printf("\nper keypoint by unit:");
     for (const sw::CostLine& line : run.breakdown.lines)
         if (line.count)
             std::printf(" %s %.0f (%.1f %%);", line.name, line.cycles / double(st.keypoints),
@@ -213,34 +216,35 @@ TEST(SoftwareStage, CountsTheWorkOfOneKeypoint) {
     const HardwareFrame frame = run_hardware(gray, 300);
     sw::StageParams params;
     params.threshold = 300;
-    SoftwareStage stage(params);
+    SoftwareStage stage = make_stage(params);
     const sw::FrameBuffers buffers = frame.buffers();
     bool found = false;
     for (uint32_t word : frame.fifo) {
         const fhg::Candidate c = fhg::unpack_candidate(word);
         if (c.x < 200 || c.x > 800 || c.y < 200 || c.y > 560) continue;
-        const uint64_t det0 = stage.cost().count(sw::Op::determinant_read);
-        const uint64_t ii0 = stage.cost().count(sw::Op::integral_read);
-        const uint64_t atan0 = stage.cost().count(sw::Op::atan2);
+        const uint64_t det0 = stage.cost().reads(sw::Read::determinant);
+        const uint64_t ii0 = stage.cost().reads(sw::Read::integral);
+        const uint64_t angles0 = stage.cost().counted(sw::Unit::angle);
         const auto kp = stage.process(word, buffers);
         if (!kp) continue;
-        EXPECT_EQ(stage.cost().count(sw::Op::determinant_read) - det0, 27u);
-        EXPECT_EQ(stage.cost().count(sw::Op::integral_read) - ii0, 32u + 109 * 32 + 400 * 32);
-        EXPECT_EQ(stage.cost().count(sw::Op::atan2) - atan0, 109u + 1);
+        EXPECT_EQ(stage.cost().reads(sw::Read::determinant) - det0, 27u);
+        EXPECT_EQ(stage.cost().reads(sw::Read::integral) - ii0, 32u + 109 * 32 + 400 * 32);
+        EXPECT_EQ(stage.cost().counted(sw::Unit::angle) - angles0, 109u);  // a textured patch: every sample
+        EXPECT_EQ(stage.cost().counted(sw::Unit::descriptor), 1u);
         found = true;
         break;
     }
     ASSERT_TRUE(found);
-    const auto& ph = stage.phase_cycles();
-    EXPECT_NEAR(ph.check + ph.interpolation + ph.laplacian + ph.orientation + ph.descriptor,
-                stage.cost().exact_cycles(), 1e-6 * stage.cost().exact_cycles());
+    const auto& steps = stage.cost().step_cycles();
+    EXPECT_NEAR(steps[0] + steps[1] + steps[2] + steps[3] + steps[4], stage.cost().exact_cycles(),
+                1e-6 * stage.cost().exact_cycles());
 }
 
 TEST(SoftwareStage, RejectsCandidatesAtTheBorderAndNonMaxima) {
     const cv::Mat gray = graf1_1024x768();
     ASSERT_FALSE(gray.empty());
     const HardwareFrame frame = run_hardware(gray, 300);
-    SoftwareStage stage(sw::StageParams{});
+    SoftwareStage stage = make_stage(sw::StageParams{});
     const sw::FrameBuffers buffers = frame.buffers();
     // Size 21 at x = 12: its neighbours at size 27 (b = 13) do not fit.
     EXPECT_FALSE(stage.process(fhg::pack_candidate({12, 300, 2}), buffers));
@@ -248,7 +252,7 @@ TEST(SoftwareStage, RejectsCandidatesAtTheBorderAndNonMaxima) {
     EXPECT_FALSE(stage.process(fhg::pack_candidate({40, 2, 4}), buffers));
     EXPECT_FALSE(stage.process(fhg::pack_candidate({1100, 300, 1}), buffers));  // beyond the width
     EXPECT_EQ(stage.stats().rejected_border, 3u);
-    EXPECT_EQ(stage.cost().count(sw::Op::determinant_read), 0u);  // rejected before any load
+    EXPECT_EQ(stage.cost().reads(sw::Read::determinant), 0u);  // rejected before any load
     // A flat-ish spot is no maximum over all 26 (threshold 0, so only the neighbours decide
     // on most pixels); the first loss ends the check.
     int rejected = 0;
@@ -257,7 +261,7 @@ TEST(SoftwareStage, RejectsCandidatesAtTheBorderAndNonMaxima) {
     EXPECT_EQ(stage.stats().rejected_not_maximum + stage.stats().rejected_interpolation + stage.stats().keypoints,
               uint64_t(14));
     EXPECT_GE(stage.stats().rejected_not_maximum, 10u);
-    EXPECT_LT(stage.cost().count(sw::Op::determinant_read), 14u * 27);
+    EXPECT_LT(stage.cost().reads(sw::Read::determinant), 14u * 27);
     EXPECT_GT(rejected, 0);
 }
 
@@ -268,7 +272,7 @@ TEST(SoftwareStage, RefusesWordsTheFhgNeverSends) {
     f.width = 4;
     f.height = 4;
     f.integral_stride = 16;
-    SoftwareStage stage(sw::StageParams{});
+    SoftwareStage stage = make_stage(sw::StageParams{});
     EXPECT_THROW(stage.process(0x00001001, f), std::invalid_argument);  // valid bit clear: FIFO empty
     EXPECT_THROW(stage.process(fhg::pack_candidate({1, 1, 0}), f), std::invalid_argument);  // size 9: never a candidate
     EXPECT_THROW(stage.process(fhg::pack_candidate({1, 1, 5}), f), std::invalid_argument);  // size 51 neither
@@ -364,32 +368,26 @@ TEST(SoftwareStage, CountsTheRoundedWorkOfOneKeypoint) {
     sw::StageParams params;
     params.threshold = 300;
     params.haar = surf::HaarMode::rounded;
-    SoftwareStage stage(params);
+    SoftwareStage stage = make_stage(params);
     const sw::FrameBuffers buffers = frame.buffers();
     bool found = false;
     for (uint32_t word : frame.fifo) {
         const fhg::Candidate c = fhg::unpack_candidate(word);
         if (c.x < 200 || c.x > 800 || c.y < 200 || c.y > 560) continue;
-        const uint64_t ii0 = stage.cost().count(sw::Op::integral_read);
-        const uint64_t cvt0 = stage.cost().count(sw::Op::fcvt);
+        const uint64_t ii0 = stage.cost().reads(sw::Read::integral);
         const auto kp = stage.process(word, buffers);
         if (!kp) continue;
-        EXPECT_EQ(stage.cost().count(sw::Op::integral_read) - ii0, 32u + 109 * 8 + 400 * 8);
-        // fcvt: the solve and keypoint (27 + 4), hessian_at 4, the wavelets 6 each, the samples
-        // (3 per orientation sample, 1 per descriptor sample), the two half-sizes 1 each (atan2,
-        // sin and cos are counted as calls)
-        const uint64_t cvt = 27 + 4 + 4 + 509 * 6 + 109 * 3 + 400 * 1 + 2;
-        EXPECT_EQ(stage.cost().count(sw::Op::fcvt) - cvt0, cvt);
+        EXPECT_EQ(stage.cost().reads(sw::Read::integral) - ii0, 32u + 109 * 8 + 400 * 8);
         found = true;
         break;
     }
     ASSERT_TRUE(found);
-    const auto& ph = stage.phase_cycles();
-    EXPECT_NEAR(ph.check + ph.interpolation + ph.laplacian + ph.orientation + ph.descriptor,
-                stage.cost().exact_cycles(), 1e-6 * stage.cost().exact_cycles());
+    const auto& steps = stage.cost().step_cycles();
+    EXPECT_NEAR(steps[0] + steps[1] + steps[2] + steps[3] + steps[4], stage.cost().exact_cycles(),
+                1e-6 * stage.cost().exact_cycles());
     sw::StageParams bad;
     bad.haar = static_cast<surf::HaarMode>(7);
-    EXPECT_THROW(SoftwareStage{bad}, std::invalid_argument);
+    EXPECT_THROW(make_stage(bad), std::invalid_argument);
 }
 
 }  // namespace
@@ -417,7 +415,7 @@ TEST(SoftwareStage, ReadsDeterminantsPackedToTheirWidth) {
     sw::StageParams params;
     params.threshold = 300;
     params.upright = true;
-    SoftwareStage from_packed(params), from_wide(params);
+    SoftwareStage from_packed = make_stage(params), from_wide = make_stage(params);
     size_t keypoints = 0;
     for (uint32_t word : packed.fifo) {
         const auto a = from_packed.process(word, packed.buffers());
@@ -429,7 +427,7 @@ TEST(SoftwareStage, ReadsDeterminantsPackedToTheirWidth) {
         ++keypoints;
     }
     EXPECT_GT(keypoints, 50u);
-    EXPECT_EQ(from_packed.cost().count(sw::Op::determinant_read), from_wide.cost().count(sw::Op::determinant_read));
+    EXPECT_EQ(from_packed.cost().reads(sw::Read::determinant), from_wide.cost().reads(sw::Read::determinant));
     EXPECT_LT(from_packed.cost().cache().misses(), from_wide.cost().cache().misses());
 }
 
@@ -437,17 +435,19 @@ TEST(SoftwareStage, ReadsDeterminantsPackedToTheirWidth) {
 TEST(CostCounterLog, RecordsEveryMissWithItsCycle) {
     sw::CostParams p;
     p.miss_cycles = 0;
+    p.unit_cycles[size_t(sw::Unit::compare)] = 10;
     sw::CostCounter c(p);
     c.log_misses(true);
-    c.add(sw::Op::int_op, 10);
-    c.load(sw::Op::integral_read, 0x1000, 4);   // miss at 11 cycles (10 ops + the load)
-    c.load(sw::Op::integral_read, 0x1004, 4);   // hit
-    c.load(sw::Op::integral_read, 0x101E, 4);   // spans two lines: 0x1000 (hit) and 0x1020 (miss)
+    c.count(sw::Unit::compare, 1);
+    c.load(sw::Read::integral, 0x1000, 4);  // miss at 10 cycles (the unit before it)
+    c.count(sw::Unit::compare, 2);
+    c.load(sw::Read::integral, 0x1004, 4);  // hit
+    c.load(sw::Read::integral, 0x101E, 4);  // spans two lines: 0x1000 (hit) and 0x1020 (miss) at 30
     ASSERT_EQ(c.misses().size(), 2u);
     EXPECT_EQ(c.misses()[0].line, 0x1000u);
-    EXPECT_DOUBLE_EQ(c.misses()[0].cycle, 11);
+    EXPECT_DOUBLE_EQ(c.misses()[0].cycle, 10);
     EXPECT_EQ(c.misses()[1].line, 0x1020u);
-    EXPECT_DOUBLE_EQ(c.misses()[1].cycle, 13);
+    EXPECT_DOUBLE_EQ(c.misses()[1].cycle, 30);
     c.clear_misses();
     EXPECT_TRUE(c.misses().empty());
     EXPECT_EQ(c.cache().misses(), 2u);
