@@ -6,6 +6,7 @@
 #include <systemc>
 
 #include "bench.h"
+#include "calibrate.h"
 #include "config.h"
 #include "parameters.h"
 #include "quality_commands.h"
@@ -62,6 +63,19 @@ int dispatch(int argc, char** argv) {
     bench->add_option("scenario", bench_options.scenario, "Scenario to run")->capture_default_str();
     bench->add_option("--frames", bench_options.frames, "Frames of the shorter run (the longer has twice as many)")
         ->capture_default_str();
+    CalibrateOptions calibrate_options;
+    CLI::App* calibrate = app.add_subcommand(
+        "calibrate", "Price the software stage from its PPC440 instruction stream (qemu-ppc); write the table and agreement");
+    calibrate->add_option("--fit", calibrate_options.fit, "Scenarios the table is fitted on (repeatable)")->capture_default_str();
+    calibrate->add_option("--check", calibrate_options.check, "Scenarios the table is checked on (repeatable; none: no check)")->capture_default_str();
+    calibrate->add_option("--set", calibrate_options.sets, "Override a parameter in every run (repeatable)")->type_name("KEY=VALUE");
+    calibrate->add_option("--frames", calibrate_options.frames, "Frames per scenario")->capture_default_str();
+    calibrate->add_option("--out", calibrate_options.out, "Output folder")->capture_default_str();
+    calibrate->add_option("--table", calibrate_options.table, "Also write the fitted table here (sw/cpu_cost/calibration.json)");
+    calibrate->add_option("--firmware", calibrate_options.firmware, "The PPC440 build of the stage (default: the build's)");
+    calibrate->add_flag("!--no-probes", calibrate_options.probes,
+                        "Time the stream at the defaults only (keeps the recorded sensitivities)");
+    calibrate->add_flag("--quiet,-q", calibrate_options.quiet, "No progress lines on stderr");
     QualityCommands quality(app);
 
     try {
@@ -76,6 +90,7 @@ int dispatch(int argc, char** argv) {
         if (*validate) return validate_scenario(options);
         if (*seqgen) return seqgen_command(seqgen_options);
         if (*bench) return bench_command(bench_options);
+        if (*calibrate) return calibrate_command(calibrate_options);
         if (app.got_subcommand("list")) return list_scenarios();
         if (app.got_subcommand("params")) {
             std::fputs(parameters_markdown().c_str(), stdout);

@@ -2,6 +2,8 @@
 # Sets up a Debian 12 machine for surfvp and builds it (Release, into build/), then:
 #   run   simulates the default scenario
 #   test  runs the whole test suite through ctest
+#   calibrate  re-measures the software stage's PPC440 prices (surfvp calibrate: qemu-ppc on
+#         the cross-compiled stage), writes them to sw/cpu_cost/calibration.json, rebuilds
 # Installing is idempotent: only missing Debian packages are installed, so a second call
 # goes straight to the (incremental) build. Run as root or as a user with sudo.
 set -euo pipefail
@@ -13,11 +15,12 @@ readonly PACKAGES=(
   libsystemc-dev libyaml-cpp-dev libcli11-dev nlohmann-json3-dev libfmt-dev
   libopencv-dev libeigen3-dev libgtest-dev libbenchmark-dev
   opencv-doc visp-images-data   # real images for tests and scenarios
+  g++-powerpc-linux-gnu qemu-user  # surfvp calibrate: the software stage built for the PPC440, run on an ISS
 )
 
-usage() { echo "usage: $0 run|test" >&2; exit 2; }
+usage() { echo "usage: $0 run|test|calibrate" >&2; exit 2; }
 [ $# -eq 1 ] || usage
-case "$1" in run|test) ;; *) usage ;; esac
+case "$1" in run|test|calibrate) ;; *) usage ;; esac
 
 install_missing() {
   local missing=()
@@ -39,4 +42,8 @@ cmake --build build -j2
 case "$1" in
   run) ./build/surfvp run "$DEFAULT_SCENARIO" || [ $? -eq 1 ] ;;  # 1: the budget verdict, reported, not a failure to run
   test) cd build && ctest --output-on-failure -j2 ;;
+  calibrate)
+    ./build/surfvp calibrate --table sw/cpu_cost/calibration.json --out traces/calibration
+    cp traces/calibration/calibration.md sw/cpu_cost/calibration.md
+    cmake --build build -j2 ;;  # the build embeds the new table
 esac

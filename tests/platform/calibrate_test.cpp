@@ -1,0 +1,52 @@
+// `surfvp calibrate` end to end on a small input: the VP records its stage's input, the
+// PPC440 build runs it under qemu-ppc with the same keypoints, and the stream is fitted into
+// a table that prices the same work as the recorded one (the per-unit instruction streams do
+// not depend on the image size). Needs g++-powerpc-linux-gnu and qemu-user
+// (scripts/bootstrap.sh installs both); fails, never skips, without them.
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include "cli.h"
+
+namespace surfvp::test {
+namespace {
+
+TEST(Calibrate, RunsTheStageUnderTheIssAndFitsItsPrices) {
+    const std::string dir = fresh_dir("calibrate");
+    const Cli r = surfvp("calibrate --fit budget_1024x768 --check none --frames 1 --no-probes --set surf.width=256 "
+                         "--set surf.height=192 --quiet --out " + dir);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.out.find("| descriptor |"), std::string::npos) << r.out;
+    const auto report = nlohmann::json::parse(slurp(dir + "/calibration_report.json"));
+    ASSERT_EQ(report["runs"].size(), 2u);  // exact and rounded Haar
+    const auto recorded = nlohmann::json::parse(slurp(std::string(SURFVP_SOURCE_DIR) + "/sw/cpu_cost/calibration.json"));
+    for (const auto& run : report["runs"]) {
+        const std::string haar = run["haar"];
+        EXPECT_TRUE(run["results"]["agree"].get<bool>()) << run["results"].dump();
+        EXPECT_GT(run["results"]["keypoints"].get<int>(), 20) << haar;
+        EXPECT_GT(run["instructions_executed"].get<double>(), 1e6) << haar;
+        EXPECT_TRUE(run["unclassified_mnemonics"].empty()) << run["unclassified_mnemonics"].dump();
+        // Fitted on itself: the table prices its own stream to within a few percent.
+        EXPECT_LT(std::abs(run["agreement"]["total_error"].get<double>()), 0.02) << haar;
+        // A descriptor's stream on this small image costs what the recorded table says.
+        const double fitted = report["calibration"]["haar"][haar]["descriptor"]["cycles"];
+        const double table = recorded["haar"][haar]["descriptor"]["cycles"];
+        EXPECT_NEAR(fitted / table, 1.0, 0.05) << haar << ": " << fitted << " vs " << table;
+    }
+    EXPECT_TRUE(std::filesystem::exists(dir + "/calibration.md"));
+    EXPECT_TRUE(std::filesystem::exists(dir + "/calibration.json"));
+}
+
+TEST(Calibrate, RefusesWhatItCannotUse) {
+    const Cli frames = surfvp("calibrate --frames 0 --out " + fresh_dir("calibrate_bad"));
+    EXPECT_EQ(frames.exit_code, 2);
+    EXPECT_NE(frames.err.find("--frames"), std::string::npos) << frames.err;
+    const Cli firmware = surfvp("calibrate --firmware /nonexistent/stage_firmware --out " + fresh_dir("calibrate_bad"));
+    EXPECT_EQ(firmware.exit_code, 2);
+    EXPECT_NE(firmware.err.find("/nonexistent/stage_firmware"), std::string::npos) << firmware.err;
+    EXPECT_NE(firmware.err.find("g++-powerpc-linux-gnu"), std::string::npos) << firmware.err;
+}
+
+}  // namespace
+}  // namespace surfvp::test
