@@ -128,6 +128,22 @@ std::string verdict_section(const nlohmann::ordered_json& v) {
         }
         if (band["axes"].size() > 12) md += fmt::format("\n({} more with smaller effects in report.json.)\n", band["axes"].size() - 12);
     }
+    if (v.contains("software")) {
+        md += "\nSoftware settings the CPU's time rests on (each alone, the rest as the scenario; CPU time from the "
+              "calibrated PPC440 cost model, sw/cpu_cost/calibration.md):\n\n"
+              "| setting | frames/s | CPU ms per frame | CPU alone, frames/s | keypoints per frame | limit |\n"
+              "|---|---:|---:|---:|---:|---|\n";
+        for (const auto& row : v["software"]) {
+            if (row.contains("error")) {
+                md += fmt::format("| {} | refused: {} | | | | |\n", row["setting"].get<std::string>(), row["error"].get<std::string>());
+                continue;
+            }
+            md += fmt::format("| {} | {:.2f} | {:.1f} | {:.2f} | {:.0f} | {} |\n", row["setting"].get<std::string>(),
+                              row["fps"].get<double>(), row["cpu_ms_per_frame"].get<double>(),
+                              row["cpu_alone_fps"].get<double>(), row["keypoints_per_frame"].get<double>(),
+                              row["limit"].is_null() ? "-" : row["limit"].get<std::string>());
+        }
+    }
     return md;
 }
 

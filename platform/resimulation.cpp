@@ -35,6 +35,10 @@ Json Resimulation::point_summary(const Json& r) {
               {"limit", r.contains("limit") ? r["limit"]["resource"] : Json()},
               {"limit_cause", r.contains("limit") ? r["limit"]["cause"] : Json()},
               {"keypoints_per_frame", r.value("keypoints_per_frame", 0.0)}};
+    if (r.contains("time_per_frame") && r["time_per_frame"].contains("cpu")) {
+        s["cpu_ms_per_frame"] = r["time_per_frame"]["cpu"]["busy_ms"];
+        s["cpu_alone_fps"] = r["time_per_frame"]["cpu"]["alone_fps"];
+    }
     if (r.contains("failure")) s["failure"] = r["failure"];
     return s;
 }

@@ -223,6 +223,45 @@ Json band_json(const std::vector<BandAxis>& axes, const Json& reference, double 
             {"flipping", at_risk}, {"failed_points", failed}, {"axes", rows}};
 }
 
+// The software settings that move the CPU's time, each value other than the scenario's.
+std::vector<std::pair<std::string, std::string>> software_settings(const Config& c) {
+    std::vector<std::pair<std::string, std::string>> points;
+    points.emplace_back("surf.haar", c.choice("surf.haar") == "exact" ? "rounded" : "exact");
+    points.emplace_back("surf.upright", c.choice("surf.upright") == "on" ? "off" : "on");
+    const int64_t target = c.count("surf.target_keypoints");
+    for (const int64_t k : {50, 100, 150, 200})
+        if (target > 0 && k != target) points.emplace_back("surf.target_keypoints", std::to_string(k));
+    return points;
+}
+
+// Like the band's points: the run's frame rate plus each point's effect on the reference.
+Json software_json(const std::vector<std::pair<std::string, std::string>>& settings, const std::vector<Json>& results,
+                   const Json& reference, double run_fps, double budget) {
+    const double ref = fps_of(reference);
+    Json rows = Json::array();
+    rows.push_back({{"setting", "as the scenario"}, {"fps", run_fps}, {"point_fps", ref},
+                    {"cpu_ms_per_frame", reference.value("cpu_ms_per_frame", 0.0)},
+                    {"cpu_alone_fps", reference.value("cpu_alone_fps", 0.0)}, {"limit", reference["limit"]},
+                    {"keypoints_per_frame", reference["keypoints_per_frame"]}});
+    for (size_t i = 0; i < settings.size(); ++i) {
+        const Json& r = results[i];
+        Json row = {{"setting", settings[i].first + " = " + settings[i].second}};
+        if (r.contains("error")) {
+            row["error"] = r["error"];
+        } else {
+            row["fps"] = run_fps + fps_of(r) - ref;
+            row["point_fps"] = fps_of(r);
+            row["cpu_ms_per_frame"] = r.value("cpu_ms_per_frame", 0.0);
+            row["cpu_alone_fps"] = r.value("cpu_alone_fps", 0.0);
+            row["limit"] = r["limit"];
+            row["keypoints_per_frame"] = r["keypoints_per_frame"];
+            if (budget > 0) row["met"] = row["fps"].get<double>() >= budget;
+        }
+        rows.push_back(row);
+    }
+    return rows;
+}
+
 std::string statement(double fps, double budget, const Json& band) {
     const double margin = 100 * (fps / budget - 1);
     const bool met = fps >= budget;
@@ -241,7 +280,8 @@ std::string statement(double fps, double budget, const Json& band) {
 
 bool verdict_requested(const Config& config) {
     return config.choice("run.workload") == "surf" &&
-           (config.choice("verdict.band") == "on" || config.choice("verdict.break_even") == "on");
+           (config.choice("verdict.band") == "on" || config.choice("verdict.break_even") == "on" ||
+            config.choice("verdict.software") == "on");
 }
 
 int run_with_verdict(const Config& config, const std::string& out, const std::string& trace, bool quiet) {
@@ -312,6 +352,11 @@ int run_with_verdict(const Config& config, const std::string& out, const std::st
             if (same_value(*axis.spec, side->value, axis.current)) continue;
             pool.submit(with(reference, {{axis.spec->key, side->value}}), [side](const Json& r) { side->result = r; });
         }
+    const bool want_software = config.choice("verdict.software") == "on";
+    const auto settings = want_software ? software_settings(config) : std::vector<std::pair<std::string, std::string>>{};
+    std::vector<Json> software(settings.size());
+    for (size_t i = 0; i < settings.size(); ++i)
+        pool.submit(with(reference, {settings[i]}), [&software, i](const Json& r) { software[i] = r; });
     {
         ProgressLine progress(quiet, config.name, 0.0, 0.5, 5.0);
         pool.run([&](size_t done, size_t total) {
@@ -344,6 +389,7 @@ int run_with_verdict(const Config& config, const std::string& out, const std::st
         write_file_atomically((fs::path(out) / "tornado.svg").string(), tornado_svg(band_result, budget));
         base["outputs"].push_back("tornado.svg");
     }
+    if (want_software) verdict["software"] = software_json(settings, software, reference_point, fps, budget);
     if (budget > 0) verdict["statement"] = statement(fps, budget, band_result);
     base["verdict"] = verdict;
     return write_run(config, out, base, quiet);

@@ -38,7 +38,7 @@ inline Cli surfvp(const std::string& args) {
 // The default scenario, and the settings that make it one run (it asks for its verdict's
 // re-simulations).
 inline const std::string kBudget = std::string(SURFVP_SOURCE_DIR) + "/scenarios/budget_1024x768.yaml";
-inline const std::string kOneRun = " --set verdict.band=off --set verdict.break_even=off";
+inline const std::string kOneRun = " --set verdict.band=off --set verdict.break_even=off --set verdict.software=off";
 
 // A fresh empty folder under the temporary directory, unique to this test process.
 inline std::string fresh_dir(const std::string& name) {
