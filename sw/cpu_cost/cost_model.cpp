@@ -36,8 +36,21 @@ void CostCounter::charge_misses(uint32_t misses, size_t logged_from) {
     steps_[static_cast<size_t>(step_)] += c;
     cycles_ += c;
     if (!log_misses_) return;
-    for (size_t i = logged_from; i < missed_.size(); ++i) misses_.push_back({missed_[i], cycles_});
+    for (size_t i = logged_from; i < missed_.size(); ++i) {
+        misses_.push_back({missed_[i], cycles_});
+        miss_read_.push_back(step_reads_ - 1);
+    }
     missed_.clear();
+}
+
+void CostCounter::close_step() {
+    const double span = cycles_ - step_start_;
+    for (size_t i = step_first_miss_; i < misses_.size(); ++i)
+        misses_[i].cycle = step_start_ + span * double(miss_read_[i - step_first_miss_]) / double(step_reads_);
+    miss_read_.clear();
+    step_first_miss_ = misses_.size();
+    step_start_ = cycles_;
+    step_reads_ = 0;
 }
 
 uint64_t CostCounter::cycles() const { return uint64_t(std::llround(cycles_)); }
@@ -64,12 +77,20 @@ CostBreakdown CostCounter::breakdown() const {
     return b;
 }
 
+void CostCounter::clear_misses() {
+    misses_.clear();
+    miss_read_.clear();
+    step_first_miss_ = 0;
+}
+
 void CostCounter::reset() {
+    clear_misses();
+    step_start_ = 0;
+    step_reads_ = 0;
     units_.fill(0);
     reads_.fill(0);
     steps_.fill(0);
     cycles_ = 0;
-    misses_.clear();
     cache_.invalidate();
     cache_.reset_counters();
     taken_ = 0;

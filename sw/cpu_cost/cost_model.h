@@ -44,26 +44,32 @@ public:
     explicit CostCounter(const CostParams& params);
 
     // The stage's meter (sw/stage/software_stage.h).
-    void enter(Step s) { step_ = s; }
-    void leave() {}
+    void enter(Step s) {
+        close_step();
+        step_ = s;
+    }
+    void leave() { close_step(); }
     void count(Unit u, uint64_t n = 1);
     void load(Read kind, uint32_t address, unsigned bytes) {
         ++reads_[static_cast<size_t>(kind)];
+        ++step_reads_;
         const size_t before = missed_.size();
         const CacheModel::Result r = cache_.access(address, bytes, log_misses_ ? &missed_ : nullptr);
         if (r.misses) charge_misses(r.misses, before);
     }
     void begin_frame() { cache_.invalidate(); }  // DMA rewrote the buffers: the L1 is not coherent
 
-    // With a log, every line fill is also recorded with the exact cycles counted when it was
-    // needed, so that a platform can time the fills itself (then give miss_cycles = 0).
+    // With a log, every line fill is also recorded with the cycle it was needed at, so that a
+    // platform can time the fills itself (then give miss_cycles = 0). A step's price is charged
+    // whole, so when the step ends its fills are spread over its cycles in the order of its
+    // reads: a fill needed by the step's k-th of n reads is stamped k/n of the way through.
     struct Miss {
         uint32_t line;  // bus address of the line
-        double cycle;   // exact_cycles() when it missed
+        double cycle;   // when it was needed (exact cycles)
     };
     void log_misses(bool on) { log_misses_ = on; }
     const std::vector<Miss>& misses() const { return misses_; }
-    void clear_misses() { misses_.clear(); }
+    void clear_misses();
 
     uint64_t counted(Unit u) const { return units_[static_cast<size_t>(u)]; }
     uint64_t reads(Read kind) const { return reads_[static_cast<size_t>(kind)]; }
@@ -85,6 +91,7 @@ public:
 
 private:
     void charge_misses(uint32_t misses, size_t logged_from);
+    void close_step();  // spreads the step's logged fills over its cycles
 
     CostParams params_;
     CacheModel cache_;
@@ -97,6 +104,10 @@ private:
     bool log_misses_ = false;
     std::vector<uint32_t> missed_;  // lines of the current load that missed
     std::vector<Miss> misses_;
+    std::vector<uint64_t> miss_read_;  // for the current step's misses: which of its reads
+    double step_start_ = 0;            // cycles when the current step began
+    uint64_t step_reads_ = 0;
+    size_t step_first_miss_ = 0;
 };
 
 }  // namespace surfvp::sw

@@ -146,8 +146,9 @@ TEST(Calibration, RecordedAgreementWithTheInstructionStream) {
         for (size_t s = 0; s < kSteps; ++s) {
             const double stream = run["steps"][step_name(Step(s))]["stream_cycles_per_keypoint"];
             model_total += model[s];
-            if (stream > 0.01 * stream_total)
+            if (stream > 0.01 * stream_total) {
                 EXPECT_NEAR(model[s] / stream, 1.0, 0.10) << scenario << " " << run["haar"] << " " << step_name(Step(s));
+            }
         }
         EXPECT_NEAR(model_total / stream_total, 1.0, 0.05) << scenario << " " << run["haar"];
         ++held;

@@ -431,23 +431,28 @@ TEST(SoftwareStage, ReadsDeterminantsPackedToTheirWidth) {
     EXPECT_LT(from_packed.cost().cache().misses(), from_wide.cost().cache().misses());
 }
 
-// With a miss log, each fill is recorded with the cycles counted when it was needed.
+// With a miss log, each fill is recorded with the cycles counted when it was needed; when the
+// step ends, its fills are spread over the step's cycles in the order of its reads.
 TEST(CostCounterLog, RecordsEveryMissWithItsCycle) {
     sw::CostParams p;
     p.miss_cycles = 0;
     p.unit_cycles[size_t(sw::Unit::compare)] = 10;
     sw::CostCounter c(p);
     c.log_misses(true);
+    c.enter(sw::Step::check);
     c.count(sw::Unit::compare, 1);
-    c.load(sw::Read::integral, 0x1000, 4);  // miss at 10 cycles (the unit before it)
+    c.load(sw::Read::integral, 0x1000, 4);  // read 0: a miss, at 10 cycles
     c.count(sw::Unit::compare, 2);
-    c.load(sw::Read::integral, 0x1004, 4);  // hit
-    c.load(sw::Read::integral, 0x101E, 4);  // spans two lines: 0x1000 (hit) and 0x1020 (miss) at 30
+    c.load(sw::Read::integral, 0x1004, 4);  // read 1: a hit
+    c.load(sw::Read::integral, 0x101E, 4);  // read 2: spans 0x1000 (hit) and 0x1020 (miss), at 30
     ASSERT_EQ(c.misses().size(), 2u);
-    EXPECT_EQ(c.misses()[0].line, 0x1000u);
     EXPECT_DOUBLE_EQ(c.misses()[0].cycle, 10);
-    EXPECT_EQ(c.misses()[1].line, 0x1020u);
     EXPECT_DOUBLE_EQ(c.misses()[1].cycle, 30);
+    c.leave();  // the step took cycles 0..30 over 3 reads: reads 0 and 2 at 0 and 20
+    EXPECT_EQ(c.misses()[0].line, 0x1000u);
+    EXPECT_DOUBLE_EQ(c.misses()[0].cycle, 0);
+    EXPECT_EQ(c.misses()[1].line, 0x1020u);
+    EXPECT_DOUBLE_EQ(c.misses()[1].cycle, 20);
     c.clear_misses();
     EXPECT_TRUE(c.misses().empty());
     EXPECT_EQ(c.cache().misses(), 2u);
