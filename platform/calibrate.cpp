@@ -215,6 +215,7 @@ RunResult calibration_run(const CalibrateOptions& o, const std::string& scenario
     if (!results["agree"].get<bool>())
         throw std::runtime_error("calibrate: the PPC440 build's keypoints differ from the VP's: " + results.dump());
     run.stream = replay.candidates();
+    fs::remove_all(dir);  // tens of MB of buffers, reproducible from the scenario
     Json unknown = Json::object();
     for (const auto& [m, n] : replay.unknown_mnemonics()) unknown[m] = n;
     run.record = {{"scenario", scenario}, {"haar", haar}, {"frames", frames.size()},

@@ -6,7 +6,9 @@
 //   re-simulations and checked by one more run of the whole scenario at that value;
 // - assumption band (`verdict.band`): every parameter with a band (parameters.h) at its low
 //   and at its high, one at a time: the frames/s range, the assumptions that flip the verdict,
-//   a tornado chart (tornado.svg).
+//   a tornado chart (tornado.svg);
+// - software settings (`verdict.software`): the settings the CPU's time rests on (Haar mode,
+//   upright, keypoints per frame), each value other than the scenario's: frames/s, CPU time.
 // Re-simulations run `verdict.frames` frames (the pipeline is in steady state after the
 // first), each in a child process forked from this one (SystemC elaborates once per process;
 // the children inherit the frames, the threshold calibration and the FHG sequences this

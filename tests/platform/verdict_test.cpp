@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <fmt/format.h>
 #include <gtest/gtest.h>
+#include <map>
 #include <nlohmann/json.hpp>
 
 #include "cli.h"
@@ -117,5 +118,31 @@ TEST(Verdict, JobsDoNotChangeTheVerdict) {
     EXPECT_EQ(one.dump(), two.dump());
 }
 
+// The software settings the CPU's time rests on, each re-simulated: exact wavelets cost more
+// CPU time than rounded ones, U-SURF less, and CPU time grows with the keypoints per frame.
+TEST(Verdict, SoftwareSettingsSayWhatTheCpuTimeRestsOn) {
+    const std::string out = fresh_dir("software");
+    const auto run = surfvp("run " + kBudget + " --trace none --quiet --out " + out + kSmall +
+                            " --set verdict.band=off --set verdict.break_even=off");
+    ASSERT_LE(run.exit_code, 1) << run.err;
+    const auto r = nlohmann::json::parse(slurp(out + "/report.json"));
+    std::map<std::string, double> cpu_ms;
+    for (const auto& row : r["verdict"]["software"]) {
+        ASSERT_FALSE(row.contains("error")) << row;
+        cpu_ms[row["setting"].get<std::string>()] = row["cpu_ms_per_frame"].get<double>();
+        EXPECT_GT(row["fps"].get<double>(), 0.0) << row;
+    }
+    ASSERT_EQ(cpu_ms.size(), 7u);  // the scenario (30 keypoints), exact Haar, upright, 50, 100, 150, 200 keypoints
+    const double base = cpu_ms["as the scenario"];
+    EXPECT_GT(cpu_ms["surf.haar = exact"], 2.5 * base);
+    EXPECT_LT(cpu_ms["surf.upright = on"], 0.8 * base);
+    EXPECT_LT(cpu_ms["surf.target_keypoints = 50"], cpu_ms["surf.target_keypoints = 100"]);
+    EXPECT_LT(cpu_ms["surf.target_keypoints = 100"], cpu_ms["surf.target_keypoints = 150"]);
+    const std::string md = slurp(out + "/report.md");
+    EXPECT_NE(md.find("Software settings the CPU's time rests on"), std::string::npos);
+    EXPECT_NE(md.find("| surf.haar = exact |"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace surfvp
+
