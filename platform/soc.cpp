@@ -186,6 +186,15 @@ Soc::Soc(const Config& c, Tracer& tracer) : workload_(make_workload(c)) {
 
 void Soc::build(const Config& c, Tracer& tracer) {
     const unsigned pairs = unsigned(c.count("soc.accelerators"));
+    // The VCD's groups in GTKWave, in the order of the paper's Fig. 3.
+    std::vector<std::pair<std::string, std::string>> titles{{"sw", "Tasks (libSSA2)"}, {"irq", "Interrupts"}, {"cpu", "PPC440"}};
+    for (unsigned k = 0; k < pairs; ++k) {
+        const std::string suffix = pairs > 1 ? std::to_string(k) : "";
+        titles.emplace_back("iig" + suffix, "SSA IIG" + (suffix.empty() ? "" : " " + suffix));
+        titles.emplace_back("fhg" + suffix, "SSA FHG" + (suffix.empty() ? "" : " " + suffix));
+    }
+    titles.insert(titles.end(), {{"plb1", "PLB1 (CPU, registers)"}, {"plb2", "PLB2 (DMA traffic)"}, {"dma", "Test DMA"}});
+    tracer.group_titles(std::move(titles));
     cpu_memory_path_ = c.choice("cpu.memory_path");
     memory_ = std::make_unique<DdrMemory>("memory", memory_params(c));
     plb1_ = std::make_unique<PlbBus>("plb1", plb_params(c, "plb1"), tracer);

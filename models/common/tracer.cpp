@@ -103,6 +103,25 @@ void Tracer::counter(int track, std::string_view name, const sc_core::sc_time& a
                    json_string(name), tracks_[track].pid, micros(at), value);
 }
 
+// Written under a temporary name and renamed, as the traces.
+std::vector<std::string> Tracer::write_gtkwave_save(const fs::path& dir) {
+    const fs::path absolute = fs::absolute(dir);
+    GtkwaveSave save{(absolute / "trace.vcd").string(), (absolute / "trace.gtkw").string(),
+                     (absolute / "trace.tasks.txt").string(), sc_core::sc_time_stamp().value(), titles_};
+    std::vector<std::string> written;
+    for (const auto& [name, text] : {std::pair{std::string("trace.gtkw"), gtkwave_save(vcd_signals_, save)},
+                                     std::pair{std::string("trace.tasks.txt"), gtkwave_task_filter()}}) {
+        const fs::path partial = dir / (name + ".partial");
+        std::ofstream out(partial, std::ios::binary | std::ios::trunc);
+        out << text;
+        out.close();
+        if (!out) throw std::runtime_error("writing " + (dir / name).string() + " failed");
+        fs::rename(partial, dir / name);
+        written.push_back((dir / name).string());
+    }
+    return written;
+}
+
 std::vector<std::string> Tracer::finish() {
     std::vector<std::string> written;
     const fs::path dir(options_.dir);
@@ -111,6 +130,7 @@ std::vector<std::string> Tracer::finish() {
         vcd_ = nullptr;
         fs::rename(dir / (std::string(kVcdTemp) + ".vcd"), dir / "trace.vcd");
         written.push_back((dir / "trace.vcd").string());
+        for (const std::string& f : write_gtkwave_save(dir)) written.push_back(f);
     }
     if (perfetto_.is_open()) {
         perfetto_ << "\n]}\n";

@@ -1,15 +1,20 @@
 #pragma once
-// The trace writers every model plugs into: a VCD through sc_trace (GTKWave) and a Chrome
-// trace-event JSON timeline (Perfetto). Either can be off; a model asks `perfetto_on()` before
+// The trace writers every model plugs into: a VCD through sc_trace (GTKWave, with a save file
+// that opens it ready to read, gtkwave_save.h) and a Chrome trace-event JSON timeline (Perfetto). Either can be off; a model asks `perfetto_on()` before
 // building a slice's name, so tracing costs a branch when off. Files are written under
 // temporary names and renamed by finish(), so an interrupted run leaves no half file
 // under the final name.
 #include <cstdint>
+#include <filesystem>
 #include <fstream>
 #include <string>
 #include <string_view>
 #include <systemc>
+#include <type_traits>
+#include <utility>
 #include <vector>
+
+#include "gtkwave_save.h"
 
 namespace surfvp {
 
@@ -33,8 +38,12 @@ public:
     // VCD: trace a signal under a dotted name ("plb2.write_busy"); call before sc_start.
     template <typename T>
     void signal(const sc_core::sc_signal_in_if<T>& s, const std::string& name) {
-        if (vcd_) sc_core::sc_trace(vcd_, s, name);
+        if (!vcd_) return;
+        sc_core::sc_trace(vcd_, s, name);
+        vcd_signals_.push_back({name, std::is_same_v<T, bool> ? 1u : unsigned(8 * sizeof(T))});
     }
+    // The save file's group titles, in display order ("iig" -> "SSA IIG").
+    void group_titles(std::vector<std::pair<std::string, std::string>> titles) { titles_ = std::move(titles); }
 
     // Perfetto: a named track in a named group (a "process" with a "thread" in the
     // trace-event format). Returns the track's id for slice() and counter().
@@ -42,7 +51,8 @@ public:
     void slice(int track, std::string_view name, const sc_core::sc_time& start, const sc_core::sc_time& end);
     void counter(int track, std::string_view name, const sc_core::sc_time& at, double value);
 
-    // Closes the files and gives them their final names; returns the paths written.
+    // Closes the files and gives them their final names, with the VCD's GTKWave save file
+    // (trace.gtkw, and trace.tasks.txt it reads); returns the paths written.
     std::vector<std::string> finish();
 
 private:
@@ -53,8 +63,12 @@ private:
     void event_separator();
     int group_id(const std::string& group);
 
+    std::vector<std::string> write_gtkwave_save(const std::filesystem::path& dir);
+
     Options options_;
     sc_core::sc_trace_file* vcd_ = nullptr;
+    std::vector<VcdSignal> vcd_signals_;
+    std::vector<std::pair<std::string, std::string>> titles_;
     std::ofstream perfetto_;
     std::vector<std::string> groups_;
     std::vector<Track> tracks_;

@@ -54,6 +54,12 @@ TEST(Cli, SmokeVcdHasBusyLinesAndInterrupts) {
     EXPECT_EQ(vcd.rises("dma.busy"), 4u);
     EXPECT_GT(vcd.rises("plb2.write_busy"), 0u);
     EXPECT_GT(vcd.rises("plb1.read_busy"), 0u);
+    // Its GTKWave save file shows every traced signal and names the files by absolute path.
+    const std::string gtkw = slurp(out + "/trace.gtkw");
+    for (const auto& [name, changes] : vcd.changes)
+        EXPECT_NE(gtkw.find("SystemC." + name), std::string::npos) << name;
+    EXPECT_NE(gtkw.find("[dumpfile] \"" + fs::absolute(out).string() + "/trace.vcd\""), std::string::npos) << gtkw;
+    EXPECT_EQ(slurp(out + "/trace.tasks.txt"), "4294967295 none\n");
 }
 
 TEST(Cli, SmokePerfettoTraceIsValidJsonWithTracksAndSlices) {

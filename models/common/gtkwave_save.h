@@ -1,0 +1,32 @@
+#pragma once
+// A GTKWave save file for one run's VCD, so that `gtkwave trace.gtkw` opens ready to read:
+// the signals grouped by block, zoomed to the whole run, FIFO levels drawn as analog steps,
+// task numbers with "none" for the driver's no-task value. Plain C++.
+#include <cstdint>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace surfvp {
+
+struct VcdSignal {
+    std::string name;  // dotted, as traced ("fhg.maxima_fifo_level")
+    unsigned bits;     // 1 for a bool
+};
+
+struct GtkwaveSave {
+    std::string vcd_path, save_path, filter_path;  // absolute: GTKWave finds a moved folder from them
+    uint64_t end_ps = 0;                            // the run's simulated time
+    // Group titles in display order ("iig" -> "SSA IIG"); other groups follow as traced.
+    std::vector<std::pair<std::string, std::string>> titles;
+};
+
+// The save file's text; `filter_text()` is the value-to-name file it refers to.
+std::string gtkwave_save(const std::vector<VcdSignal>& signals, const GtkwaveSave& save);
+std::string gtkwave_task_filter();
+
+// GTKWave's zoom for `end_ps` across the wave pane of gtkwave_save's window (measured: a
+// pixel covers 2^-zoom / 200 time units).
+double gtkwave_zoom(uint64_t end_ps);
+
+}  // namespace surfvp
