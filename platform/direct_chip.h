@@ -12,7 +12,7 @@
 
 #include "config.h"
 #include "models/fhg/hessian_core.h"
-#include "sw/hal/hal.h"
+#include "models/common/hal.h"
 
 namespace surfvp {
 

@@ -1,6 +1,6 @@
 #pragma once
 // The PPC440 "ISS stub" (DESIGN: models/ppc440): it does not interpret PowerPC code; it runs
-// the software natively in an SC_THREAD and gives it the HAL (sw/hal/hal.h). Time comes
+// the software natively in an SC_THREAD and gives it the HAL (models/common/hal.h). Time comes
 // from what the software does: MMIO is a timed PLB1 transaction; memory goes line by line
 // over the CPU's memory path (`mem`: the MCI link to DDR, or PLB1), and so do the L1 fills
 // and write-backs the software's counted work reports (compute()), each at the time the work
@@ -19,7 +19,7 @@
 
 #include "models/common/tracer.h"
 #include "models/common/units.h"
-#include "sw/hal/hal.h"
+#include "models/common/hal.h"
 
 namespace surfvp {
 

@@ -19,7 +19,7 @@
 #include <string>
 #include <vector>
 
-#include "sw/hal/hal.h"
+#include "models/common/hal.h"
 #include "sw/surf/keypoint.h"
 
 namespace surfvp::sw::ssa2 {

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "sw/hal/hal.h"
+#include "models/common/hal.h"
 
 namespace surfvp::sw {
 

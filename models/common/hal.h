@@ -1,5 +1,7 @@
 #pragma once
-// The hardware abstraction the CPU's software is written against (DESIGN principle 2): the
+// The hardware abstraction the CPU's software is written against (DESIGN principle 2), a
+// contract like the registers' (models/*/*_regs.h): the software (sw/) and what runs it
+// (models/ppc440, platform/direct_chip) both include it, so no model reaches up into sw/. The
 // software reaches the chip only through MMIO, memory and interrupts, and says how much CPU
 // time its own computation takes. The VP's PPC440 stub implements it with timed TLM
 // transactions; a direct (untimed) implementation runs the same software without SystemC.
