@@ -1,5 +1,6 @@
 #include "report.h"
 
+#include <algorithm>
 #include <filesystem>
 #include <fmt/format.h>
 #include <fstream>
@@ -147,7 +148,90 @@ std::string verdict_section(const nlohmann::ordered_json& v) {
     return md;
 }
 
+// The CPU's software stage: what became of the candidates, where its cycles went (by step and
+// by unit of work, from the calibrated cost model), what it executed, and its L1.
+std::string software_stage_section(const nlohmann::ordered_json& st) {
+    const double keypoints = std::max(1.0, st["keypoints"].get<double>());
+    const auto& rejected = st["rejected"];
+    std::string md = fmt::format(
+        "\n## CPU software stage\n\n{} candidates from the maxima FIFOs: {} keypoints; rejected {} not a maximum of "
+        "its 26 neighbours, {} by the interpolation, {} at the border.\n\n| step | cycles | per keypoint | share |\n"
+        "|---|---:|---:|---:|\n",
+        st["candidates"].get<uint64_t>(), st["keypoints"].get<uint64_t>(), rejected["not_maximum"].get<uint64_t>(),
+        rejected["interpolation"].get<uint64_t>(), rejected["border"].get<uint64_t>());
+    const double total = std::max(1.0, st["total_cycles"].get<double>());
+    for (const auto& [step, cycles] : st["cycles_by_step"].items())
+        md += fmt::format("| {} | {:.0f} | {:.0f} | {} |\n", step, cycles.get<double>(), cycles.get<double>() / keypoints,
+                          percent(cycles.get<double>() / total));
+    md += "\n| unit of work | count | cycles |\n|---|---:|---:|\n";
+    for (const auto& [unit, u] : st["cycles_by_unit"].items())
+        if (unit != "cache_miss") md += fmt::format("| {} | {} | {:.0f} |\n", unit, u["count"].get<uint64_t>(), u["cycles"].get<double>());
+    std::string classes;
+    for (const auto& [cls, n] : st["instructions_by_class"].items())
+        classes += fmt::format("{}{} {}", classes.empty() ? "" : ", ", cls, n.get<uint64_t>());
+    const auto& cal = st["calibration"];
+    const auto& l1 = st["dcache"];
+    md += fmt::format(
+        "\nPPC440 instructions: {} ({:.0f} per keypoint; {}), {} calls into libm. Prices from the calibration of this code "
+        "built with `{} {}` under `{}`, fitted on {} (sw/cpu_cost/calibration.md). L1 data cache: {} line accesses, hit "
+        "rate {}, {} fills (timed on the memory path, under CPU above).\n",
+        st["instructions"].get<uint64_t>(), st["instructions"].get<double>() / keypoints, classes,
+        st["libm_calls"].get<uint64_t>(), cal.value("toolchain", "?"), cal.value("flags", "?"), cal.value("iss", "?"),
+        cal.value("fitted_on", "?"), l1["accesses"].get<uint64_t>(), percent(l1["hit_rate"]), l1["misses"].get<uint64_t>());
+    return md;
+}
+
+// A workload's scalars as they are; its per-frame list in frames.csv; its stage below.
+std::string workload_section(const nlohmann::ordered_json& w) {
+    std::string md = "\n## Workload\n\n| | |\n|---|---|\n";
+    for (const auto& [key, value] : w.items()) {
+        if (key == "software_stage" || (value.is_object() && value.empty())) continue;
+        if (key == "per_frame") {
+            std::vector<double> kp;
+            for (const auto& f : value) kp.push_back(f["keypoints"].get<double>());
+            std::sort(kp.begin(), kp.end());
+            if (!kp.empty())
+                md += fmt::format("| frames | {} in `frames.csv`; keypoints per frame min {:.0f}, median {:.0f}, max {:.0f} |\n",
+                                  kp.size(), kp.front(), kp[kp.size() / 2], kp.back());
+            continue;
+        }
+        md += fmt::format("| {} | {} |\n", key, value.is_string() ? value.get<std::string>() : value.dump());
+    }
+    if (w.contains("software_stage") && !w["software_stage"].is_null()) md += software_stage_section(w["software_stage"]);
+    return md;
+}
+
+// Numbered files as one pattern: keypoints/frame_0000.surf ... -> keypoints/frame_NNNN.surf (20 files).
+std::string files_section(const nlohmann::ordered_json& outputs) {
+    std::vector<std::pair<std::string, size_t>> patterns;
+    for (const auto& f : outputs) {
+        std::string name = f.get<std::string>();
+        for (char& c : name)
+            if (c >= '0' && c <= '9') c = 'N';
+        if (!patterns.empty() && patterns.back().first == name) ++patterns.back().second;
+        else patterns.emplace_back(name, 1);
+    }
+    std::string md = "\n## Files\n\n";
+    for (const auto& [name, n] : patterns)
+        md += n > 1 ? fmt::format("- `{}` ({} files)\n", name, n) : fmt::format("- `{}`\n", name);
+    return md;
+}
+
 }  // namespace
+
+std::string frames_csv(const nlohmann::ordered_json& per_frame) {
+    std::string csv;
+    for (const auto& f : per_frame) {
+        if (csv.empty()) {
+            for (const auto& [key, value] : f.items()) csv += (csv.empty() ? "" : ",") + key;
+            csv += "\n";
+        }
+        std::string row;
+        for (const auto& [key, value] : f.items()) row += (row.empty() ? "" : ",") + value.dump();
+        csv += row + "\n";
+    }
+    return csv;
+}
 
 std::string report_markdown(const nlohmann::ordered_json& r) {
     std::string md = fmt::format("# surfvp run: {}\n\n{}\n\n", r["scenario"]["name"].get<std::string>(),
@@ -184,10 +268,8 @@ std::string report_markdown(const nlohmann::ordered_json& r) {
                       cpu_mem["bytes_read"].get<uint64_t>(), cpu_mem["line_fills"].get<uint64_t>(),
                       cpu_mem["bytes_written"].get<uint64_t>(), cpu_mem["write_backs"].get<uint64_t>(), ms(cpu_mem["fill_stall_s"]),
                       ms(cpu_mem["ddr_wait_s"]));
-    md += "\n## Workload\n\n| | |\n|---|---:|\n";
-    for (const auto& [key, value] : r["workload"].items()) md += fmt::format("| {} | {} |\n", key, value.dump());
-    md += "\n## Files\n\n";
-    for (const auto& f : r["outputs"]) md += fmt::format("- `{}`\n", f.get<std::string>());
+    if (r.contains("workload")) md += workload_section(r["workload"]);
+    md += files_section(r["outputs"]);
     return md;
 }
 

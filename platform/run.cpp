@@ -170,8 +170,13 @@ nlohmann::ordered_json simulate_scenario(const Config& config, const std::string
     return build_report(config, soc, outcome, wall_s, outputs);
 }
 
-int write_run(const Config& config, const std::string& out, const nlohmann::ordered_json& report, bool quiet) {
+int write_run(const Config& config, const std::string& out, const nlohmann::ordered_json& run_report, bool quiet) {
     const fs::path dir(out);
+    nlohmann::ordered_json report = run_report;
+    if (report.contains("workload") && report["workload"].contains("per_frame")) {
+        write_file_atomically((dir / "frames.csv").string(), frames_csv(report["workload"]["per_frame"]));
+        report["outputs"].push_back("frames.csv");
+    }
     write_file_atomically((dir / "config.yaml").string(), config.to_yaml());
     write_file_atomically((dir / "report.md").string(), report_markdown(report));
     write_file_atomically((dir / "report.json").string(), report.dump(2) + "\n");

@@ -1,5 +1,6 @@
 // The chip end to end on real frames: the VP against direct mode, pipelining, the budget
 // verdict, and a hardware error in one task.
+#include <algorithm>
 #include <filesystem>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -211,3 +212,30 @@ TEST(SurfRun, DeterminantWidthSetsTheTrafficItCauses) {
 
 }  // namespace
 }  // namespace surfvp
+
+namespace surfvp::test {
+namespace {
+
+// The per-frame list goes to frames.csv (a header, a row per frame), the report renders the
+// software stage as tables (no JSON in a cell) and names numbered files by their pattern.
+TEST(SurfRunReport, FramesCsvAndAReadableWorkloadSection) {
+    const std::string out = fresh_dir("readable");
+    const auto r = surfvp("run " + kBudget + " --trace none --quiet --out " + out + kOneRun +
+                          " --set surf.frames=3 --set surf.width=512 --set surf.height=384 --set budget.fps=0");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const std::string csv = slurp(out + "/frames.csv");
+    EXPECT_EQ(csv.rfind("frame,candidates,keypoints,", 0), 0u) << csv;
+    EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 4);  // the header and 3 frames
+    const std::string md = slurp(out + "/report.md");
+    const std::string workload = md.substr(md.find("## Workload"));
+    EXPECT_EQ(workload.find("{\""), std::string::npos) << workload;
+    EXPECT_NE(workload.find("## CPU software stage"), std::string::npos);
+    EXPECT_NE(workload.find("| descriptor |"), std::string::npos);
+    EXPECT_NE(md.find("`keypoints/frame_NNNN.surf` (3 files)"), std::string::npos);
+    EXPECT_NE(md.find("`frames.csv`"), std::string::npos);
+    const auto report = nlohmann::json::parse(slurp(out + "/report.json"));
+    EXPECT_NE(std::find(report["outputs"].begin(), report["outputs"].end(), "frames.csv"), report["outputs"].end());
+}
+
+}  // namespace
+}  // namespace surfvp::test
