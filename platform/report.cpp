@@ -12,21 +12,29 @@ namespace {
 std::string ms(double seconds) { return fmt::format("{:.3f} ms", seconds * 1e3); }
 std::string percent(double share) { return fmt::format("{:.1f} %", share * 100); }
 
-void bus_section(std::string& md, const std::string& name, const nlohmann::ordered_json& bus) {
+// MiB, or bytes where MiB would read as 0 (register traffic).
+std::string mib(double bytes) {
+    return bytes < 10240 ? fmt::format("{:.0f} B", bytes) : fmt::format("{:.2f} MiB", bytes / (1024.0 * 1024.0));
+}
+
+// Each path's traffic (MiB and MB/s over the run) and each master that used the bus.
+void bus_section(std::string& md, const std::string& name, const nlohmann::ordered_json& bus, double seconds) {
     md += fmt::format("\n### {} ({} bit at {} MHz)\n\n", name, bus["width_bits"].get<unsigned>(),
                       bus["clock_hz"].get<double>() / 1e6);
-    md += "| path | bursts | bytes | busy | utilisation |\n|---|---:|---:|---:|---:|\n";
+    md += "| path | bursts | bytes | MB/s | busy | utilisation |\n|---|---:|---:|---:|---:|---:|\n";
     for (const char* path : {"read", "write"}) {
         const auto& p = bus[path];
-        md += fmt::format("| {} | {} | {} | {} | {} |\n", path, p["bursts"].get<uint64_t>(),
-                          p["bytes"].get<uint64_t>(), ms(p["busy_s"]), percent(p["utilisation"]));
+        const double bytes = p["bytes"].get<double>();
+        md += fmt::format("| {} | {} | {} | {:.1f} | {} | {} |\n", path, p["bursts"].get<uint64_t>(), mib(bytes),
+                          seconds > 0 ? bytes / seconds / 1e6 : 0.0, ms(p["busy_s"]), percent(p["utilisation"]));
     }
-    md += "\n| master | bursts | bytes read | bytes written | busy | waited | errors |\n"
-          "|---|---:|---:|---:|---:|---:|---:|\n";
-    for (const auto& [master, m] : bus["masters"].items())
+    md += "\n| master | bursts | read | written | busy | waited | errors |\n|---|---:|---:|---:|---:|---:|---:|\n";
+    for (const auto& [master, m] : bus["masters"].items()) {
+        if (m["bursts"].get<uint64_t>() == 0 && m["errors"].get<uint64_t>() == 0) continue;  // idle: no row
         md += fmt::format("| {} | {} | {} | {} | {} | {} | {} |\n", master, m["bursts"].get<uint64_t>(),
-                          m["bytes_read"].get<uint64_t>(), m["bytes_written"].get<uint64_t>(), ms(m["busy_s"]),
+                          mib(m["bytes_read"].get<double>()), mib(m["bytes_written"].get<double>()), ms(m["busy_s"]),
                           ms(m["wait_s"]), m["errors"].get<uint64_t>());
+    }
 }
 
 // Per resource: its frame period, busy, each wait, idle, and what it alone would allow.
@@ -148,6 +156,35 @@ std::string verdict_section(const nlohmann::ordered_json& v) {
     return md;
 }
 
+// The accelerators (summed over the pairs): the FHG's schedule and where its time went, the
+// IIG's stalls.
+std::string accelerators_section(const nlohmann::ordered_json& r) {
+    std::string md;
+    if (r.contains("fhg") && r["fhg"].contains("schedules")) {
+        const auto& f = r["fhg"];
+        const auto& sc = f["schedules"];
+        md += fmt::format(
+            "\n## SSA FHG\n\n**{} cycles per determinant block** (limited by the {}; schedule `{}`: basic {}, improved {}, "
+            "optimal bound {} by {}). Busy {}: computing {}, waiting for integral lines {}, for the determinant writer {}. "
+            "Line FIFO high-water {} lines; maxima FIFO high-water {} words; {} candidates, {} dropped; {} errors.\n",
+            f["cycles_per_block"].get<unsigned>(), f["block_limit"].get<std::string>(), sc["scheduler"].get<std::string>(),
+            sc["basic"]["cycles_per_block"].get<unsigned>(), sc["improved"]["cycles_per_block"].get<unsigned>(),
+            sc["optimal"]["cycles_per_block"].get<unsigned>(), sc["optimal"]["limit"].get<std::string>(), ms(f["busy_s"]),
+            ms(f["computing_s"]), ms(f["waiting_for_lines_s"]), ms(f["waiting_for_writer_s"]),
+            f["line_fifo_high_water"].get<uint64_t>(), f["maxima_fifo_high_water"].get<uint64_t>(),
+            f["candidates"].get<uint64_t>(), f["candidates_dropped"].get<uint64_t>(), f["errors"].get<uint64_t>());
+    }
+    if (r.contains("iig") && r["iig"].contains("computing_s")) {
+        const auto& i = r["iig"];
+        md += fmt::format(
+            "\n## SSA IIG\n\nBusy {}: computing {}, waiting for the image {}, blocked by its integral write {}, by PixelBus "
+            "back-pressure {} (its sender stalled {}); {} errors.\n",
+            ms(i["busy_s"]), ms(i["computing_s"]), ms(i["waiting_for_image_s"]), ms(i["blocked_by_write_s"]),
+            ms(i["blocked_by_pixelbus_s"]), ms(i["send_stalled_s"]), i["errors"].get<uint64_t>());
+    }
+    return md;
+}
+
 // The CPU's software stage: what became of the candidates, where its cycles went (by step and
 // by unit of work, from the calibrated cost model), what it executed, and its L1.
 std::string software_stage_section(const nlohmann::ordered_json& st) {
@@ -250,8 +287,9 @@ std::string report_markdown(const nlohmann::ordered_json& r) {
     md += fmt::format("| real-time factor (simulated / wall) | {:.4g} |\n", r["real_time_factor"].get<double>());
     md += fmt::format("| TLM transactions on the PLBs | {} ({:.3g} per wall second) |\n", r["transactions"].get<uint64_t>(),
                       r["transactions_per_second"].get<double>());
+    md += accelerators_section(r);
     md += "\n## Buses\n";
-    for (const auto& [name, bus] : r["buses"].items()) bus_section(md, name, bus);
+    for (const auto& [name, bus] : r["buses"].items()) bus_section(md, name, bus, r["sim_time_s"].get<double>());
     const auto& mem = r["memory"];
     md += fmt::format("\n## Memory\n\n{} B read, {} B written over the DDR's ports; DRAM busy {} ({}).\n",
                       mem["bytes_read"].get<uint64_t>(), mem["bytes_written"].get<uint64_t>(), ms(mem["busy_s"]),
