@@ -66,7 +66,11 @@ std::string frames_section(const nlohmann::ordered_json& r) {
         md += fmt::format("| budget | {:.2f} frames/s: **{}** |\n", r["budget"]["fps"].get<double>(),
                           r["budget"]["met"].get<bool>() ? "met" : "MISSED");
     md += fmt::format("| latency (hardware start to descriptors) | {:.2f} ms |\n", r["latency_ms"].get<double>());
-    md += fmt::format("| keypoints per frame | {:.1f} |\n", r["keypoints_per_frame"].get<double>());
+    md += fmt::format("| keypoints per frame | {:.1f} (min {}, max {}) |\n", r["keypoints_per_frame"].get<double>(),
+                      r["keypoints_per_frame_range"][0].dump(), r["keypoints_per_frame_range"][1].dump());
+    if (r.contains("threshold_rule"))
+        md += fmt::format("| determinant threshold | {:.3f}: {} |\n", r["threshold"].get<double>(),
+                          r["threshold_rule"].get<std::string>());
     md += fmt::format("| software per keypoint | {:.1f} us ({:.0f} cycles) |\n",
                       r["software_time_per_keypoint_us"].get<double>(), r["software_cycles_per_keypoint"].get<double>());
     if (r.contains("limit")) {

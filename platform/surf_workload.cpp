@@ -211,6 +211,14 @@ private:
 
     double throughput() const;
     nlohmann::ordered_json evaluation() const;
+    // How the threshold was chosen (calibrate() above).
+    std::string threshold_rule() const {
+        const int64_t target = config_.count("surf.target_keypoints");
+        if (target == 0) return "surf.threshold";
+        return fmt::format("the {}th strongest response of the float reference on frame 0 (2 octaves, step 1; "
+                           "surf.target_keypoints = {}), held for every frame",
+                           target, target);
+    }
 
     const Config& config_;
     std::vector<cv::Mat> frames_;
@@ -271,6 +279,7 @@ nlohmann::ordered_json SurfWorkload::summary() const {
             {"keypoints_per_frame", keypoints * per},
             {"keypoints_per_frame_range", {n ? min_kp : 0, max_kp}},
             {"threshold", threshold_},
+            {"threshold_rule", threshold_rule()},
             {"budget", budget},
             {"phases_ms", {{"integral_image", integral * per * 1e-9},
                            {"determinants", determinants * per * 1e-9},
