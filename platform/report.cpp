@@ -28,12 +28,19 @@ void bus_section(std::string& md, const std::string& name, const nlohmann::order
         md += fmt::format("| {} | {} | {} | {:.1f} | {} | {} |\n", path, p["bursts"].get<uint64_t>(), mib(bytes),
                           seconds > 0 ? bytes / seconds / 1e6 : 0.0, ms(p["busy_s"]), percent(p["utilisation"]));
     }
-    md += "\n| master | bursts | read | written | busy | waited | errors |\n|---|---:|---:|---:|---:|---:|---:|\n";
+    md += "\n| master | bursts | read | written | busy | waited | mean wait | max wait | bursts by wait (bus cycles) | errors |\n"
+          "|---|---:|---:|---:|---:|---:|---:|---:|---|---:|\n";
     for (const auto& [master, m] : bus["masters"].items()) {
         if (m["bursts"].get<uint64_t>() == 0 && m["errors"].get<uint64_t>() == 0) continue;  // idle: no row
-        md += fmt::format("| {} | {} | {} | {} | {} | {} | {} |\n", master, m["bursts"].get<uint64_t>(),
-                          mib(m["bytes_read"].get<double>()), mib(m["bytes_written"].get<double>()), ms(m["busy_s"]),
-                          ms(m["wait_s"]), m["errors"].get<uint64_t>());
+        std::string histogram;
+        for (const auto& [bin, n] : m["bursts_by_wait_cycles"].items())
+            if (n.get<uint64_t>()) histogram += fmt::format("{}{}: {}", histogram.empty() ? "" : ", ", bin, n.get<uint64_t>());
+        const double bursts = std::max(1.0, m["bursts"].get<double>());
+        md += fmt::format("| {} | {} | {} | {} | {} | {} | {:.1f} ns | {:.1f} ns | {} | {} |\n", master,
+                          m["bursts"].get<uint64_t>(), mib(m["bytes_read"].get<double>()),
+                          mib(m["bytes_written"].get<double>()), ms(m["busy_s"]), ms(m["wait_s"]),
+                          m["wait_s"].get<double>() / bursts * 1e9, m["max_wait_s"].get<double>() * 1e9, histogram,
+                          m["errors"].get<uint64_t>());
     }
 }
 

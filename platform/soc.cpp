@@ -158,10 +158,14 @@ nlohmann::ordered_json blocks_report(const std::vector<std::unique_ptr<Block>>& 
 
 nlohmann::ordered_json bus_report(const PlbBus& bus, const sc_core::sc_time& elapsed) {
     nlohmann::ordered_json masters = nlohmann::ordered_json::object();
-    for (const auto& m : bus.master_stats())
+    for (const auto& m : bus.master_stats()) {
+        nlohmann::ordered_json histogram = nlohmann::ordered_json::object();
+        for (size_t b = 0; b < m.wait_histogram.size(); ++b) histogram[PlbBus::wait_bin_name(b)] = m.wait_histogram[b];
         masters[m.name] = {{"bursts", m.bursts}, {"bytes_read", m.bytes_read},
                            {"bytes_written", m.bytes_written}, {"errors", m.errors},
-                           {"busy_s", seconds(m.busy)}, {"wait_s", seconds(m.wait)}};
+                           {"busy_s", seconds(m.busy)}, {"wait_s", seconds(m.wait)},
+                           {"max_wait_s", seconds(m.max_wait)}, {"bursts_by_wait_cycles", histogram}};
+    }
     const auto& p = bus.params();
     return {{"clock_hz", p.clock.hz},
             {"width_bits", p.width_bits},

@@ -122,6 +122,22 @@ void PlbBus::decide(Path* path) {
     path->granted[master].notify();
 }
 
+std::string PlbBus::wait_bin_name(size_t bin) {
+    if (bin == 0) return "0";
+    if (bin == 1) return "1";
+    if (bin == 7) return "64+";
+    return std::to_string(1u << (bin - 1)) + "-" + std::to_string((1u << bin) - 1);
+}
+
+void PlbBus::record_wait(MasterStats& stats, const sc_time& wait) const {
+    stats.wait += wait;
+    stats.max_wait = std::max(stats.max_wait, wait);
+    const uint64_t cycles = uint64_t(wait.to_seconds() * 1e12 / params_.clock.period_ps() + 1e-9);
+    size_t bin = 0;
+    while (bin < 7 && cycles >= (uint64_t(1) << bin)) ++bin;
+    ++stats.wait_histogram[bin];
+}
+
 void PlbBus::await_grant(Path& path, int master) {
     path.pending.push_back({master, sc_core::sc_time_stamp()});
     path.arbitrate.notify(SC_ZERO_TIME);
@@ -199,7 +215,7 @@ void PlbBus::b_transport(int master, tlm::tlm_generic_payload& tx, sc_time& dela
         path.free_at = end;
         path.in_flight = false;
         ++stats.bursts;
-        stats.wait += granted - asked;
+        record_wait(stats, granted - asked);
         stats.busy += duration;
         ++path.stats.bursts;
         path.stats.busy += duration;

@@ -18,6 +18,7 @@
 // without a kernel event when nothing else can happen before that burst starts (no other
 // request, no process runnable now, no event due earlier): the result is the same. Wait time
 // and busy time are recorded per master and per burst. Slaves must answer without wait().
+#include <array>
 #include <cstdint>
 #include <deque>
 #include <memory>
@@ -53,8 +54,12 @@ public:
         uint64_t bytes_written = 0;
         uint64_t errors = 0;
         sc_core::sc_time wait;  // from request to grant, summed
+        sc_core::sc_time max_wait;
+        // Bursts by their wait in bus cycles: 0, 1, 2-3, 4-7, ... 64 and more (wait_bin_name).
+        std::array<uint64_t, 8> wait_histogram{};
         sc_core::sc_time busy;  // from grant to end, summed
     };
+    static std::string wait_bin_name(size_t bin);
 
     struct PathStats {
         uint64_t bursts = 0;
@@ -122,6 +127,7 @@ private:
     void decide(Path* path);
     int pick(const Path& path) const;
     void await_grant(Path& path, int master);
+    void record_wait(MasterStats& stats, const sc_core::sc_time& wait) const;
     sc_core::sc_time acquire(Path& path, int master);
     bool keeps_path(const Path& path, const sc_core::sc_time& at) const;
     const Route* decode(uint64_t address, uint64_t length) const;

@@ -1,4 +1,5 @@
 // PLB timing and arbitration against the formula documented in models/plb/README.md.
+#include <array>
 #include <memory>
 
 #include "harness.h"
@@ -117,6 +118,11 @@ TEST(PlbArbitration, RoundRobinAlternatesMasters) {
     EXPECT_EQ(bench->bus.master_stats()[0].wait, 3 * D);  // each of its last three requests waits one burst
     EXPECT_EQ(bench->bus.master_stats()[1].wait, 4 * D);
     EXPECT_EQ(bench->bus.write_stats().busy, 8 * D);
+    // A burst D = 20 bus cycles at 100 MHz: m0's waits 0, D, D, D; m1's D four times.
+    EXPECT_EQ(bench->bus.master_stats()[0].max_wait, D);
+    EXPECT_EQ(bench->bus.master_stats()[0].wait_histogram, (std::array<uint64_t, 8>{1, 0, 0, 0, 0, 3, 0, 0}));
+    EXPECT_EQ(bench->bus.master_stats()[1].wait_histogram, (std::array<uint64_t, 8>{0, 0, 0, 0, 0, 4, 0, 0}));
+    EXPECT_EQ(PlbBus::wait_bin_name(5), "16-31");
 }
 
 TEST(PlbArbitration, FixedPriorityServesTheFirstMasterFirst) {
@@ -128,6 +134,10 @@ TEST(PlbArbitration, FixedPriorityServesTheFirstMasterFirst) {
     EXPECT_EQ(c.ends[1], (std::vector<sc_core::sc_time>{5 * D, 6 * D, 7 * D, 8 * D}));
     EXPECT_EQ(bench->bus.master_stats()[0].wait, sc_core::SC_ZERO_TIME);
     EXPECT_EQ(bench->bus.master_stats()[1].wait, 4 * D);
+    // m1's first burst waits all four of m0's (80 cycles), the others none.
+    EXPECT_EQ(bench->bus.master_stats()[1].max_wait, 4 * D);
+    EXPECT_EQ(bench->bus.master_stats()[1].wait_histogram, (std::array<uint64_t, 8>{3, 0, 0, 0, 0, 0, 0, 1}));
+    EXPECT_EQ(PlbBus::wait_bin_name(7), "64+");
 }
 
 // A 4-burst write from m0 at t = 0 and a 1-burst write from m1 at 50 ns: m1 gets the bus at
