@@ -12,6 +12,7 @@
 #include <opencv2/core/utility.hpp>
 
 #include "describer.h"
+#include "models/common/atomic_file.h"
 #include "resimulation.h"
 #include "run.h"
 #include "scenario.h"
@@ -70,14 +71,9 @@ std::vector<sw::calibration_dump::Result> read_results(const fs::path& path) {
 std::vector<std::array<uint64_t, sw::kUnits>> native_units(const std::vector<Frame>& frames) {
     std::vector<std::array<uint64_t, sw::kUnits>> units;
     for (const Frame& f : frames) {
-        sw::StageParams p;
-        p.upright = f.header.upright;
-        p.haar = f.header.rounded_haar ? surf::HaarMode::rounded : surf::HaarMode::exact;
-        p.threshold = f.header.threshold;
-        sw::SoftwareStage stage(p, sw::CostCounter(sw::CostParams{}));
-        const sw::FrameBuffers b{f.integral.data(), f.header.integral_address, size_t(f.header.width) * 4,
-                                 f.determinants.data(), f.header.determinants_address, int(f.header.width),
-                                 int(f.header.height), f.header.det_frac_bits, f.header.det_bytes};
+        sw::SoftwareStage stage(sw::calibration_dump::stage_params(f.header), sw::CostCounter(sw::CostParams{}));
+        const sw::FrameBuffers b =
+            sw::calibration_dump::frame_buffers(f.header, f.integral.data(), f.determinants.data());
         for (uint32_t w : f.words) {
             std::array<uint64_t, sw::kUnits> before{};
             for (size_t u = 0; u < sw::kUnits; ++u) before[u] = stage.cost().counted(sw::Unit(u));
@@ -198,8 +194,6 @@ RunResult calibration_run(const CalibrateOptions& o, const std::string& scenario
     sets_text.push_back(fmt::format("surf.frames={}", o.frames));
     sets_text.push_back("surf.haar=" + haar);
     sets_text.push_back("budget.fps=0");  // a frame rate needs frames the calibration need not run
-    sets_text.push_back("verdict.band=off");
-    sets_text.push_back("verdict.break_even=off");
     const Config config = load_scenario(resolve_scenario(scenario), sets_text);
     if (!o.quiet) std::fprintf(stderr, "calibrate: %s, %s Haar: VP run\n", scenario.c_str(), haar.c_str());
     // The VP run in a child (SystemC elaborates once per process), recording what its stage saw.
@@ -354,11 +348,12 @@ int calibrate_command(const CalibrateOptions& options) {
         table.agreement.push_back(summary);
     }
     const Json out = {{"calibration", sw::calibration_to_json(table)}, {"runs", runs}};
-    std::ofstream(fs::path(o.out) / "calibration_report.json") << out.dump(1) << "\n";
-    std::ofstream(fs::path(o.out) / "calibration.json") << sw::calibration_to_json(table).dump(1) << "\n";
-    if (!o.table.empty()) std::ofstream(o.table) << sw::calibration_to_json(table).dump(1) << "\n";
+    const std::string table_json = sw::calibration_to_json(table).dump(1) + "\n";
+    write_file_atomically(fs::path(o.out) / "calibration_report.json", out.dump(1) + "\n");
+    write_file_atomically(fs::path(o.out) / "calibration.json", table_json);
+    if (!o.table.empty()) write_file_atomically(o.table, table_json);
     const std::string md = calibration_markdown(out);
-    std::ofstream(fs::path(o.out) / "calibration.md") << md;
+    write_file_atomically(fs::path(o.out) / "calibration.md", md);
     std::fputs(md.c_str(), stdout);
     return kExitOk;
 }

@@ -322,14 +322,4 @@ std::string report_markdown(const nlohmann::ordered_json& r) {
     return md;
 }
 
-void write_file_atomically(const std::string& path, const std::string& content) {
-    const std::string partial = path + ".partial";
-    {
-        std::ofstream out(partial, std::ios::binary | std::ios::trunc);
-        out << content;
-        if (!out) throw std::runtime_error("cannot write " + partial);
-    }
-    std::filesystem::rename(partial, path);
-}
-
 }  // namespace surfvp

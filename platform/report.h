@@ -5,6 +5,8 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "models/common/atomic_file.h"
+
 namespace surfvp {
 
 std::string report_markdown(const nlohmann::ordered_json& report);
@@ -12,9 +14,5 @@ std::string report_markdown(const nlohmann::ordered_json& report);
 // A workload's per-frame list (report.json's workload.per_frame) as CSV: a header of its keys,
 // a row per frame.
 std::string frames_csv(const nlohmann::ordered_json& per_frame);
-
-// Writes `content` to `path` through a temporary file and a rename, so the file is either
-// absent or complete. Throws std::runtime_error.
-void write_file_atomically(const std::string& path, const std::string& content);
 
 }  // namespace surfvp

@@ -1,5 +1,7 @@
 #include "tracer.h"
 
+#include "atomic_file.h"
+
 #include <cstdio>
 #include <filesystem>
 #include <fmt/format.h>
@@ -103,7 +105,6 @@ void Tracer::counter(int track, std::string_view name, const sc_core::sc_time& a
                    json_string(name), tracks_[track].pid, micros(at), value);
 }
 
-// Written under a temporary name and renamed, as the traces.
 std::vector<std::string> Tracer::write_gtkwave_save(const fs::path& dir) {
     const fs::path absolute = fs::absolute(dir);
     GtkwaveSave save{(absolute / "trace.vcd").string(), (absolute / "trace.gtkw").string(),
@@ -111,12 +112,7 @@ std::vector<std::string> Tracer::write_gtkwave_save(const fs::path& dir) {
     std::vector<std::string> written;
     for (const auto& [name, text] : {std::pair{std::string("trace.gtkw"), gtkwave_save(vcd_signals_, save)},
                                      std::pair{std::string("trace.tasks.txt"), gtkwave_task_filter()}}) {
-        const fs::path partial = dir / (name + ".partial");
-        std::ofstream out(partial, std::ios::binary | std::ios::trunc);
-        out << text;
-        out.close();
-        if (!out) throw std::runtime_error("writing " + (dir / name).string() + " failed");
-        fs::rename(partial, dir / name);
+        write_file_atomically(dir / name, text);
         written.push_back((dir / name).string());
     }
     return written;

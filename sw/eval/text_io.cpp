@@ -1,6 +1,5 @@
 #include "sw/eval/text_io.h"
 
-#include <atomic>
 #include <cerrno>
 #include <charconv>
 #include <cmath>
@@ -9,7 +8,6 @@
 #include <stdexcept>
 #include <system_error>
 
-#include <unistd.h>
 
 namespace surfvp::eval {
 
@@ -96,34 +94,5 @@ std::size_t TextReader::count(std::string_view token, const char* what, std::siz
     return static_cast<std::size_t>(value);
 }
 
-void write_file_atomically(const std::filesystem::path& file, const std::string& content) {
-    // pid and a counter keep concurrent writers (threads or processes) off each other's
-    // temporary; the rename is atomic within one file system.
-    static std::atomic<unsigned> serial{0};
-    std::filesystem::path temporary = file;
-    temporary += ".tmp-" + std::to_string(::getpid()) + "-" + std::to_string(serial++);
-    {
-        std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
-        if (!out) {
-            throw std::runtime_error(file.string() + ": cannot create temporary " +
-                                     temporary.string() + " (" + std::strerror(errno) + ")");
-        }
-        out.write(content.data(), static_cast<std::streamsize>(content.size()));
-        out.flush();
-        if (!out) {
-            std::error_code ignored;
-            std::filesystem::remove(temporary, ignored);
-            throw std::runtime_error(file.string() + ": write failed (" + std::strerror(errno) + ")");
-        }
-    }
-    std::error_code ec;
-    std::filesystem::rename(temporary, file, ec);
-    if (ec) {
-        std::error_code ignored;
-        std::filesystem::remove(temporary, ignored);
-        throw std::runtime_error(file.string() + ": cannot rename temporary into place (" +
-                                 ec.message() + ")");
-    }
-}
 
 }  // namespace surfvp::eval

@@ -9,6 +9,7 @@
 #include <string_view>
 #include <vector>
 
+#include "models/common/atomic_file.h"
 #include "sw/eval/format_error.h"
 
 namespace surfvp::eval {
@@ -46,8 +47,6 @@ private:
     std::size_t line_ = 0;
 };
 
-// Writes `content` to a temporary name beside `file` and renames it over `file`, so a reader
-// never sees a half-written file. Throws std::runtime_error naming the file on failure.
-void write_file_atomically(const std::filesystem::path& file, const std::string& content);
+using surfvp::write_file_atomically;  // models/common/atomic_file.h
 
 }  // namespace surfvp::eval
