@@ -238,27 +238,23 @@ std::vector<std::pair<std::string, std::string>> software_settings(const Config&
 Json software_json(const std::vector<std::pair<std::string, std::string>>& settings, const std::vector<Json>& results,
                    const Json& reference, double run_fps, double budget) {
     const double ref = fps_of(reference);
-    Json rows = Json::array();
-    rows.push_back({{"setting", "as the scenario"}, {"fps", run_fps}, {"point_fps", ref},
-                    {"cpu_ms_per_frame", reference.value("cpu_ms_per_frame", 0.0)},
-                    {"cpu_alone_fps", reference.value("cpu_alone_fps", 0.0)}, {"limit", reference["limit"]},
-                    {"keypoints_per_frame", reference["keypoints_per_frame"]}});
-    for (size_t i = 0; i < settings.size(); ++i) {
-        const Json& r = results[i];
-        Json row = {{"setting", settings[i].first + " = " + settings[i].second}};
+    auto row = [&](const std::string& setting, const Json& r) {
+        Json out = {{"setting", setting}};
         if (r.contains("error")) {
-            row["error"] = r["error"];
-        } else {
-            row["fps"] = run_fps + fps_of(r) - ref;
-            row["point_fps"] = fps_of(r);
-            row["cpu_ms_per_frame"] = r.value("cpu_ms_per_frame", 0.0);
-            row["cpu_alone_fps"] = r.value("cpu_alone_fps", 0.0);
-            row["limit"] = r["limit"];
-            row["keypoints_per_frame"] = r["keypoints_per_frame"];
-            if (budget > 0) row["met"] = row["fps"].get<double>() >= budget;
+            out["error"] = r["error"];
+            return out;
         }
-        rows.push_back(row);
-    }
+        out["fps"] = run_fps + fps_of(r) - ref;
+        out["point_fps"] = fps_of(r);
+        out["cpu_ms_per_frame"] = r.value("cpu_ms_per_frame", 0.0);
+        out["cpu_alone_fps"] = r.value("cpu_alone_fps", 0.0);
+        out["limit"] = r["limit"];
+        out["keypoints_per_frame"] = r["keypoints_per_frame"];
+        if (budget > 0) out["met"] = out["fps"].get<double>() >= budget;
+        return out;
+    };
+    Json rows = Json::array({row("as the scenario", reference)});
+    for (size_t i = 0; i < settings.size(); ++i) rows.push_back(row(settings[i].first + " = " + settings[i].second, results[i]));
     return rows;
 }
 

@@ -10,6 +10,7 @@
 #include <cstring>
 
 #include "models/common/byte_order.h"
+#include "sw/stage/software_stage.h"
 #include "sw/surf/keypoint.h"
 
 namespace surfvp::sw::calibration_dump {
@@ -32,6 +33,19 @@ struct Result {
     int32_t laplacian;
     float descriptor[64];
 };
+
+// What the stage was given for this frame, back from its header (host order).
+inline StageParams stage_params(const FrameHeader& h) {
+    StageParams p;
+    p.upright = h.upright != 0;
+    p.haar = h.rounded_haar ? surf::HaarMode::rounded : surf::HaarMode::exact;
+    p.threshold = h.threshold;
+    return p;
+}
+inline FrameBuffers frame_buffers(const FrameHeader& h, const uint8_t* integral, const uint8_t* determinants) {
+    return {integral, h.integral_address, size_t(h.width) * 4, determinants, h.determinants_address,
+            int(h.width), int(h.height), h.det_frac_bits, h.det_bytes};
+}
 
 // Every field above is a 32-bit word: a struct goes between host and PPC440 order word by
 // word (the same call both ways).

@@ -122,7 +122,7 @@ InsnClass fp_class(const std::string& m) {
 const char* insn_class_name(InsnClass c) { return kClassNames[static_cast<size_t>(c)]; }
 
 bool is_fpu_arithmetic(InsnClass c) {
-    return c >= InsnClass::fadd && c <= InsnClass::fconvert ? true : c == InsnClass::fstatus;
+    return (c >= InsnClass::fadd && c <= InsnClass::fconvert) || c == InsnClass::fstatus;
 }
 
 Insn decode(const std::string& mnemonic, const std::string& operands) {

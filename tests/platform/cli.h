@@ -40,9 +40,14 @@ inline Cli surfvp(const std::string& args) {
 inline const std::string kBudget = std::string(SURFVP_SOURCE_DIR) + "/scenarios/budget_1024x768.yaml";
 inline const std::string kOneRun = " --set verdict.band=off --set verdict.break_even=off --set verdict.software=off";
 
+// The folder fresh_dir(name) makes, without emptying it.
+inline std::string fresh_path(const std::string& name) {
+    return (std::filesystem::temp_directory_path() / ("surfvp_test_" + std::to_string(::getpid())) / name).string();
+}
+
 // A fresh empty folder under the temporary directory, unique to this test process.
 inline std::string fresh_dir(const std::string& name) {
-    const auto dir = std::filesystem::temp_directory_path() / ("surfvp_test_" + std::to_string(::getpid())) / name;
+    const std::filesystem::path dir = fresh_path(name);
     std::filesystem::remove_all(dir);
     std::filesystem::create_directories(dir);
     return dir.string();

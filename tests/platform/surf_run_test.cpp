@@ -22,11 +22,7 @@ using test::surfvp;
 using test::kBudget;
 using test::kOneRun;
 const std::string kCastle = std::string(SURFVP_SOURCE_DIR) + "/scenarios/castle_sequence.yaml";
-
-// The folder fresh_dir(name) made, without emptying it.
-std::string fresh_path(const std::string& name) {
-    return (fs::temp_directory_path() / ("surfvp_test_" + std::to_string(::getpid())) / name).string();
-}
+using test::fresh_path;
 
 
 nlohmann::json run(const std::string& name, const std::string& sets, int expected_exit,

@@ -12,6 +12,7 @@
 namespace surfvp {
 namespace {
 using test::fresh_dir;
+using test::fresh_path;
 using test::kBudget;
 using test::slurp;
 using test::surfvp;
@@ -121,11 +122,7 @@ TEST(Verdict, JobsDoNotChangeTheVerdict) {
 // The software settings the CPU's time rests on, each re-simulated: exact wavelets cost more
 // CPU time than rounded ones, U-SURF less, and CPU time grows with the keypoints per frame.
 TEST(Verdict, SoftwareSettingsSayWhatTheCpuTimeRestsOn) {
-    const std::string out = fresh_dir("software");
-    const auto run = surfvp("run " + kBudget + " --trace none --quiet --out " + out + kSmall +
-                            " --set verdict.band=off --set verdict.break_even=off");
-    ASSERT_LE(run.exit_code, 1) << run.err;
-    const auto r = nlohmann::json::parse(slurp(out + "/report.json"));
+    const auto r = verdict("software", "--set verdict.band=off --set verdict.break_even=off", 0);
     std::map<std::string, double> cpu_ms;
     for (const auto& row : r["verdict"]["software"]) {
         ASSERT_FALSE(row.contains("error")) << row;
@@ -138,7 +135,7 @@ TEST(Verdict, SoftwareSettingsSayWhatTheCpuTimeRestsOn) {
     EXPECT_LT(cpu_ms["surf.upright = on"], 0.8 * base);
     EXPECT_LT(cpu_ms["surf.target_keypoints = 50"], cpu_ms["surf.target_keypoints = 100"]);
     EXPECT_LT(cpu_ms["surf.target_keypoints = 100"], cpu_ms["surf.target_keypoints = 150"]);
-    const std::string md = slurp(out + "/report.md");
+    const std::string md = slurp(fresh_path("software") + "/report.md");
     EXPECT_NE(md.find("Software settings the CPU's time rests on"), std::string::npos);
     EXPECT_NE(md.find("| surf.haar = exact |"), std::string::npos);
 }

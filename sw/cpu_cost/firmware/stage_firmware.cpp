@@ -65,14 +65,8 @@ int main(int argc, char** argv) {
             std::fread(determinants.data(), 1, determinants.size(), in) != determinants.size() ||
             std::fread(words.data(), 4, words.size(), in) != words.size())
             fail("truncated frame");
-        StageParams params;
-        params.upright = h.upright != 0;
-        params.haar = h.rounded_haar ? surfvp::surf::HaarMode::rounded : surfvp::surf::HaarMode::exact;
-        params.threshold = h.threshold;
-        BasicSoftwareStage<MarkingMeter> stage(params);
-        const FrameBuffers buffers{integral.data(), h.integral_address, size_t(h.width) * 4, determinants.data(),
-                                   h.determinants_address, int(h.width), int(h.height), h.det_frac_bits,
-                                   h.det_bytes};
+        BasicSoftwareStage<MarkingMeter> stage(calibration_dump::stage_params(h));
+        const FrameBuffers buffers = calibration_dump::frame_buffers(h, integral.data(), determinants.data());
         for (uint32_t word : words) {
             calibration_dump::Result r{};
             if (auto kp = stage.process(word, buffers)) calibration_dump::fill(r, *kp);
