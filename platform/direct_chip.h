@@ -1,18 +1,23 @@
 #pragma once
 // The chip without time, for `surfvp run --direct`: the same driver and software run on the
-// same cores (IntegralCore, HessianCore, LocalMaxFinder), with the registers the driver uses
-// answered at once. An IIG START computes the whole frame: integral image, determinants and
-// candidates in memory and FIFO, DONE and interrupts set. There is no back-pressure and no
-// FIFO limit (both depend on time); with a FIFO that does not overflow in the VP, the
-// keypoints are the VP's byte for byte (a test holds this).
+// same cores (IntegralCore, HessianCore, LocalMaxFinder) and the same register behaviour as
+// the models (IigRegisters, FhgRegisters, IntcRegisters), answered at once. An IIG START
+// computes the integral image at once (DONE); an FHG listening to it then works one block
+// row at a time whenever the software waits for an interrupt, its candidates going into the
+// maxima FIFO of the configured depth, so the driver drains the FIFO at its threshold
+// interrupt as on the chip. Without time there is no back-pressure (STALL_CYCLES reads 0);
+// the keypoints are the VP's byte for byte, and a FIFO that is never drained during the frame
+// overflows by the same count (tests hold both).
 #include <cstdint>
-#include <deque>
 #include <memory>
 #include <vector>
 
 #include "config.h"
-#include "models/fhg/hessian_core.h"
 #include "models/common/hal.h"
+#include "models/fhg/fhg_registers.h"
+#include "models/fhg/hessian_core.h"
+#include "models/iig/iig_registers.h"
+#include "models/intc/intc_registers.h"
 
 namespace surfvp {
 
@@ -39,33 +44,31 @@ public:
     void mark(unsigned, int) override {}
 
 private:
-    struct Iig {
-        uint32_t ctrl = 0, status = 0, error = 0, src = 0, dst = 0, width = 0, height = 0, src_stride = 0, dst_stride = 0;
-    };
-    struct Fhg {
-        uint32_t ctrl = 0, status = 0, error = 0, det = 0, width = 0, height = 0, threshold = 0, fifo_threshold = 0;
-        uint32_t candidates = 0;
-        bool running = false;
-        std::deque<uint32_t> fifo;
-    };
+    // One IIG + FHG pair: their registers, and the frame each has taken.
     struct Pair {
-        Iig iig;
-        Fhg fhg;
+        Pair(DirectChip& chip, const IigRegisters::Limits& iig, const FhgRegisters::Limits& fhg);
+        IigRegisters iig;
+        FhgRegisters fhg;
+        IigRegisters::Frame integral{};
+        FhgRegisters::Frame determinants{};
+        std::vector<uint32_t> lines;  // the integral image streamed to the FHG
+        uint32_t next_row = 0;        // the FHG's next block row; its frame has work while BUSY
     };
 
     bool access(uint32_t address, uint32_t& value, bool write);
-    bool access_iig(Pair& p, uint32_t offset, uint32_t& value, bool write);
-    bool access_fhg(Pair& p, uint32_t offset, uint32_t& value, bool write);
-    void run_frame(Pair& p);
+    void run_integral(Pair& p);
+    uint32_t block_row(Pair& p);
+    bool step();
     bool in_memory(uint64_t address, uint64_t bytes) const;
-    uint32_t pending() const;
+    uint32_t levels() const;
 
     uint64_t memory_size_;
     std::unique_ptr<uint8_t[], void (*)(void*)> memory_;
-    std::vector<Pair> pairs_;
-    uint32_t ier_ = 0, mer_ = 0;
-    unsigned sum_bits_, iig_max_width_, iig_max_height_, fhg_max_width_, fhg_max_height_;
+    std::vector<std::unique_ptr<Pair>> pairs_;
+    IntcRegisters intc_;
+    unsigned sum_bits_;
     fhg::HessianCore core_;
+    std::vector<int32_t> records_;  // one block row's determinant records
     double fill_cycles_;  // an uncontended line fill, in CPU cycles
     uint64_t cycles_ = 0;
 };

@@ -13,6 +13,7 @@
 #include "run.h"
 #include "scenario.h"
 #include "seqgen.h"
+#include "soc.h"
 
 namespace {
 
@@ -50,6 +51,7 @@ int dispatch(int argc, char** argv) {
     add_scenario_options(*validate, options);
     app.add_subcommand("list", "List the shipped scenarios with their descriptions");
     app.add_subcommand("params", "Print every parameter with its default, range and source (Markdown)");
+    app.add_subcommand("registers", "Print every block's registers with their access, reset value and fields (Markdown)");
     SeqgenOptions seqgen_options;
     CLI::App* seqgen = app.add_subcommand("seqgen", "Generate the FHG's control sequence and print its statistics (JSON)");
     seqgen->add_option("scenario", seqgen_options.scenario, "Scenario to take the parameters from (default: the defaults)");
@@ -92,6 +94,10 @@ int dispatch(int argc, char** argv) {
         if (*bench) return bench_command(bench_options);
         if (*calibrate) return calibrate_command(calibrate_options);
         if (app.got_subcommand("list")) return list_scenarios();
+        if (app.got_subcommand("registers")) {
+            std::fputs(registers_markdown(chip_registers()).c_str(), stdout);
+            return kExitOk;
+        }
         if (app.got_subcommand("params")) {
             std::fputs(parameters_markdown().c_str(), stdout);
             return kExitOk;

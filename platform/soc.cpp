@@ -4,6 +4,10 @@
 #include <fmt/format.h>
 
 #include "address_map.h"
+#include "models/dma/dma_regs.h"
+#include "models/fhg/fhg_regs.h"
+#include "models/iig/iig_regs.h"
+#include "models/intc/intc_regs.h"
 #include "seqgen.h"
 
 namespace surfvp {
@@ -52,6 +56,16 @@ uint64_t dma_transaction_bytes(const Config& c, unsigned burst_beats) {
 }
 
 }  // namespace
+
+std::vector<MappedRegisters> chip_registers() {
+    auto at = [](const map::Region& r, const char* bus) { return fmt::format("Its window is {:#010x} on {}", r.base, bus); };
+    const std::string pairs = fmt::format(", pair k at + k x {:#x}", map::kAcceleratorStride);
+    return {{&iig::table(), at(map::iig, "PLB1") + pairs},
+            {&fhg_regs::table(), at(map::fhg, "PLB1") + pairs},
+            {&intc::table(), at(map::intc, "PLB1") + fmt::format(" (inputs: DMA {}, IIG k {} + 2k, FHG k {} + 2k)", map::irq::dma,
+                                                                   map::irq::iig(0), map::irq::fhg(0))},
+            {&dma::table(), at(map::dma, "PLB1")}};
+}
 
 sc_core::sc_time uncontended_fill(const Config& c) {
     const uint64_t line = c.bytes("cpu.cache_line").n;

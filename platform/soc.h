@@ -25,6 +25,10 @@ namespace surfvp {
 Iig::Params iig_params(const Config& config);
 Fhg::Params fhg_params(const Config& config);
 
+// The register tables of the chip's blocks with their place in the address map, for
+// docs/registers.md (`surfvp registers`).
+std::vector<MappedRegisters> chip_registers();
+
 // One line fill on the CPU's memory path with nothing else on it: the MCI link (or PLB1) and
 // the DDR's read, by the models' own formulas (direct mode charges this per fill).
 sc_core::sc_time uncontended_fill(const Config& config);

@@ -1,34 +1,40 @@
 #pragma once
 // STATUS and ERROR_CODE as the IP blocks keep them (SSA IIG, SSA FHG): BUSY, DONE and ERROR
-// in bits 0..2, DONE and ERROR cleared by writing 1. A refused command (START while busy, a
-// size beyond the limit) flags ERROR at once; a frame that fails shows ERROR only when it
-// has ended and BUSY is clear, so that the next START finds the block idle.
+// in bits 0..2 of the block's STATUS register (DONE and ERROR are W1C in its table). A
+// refused command (START while busy, a size beyond the limit) flags ERROR at once; a frame
+// that fails shows ERROR only when it has ended and BUSY is clear, so that the next START
+// finds the block idle. The bits live in the block's RegisterBank; this names their rules.
 #include <cstdint>
 
 namespace surfvp {
 
-struct FrameStatus {
+class FrameStatus {
+public:
     static constexpr uint32_t kBusy = 1u << 0, kDone = 1u << 1, kError = 1u << 2;
 
-    uint32_t bits = 0;
-    uint32_t error_code = 0;
-    uint64_t errors = 0;  // every ERROR flagged, for the report
+    FrameStatus(uint32_t& status, uint32_t& error_code) : bits_(status), code_(error_code) {}
 
-    bool busy() const { return bits & kBusy; }
-    bool finished() const { return bits & (kDone | kError); }
+    uint32_t bits() const { return bits_; }
+    bool busy() const { return bits_ & kBusy; }
+    bool finished() const { return bits_ & (kDone | kError); }
+    uint64_t errors() const { return errors_; }  // every ERROR flagged, for the report
     void flag(uint32_t code) {
-        error_code = code;
-        bits |= kError;
-        ++errors;
+        code_ = code;
+        bits_ |= kError;
+        ++errors_;
     }
-    void start() { bits = kBusy; }
+    void set(uint32_t sticky) { bits_ |= sticky; }  // a block's own STATUS flag
+    void start() { bits_ = kBusy; }
     void end(bool failed, uint32_t failure) {
-        bits &= ~kBusy;
+        bits_ &= ~kBusy;
         if (failed) flag(failure);
-        else bits |= kDone;
+        else bits_ |= kDone;
     }
-    // A STATUS write: 1 clears DONE, ERROR and the block's own sticky bits in `sticky`.
-    void write_one_to_clear(uint32_t value, uint32_t sticky = 0) { bits &= ~(value & (kDone | kError | sticky)); }
+
+private:
+    uint32_t& bits_;
+    uint32_t& code_;
+    uint64_t errors_ = 0;
 };
 
 }  // namespace surfvp

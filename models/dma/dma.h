@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "dma_engine.h"
+#include "models/common/register_bank.h"
 #include "models/common/tracer.h"
 #include "models/common/units.h"
 
@@ -36,14 +37,16 @@ public:
 
 private:
     void b_transport(tlm::tlm_generic_payload& tx, sc_core::sc_time& delay);
+    void bind_registers();
     bool access(uint32_t offset, uint32_t& value, bool write);
+    uint32_t& reg(uint32_t offset) { return bank_.value(offset); }
     void copy_thread();
     void fail(uint32_t code, uint64_t address);
     void update_irq();  // the only writer of `irq`
 
     Params params_;
     Tracer& tracer_;
-    uint32_t ctrl_ = 0, status_ = 0, src_ = 0, dst_ = 0, len_ = 0, error_code_ = 0, error_addr_ = 0;
+    RegisterBank bank_;  // dma_regs.h's table
     sc_core::sc_event start_, irq_changed_;
     sc_core::sc_signal<bool> busy_{"busy"};
     std::vector<uint8_t> buffer_;  // one burst

@@ -4,10 +4,6 @@
 #include <fmt/format.h>
 
 #include "fhg_regs.h"
-
-static_assert(surfvp::fhg_regs::STATUS_BUSY == surfvp::FrameStatus::kBusy &&
-              surfvp::fhg_regs::STATUS_DONE == surfvp::FrameStatus::kDone &&
-              surfvp::fhg_regs::STATUS_ERROR == surfvp::FrameStatus::kError);
 #include "models/common/byte_order.h"
 #include "models/common/clock.h"
 #include "models/common/register_target.h"
@@ -28,10 +24,14 @@ Fhg::Fhg(const sc_core::sc_module_name& name, const Params& params, Tracer& trac
       core_(params.precision),
       sequence_(fhg::cached_sequence(params.sequence)),
       block_cycles_(block_cycles(sequence_, params)),
+      registers_({params.max_width, params.max_height, params.maxima_fifo_depth, params.precision.det_frac_bits,
+                  r::det_bytes_for(params.precision.det_bits)},
+                 {[this](const FhgRegisters::Frame& f) { start(f); }, [this] { fail(r::ERR_ABORTED); },
+                  [this] { changed(); }}),
       slots_(params.det_row_buffers + 1),
       det_rows_("det_rows", int(params.det_row_buffers)) {
-    if (params.maxima_fifo_depth == 0 || params.det_row_buffers == 0)
-        throw std::invalid_argument(fmt::format("{}: FIFO depth and determinant row buffers must be above zero", basename()));
+    if (params.det_row_buffers == 0)
+        throw std::invalid_argument(fmt::format("{}: determinant row buffers must be above zero", basename()));
     pixels.bind(*this);
     regs.register_b_transport(this, &Fhg::b_transport);
     SC_HAS_PROCESS(Fhg);
@@ -64,54 +64,15 @@ const char* Fhg::block_limit(const fhg::Sequence& sequence, const Params& params
 
 uint32_t Fhg::det_bytes() const { return r::det_bytes_for(params_.precision.det_bits); }
 
-bool Fhg::access(uint32_t offset, uint32_t& value, bool write) {
-    uint32_t* reg = nullptr;
-    switch (offset) {
-        case r::CTRL: reg = &ctrl_; break;
-        case r::DET_ADDR: reg = &det_addr_; break;
-        case r::WIDTH: reg = &width_; break;
-        case r::HEIGHT: reg = &height_; break;
-        case r::THRESHOLD: reg = &threshold_; break;
-        case r::FIFO_THRESHOLD: reg = &fifo_threshold_; break;
-        case r::STATUS: case r::ERROR_CODE: case r::FIFO_DATA: case r::FIFO_LEVEL:
-        case r::OVERFLOW_COUNT: case r::CANDIDATES: case r::DET_FRAC_BITS: case r::DET_BYTES: break;
-        default: return false;
-    }
-    if (!write) {
-        switch (offset) {
-            case r::STATUS:
-                value = status_.bits | (fifo_threshold_ && maxima_.size() >= fifo_threshold_ ? r::STATUS_FIFO_IRQ : 0);
-                break;
-            case r::ERROR_CODE: value = status_.error_code; break;
-            case r::FIFO_DATA: value = pop_candidate(); break;
-            case r::FIFO_LEVEL: value = uint32_t(maxima_.size()); break;
-            case r::OVERFLOW_COUNT: value = overflow_count_; break;
-            case r::CANDIDATES: value = candidate_count_; break;
-            case r::DET_FRAC_BITS: value = params_.precision.det_frac_bits; break;
-            case r::DET_BYTES: value = det_bytes(); break;
-            default: value = *reg;
-        }
-        return true;
-    }
-    if (offset == r::STATUS) {
-        status_.write_one_to_clear(value, r::STATUS_FIFO_OVERFLOW);
-    } else if (offset == r::CTRL) {
-        ctrl_ = value & (r::CTRL_IRQ_EN_DONE | r::CTRL_IRQ_EN_FIFO);
-        if (value & r::CTRL_ABORT) {
-            if (frame_.running) fail(r::ERR_ABORTED);
-        } else if (value & r::CTRL_START) {
-            start();
-        }
-    } else if (reg) {
-        *reg = value;
-    }
+// A register write or a FIFO pop: the levels and the interrupt line may have changed.
+void Fhg::changed() {
+    trace_levels();
     irq_changed_.notify(sc_core::SC_ZERO_TIME);
-    return true;
 }
 
 void Fhg::b_transport(tlm::tlm_generic_payload& tx, sc_time& delay) {
     answer_register_access(tx, delay, params_.register_latency, [this](uint32_t offset, uint32_t& value, bool write) {
-        return access(offset, value, write);
+        return registers_.access(offset, value, write);
     });
 }
 
@@ -125,17 +86,12 @@ void Fhg::fail(uint32_t code) {
     room_.notify(sc_core::SC_ZERO_TIME);
 }
 
-void Fhg::start() {
-    if (frame_.running) return status_.flag(r::ERR_START_BUSY);
-    if (width_ == 0 || height_ == 0 || width_ > params_.max_width || height_ > params_.max_height)
-        return status_.flag(r::ERR_SIZE);
-    frame_ = {det_addr_, width_, height_, (width_ + 1) / 2, (height_ + 1) / 2, int32_t(threshold_), true, false, 0, 0, 0,
+// START accepted (FhgRegisters checked it and emptied the FIFO): listen for the frame.
+void Fhg::start(const FhgRegisters::Frame& f) {
+    frame_ = {f.det_addr, f.width, f.height, (f.width + 1) / 2, (f.height + 1) / 2, f.threshold, true, false, 0, 0, 0,
               0, 0, sc_core::sc_time_stamp()};
-    lines_.assign(size_t(width_) * height_, 0);
+    lines_.assign(size_t(f.width) * f.height, 0);
     for (auto& slot : slots_) slot.assign(size_t(frame_.blocks_x) * fhg::kDeterminantsPerBlock, 0);
-    maxima_.clear();
-    overflow_count_ = candidate_count_ = 0;
-    status_.start();
     busy_.write(true);
     start_.notify(sc_core::SC_ZERO_TIME);
 }
@@ -194,7 +150,7 @@ void Fhg::frame_thread() {
         stats_.busy += sc_core::sc_time_stamp() - frame_.began;
         ++stats_.frames;
         frame_.running = false;
-        status_.end(frame_.failed, frame_.error);
+        registers_.status().end(frame_.failed, frame_.error);
         busy_.write(false);
         room_.notify(sc_core::SC_ZERO_TIME);  // a sender still waiting gives up
         if (tracer_.perfetto_on())
@@ -224,46 +180,23 @@ void Fhg::writer_thread() {
 }
 
 void Fhg::push_candidates(const std::vector<fhg::Candidate>& candidates) {
-    for (const fhg::Candidate& c : candidates) {
-        ++candidate_count_;
-        ++stats_.candidates;
-        if (maxima_.size() >= params_.maxima_fifo_depth) {
-            ++overflow_count_;
-            ++stats_.dropped;
-            status_.bits |= r::STATUS_FIFO_OVERFLOW;
-            continue;
-        }
-        maxima_.push_back(fhg::pack_candidate(c));
-    }
-    stats_.fifo_high_water = std::max(stats_.fifo_high_water, unsigned(maxima_.size()));
-    trace_levels();
-    irq_changed_.notify(sc_core::SC_ZERO_TIME);
-}
-
-uint32_t Fhg::pop_candidate() {
-    if (maxima_.empty()) return 0;
-    const uint32_t word = maxima_.front();
-    maxima_.pop_front();
-    trace_levels();
-    irq_changed_.notify(sc_core::SC_ZERO_TIME);
-    return word;
+    stats_.candidates += candidates.size();
+    stats_.dropped += registers_.push(candidates);
+    stats_.fifo_high_water = std::max(stats_.fifo_high_water, registers_.fifo_level());
+    changed();
 }
 
 void Fhg::trace_levels() {
     if (tracer_.vcd_on()) {
-        fifo_level_.write(unsigned(maxima_.size()));
+        fifo_level_.write(registers_.fifo_level());
         line_level_.write(unsigned(frame_.received - frame_.oldest));
     }
     if (tracer_.perfetto_on()) {
-        tracer_.counter(level_track_, "maxima FIFO", sc_core::sc_time_stamp(), double(maxima_.size()));
+        tracer_.counter(level_track_, "maxima FIFO", sc_core::sc_time_stamp(), double(registers_.fifo_level()));
         tracer_.counter(level_track_, "line FIFO", sc_core::sc_time_stamp(), double(frame_.received - frame_.oldest));
     }
 }
 
-void Fhg::update_irq() {
-    const bool done = (ctrl_ & r::CTRL_IRQ_EN_DONE) && status_.finished();
-    const bool fifo = (ctrl_ & r::CTRL_IRQ_EN_FIFO) && fifo_threshold_ && maxima_.size() >= fifo_threshold_;
-    irq.write(done || fifo);
-}
+void Fhg::update_irq() { irq.write(registers_.irq()); }
 
 }  // namespace surfvp

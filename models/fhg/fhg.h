@@ -14,16 +14,15 @@
 // determinants are written plus the last block's tail (x3 additions still running after its
 // last word) and the HessianCalc/LocMaxFinder pipeline latency.
 #include <cstdint>
-#include <deque>
 #include <systemc>
 #include <tlm>
 #include <tlm_utils/simple_initiator_socket.h>
 #include <tlm_utils/simple_target_socket.h>
 #include <vector>
 
+#include "fhg_registers.h"
 #include "hessian_core.h"
 #include "local_max_finder.h"
-#include "models/common/frame_status.h"
 #include "models/common/tracer.h"
 #include "models/common/units.h"
 #include "models/pixelbus/pixel_bus.h"
@@ -78,21 +77,20 @@ public:
     const fhg::HessianCore& core() const { return core_; }
     uint32_t det_bytes() const;  // bytes of one determinant in memory (fhg_regs.h)
     const Stats& stats() const { return stats_; }
-    uint64_t errors() const { return status_.errors; }
+    uint64_t errors() const { return registers_.status().errors(); }
     const Params& params() const { return params_; }
 
     void send_line(int y, const uint32_t* data, int width, const sc_core::sc_time& transfer) override;
 
 private:
     void b_transport(tlm::tlm_generic_payload& tx, sc_core::sc_time& delay);
-    bool access(uint32_t offset, uint32_t& value, bool write);
-    void start();
+    void changed();
+    void start(const FhgRegisters::Frame& frame);
     void fail(uint32_t code);
     void frame_thread();
     void writer_thread();
     void compute_block_row(int by, int32_t* records);
     void push_candidates(const std::vector<fhg::Candidate>& candidates);
-    uint32_t pop_candidate();
     void update_irq();
     void trace_levels();
 
@@ -101,9 +99,7 @@ private:
     fhg::HessianCore core_;
     const fhg::Sequence& sequence_;
     int block_cycles_;
-    FrameStatus status_;
-    uint32_t ctrl_ = 0, det_addr_ = 0, width_ = 0, height_ = 0;
-    uint32_t threshold_ = 0, fifo_threshold_ = 0, overflow_count_ = 0, candidate_count_ = 0;
+    FhgRegisters registers_;
     struct Frame {
         uint32_t det_addr, width, height, blocks_x, blocks_y;
         int32_t threshold;
@@ -117,7 +113,6 @@ private:
     } frame_{};
     std::vector<uint32_t> lines_;              // received integral rows (the FIFO's contents live here)
     std::vector<std::vector<int32_t>> slots_;  // block rows of records for the writer
-    std::deque<uint32_t> maxima_;
     sc_core::sc_fifo<int> det_rows_;  // block rows ready for the writer
     sc_core::sc_event start_, line_arrived_, room_, rows_written_, irq_changed_;
     sc_core::sc_signal<bool, sc_core::SC_UNCHECKED_WRITERS> busy_{"busy"};

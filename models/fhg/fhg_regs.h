@@ -4,6 +4,7 @@
 #include <cstdint>
 
 #include "models/common/byte_order.h"
+#include "models/common/register_bank.h"
 
 namespace surfvp::fhg_regs {
 
@@ -41,6 +42,41 @@ enum ErrorCode : uint32_t {
     ERR_ABORTED = 4,     // CTRL.ABORT
     ERR_PIXELBUS = 5,    // a PixelBus line of another width than WIDTH
 };
+
+// The same registers as a table: the model and direct mode behave by it (FhgRegisters),
+// docs/registers.md is generated from it.
+inline const RegisterTable& table() {
+    static const RegisterTable t{
+        "SSA FHG",
+        "One frame: integral lines in over PixelBus, determinant records out to memory, local maxima into the maxima FIFO.",
+        {{"CTRL", CTRL, Access::RW, 0, "commands and interrupt enables",
+          {{"START", 0, 1, Access::command, "listen for a frame with the registers as they are (ERROR START_BUSY while busy)"},
+           {"IRQ_EN_DONE", 1, 1, Access::RW, "raise the interrupt while DONE or ERROR"},
+           {"IRQ_EN_FIFO", 2, 1, Access::RW, "raise the interrupt while FIFO_IRQ"},
+           {"ABORT", 3, 1, Access::command, "stop the frame in progress (ERROR ABORTED)"}}},
+         {"STATUS", STATUS, Access::W1C, 0, "the frame's state and the maxima FIFO's",
+          {{"BUSY", 0, 1, Access::RO, "a frame is running"},
+           {"DONE", 1, 1, Access::W1C, "the last frame ended well"},
+           {"ERROR", 2, 1, Access::W1C, "a command was refused or the frame failed (ERROR_CODE says why)"},
+           {"FIFO_OVERFLOW", 3, 1, Access::W1C, "a candidate was dropped on a full maxima FIFO"},
+           {"FIFO_IRQ", 4, 1, Access::RO, "FIFO_LEVEL >= FIFO_THRESHOLD (FIFO_THRESHOLD > 0)"}}},
+         {"ERROR_CODE", ERROR_CODE, Access::RO, ERR_NONE,
+          "why ERROR was set: 1 write, 2 size, 3 START while busy, 4 aborted, 5 PixelBus line of another width", {}},
+         {"DET_ADDR", DET_ADDR, Access::RW, 0, "determinant buffer (bus address on PLB2; layout below the table in fhg_regs.h)", {}},
+         {"WIDTH", WIDTH, Access::RW, 0, "pixels (1 to fhg.max_width)", {}},
+         {"HEIGHT", HEIGHT, Access::RW, 0, "rows (1 to fhg.max_height)", {}},
+         {"THRESHOLD", THRESHOLD, Access::RW, 0, "signed, in determinant units (fixed point, DET_FRAC_BITS)", {}},
+         {"FIFO_DATA", FIFO_DATA, Access::RO, 0,
+          "reading pops one candidate: [31] valid, [27] octave 2, [26:24] size index into 9, 15, 21, 27, 39, 51, "
+          "[23:12] y, [11:0] x (bit 31 clear: the FIFO was empty)", {}},
+         {"FIFO_LEVEL", FIFO_LEVEL, Access::RO, 0, "candidates waiting (at most fhg.maxima_fifo_depth)", {}},
+         {"FIFO_THRESHOLD", FIFO_THRESHOLD, Access::RW, 0, "FIFO_IRQ while FIFO_LEVEL >= this (0: never)", {}},
+         {"OVERFLOW_COUNT", OVERFLOW_COUNT, Access::RO, 0, "candidates dropped on a full FIFO this frame", {}},
+         {"CANDIDATES", CANDIDATES, Access::RO, 0, "candidates marked this frame (kept and dropped)", {}},
+         {"DET_FRAC_BITS", DET_FRAC_BITS, Access::RO, 0, "fraction bits of determinants and THRESHOLD (fhg.det_frac_bits)", {}},
+         {"DET_BYTES", DET_BYTES, Access::RO, 0, "bytes of one determinant in the buffer: 1, 2 or 4 (from fhg.det_bits)", {}}}};
+    return t;
+}
 
 // The determinant buffer: one record of 18 determinants per 2x2 block, blocks in raster order
 // (record of block (bx, by) at DET_ADDR + (by x ceil(WIDTH/2) + bx) x record_bytes). Each

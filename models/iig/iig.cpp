@@ -2,10 +2,6 @@
 
 #include <fmt/format.h>
 
-#include "iig_regs.h"
-
-static_assert(surfvp::iig::STATUS_BUSY == surfvp::FrameStatus::kBusy && surfvp::iig::STATUS_DONE == surfvp::FrameStatus::kDone &&
-              surfvp::iig::STATUS_ERROR == surfvp::FrameStatus::kError);
 #include "models/common/byte_order.h"
 #include "models/common/clock.h"
 #include "models/common/register_target.h"
@@ -23,6 +19,9 @@ Iig::Iig(const sc_core::sc_module_name& name, const Params& params, Tracer& trac
       params_(params),
       tracer_(tracer),
       core_(params.sum_bits),
+      registers_({params.max_width, params.max_height},
+                 {[this](const IigRegisters::Frame& f) { start(f); }, [this] { fail(iig::ERR_ABORTED); },
+                  [this] { irq_changed_.notify(sc_core::SC_ZERO_TIME); }}),
       fetched_("fetched", int(params.line_buffers)),
       computed_for_write_("computed_for_write", int(params.line_buffers)),
       computed_for_send_("computed_for_send", int(params.line_buffers)) {
@@ -42,43 +41,9 @@ Iig::Iig(const sc_core::sc_module_name& name, const Params& params, Tracer& trac
     track_ = tracer_.track(basename(), "frame");
 }
 
-bool Iig::access(uint32_t offset, uint32_t& value, bool write) {
-    uint32_t* reg = nullptr;
-    switch (offset) {
-        case iig::CTRL: reg = &ctrl_; break;
-        case iig::SRC: reg = &src_; break;
-        case iig::DST: reg = &dst_; break;
-        case iig::WIDTH: reg = &width_; break;
-        case iig::HEIGHT: reg = &height_; break;
-        case iig::SRC_STRIDE: reg = &src_stride_; break;
-        case iig::DST_STRIDE: reg = &dst_stride_; break;
-        case iig::STATUS: case iig::ERROR_CODE: case iig::STALL_CYCLES: break;
-        default: return false;
-    }
-    if (!write) {
-        value = offset == iig::STATUS ? status_.bits : offset == iig::ERROR_CODE ? status_.error_code
-              : offset == iig::STALL_CYCLES ? stall_cycles_ : *reg;
-        return true;
-    }
-    if (offset == iig::STATUS) {
-        status_.write_one_to_clear(value);
-    } else if (offset == iig::CTRL) {
-        ctrl_ = value & (iig::CTRL_IRQ_EN | iig::CTRL_STREAM);
-        if (value & iig::CTRL_ABORT) {
-            if (status_.busy()) fail(iig::ERR_ABORTED);
-        } else if (value & iig::CTRL_START) {
-            start();
-        }
-    } else if (reg) {
-        *reg = value;
-    }
-    irq_changed_.notify(sc_core::SC_ZERO_TIME);
-    return true;
-}
-
 void Iig::b_transport(tlm::tlm_generic_payload& tx, sc_time& delay) {
     answer_register_access(tx, delay, params_.register_latency, [this](uint32_t offset, uint32_t& value, bool write) {
-        return access(offset, value, write);
+        return registers_.access(offset, value, write);
     });
 }
 
@@ -89,17 +54,13 @@ void Iig::fail(uint32_t code) {
     frame_.error = code;
 }
 
-void Iig::start() {
-    if (status_.busy()) return status_.flag(iig::ERR_START_BUSY);
-    if (width_ == 0 || height_ == 0 || width_ > params_.max_width || height_ > params_.max_height)
-        return status_.flag(iig::ERR_SIZE);
-    frame_ = {src_, dst_, width_, height_, src_stride_ ? src_stride_ : width_, dst_stride_ ? dst_stride_ : 4 * width_,
-              (ctrl_ & iig::CTRL_STREAM) != 0, false, 0, 0, sc_core::sc_time_stamp()};
+// START accepted (IigRegisters checked it): the units take the frame.
+void Iig::start(const IigRegisters::Frame& f) {
+    frame_ = {f.src, f.dst, f.width, f.height, f.src_stride, f.dst_stride, f.stream, false, 0, 0, sc_core::sc_time_stamp()};
     image_.assign(size_t(frame_.width) * frame_.height, 0);
     integral_.assign(size_t(frame_.width) * frame_.height, 0);
     bytes_.resize(size_t(frame_.width) * 4);
     stall_total_ = sc_core::SC_ZERO_TIME;
-    status_.start();
     busy_.write(true);
     start_.notify(sc_core::SC_ZERO_TIME);
 }
@@ -175,11 +136,10 @@ void Iig::send_thread() {
 // A row is finished when it is written and, when streaming, sent; the frame when all are.
 void Iig::finish_row() {
     if (++frame_.rows_finished < frame_.height * (frame_.stream ? 2 : 1)) return;
-    stall_cycles_ = uint32_t(stall_total_.to_seconds() * params_.clock.hz + 0.5);
     stats_.stalled += stall_total_;
     stats_.busy += sc_core::sc_time_stamp() - frame_.began;
     ++stats_.frames;
-    status_.end(frame_.failed, frame_.error);
+    registers_.end(frame_.failed, frame_.error, uint32_t(stall_total_.to_seconds() * params_.clock.hz + 0.5));
     busy_.write(false);
     if (tracer_.perfetto_on())
         tracer_.slice(track_, fmt::format("integral {}x{}", frame_.width, frame_.height), frame_.began,
@@ -188,7 +148,7 @@ void Iig::finish_row() {
 }
 
 void Iig::update_irq() {
-    irq.write((ctrl_ & iig::CTRL_IRQ_EN) && status_.finished());
+    irq.write(registers_.irq());
 }
 
 }  // namespace surfvp

@@ -16,8 +16,8 @@
 #include <tlm_utils/simple_target_socket.h>
 #include <vector>
 
+#include "iig_registers.h"
 #include "integral_core.h"
-#include "models/common/frame_status.h"
 #include "models/common/tracer.h"
 #include "models/common/units.h"
 #include "models/pixelbus/pixel_bus.h"
@@ -58,13 +58,12 @@ public:
     Iig(const sc_core::sc_module_name& name, const Params& params, Tracer& tracer);
 
     const Stats& stats() const { return stats_; }
-    uint64_t errors() const { return status_.errors; }
+    uint64_t errors() const { return registers_.status().errors(); }
     const Params& params() const { return params_; }
 
 private:
     void b_transport(tlm::tlm_generic_payload& tx, sc_core::sc_time& delay);
-    bool access(uint32_t offset, uint32_t& value, bool write);
-    void start();
+    void start(const IigRegisters::Frame& frame);
     void fail(uint32_t code);
     void fetch_thread();
     void compute_thread();
@@ -76,9 +75,7 @@ private:
     Params params_;
     Tracer& tracer_;
     IntegralCore core_;
-    FrameStatus status_;
-    uint32_t ctrl_ = 0, src_ = 0, dst_ = 0, width_ = 0, height_ = 0;
-    uint32_t src_stride_ = 0, dst_stride_ = 0, stall_cycles_ = 0;
+    IigRegisters registers_;
     // The frame being worked on (its registers latched at START).
     struct Frame {
         uint32_t src, dst, width, height, src_stride, dst_stride;

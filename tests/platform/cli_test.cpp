@@ -220,5 +220,14 @@ TEST(Cli, SeqgenFollowsParameters) {
     }
 }
 
+TEST(Cli, RegisterDocMatchesTheTables) {
+    const auto r = surfvp("registers");
+    EXPECT_EQ(r.exit_code, 0);
+    EXPECT_NE(r.out.find("| 0x28 | OVERFLOW_COUNT | RO | 0x0 |"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("| 1 | DONE | W1C |"), std::string::npos);
+    EXPECT_EQ(slurp(std::string(SURFVP_SOURCE_DIR) + "/docs/registers.md"), r.out)
+        << "docs/registers.md is stale: regenerate it with `build/surfvp registers > docs/registers.md`";
+}
+
 }  // namespace
 }  // namespace surfvp

@@ -48,6 +48,25 @@ TEST(SurfRun, VpKeypointsEqualDirectModeByteForByte) {
     EXPECT_GT(slurp(vp + "/keypoints/frame_0000.surf").size(), 1000u);
 }
 
+// The maxima FIFO is FhgRegisters in both: with 8 entries and a FIFO interrupt that never
+// comes (its level is above the depth), the driver drains only at DONE, and both drop the
+// same candidates.
+TEST(SurfRun, VpAndDirectModeReportTheSameOverflowOnATinyFifo) {
+    const std::string vp = fresh_dir("vp_overflow"), direct = fresh_dir("direct_overflow");
+    const std::string sets = " --set surf.frames=1 --set surf.width=512 --set surf.height=384 --set budget.fps=0"
+                             " --set fhg.maxima_fifo_depth=8 --set surf.fifo_irq_level=1024";
+    EXPECT_EQ(surfvp("run " + kBudget + " --trace none --quiet --out " + vp + kOneRun + sets).exit_code, 1);
+    EXPECT_EQ(surfvp("run " + kBudget + " --direct --quiet --out " + direct + sets).exit_code, 1);
+    const auto in_vp = nlohmann::json::parse(slurp(vp + "/report.json"));
+    const auto in_direct = nlohmann::json::parse(slurp(direct + "/report.json"));
+    const std::string why = in_vp["checks"][0]["detail"];
+    EXPECT_EQ(why, in_direct["checks"][0]["detail"].get<std::string>());
+    const uint64_t dropped = in_vp["fhg"]["candidates_dropped"];
+    EXPECT_EQ(dropped + 8, in_vp["fhg"]["candidates"].get<uint64_t>());
+    EXPECT_GT(dropped, 20u);
+    EXPECT_EQ(why, fmt::format("frame 0: the maxima FIFO overflowed: {} candidates dropped", dropped));
+}
+
 TEST(SurfRun, TwoTasksInFlightOverlapHardwareAndSoftware) {
     const std::string sets = " --set surf.frames=6 --set surf.width=512 --set surf.height=384 --set budget.fps=0";
     const auto one = run("one", sets + " --set surf.tasks_in_flight=1", 0);
