@@ -1,14 +1,14 @@
-#include "soc.h"
+#include "platform/soc.h"
 
 #include <cmath>
 #include <fmt/format.h>
 
-#include "address_map.h"
+#include "platform/address_map.h"
 #include "models/dma/dma_regs.h"
 #include "models/fhg/fhg_regs.h"
 #include "models/iig/iig_regs.h"
 #include "models/intc/intc_regs.h"
-#include "seqgen.h"
+#include "platform/tools/seqgen.h"
 
 namespace surfvp {
 namespace {

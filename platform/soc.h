@@ -7,7 +7,7 @@
 #include <nlohmann/json.hpp>
 #include <systemc>
 
-#include "config.h"
+#include "platform/scenario/config.h"
 #include "models/common/tracer.h"
 #include "models/dma/dma.h"
 #include "models/fhg/fhg.h"
@@ -17,7 +17,7 @@
 #include "models/memory/ddr_memory.h"
 #include "models/plb/plb_bus.h"
 #include "models/ppc440/ppc440.h"
-#include "workload.h"
+#include "platform/workload/workload.h"
 
 namespace surfvp {
 

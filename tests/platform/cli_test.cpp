@@ -5,7 +5,7 @@
 #include <regex>
 
 #include "cli.h"
-#include "platform/parameters.h"
+#include "platform/scenario/parameters.h"
 #include "vcd_reader.h"
 
 namespace surfvp {

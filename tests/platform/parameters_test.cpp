@@ -2,7 +2,7 @@
 // that parse as values of the parameter.
 #include <gtest/gtest.h>
 
-#include "platform/parameters.h"
+#include "platform/scenario/parameters.h"
 
 namespace surfvp {
 namespace {

@@ -3,7 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "cli.h"
-#include "platform/scenario.h"
+#include "platform/scenario/scenario.h"
 
 namespace surfvp {
 namespace {

@@ -1,0 +1,128 @@
+// surfvp: the command line of the FPGA-SURF virtual platform.
+#include <CLI/CLI.hpp>
+#include <cstdio>
+#include <cstdlib>
+#include <exception>
+#include <systemc>
+
+#include "platform/tools/bench.h"
+#include "platform/tools/calibrate.h"
+#include "platform/scenario/config.h"
+#include "platform/scenario/parameters.h"
+#include "platform/quality/quality_commands.h"
+#include "platform/run/run.h"
+#include "platform/scenario/scenario.h"
+#include "platform/tools/seqgen.h"
+#include "platform/soc.h"
+
+namespace {
+
+using namespace surfvp;
+
+void add_scenario_options(CLI::App& command, RunOptions& options) {
+    command.add_option("scenario", options.scenario, "Scenario file, or the name of a shipped one (see `surfvp list`)")
+        ->required();
+    command.add_option("--set", options.sets, "Override a parameter: --set plb2.width='64 bit' (repeatable)")
+        ->type_name("KEY=VALUE");
+}
+
+int list_scenarios() {
+    for (const auto& s : shipped_scenarios()) std::printf("%-24s %s\n", s.name.c_str(), s.description.c_str());
+    return kExitOk;
+}
+
+int dispatch(int argc, char** argv) {
+    CLI::App app{"surfvp: a SystemC/TLM-2.0 virtual platform of the FPGA-SURF system-on-chip"};
+    app.set_version_flag("--version", std::string("surfvp ") + SURFVP_VERSION);
+    app.require_subcommand(1);
+    RunOptions options;
+
+    CLI::App* run = app.add_subcommand("run", "Simulate a scenario; write report.json/.md, config.yaml and traces");
+    add_scenario_options(*run, options);
+    run->add_option("--out", options.out, "Output folder (default: traces/<scenario name>)");
+    run->add_option("--trace", options.trace, "Which traces to write")
+        ->check(CLI::IsMember({"none", "vcd", "perfetto", "all"}))
+        ->default_val("all");
+    run->add_flag("--quiet,-q", options.quiet, "No progress or summary lines on stderr");
+    run->add_flag("--direct", options.direct,
+                  "Run the driver and software on the cores without SystemC (no time): keypoints only");
+
+    CLI::App* validate = app.add_subcommand("validate", "Check a scenario (and --set overrides) without running it");
+    add_scenario_options(*validate, options);
+    app.add_subcommand("list", "List the shipped scenarios with their descriptions");
+    app.add_subcommand("params", "Print every parameter with its default, range and source (Markdown)");
+    app.add_subcommand("registers", "Print every block's registers with their access, reset value and fields (Markdown)");
+    SeqgenOptions seqgen_options;
+    CLI::App* seqgen = app.add_subcommand("seqgen", "Generate the FHG's control sequence and print its statistics (JSON)");
+    seqgen->add_option("scenario", seqgen_options.scenario, "Scenario to take the parameters from (default: the defaults)");
+    seqgen->add_option("--set", seqgen_options.sets, "Override a parameter: --set fhg.read_buses=6 (repeatable)")
+        ->type_name("KEY=VALUE");
+    seqgen->add_option("--width", seqgen_options.width, "Image width for the implied frame rate")->capture_default_str();
+    seqgen->add_option("--height", seqgen_options.height, "Image height for the implied frame rate")->capture_default_str();
+    BenchOptions bench_options;
+    bench_options.self = "/proc/self/exe";
+    CLI::App* bench = app.add_subcommand("bench", "Measure the simulator: wall time per frame (traces off and on), peak memory");
+    bench->add_option("scenario", bench_options.scenario, "Scenario to run")->capture_default_str();
+    bench->add_option("--frames", bench_options.frames, "Frames of the shorter run (the longer has twice as many)")
+        ->capture_default_str();
+    CalibrateOptions calibrate_options;
+    CLI::App* calibrate = app.add_subcommand(
+        "calibrate", "Price the software stage from its PPC440 instruction stream (qemu-ppc); write the table and agreement");
+    calibrate->add_option("--fit", calibrate_options.fit, "Scenarios the table is fitted on (repeatable)")->capture_default_str();
+    calibrate->add_option("--check", calibrate_options.check, "Scenarios the table is checked on (repeatable; none: no check)")->capture_default_str();
+    calibrate->add_option("--set", calibrate_options.sets, "Override a parameter in every run (repeatable)")->type_name("KEY=VALUE");
+    calibrate->add_option("--frames", calibrate_options.frames, "Frames per scenario")->capture_default_str();
+    calibrate->add_option("--out", calibrate_options.out, "Output folder")->capture_default_str();
+    calibrate->add_option("--table", calibrate_options.table, "Also write the fitted table here (sw/cpu_cost/calibration.json)");
+    calibrate->add_option("--firmware", calibrate_options.firmware, "The PPC440 build of the stage (default: the build's)");
+    calibrate->add_flag("!--no-probes", calibrate_options.probes,
+                        "Time the stream at the defaults only (keeps the recorded sensitivities)");
+    calibrate->add_flag("--quiet,-q", calibrate_options.quiet, "No progress lines on stderr");
+    QualityCommands quality(app);
+
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError& e) {
+        const int code = app.exit(e);
+        return code == 0 ? kExitOk : kExitBadInput;
+    }
+    try {
+        if (const auto code = quality.run()) return *code;
+        if (*run) return run_scenario(options);
+        if (*validate) return validate_scenario(options);
+        if (*seqgen) return seqgen_command(seqgen_options);
+        if (*bench) return bench_command(bench_options);
+        if (*calibrate) return calibrate_command(calibrate_options);
+        if (app.got_subcommand("list")) return list_scenarios();
+        if (app.got_subcommand("registers")) {
+            std::fputs(registers_markdown(chip_registers()).c_str(), stdout);
+            return kExitOk;
+        }
+        if (app.got_subcommand("params")) {
+            std::fputs(parameters_markdown().c_str(), stdout);
+            return kExitOk;
+        }
+    } catch (const ConfigError& e) {
+        std::fprintf(stderr, "surfvp: error: %s\n", e.what());
+        return kExitBadInput;
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "surfvp: internal error: %s\n", e.what());
+        return kExitInternal;
+    }
+    return kExitBadInput;
+}
+
+}  // namespace
+
+int sc_main(int argc, char** argv) {
+    // SystemC's informational notes (e.g. the VCD time unit) are not the user's business.
+    sc_core::sc_report_handler::set_actions(sc_core::SC_INFO, sc_core::SC_DO_NOTHING);
+    return dispatch(argc, argv);
+}
+
+// Our own main, ahead of libsystemc's: SystemC prints its banner before sc_main runs unless
+// this is set.
+int main(int argc, char** argv) {
+    setenv("SYSTEMC_DISABLE_COPYRIGHT_MESSAGE", "1", 0);
+    return sc_core::sc_elab_and_sim(argc, argv);
+}

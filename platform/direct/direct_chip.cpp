@@ -1,0 +1,177 @@
+#include "platform/direct/direct_chip.h"
+
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <fmt/format.h>
+#include <stdexcept>
+
+#include "platform/address_map.h"
+#include "models/common/byte_order.h"
+#include "models/fhg/fhg_regs.h"
+#include "models/fhg/local_max_finder.h"
+#include "models/iig/iig_regs.h"
+#include "models/iig/integral_core.h"
+#include "models/intc/intc_regs.h"
+#include "platform/soc.h"
+
+namespace surfvp {
+namespace f = fhg_regs;
+
+DirectChip::Pair::Pair(DirectChip& chip, const IigRegisters::Limits& iig_limits, const FhgRegisters::Limits& fhg_limits)
+    : iig(iig_limits, {[this, &chip](const IigRegisters::Frame& f) {
+                           integral = f;
+                           chip.run_integral(*this);
+                       },
+                       [this] { iig.end(true, iig::ERR_ABORTED, 0); }, {}}),
+      fhg(fhg_limits, {[this](const FhgRegisters::Frame& f) {
+                           determinants = f;
+                           next_row = 0;
+                           lines.clear();
+                       },
+                       [this] { fhg.status().end(true, f::ERR_ABORTED); }, {}}) {}
+
+DirectChip::DirectChip(const Config& config, unsigned accelerators)
+    : memory_size_(config.bytes("memory.size").n),
+      memory_(static_cast<uint8_t*>(std::calloc(memory_size_, 1)), std::free),
+      intc_(unsigned(config.count("intc.inputs")), [this] { return levels(); }),
+      sum_bits_(config.bits("iig.sum_bits")),
+      core_(fhg_params(config).precision),
+      fill_cycles_(uncontended_fill(config).to_seconds() * config.frequency("cpu.clock").hz) {
+    if (!memory_) throw std::runtime_error("direct mode: cannot allocate the memory");
+    const Iig::Params iig = iig_params(config);
+    const Fhg::Params fhg = fhg_params(config);
+    const FhgRegisters::Limits fhg_limits{fhg.max_width, fhg.max_height, fhg.maxima_fifo_depth, fhg.precision.det_frac_bits,
+                                          f::det_bytes_for(fhg.precision.det_bits)};
+    for (unsigned k = 0; k < accelerators; ++k)
+        pairs_.push_back(std::make_unique<Pair>(*this, IigRegisters::Limits{iig.max_width, iig.max_height}, fhg_limits));
+}
+
+bool DirectChip::in_memory(uint64_t address, uint64_t bytes) const { return address + bytes <= memory_size_; }
+
+uint8_t* DirectChip::backdoor(uint64_t address, uint64_t bytes) {
+    if (!in_memory(address, bytes)) throw std::out_of_range(fmt::format("direct memory: {:#x} +{} B", address, bytes));
+    return memory_.get() + address;
+}
+
+void DirectChip::read(uint32_t address, void* data, size_t bytes) {
+    if (!in_memory(address, bytes)) throw sw::BusError(fmt::format("memory read at {:#010x}", address), address);
+    std::memcpy(data, memory_.get() + address, bytes);
+}
+
+void DirectChip::write(uint32_t address, const void* data, size_t bytes) {
+    if (!in_memory(address, bytes)) throw sw::BusError(fmt::format("memory write at {:#010x}", address), address);
+    std::memcpy(memory_.get() + address, data, bytes);
+}
+
+const uint8_t* DirectChip::map(uint32_t address, size_t bytes) {
+    if (!in_memory(address, bytes)) throw sw::BusError(fmt::format("no memory at {:#010x}", address), address);
+    return memory_.get() + address;
+}
+
+uint64_t DirectChip::compute(uint64_t cycles, const std::vector<sw::LineTransfer>& lines) {
+    size_t fills = 0;
+    for (const sw::LineTransfer& line : lines) fills += !line.write_back;
+    const uint64_t spent = cycles + uint64_t(std::llround(double(fills) * fill_cycles_));
+    cycles_ += spent;
+    return spent;
+}
+
+// The blocks' interrupt lines, as the INTC's inputs see them.
+uint32_t DirectChip::levels() const {
+    uint32_t lines = 0;
+    for (unsigned k = 0; k < pairs_.size(); ++k) {
+        if (pairs_[k]->iig.irq()) lines |= 1u << map::irq::iig(k);
+        if (pairs_[k]->fhg.irq()) lines |= 1u << map::irq::fhg(k);
+    }
+    return lines;
+}
+
+bool DirectChip::irq_pending() {
+    intc_.latch();
+    return intc_.output();
+}
+
+// The software waits: the hardware works until a line is up.
+void DirectChip::wait_for_irq() {
+    while (!irq_pending())
+        if (!step()) throw std::runtime_error("direct mode: the software waits for an interrupt that nothing can raise");
+}
+
+// One block row of every FHG that has one to do; false when none had.
+bool DirectChip::step() {
+    bool worked = false;
+    for (const auto& pair : pairs_) {
+        Pair& p = *pair;
+        if (!p.fhg.status().busy() || p.lines.empty()) continue;
+        worked = true;
+        const uint32_t code = block_row(p);
+        if (code != f::ERR_NONE || p.next_row == (p.determinants.height + 1) / 2) {
+            p.fhg.status().end(code != f::ERR_NONE, code);
+            p.lines.clear();
+        }
+    }
+    return worked;
+}
+
+uint32_t DirectChip::read32(uint32_t address) {
+    uint32_t value = 0;
+    if (!access(address, value, false)) throw sw::BusError(fmt::format("no register at {:#010x}", address), address);
+    return value;
+}
+
+void DirectChip::write32(uint32_t address, uint32_t value) {
+    if (!access(address, value, true)) throw sw::BusError(fmt::format("no register at {:#010x}", address), address);
+}
+
+bool DirectChip::access(uint32_t address, uint32_t& value, bool write) {
+    if (address - map::intc.base < map::intc.size) return intc_.access(address - map::intc.base, value, write);
+    for (unsigned k = 0; k < pairs_.size(); ++k) {
+        Pair& p = *pairs_[k];
+        if (address - map::iig_base(k) < map::iig.size) return p.iig.access(address - map::iig_base(k), value, write);
+        if (address - map::fhg_base(k) < map::fhg.size) return p.fhg.access(address - map::fhg_base(k), value, write);
+    }
+    return false;
+}
+
+// An IIG START: the whole integral image at once, streamed to the FHG when it listens.
+void DirectChip::run_integral(Pair& p) {
+    const IigRegisters::Frame& i = p.integral;
+    if (!in_memory(i.src, uint64_t(i.src_stride) * (i.height - 1) + i.width)) return p.iig.end(true, iig::ERR_READ, 0);
+    if (!in_memory(i.dst, uint64_t(i.dst_stride) * (i.height - 1) + 4ull * i.width)) return p.iig.end(true, iig::ERR_WRITE, 0);
+    std::vector<uint32_t> integral(size_t(i.width) * i.height);
+    const IntegralCore integral_core(sum_bits_);
+    for (uint32_t y = 0; y < i.height; ++y) {
+        const uint32_t* above = y ? &integral[size_t(y - 1) * i.width] : nullptr;
+        if (!integral_core.row(memory_.get() + i.src + size_t(y) * i.src_stride, above, &integral[size_t(y) * i.width], int(i.width)))
+            return p.iig.end(true, iig::ERR_OVERFLOW, 0);
+        uint8_t* out = memory_.get() + i.dst + size_t(y) * i.dst_stride;
+        for (uint32_t x = 0; x < i.width; ++x) store_be32(out + 4 * x, integral[size_t(y) * i.width + x]);
+    }
+    if (i.stream && p.fhg.status().busy()) {
+        if (p.determinants.width != i.width || p.determinants.height != i.height) p.fhg.status().end(true, f::ERR_PIXELBUS);
+        else p.lines = std::move(integral);
+    }
+    p.iig.end(false, iig::ERR_NONE, 0);  // no time, so no back-pressure: STALL_CYCLES 0
+}
+
+// The FHG's next block row: determinants to memory, candidates into the maxima FIFO.
+// Returns the FHG's ErrorCode (ERR_NONE when the row went well).
+uint32_t DirectChip::block_row(Pair& p) {
+    const FhgRegisters::Frame& h = p.determinants;
+    const IntegralView view{p.lines.data(), int(h.width), int(h.height), h.width};
+    const uint32_t blocks_x = (h.width + 1) / 2, by = p.next_row++;
+    const uint32_t n = f::det_bytes_for(core_.precision().det_bits);
+    std::vector<int32_t>& records = records_;
+    records.resize(size_t(blocks_x) * fhg::kDeterminantsPerBlock);
+    core_.block_row(view, int(by), records.data());
+    const uint64_t at = h.det_addr + uint64_t(by) * blocks_x * f::record_bytes(n);
+    if (!in_memory(at, records.size() * n)) return f::ERR_WRITE;
+    for (size_t k = 0; k < records.size(); ++k) f::store_det(memory_.get() + at + n * k, records[k], n);
+    std::vector<fhg::Candidate> found;
+    fhg::LocalMaxFinder(h.threshold).block_row(records.data(), int(blocks_x), int(by), found);
+    p.fhg.push(found);
+    return f::ERR_NONE;
+}
+
+}  // namespace surfvp

@@ -1,0 +1,76 @@
+#pragma once
+// The chip without time, for `surfvp run --direct`: the same driver and software run on the
+// same cores (IntegralCore, HessianCore, LocalMaxFinder) and the same register behaviour as
+// the models (IigRegisters, FhgRegisters, IntcRegisters), answered at once. An IIG START
+// computes the integral image at once (DONE); an FHG listening to it then works one block
+// row at a time whenever the software waits for an interrupt, its candidates going into the
+// maxima FIFO of the configured depth, so the driver drains the FIFO at its threshold
+// interrupt as on the chip. Without time there is no back-pressure (STALL_CYCLES reads 0);
+// the keypoints are the VP's byte for byte, and a FIFO that is never drained during the frame
+// overflows by the same count (tests hold both).
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "platform/scenario/config.h"
+#include "models/common/hal.h"
+#include "models/fhg/fhg_registers.h"
+#include "models/fhg/hessian_core.h"
+#include "models/iig/iig_registers.h"
+#include "models/intc/intc_registers.h"
+
+namespace surfvp {
+
+class DirectChip : public sw::Hal {
+public:
+    DirectChip(const Config& config, unsigned accelerators);
+
+    uint8_t* backdoor(uint64_t address, uint64_t bytes);
+    uint64_t cycles_consumed() const { return cycles_; }
+
+    uint32_t read32(uint32_t address) override;
+    void write32(uint32_t address, uint32_t value) override;
+    void read(uint32_t address, void* data, size_t bytes) override;
+    void write(uint32_t address, const void* data, size_t bytes) override;
+    const uint8_t* map(uint32_t address, size_t bytes) override;
+    void wait_for_irq() override;
+    bool irq_pending() override;
+    uint64_t time_ps() override { return 0; }
+    void consume(uint64_t cycles) override { cycles_ += cycles; }
+    // No time here: each fill costs what an uncontended one costs on the chip's memory path.
+    uint64_t compute(uint64_t cycles, const std::vector<sw::LineTransfer>& lines) override;
+    void begin(const char*) override {}
+    void end() override {}
+    void mark(unsigned, int) override {}
+
+private:
+    // One IIG + FHG pair: their registers, and the frame each has taken.
+    struct Pair {
+        Pair(DirectChip& chip, const IigRegisters::Limits& iig, const FhgRegisters::Limits& fhg);
+        IigRegisters iig;
+        FhgRegisters fhg;
+        IigRegisters::Frame integral{};
+        FhgRegisters::Frame determinants{};
+        std::vector<uint32_t> lines;  // the integral image streamed to the FHG
+        uint32_t next_row = 0;        // the FHG's next block row; its frame has work while BUSY
+    };
+
+    bool access(uint32_t address, uint32_t& value, bool write);
+    void run_integral(Pair& p);
+    uint32_t block_row(Pair& p);
+    bool step();
+    bool in_memory(uint64_t address, uint64_t bytes) const;
+    uint32_t levels() const;
+
+    uint64_t memory_size_;
+    std::unique_ptr<uint8_t[], void (*)(void*)> memory_;
+    std::vector<std::unique_ptr<Pair>> pairs_;
+    IntcRegisters intc_;
+    unsigned sum_bits_;
+    fhg::HessianCore core_;
+    std::vector<int32_t> records_;  // one block row's determinant records
+    double fill_cycles_;  // an uncontended line fill, in CPU cycles
+    uint64_t cycles_ = 0;
+};
+
+}  // namespace surfvp

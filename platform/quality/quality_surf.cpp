@@ -1,0 +1,58 @@
+// `surfvp surf`: the float reference SURF on one image, written as a keypoint file; and the
+// SURF run that `eval-seq` repeats on every frame.
+#include <chrono>
+#include <cstdio>
+
+#include "platform/quality/quality_tasks.h"
+#include "platform/run/run.h"
+#include "sw/eval/keypoint_file.h"
+#include "sw/surf/image_io.h"
+#include "sw/surf/surf.h"
+
+namespace surfvp::quality {
+
+surf::Params SurfSettings::params() const {
+    surf::Params p;
+    if (threshold) p.threshold = *threshold;
+    p.upright = upright;
+    p.octaves = octaves;
+    p.init_step = init_step;
+    p.threads = threads;
+    return p;
+}
+
+Detection detect(const cv::Mat& gray, const SurfSettings& settings, const std::string& name) {
+    surf::Params params = settings.params();
+    // check_image's message starts with `name` already.
+    read_input("", [&] {
+        surf::validate(params);
+        surf::check_image(gray, params, name);
+    });
+    const auto start = std::chrono::steady_clock::now();
+    if (settings.target_count) params.threshold = surf::threshold_for_count(gray, *settings.target_count, params);
+    Detection detection;
+    detection.keypoints = surf::detect_and_describe(gray, params);
+    detection.threshold = params.threshold;
+    detection.milliseconds = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    return detection;
+}
+
+int run_surf(const SurfCommand& command) {
+    const cv::Mat gray = read_input("", [&] { return surf::load_gray(command.image, command.surf.params()); });
+    const Detection detection = detect(gray, command.surf, command.image);
+    eval::KeypointFileOptions options;
+    options.laplacian = !command.no_laplacian;
+    read_input("--out", [&] { eval::write_keypoint_file(command.out, detection.keypoints, options); });
+    if (command.quiet) return kExitOk;
+    std::fprintf(stderr, "%zu keypoints, threshold %.9g, %.1f ms\n", detection.keypoints.size(),
+                 static_cast<double>(detection.threshold), detection.milliseconds);
+    // threshold_for_count gives all maxima (threshold 0) when there are too few: say so
+    // rather than let the count look like a bug.
+    const auto target = command.surf.target_count;
+    if (target && detection.keypoints.size() < static_cast<std::size_t>(*target))
+        std::fprintf(stderr, "surfvp: note: %s has only %zu keypoints with a positive response (--target-count %d)\n",
+                     command.image.c_str(), detection.keypoints.size(), *target);
+    return kExitOk;
+}
+
+}  // namespace surfvp::quality

@@ -1,0 +1,325 @@
+#include "platform/report/report.h"
+
+#include <algorithm>
+#include <filesystem>
+#include <fmt/format.h>
+#include <fstream>
+#include <stdexcept>
+
+namespace surfvp {
+namespace {
+
+std::string ms(double seconds) { return fmt::format("{:.3f} ms", seconds * 1e3); }
+std::string percent(double share) { return fmt::format("{:.1f} %", share * 100); }
+
+// MiB, or bytes where MiB would read as 0 (register traffic).
+std::string mib(double bytes) {
+    return bytes < 10240 ? fmt::format("{:.0f} B", bytes) : fmt::format("{:.2f} MiB", bytes / (1024.0 * 1024.0));
+}
+
+// Each path's traffic (MiB and MB/s over the run) and each master that used the bus.
+void bus_section(std::string& md, const std::string& name, const nlohmann::ordered_json& bus, double seconds) {
+    md += fmt::format("\n### {} ({} bit at {} MHz)\n\n", name, bus["width_bits"].get<unsigned>(),
+                      bus["clock_hz"].get<double>() / 1e6);
+    md += "| path | bursts | bytes | MB/s | busy | utilisation |\n|---|---:|---:|---:|---:|---:|\n";
+    for (const char* path : {"read", "write"}) {
+        const auto& p = bus[path];
+        const double bytes = p["bytes"].get<double>();
+        md += fmt::format("| {} | {} | {} | {:.1f} | {} | {} |\n", path, p["bursts"].get<uint64_t>(), mib(bytes),
+                          seconds > 0 ? bytes / seconds / 1e6 : 0.0, ms(p["busy_s"]), percent(p["utilisation"]));
+    }
+    md += "\n| master | bursts | read | written | busy | waited | mean wait | max wait | bursts by wait (bus cycles) | errors |\n"
+          "|---|---:|---:|---:|---:|---:|---:|---:|---|---:|\n";
+    for (const auto& [master, m] : bus["masters"].items()) {
+        if (m["bursts"].get<uint64_t>() == 0 && m["errors"].get<uint64_t>() == 0) continue;  // idle: no row
+        std::string histogram;
+        for (const auto& [bin, n] : m["bursts_by_wait_cycles"].items())
+            if (n.get<uint64_t>()) histogram += fmt::format("{}{}: {}", histogram.empty() ? "" : ", ", bin, n.get<uint64_t>());
+        const double bursts = std::max(1.0, m["bursts"].get<double>());
+        md += fmt::format("| {} | {} | {} | {} | {} | {} | {:.1f} ns | {:.1f} ns | {} | {} |\n", master,
+                          m["bursts"].get<uint64_t>(), mib(m["bytes_read"].get<double>()),
+                          mib(m["bytes_written"].get<double>()), ms(m["busy_s"]), ms(m["wait_s"]),
+                          m["wait_s"].get<double>() / bursts * 1e9, m["max_wait_s"].get<double>() * 1e9, histogram,
+                          m["errors"].get<uint64_t>());
+    }
+}
+
+// Per resource: its frame period, busy, each wait, idle, and what it alone would allow.
+std::string time_table(const nlohmann::ordered_json& table, bool budget) {
+    std::string md = "\nWhere each resource's frame goes (ms; an accelerator pair's frame is the frames it takes, "
+                     "pairs x the frame period):\n\n| resource | period | busy | waiting | idle | busy share | alone | " +
+                     std::string(budget ? "slack |\n|---|---:|---:|---|---:|---:|---:|---:|\n" : "\n|---|---:|---:|---|---:|---:|---:|\n");
+    for (const auto& [name, row] : table.items()) {
+        std::string waits;
+        for (const auto& [cause, ms] : row["waits_ms"].items())
+            if (ms.get<double>() >= 0.005) waits += fmt::format("{}{} {:.2f}", waits.empty() ? "" : "; ", cause, ms.get<double>());
+        const std::string alone = row["alone_fps"].is_null() ? "-" : fmt::format("{:.2f} frames/s", row["alone_fps"].get<double>());
+        md += fmt::format("| {} | {:.2f} | {:.2f} | {} | {:.2f} | {} | {} |", name, row["period_ms"].get<double>(),
+                          row["busy_ms"].get<double>(), waits.empty() ? "-" : waits, row["idle_ms"].get<double>(),
+                          percent(row["busy_share"]), alone);
+        if (budget) md += row.contains("slack") ? fmt::format(" {:+.1f} % |", 100 * row["slack"].get<double>()) : " - |";
+        md += "\n";
+    }
+    return md;
+}
+
+// The verdict on frames: rate, budget, latency, where the time goes.
+std::string frames_section(const nlohmann::ordered_json& r) {
+    std::string md = "\n## Frames\n\n| | |\n|---|---:|\n";
+    md += fmt::format("| image | {} x {} |\n", r["image"]["width"].get<int>(), r["image"]["height"].get<int>());
+    md += fmt::format("| frames done | {} of {} |\n", r["frames_done"].get<size_t>(), r["frames"].get<size_t>());
+    md += fmt::format("| throughput | **{:.2f} frames/s** |\n", r["throughput_fps"].get<double>());
+    if (!r["budget"].is_null())
+        md += fmt::format("| budget | {:.2f} frames/s: **{}** |\n", r["budget"]["fps"].get<double>(),
+                          r["budget"]["met"].get<bool>() ? "met" : "MISSED");
+    md += fmt::format("| latency (hardware start to descriptors) | {:.2f} ms |\n", r["latency_ms"].get<double>());
+    md += fmt::format("| keypoints per frame | {:.1f} (min {}, max {}) |\n", r["keypoints_per_frame"].get<double>(),
+                      r["keypoints_per_frame_range"][0].dump(), r["keypoints_per_frame_range"][1].dump());
+    if (r.contains("threshold_rule"))
+        md += fmt::format("| determinant threshold | {:.3f}: {} |\n", r["threshold"].get<double>(),
+                          r["threshold_rule"].get<std::string>());
+    md += fmt::format("| software per keypoint | {:.1f} us ({:.0f} cycles) |\n",
+                      r["software_time_per_keypoint_us"].get<double>(), r["software_cycles_per_keypoint"].get<double>());
+    if (r.contains("limit")) {
+        md += fmt::format("| limited by | **{}** ({}) |\n", r["limit"]["resource"].get<std::string>(),
+                          r["limit"]["cause"].get<std::string>());
+        md += fmt::format("\n**What limits the frame rate:** {}.\n", r["limit"]["reason"].get<std::string>());
+        md += time_table(r["time_per_frame"], !r["budget"].is_null());
+    }
+    md += "\nMean phase times (integral image and determinants: from the task's hardware start, in parallel; "
+          "descriptors: from the determinants' end to the last descriptor):\n\n| phase | ms |\n|---|---:|\n";
+    for (const auto& [name, ms] : r["phases_ms"].items()) md += fmt::format("| {} | {:.2f} |\n", name, ms.get<double>());
+    return md;
+}
+
+std::string fps_or_dash(const nlohmann::ordered_json& side) {
+    if (side.contains("error")) return "invalid";
+    return side["fps"].is_null() ? "(current)" : fmt::format("{:.2f}", side["fps"].get<double>());
+}
+
+// The verdict and its doubt: the statement, the break-even values, the assumption band.
+std::string verdict_section(const nlohmann::ordered_json& v) {
+    std::string md = "\n## Verdict\n\n";
+    if (v.contains("statement")) md += fmt::format("**{}.**\n", v["statement"].get<std::string>());
+    if (v.contains("limit")) md += fmt::format("\nLimited by {}: {}.\n", v["limit"]["resource"].get<std::string>(),
+                                               v["limit"]["reason"].get<std::string>());
+    if (v.contains("break_even")) {
+        md += "\nBreak-even (the value that just meets the budget, found by re-simulation; checked by one run of the "
+              "whole scenario):\n\n| parameter | now | break-even | frames/s there | check |\n|---|---|---|---:|---|\n";
+        for (const auto& b : v["break_even"]) {
+            if (b["value"].is_null()) {
+                md += fmt::format("| `{}` | {} | none | - | {} |\n", b["parameter"].get<std::string>(),
+                                  b["default"].get<std::string>(), b["note"].get<std::string>());
+                continue;
+            }
+            const auto& c = b["check"];
+            const std::string check = c.is_null() ? "-" : c.contains("error") ? "failed: " + c["error"].get<std::string>()
+                                                        : fmt::format("{:.3f} frames/s over {} frames: {}", c["fps"].get<double>(),
+                                                                      c["frames"].get<uint64_t>(), c["met"].get<bool>() ? "met" : "MISSED");
+            md += fmt::format("| `{}` | {} | **{}** | {:.3f} | {} |\n", b["parameter"].get<std::string>(),
+                              b["default"].get<std::string>(), b["value"].get<std::string>(), b["fps"].get<double>(), check);
+        }
+    }
+    if (v.contains("band")) {
+        const auto& band = v["band"];
+        md += fmt::format("\nAssumption band: {} assumptions, each at its low and its high, one at a time: **{:.2f} to "
+                          "{:.2f} frames/s** (the run's rate plus each change's effect, measured in {}-frame runs against "
+                          "a reference of {:.3f} frames/s).\n",
+                          band["axes"].size(), band["low_fps"].get<double>(), band["high_fps"].get<double>(),
+                          band["frames"].get<unsigned>(), band["reference_fps"].get<double>());
+        if (!band["flipping"].empty()) {
+            std::vector<std::string> names;
+            for (const auto& n : band["flipping"]) names.push_back(n.get<std::string>());
+            md += fmt::format("Values that flip the verdict: {}.\n", fmt::join(names, ", "));
+        }
+        if (!band["failed_points"].empty()) {
+            std::vector<std::string> names;
+            for (const auto& n : band["failed_points"]) names.push_back(n.get<std::string>());
+            md += fmt::format("Values the platform refused (see report.json): {}.\n", fmt::join(names, ", "));
+        }
+        md += "\n![tornado](tornado.svg)\n\n| assumption | now | low | frames/s | high | frames/s | effect |\n"
+              "|---|---|---|---:|---|---:|---:|\n";
+        size_t shown = 0;
+        for (const auto& a : band["axes"]) {
+            if (shown++ == 12) break;
+            md += fmt::format("| `{}` | {} | {} | {} | {} | {} | {:.2f} |\n", a["parameter"].get<std::string>(),
+                              a["value"].get<std::string>(), a["low"]["value"].get<std::string>(), fps_or_dash(a["low"]),
+                              a["high"]["value"].get<std::string>(), fps_or_dash(a["high"]), a["effect_fps"].get<double>());
+        }
+        if (band["axes"].size() > 12) md += fmt::format("\n({} more with smaller effects in report.json.)\n", band["axes"].size() - 12);
+    }
+    if (v.contains("software")) {
+        md += "\nSoftware settings the CPU's time rests on (each alone, the rest as the scenario; CPU time from the "
+              "calibrated PPC440 cost model, sw/cpu_cost/calibration.md):\n\n"
+              "| setting | frames/s | CPU ms per frame | CPU alone, frames/s | keypoints per frame | limit |\n"
+              "|---|---:|---:|---:|---:|---|\n";
+        for (const auto& row : v["software"]) {
+            if (row.contains("error")) {
+                md += fmt::format("| {} | refused: {} | | | | |\n", row["setting"].get<std::string>(), row["error"].get<std::string>());
+                continue;
+            }
+            md += fmt::format("| {} | {:.2f} | {:.1f} | {:.2f} | {:.0f} | {} |\n", row["setting"].get<std::string>(),
+                              row["fps"].get<double>(), row["cpu_ms_per_frame"].get<double>(),
+                              row["cpu_alone_fps"].get<double>(), row["keypoints_per_frame"].get<double>(),
+                              row["limit"].is_null() ? "-" : row["limit"].get<std::string>());
+        }
+    }
+    return md;
+}
+
+// The accelerators (summed over the pairs): the FHG's schedule and where its time went, the
+// IIG's stalls.
+std::string accelerators_section(const nlohmann::ordered_json& r) {
+    std::string md;
+    if (r.contains("fhg") && r["fhg"].contains("schedules")) {
+        const auto& f = r["fhg"];
+        const auto& sc = f["schedules"];
+        md += fmt::format(
+            "\n## SSA FHG\n\n**{} cycles per determinant block** (limited by the {}; schedule `{}`: basic {}, improved {}, "
+            "optimal bound {} by {}). Busy {}: computing {}, waiting for integral lines {}, for the determinant writer {}. "
+            "Line FIFO high-water {} lines; maxima FIFO high-water {} words; {} candidates, {} dropped; {} errors.\n",
+            f["cycles_per_block"].get<unsigned>(), f["block_limit"].get<std::string>(), sc["scheduler"].get<std::string>(),
+            sc["basic"]["cycles_per_block"].get<unsigned>(), sc["improved"]["cycles_per_block"].get<unsigned>(),
+            sc["optimal"]["cycles_per_block"].get<unsigned>(), sc["optimal"]["limit"].get<std::string>(), ms(f["busy_s"]),
+            ms(f["computing_s"]), ms(f["waiting_for_lines_s"]), ms(f["waiting_for_writer_s"]),
+            f["line_fifo_high_water"].get<uint64_t>(), f["maxima_fifo_high_water"].get<uint64_t>(),
+            f["candidates"].get<uint64_t>(), f["candidates_dropped"].get<uint64_t>(), f["errors"].get<uint64_t>());
+    }
+    if (r.contains("iig") && r["iig"].contains("computing_s")) {
+        const auto& i = r["iig"];
+        md += fmt::format(
+            "\n## SSA IIG\n\nBusy {}: computing {}, waiting for the image {}, blocked by its integral write {}, by PixelBus "
+            "back-pressure {} (its sender stalled {}); {} errors.\n",
+            ms(i["busy_s"]), ms(i["computing_s"]), ms(i["waiting_for_image_s"]), ms(i["blocked_by_write_s"]),
+            ms(i["blocked_by_pixelbus_s"]), ms(i["send_stalled_s"]), i["errors"].get<uint64_t>());
+    }
+    return md;
+}
+
+// The CPU's software stage: what became of the candidates, where its cycles went (by step and
+// by unit of work, from the calibrated cost model), what it executed, and its L1.
+std::string software_stage_section(const nlohmann::ordered_json& st) {
+    const double keypoints = std::max(1.0, st["keypoints"].get<double>());
+    const auto& rejected = st["rejected"];
+    std::string md = fmt::format(
+        "\n## CPU software stage\n\n{} candidates from the maxima FIFOs: {} keypoints; rejected {} not a maximum of "
+        "its 26 neighbours, {} by the interpolation, {} at the border.\n\n| step | cycles | per keypoint | share |\n"
+        "|---|---:|---:|---:|\n",
+        st["candidates"].get<uint64_t>(), st["keypoints"].get<uint64_t>(), rejected["not_maximum"].get<uint64_t>(),
+        rejected["interpolation"].get<uint64_t>(), rejected["border"].get<uint64_t>());
+    const double total = std::max(1.0, st["total_cycles"].get<double>());
+    for (const auto& [step, cycles] : st["cycles_by_step"].items())
+        md += fmt::format("| {} | {:.0f} | {:.0f} | {} |\n", step, cycles.get<double>(), cycles.get<double>() / keypoints,
+                          percent(cycles.get<double>() / total));
+    md += "\n| unit of work | count | cycles |\n|---|---:|---:|\n";
+    for (const auto& [unit, u] : st["cycles_by_unit"].items())
+        if (unit != "cache_miss") md += fmt::format("| {} | {} | {:.0f} |\n", unit, u["count"].get<uint64_t>(), u["cycles"].get<double>());
+    std::string classes;
+    for (const auto& [cls, n] : st["instructions_by_class"].items())
+        classes += fmt::format("{}{} {}", classes.empty() ? "" : ", ", cls, n.get<uint64_t>());
+    const auto& cal = st["calibration"];
+    const auto& l1 = st["dcache"];
+    md += fmt::format(
+        "\nPPC440 instructions: {} ({:.0f} per keypoint; {}), {} calls into libm. Prices from the calibration of this code "
+        "built with `{} {}` under `{}`, fitted on {} (sw/cpu_cost/calibration.md). L1 data cache: {} line accesses, hit "
+        "rate {}, {} fills (timed on the memory path, under CPU above).\n",
+        st["instructions"].get<uint64_t>(), st["instructions"].get<double>() / keypoints, classes,
+        st["libm_calls"].get<uint64_t>(), cal.value("toolchain", "?"), cal.value("flags", "?"), cal.value("iss", "?"),
+        cal.value("fitted_on", "?"), l1["accesses"].get<uint64_t>(), percent(l1["hit_rate"]), l1["misses"].get<uint64_t>());
+    return md;
+}
+
+// A workload's scalars as they are; its per-frame list in frames.csv; its stage below.
+std::string workload_section(const nlohmann::ordered_json& w) {
+    std::string md = "\n## Workload\n\n| | |\n|---|---|\n";
+    for (const auto& [key, value] : w.items()) {
+        if (key == "software_stage" || (value.is_object() && value.empty())) continue;
+        if (key == "per_frame") {
+            std::vector<double> kp;
+            for (const auto& f : value) kp.push_back(f["keypoints"].get<double>());
+            std::sort(kp.begin(), kp.end());
+            if (!kp.empty())
+                md += fmt::format("| frames | {} in `frames.csv`; keypoints per frame min {:.0f}, median {:.0f}, max {:.0f} |\n",
+                                  kp.size(), kp.front(), kp[kp.size() / 2], kp.back());
+            continue;
+        }
+        md += fmt::format("| {} | {} |\n", key, value.is_string() ? value.get<std::string>() : value.dump());
+    }
+    if (w.contains("software_stage") && !w["software_stage"].is_null()) md += software_stage_section(w["software_stage"]);
+    return md;
+}
+
+// Numbered files as one pattern: keypoints/frame_0000.surf ... -> keypoints/frame_NNNN.surf (20 files).
+std::string files_section(const nlohmann::ordered_json& outputs) {
+    std::vector<std::pair<std::string, size_t>> patterns;
+    for (const auto& f : outputs) {
+        std::string name = f.get<std::string>();
+        for (char& c : name)
+            if (c >= '0' && c <= '9') c = 'N';
+        if (!patterns.empty() && patterns.back().first == name) ++patterns.back().second;
+        else patterns.emplace_back(name, 1);
+    }
+    std::string md = "\n## Files\n\n";
+    for (const auto& [name, n] : patterns)
+        md += n > 1 ? fmt::format("- `{}` ({} files)\n", name, n) : fmt::format("- `{}`\n", name);
+    return md;
+}
+
+}  // namespace
+
+std::string frames_csv(const nlohmann::ordered_json& per_frame) {
+    std::string csv;
+    for (const auto& f : per_frame) {
+        if (csv.empty()) {
+            for (const auto& [key, value] : f.items()) csv += (csv.empty() ? "" : ",") + key;
+            csv += "\n";
+        }
+        std::string row;
+        for (const auto& [key, value] : f.items()) row += (row.empty() ? "" : ",") + value.dump();
+        csv += row + "\n";
+    }
+    return csv;
+}
+
+std::string report_markdown(const nlohmann::ordered_json& r) {
+    std::string md = fmt::format("# surfvp run: {}\n\n{}\n\n", r["scenario"]["name"].get<std::string>(),
+                                 r["scenario"]["description"].get<std::string>());
+    md += fmt::format("**Result: {}**", r["passed"].get<bool>() ? "passed" : "FAILED");
+    if (r.contains("failure")) md += fmt::format(": {}", r["failure"].get<std::string>());
+    md += "\n\n| check | result | detail |\n|---|---|---|\n";
+    for (const auto& c : r["checks"])
+        md += fmt::format("| {} | {} | {} |\n", c["name"].get<std::string>(), c["passed"].get<bool>() ? "pass" : "FAIL",
+                          c["detail"].get<std::string>());
+    if (r.contains("verdict")) md += verdict_section(r["verdict"]);
+    if (r.contains("throughput_fps")) md += frames_section(r);
+    md += "\n## Time\n\n| | |\n|---|---:|\n";
+    md += fmt::format("| simulated time | {} |\n", ms(r["sim_time_s"]));
+    md += fmt::format("| wall time | {} |\n", ms(r["wall_time_s"]));
+    md += fmt::format("| real-time factor (simulated / wall) | {:.4g} |\n", r["real_time_factor"].get<double>());
+    md += fmt::format("| TLM transactions on the PLBs | {} ({:.3g} per wall second) |\n", r["transactions"].get<uint64_t>(),
+                      r["transactions_per_second"].get<double>());
+    md += accelerators_section(r);
+    md += "\n## Buses\n";
+    for (const auto& [name, bus] : r["buses"].items()) bus_section(md, name, bus, r["sim_time_s"].get<double>());
+    const auto& mem = r["memory"];
+    md += fmt::format("\n## Memory\n\n{} B read, {} B written over the DDR's ports; DRAM busy {} ({}).\n",
+                      mem["bytes_read"].get<uint64_t>(), mem["bytes_written"].get<uint64_t>(), ms(mem["busy_s"]),
+                      percent(mem["utilisation"]));
+    const auto& cpu = r["cpu"];
+    const auto& cpu_mem = cpu["memory"];
+    md += fmt::format("\n## CPU\n\n{} register reads and {} register writes over PLB1; {} cycles of computation; "
+                      "{} interrupt waits ({} asleep).\n\nMemory over {}: {} B read ({} line fills), {} B written "
+                      "({} write-backs); the CPU stalled {} for its fills, of which {} waiting for the DRAM behind "
+                      "other traffic.\n",
+                      cpu["mmio_reads"].get<uint64_t>(), cpu["mmio_writes"].get<uint64_t>(),
+                      cpu["cycles_consumed"].get<uint64_t>(), cpu["irq_waits"].get<uint64_t>(), ms(cpu["irq_wait_s"]),
+                      cpu_mem["path"].get<std::string>() == "mci" ? "the memory controller interface (MCI)" : "PLB1",
+                      cpu_mem["bytes_read"].get<uint64_t>(), cpu_mem["line_fills"].get<uint64_t>(),
+                      cpu_mem["bytes_written"].get<uint64_t>(), cpu_mem["write_backs"].get<uint64_t>(), ms(cpu_mem["fill_stall_s"]),
+                      ms(cpu_mem["ddr_wait_s"]));
+    if (r.contains("workload")) md += workload_section(r["workload"]);
+    md += files_section(r["outputs"]);
+    return md;
+}
+
+}  // namespace surfvp

@@ -1,0 +1,214 @@
+#include "platform/run/run.h"
+
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <fmt/format.h>
+
+#include "platform/direct/direct_chip.h"
+#include "platform/workload/frame_limits.h"
+#include "platform/cli/progress_line.h"
+#include "platform/verdict/verdict.h"
+#include "platform/report/report.h"
+#include "platform/scenario/scenario.h"
+#include "platform/soc.h"
+
+namespace surfvp {
+namespace fs = std::filesystem;
+namespace {
+
+using WallClock = std::chrono::steady_clock;
+
+double since(WallClock::time_point start) {
+    return std::chrono::duration<double>(WallClock::now() - start).count();
+}
+
+Tracer::Options trace_options(const std::string& mode, const std::string& dir) {
+    if (mode != "none" && mode != "vcd" && mode != "perfetto" && mode != "all")
+        throw ConfigError(fmt::format("--trace {}: expected none, vcd, perfetto or all", mode));
+    return {mode == "vcd" || mode == "all", mode == "perfetto" || mode == "all", dir};
+}
+
+struct Outcome {
+    sc_core::sc_time sim_time;
+    std::string failure;  // empty when the software ran to its end
+};
+
+// Simulates in slices until the software returns, a stall, or run.max_time.
+Outcome simulate(Soc& soc, const Config& config, ProgressLine& progress) {
+    const sc_core::sc_time limit(double(config.duration("run.max_time").ps), sc_core::SC_PS);
+    const sc_core::sc_time slice(100, sc_core::SC_US);
+    sc_core::sc_spawn_options pause_when_done;
+    pause_when_done.spawn_method();
+    pause_when_done.dont_initialize();
+    pause_when_done.set_sensitivity(&soc.cpu().done_event());
+    sc_core::sc_spawn([] { sc_core::sc_pause(); }, "pause_when_software_done", &pause_when_done);
+
+    while (!soc.cpu().finished()) {
+        if (sc_core::sc_time_stamp() >= limit)
+            return {sc_core::sc_time_stamp(), fmt::format("the software had not finished after run.max_time ({})",
+                                                          format_duration(config.duration("run.max_time")))};
+        if (sc_core::sc_time_stamp() > sc_core::SC_ZERO_TIME && !sc_core::sc_pending_activity())
+            return {sc_core::sc_time_stamp(),
+                    "stalled: nothing is left to simulate but the software has not finished "
+                    "(is it waiting for an interrupt that never comes?)"};
+        sc_core::sc_start(slice);
+        const Progress p = soc.workload().progress();
+        const double sim_s = sc_core::sc_time_stamp().to_seconds();
+        progress.update([&](double wall_s) {
+            return fmt::format("{}/{} {}, {:.3f} ms simulated, {:.1f} s wall, {:.3g}x real time", p.done, p.total, p.unit,
+                               sim_s * 1e3, wall_s, sim_s / wall_s);
+        });
+    }
+    if (!soc.cpu().error().empty()) return {soc.cpu().finish_time(), "software error: " + soc.cpu().error()};
+    return {soc.cpu().finish_time(), ""};
+}
+
+nlohmann::ordered_json build_report(const Config& config, Soc& soc, const Outcome& outcome, double wall_s,
+                                    const std::vector<std::string>& outputs) {
+    nlohmann::ordered_json checks = nlohmann::ordered_json::array();
+    bool passed = outcome.failure.empty();
+    for (const Check& c : soc.workload().checks()) {
+        checks.push_back({{"name", c.name}, {"passed", c.passed}, {"detail", c.detail}});
+        passed = passed && c.passed;
+    }
+    const double sim_s = outcome.sim_time.to_seconds();
+    const uint64_t transactions = soc.bus_transactions();
+    nlohmann::ordered_json r;
+    r["surfvp_version"] = SURFVP_VERSION;
+    r["scenario"] = {{"name", config.name}, {"file", config.file}, {"description", config.description}};
+    r["passed"] = passed;
+    if (!outcome.failure.empty()) r["failure"] = outcome.failure;
+    r["checks"] = checks;
+    r["budget"] = nullptr;  // unless the workload's summary sets one
+    r["sim_time_s"] = sim_s;
+    r["wall_time_s"] = wall_s;
+    r["real_time_factor"] = wall_s > 0 ? sim_s / wall_s : 0.0;
+    r["transactions"] = transactions;
+    r["transactions_per_second"] = wall_s > 0 ? transactions / wall_s : 0.0;
+    r["wall_clock_fields"] = {"wall_time_s", "real_time_factor", "transactions_per_second"};
+    // How many TLM transactions carried the traffic depends on the simulation settings
+    // (run.dma_granularity), not on the chip: every other figure does not.
+    r["simulation_fields"] = {"transactions"};
+    const nlohmann::ordered_json summary = soc.workload().summary();
+    for (const auto& [key, value] : summary.items()) r[key] = value;
+    const nlohmann::ordered_json platform = soc.report(outcome.sim_time);
+    for (const auto& [key, value] : platform.items()) r[key] = value;
+    if (summary.contains("frames_done") && summary["frames_done"].get<size_t>() > 1) add_limits(r, config);
+    r["workload"] = soc.workload().report();
+    r["outputs"] = outputs;
+    return r;
+}
+
+fs::path output_dir(const RunOptions& options, const Config& config) {
+    const fs::path dir = options.out.empty() ? fs::path("traces") / config.name : fs::path(options.out);
+    std::error_code error;
+    fs::create_directories(dir, error);
+    if (error || !fs::is_directory(dir)) throw ConfigError(fmt::format("--out {}: cannot create the folder: {}", dir.string(), error.message()));
+    return dir;
+}
+
+// The same driver and software without SystemC: keypoints, no time.
+int run_direct(const Config& config, const fs::path& dir, const RunOptions& options) {
+    const auto workload = make_workload(config);
+    DirectChip chip(config, unsigned(config.count("soc.accelerators")));
+    workload->preload([&chip](uint64_t address, uint64_t bytes) { return chip.backdoor(address, bytes); });
+    std::string failure;
+    try {
+        workload->software()(chip);
+    } catch (const std::exception& e) {
+        failure = std::string("software error: ") + e.what();
+    }
+    nlohmann::ordered_json checks = nlohmann::ordered_json::array();
+    bool passed = failure.empty();
+    for (const Check& c : workload->checks()) {
+        if (c.name == "frame-rate budget") continue;  // no time here
+        checks.push_back({{"name", c.name}, {"passed", c.passed}, {"detail", c.detail}});
+        passed = passed && c.passed;
+    }
+    std::vector<std::string> outputs{"report.json", "config.yaml"};
+    for (const std::string& f : workload->write_files(dir.string())) outputs.push_back(f);
+    nlohmann::ordered_json r;
+    r["surfvp_version"] = SURFVP_VERSION;
+    r["mode"] = "direct";
+    r["scenario"] = {{"name", config.name}, {"file", config.file}, {"description", config.description}};
+    r["passed"] = passed;
+    if (!failure.empty()) r["failure"] = failure;
+    r["checks"] = checks;
+    r["software_cycles"] = chip.cycles_consumed();
+    r["workload"] = workload->report();
+    r["outputs"] = outputs;
+    write_file_atomically((dir / "config.yaml").string(), config.to_yaml());
+    write_file_atomically((dir / "report.json").string(), r.dump(2) + "\n");
+    if (!options.quiet)
+        std::fprintf(stderr, "surfvp: %s (direct): %s; report in %s\n", config.name.c_str(), passed ? "passed" : "FAILED",
+                     (dir / "report.json").c_str());
+    return passed ? kExitOk : kExitFailed;
+}
+
+}  // namespace
+
+nlohmann::ordered_json simulate_scenario(const Config& config, const std::string& out, const std::string& trace, bool quiet) {
+    const Tracer::Options traces = trace_options(trace, out);
+    Tracer tracer(traces);
+    Soc soc(config, tracer);
+    soc.workload().preload([&soc](uint64_t address, uint64_t bytes) { return soc.memory().backdoor(address, bytes); });
+
+    const auto start = WallClock::now();
+    Outcome outcome;
+    {
+        ProgressLine progress(quiet, config.name, 1.0, 0.5, 0.5);  // a line once a run has taken a second
+        outcome = simulate(soc, config, progress);
+    }
+    const double wall_s = since(start);
+    soc.workload().trace(tracer);
+
+    std::vector<std::string> outputs{"report.json", "report.md", "config.yaml"};
+    for (const std::string& f : tracer.finish()) outputs.push_back(fs::path(f).filename().string());
+    if (!out.empty())
+        for (const std::string& f : soc.workload().write_files(out)) outputs.push_back(f);
+    return build_report(config, soc, outcome, wall_s, outputs);
+}
+
+int write_run(const Config& config, const std::string& out, const nlohmann::ordered_json& run_report, bool quiet) {
+    const fs::path dir(out);
+    nlohmann::ordered_json report = run_report;
+    if (report.contains("workload") && report["workload"].contains("per_frame")) {
+        write_file_atomically((dir / "frames.csv").string(), frames_csv(report["workload"]["per_frame"]));
+        report["outputs"].push_back("frames.csv");
+    }
+    write_file_atomically((dir / "config.yaml").string(), config.to_yaml());
+    write_file_atomically((dir / "report.md").string(), report_markdown(report));
+    write_file_atomically((dir / "report.json").string(), report.dump(2) + "\n");
+    if (!quiet)
+        std::fprintf(stderr, "surfvp: %s: %s in %.3f ms simulated (%.3f s wall); report in %s\n", config.name.c_str(),
+                     report["passed"].get<bool>() ? "passed" : "FAILED", report["sim_time_s"].get<double>() * 1e3,
+                     report["wall_time_s"].get<double>(), (dir / "report.md").c_str());
+    return report["passed"].get<bool>() ? kExitOk : kExitFailed;
+}
+
+int run_scenario(const RunOptions& options) {
+    const Config config = load_scenario(resolve_scenario(options.scenario), options.sets);
+    trace_options(options.trace, "");  // a bad --trace is bad input before anything is written
+    const fs::path dir = output_dir(options, config);
+    if (options.direct) return run_direct(config, dir, options);
+    if (verdict_requested(config)) return run_with_verdict(config, dir.string(), options.trace, options.quiet);
+    return write_run(config, dir.string(), simulate_scenario(config, dir.string(), options.trace, options.quiet), options.quiet);
+}
+
+int validate_scenario(const RunOptions& options) {
+    const std::string path = resolve_scenario(options.scenario);
+    const Config config = load_scenario(path, options.sets);
+    Tracer tracer;  // elaborate with every trace off: catches what only the wiring can see
+    Soc soc(config, tracer);
+    size_t from_file = 0, from_set = 0;
+    for (const auto& e : config.entries()) {
+        if (e.origin == "--set") ++from_set;
+        else if (e.origin != "default") ++from_file;
+    }
+    std::printf("%s: ok: scenario '%s', %zu parameters (%zu from the file, %zu from --set, the rest defaults)\n",
+                path.c_str(), config.name.c_str(), config.entries().size(), from_file, from_set);
+    return kExitOk;
+}
+
+}  // namespace surfvp

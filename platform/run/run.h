@@ -1,0 +1,36 @@
+#pragma once
+// `surfvp run` and `surfvp validate`: load a scenario, elaborate the SoC, simulate until the
+// software finishes, write the traces and reports. Exit codes are documented in README.md.
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "platform/scenario/config.h"
+
+namespace surfvp {
+
+enum ExitCode { kExitOk = 0, kExitFailed = 1, kExitBadInput = 2, kExitInternal = 3 };
+
+struct RunOptions {
+    std::string scenario;
+    std::vector<std::string> sets;
+    std::string out;            // default: traces/<scenario name>
+    std::string trace = "all";  // none | vcd | perfetto | all
+    bool quiet = false;
+    bool direct = false;  // no SystemC: the driver and software on the untimed DirectChip
+};
+
+// Both throw ConfigError for bad input; the caller turns it into kExitBadInput.
+int run_scenario(const RunOptions& options);
+int validate_scenario(const RunOptions& options);
+
+// One simulation of `config` on the VP and its report (not yet written), with the traces
+// (`trace`: none, vcd, perfetto, all) and the workload's files written into `out` (nothing
+// when `out` is empty). Throws ConfigError for bad input.
+nlohmann::ordered_json simulate_scenario(const Config& config, const std::string& out, const std::string& trace, bool quiet);
+
+// Writes config.yaml, report.md and report.json of a run into `out`, prints the summary line
+// unless quiet, and returns the run's exit code.
+int write_run(const Config& config, const std::string& out, const nlohmann::ordered_json& report, bool quiet);
+
+}  // namespace surfvp

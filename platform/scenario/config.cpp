@@ -1,0 +1,88 @@
+#include "platform/scenario/config.h"
+
+#include <fmt/format.h>
+#include <yaml-cpp/yaml.h>
+
+namespace surfvp {
+
+Config::Config() {
+    for (const ParamSpec& spec : parameter_table()) entries_.push_back({&spec, spec.default_value, "default"});
+}
+
+void Config::set(const std::string& key, const std::string& value, const std::string& origin) {
+    for (Entry& e : entries_) {
+        if (e.spec->key != key) continue;
+        try {
+            parse_value(*e.spec, value);
+        } catch (const UnitError& error) {
+            throw ConfigError(fmt::format("{}: {}: {} (expected {})", origin, key, error.what(), describe_kind(*e.spec)));
+        }
+        e.value = value;
+        e.origin = origin;
+        return;
+    }
+    const std::string close = closest_parameter(key);
+    throw ConfigError(fmt::format("{}: '{}' is not a parameter{}; `surfvp params` lists them all", origin, key,
+                                  close.empty() ? "" : fmt::format(" (did you mean '{}'?)", close)));
+}
+
+const Config::Entry& Config::entry(const std::string& key, ParamKind kind) const {
+    for (const Entry& e : entries_)
+        if (e.spec->key == key) {
+            if (e.spec->kind != kind) throw std::logic_error("parameter " + key + " read as the wrong kind");
+            return e;
+        }
+    throw std::logic_error("no parameter " + key);
+}
+
+Frequency Config::frequency(const std::string& key) const { return parse_frequency(entry(key, ParamKind::frequency).value); }
+Duration Config::duration(const std::string& key) const { return parse_duration(entry(key, ParamKind::duration).value); }
+unsigned Config::bits(const std::string& key) const { return parse_bits(entry(key, ParamKind::bits).value); }
+Bytes Config::bytes(const std::string& key) const { return parse_bytes(entry(key, ParamKind::bytes).value); }
+uint64_t Config::cycles(const std::string& key) const { return parse_cycles(entry(key, ParamKind::cycles).value); }
+unsigned Config::beats(const std::string& key) const { return parse_beats(entry(key, ParamKind::beats).value); }
+const std::string& Config::value(const std::string& key) const { return entry(key, find_parameter(key)->kind).value; }
+double Config::base_value(const std::string& key) const {
+    const Entry& e = entry(key, find_parameter(key)->kind);
+    return parse_value(*e.spec, e.value);
+}
+const std::string& Config::choice(const std::string& key) const { return entry(key, ParamKind::choice).value; }
+const std::string& Config::text(const std::string& key) const { return entry(key, ParamKind::text).value; }
+
+uint64_t Config::count(const std::string& key) const {
+    const Entry& e = entry(key, ParamKind::count);
+    return static_cast<uint64_t>(parse_value(*e.spec, e.value));
+}
+double Config::real(const std::string& key) const {
+    const Entry& e = entry(key, ParamKind::real);
+    return parse_value(*e.spec, e.value);
+}
+uint32_t Config::address(const std::string& key) const {
+    const Entry& e = entry(key, ParamKind::address);
+    return static_cast<uint32_t>(parse_value(*e.spec, e.value));
+}
+
+std::string Config::to_yaml() const {
+    YAML::Emitter out;
+    out << YAML::Comment(fmt::format("surfvp effective configuration of '{}': every parameter, with where its value came from", name));
+    out << YAML::BeginMap;
+    out << YAML::Key << "name" << YAML::Value << name;
+    out << YAML::Key << "description" << YAML::Value << description;
+    std::string section;
+    for (const Entry& e : entries_) {
+        const auto dot = e.spec->key.find('.');
+        const std::string head = e.spec->key.substr(0, dot);
+        if (head != section) {
+            if (!section.empty()) out << YAML::EndMap;
+            out << YAML::Key << head << YAML::Value << YAML::BeginMap;
+            section = head;
+        }
+        out << YAML::Key << e.spec->key.substr(dot + 1) << YAML::Value << e.value
+            << YAML::Comment(e.origin == "default" ? "default " + e.spec->source : e.origin);
+    }
+    if (!section.empty()) out << YAML::EndMap;
+    out << YAML::EndMap;
+    return std::string(out.c_str()) + "\n";
+}
+
+}  // namespace surfvp

@@ -1,0 +1,65 @@
+#pragma once
+// The effective configuration of a run: every parameter's value and where it came from
+// (the default, a scenario file's line, or --set). Typed getters give the models their
+// Params; each value was checked against its ParamSpec when it was set.
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "models/common/units.h"
+#include "platform/scenario/parameters.h"
+
+namespace surfvp {
+
+// Bad input: a scenario, a --set, a parameter combination. The message is complete and
+// meant for the user; the CLI exits with code 2.
+struct ConfigError : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
+
+class Config {
+public:
+    struct Entry {
+        const ParamSpec* spec;
+        std::string value;
+        std::string origin;  // "default", "FILE:LINE" or "--set"
+    };
+
+    Config();  // every parameter at its default
+
+    // Throws ConfigError naming `where`, the key and the problem.
+    void set(const std::string& key, const std::string& value, const std::string& origin);
+
+    Frequency frequency(const std::string& key) const;
+    Duration duration(const std::string& key) const;
+    unsigned bits(const std::string& key) const;
+    Bytes bytes(const std::string& key) const;
+    uint64_t cycles(const std::string& key) const;
+    unsigned beats(const std::string& key) const;
+    uint64_t count(const std::string& key) const;
+    double real(const std::string& key) const;
+    uint32_t address(const std::string& key) const;
+    const std::string& choice(const std::string& key) const;
+    const std::string& text(const std::string& key) const;
+    // Any parameter: its value as written, and as a number in its kind's base unit (0 for
+    // choices and texts).
+    const std::string& value(const std::string& key) const;
+    double base_value(const std::string& key) const;
+
+    const std::vector<Entry>& entries() const { return entries_; }
+
+    std::string name;         // the scenario's name (its file's stem unless it says)
+    std::string description;  // its one-line description
+    std::string file;         // the scenario file, as given
+
+    // The configuration as a scenario YAML that reproduces it, each value commented with
+    // its origin.
+    std::string to_yaml() const;
+
+private:
+    const Entry& entry(const std::string& key, ParamKind kind) const;
+    std::vector<Entry> entries_;
+};
+
+}  // namespace surfvp

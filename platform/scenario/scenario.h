@@ -1,0 +1,31 @@
+#pragma once
+// Scenario files: YAML with one map per section (`plb2: {width: 64 bit}`), plus `name` and
+// `description`. Loading checks every key and value against the parameter table and
+// applies `--set key=value` overrides after the file, so that a bad scenario is reported
+// (file, line, key, what is wrong) before anything runs or is written.
+#include <string>
+#include <vector>
+
+#include "platform/scenario/config.h"
+
+namespace surfvp {
+
+// Throws ConfigError.
+Config load_scenario(const std::string& path, const std::vector<std::string>& overrides);
+// `--set KEY=VALUE` overrides, applied in order; throws ConfigError.
+void apply_overrides(Config& config, const std::vector<std::string>& overrides);
+
+// A scenario argument is a file path, or the name of a scenario shipped in scenario_dir().
+std::string resolve_scenario(const std::string& argument);
+
+// Where shipped scenarios live: $SURFVP_SCENARIOS, else the source tree's scenarios/.
+std::string scenario_dir();
+
+struct ShippedScenario {
+    std::string name;
+    std::string path;
+    std::string description;
+};
+std::vector<ShippedScenario> shipped_scenarios();
+
+}  // namespace surfvp

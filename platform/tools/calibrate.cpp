@@ -1,0 +1,361 @@
+#include "platform/tools/calibrate.h"
+
+#include <cmath>
+#include <cstdio>
+#include <ext/stdio_filebuf.h>
+#include <filesystem>
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+#include <fstream>
+#include <istream>
+#include <nlohmann/json.hpp>
+#include <opencv2/core/utility.hpp>
+
+#include "platform/workload/describer.h"
+#include "models/common/atomic_file.h"
+#include "platform/verdict/resimulation.h"
+#include "platform/run/run.h"
+#include "platform/scenario/scenario.h"
+#include "sw/cpu_cost/calibration.h"
+#include "sw/cpu_cost/calibration_dump.h"
+#include "sw/stage/software_stage.h"
+
+namespace surfvp {
+namespace fs = std::filesystem;
+using Json = nlohmann::ordered_json;
+
+namespace {
+
+constexpr const char* kQemu = "qemu-ppc";
+constexpr const char* kQemuCpu = "440-xilinx-w-dfpu";  // QEMU's Virtex-5 PPC440 with the APU FPU
+// Float tolerance of the firmware's keypoints against the VP's: both are IEEE single precision
+// without contraction; only libm (atan2f, sinf, cosf) may differ in the last place.
+constexpr double kTolerance = 1e-4;
+
+struct Frame {
+    sw::calibration_dump::FrameHeader header;
+    std::vector<uint8_t> integral, determinants;
+    std::vector<uint32_t> words;
+};
+
+std::vector<Frame> read_inputs(const fs::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::vector<Frame> frames;
+    sw::calibration_dump::FrameHeader h;
+    while (in.read(reinterpret_cast<char*>(&h), sizeof h)) {
+        sw::calibration_dump::swap_words_to_big_endian(h);
+        Frame f{h, std::vector<uint8_t>(h.integral_bytes), std::vector<uint8_t>(h.determinant_bytes),
+                std::vector<uint32_t>(h.words)};
+        in.read(reinterpret_cast<char*>(f.integral.data()), std::streamsize(f.integral.size()));
+        in.read(reinterpret_cast<char*>(f.determinants.data()), std::streamsize(f.determinants.size()));
+        in.read(reinterpret_cast<char*>(f.words.data()), std::streamsize(4 * f.words.size()));
+        for (uint32_t& w : f.words) w = load_be32(reinterpret_cast<const uint8_t*>(&w));
+        frames.push_back(std::move(f));
+    }
+    if (frames.empty()) throw std::runtime_error("calibrate: the VP run recorded no candidates in " + path.string());
+    return frames;
+}
+
+std::vector<sw::calibration_dump::Result> read_results(const fs::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::vector<sw::calibration_dump::Result> out;
+    sw::calibration_dump::Result r;
+    while (in.read(reinterpret_cast<char*>(&r), sizeof r)) {
+        sw::calibration_dump::swap_words_to_big_endian(r);
+        out.push_back(r);
+    }
+    return out;
+}
+
+// The units the native stage counts for each candidate, on the recorded input.
+std::vector<std::array<uint64_t, sw::kUnits>> native_units(const std::vector<Frame>& frames) {
+    std::vector<std::array<uint64_t, sw::kUnits>> units;
+    for (const Frame& f : frames) {
+        sw::SoftwareStage stage(sw::calibration_dump::stage_params(f.header), sw::CostCounter(sw::CostParams{}));
+        const sw::FrameBuffers b =
+            sw::calibration_dump::frame_buffers(f.header, f.integral.data(), f.determinants.data());
+        for (uint32_t w : f.words) {
+            std::array<uint64_t, sw::kUnits> before{};
+            for (size_t u = 0; u < sw::kUnits; ++u) before[u] = stage.cost().counted(sw::Unit(u));
+            stage.process(w, b);
+            for (size_t u = 0; u < sw::kUnits; ++u) before[u] = stage.cost().counted(sw::Unit(u)) - before[u];
+            units.push_back(before);
+        }
+    }
+    return units;
+}
+
+// The firmware's results against the VP's: the same words became keypoints, with the same
+// values within kTolerance.
+Json compare_results(const std::vector<sw::calibration_dump::Result>& vp,
+                     const std::vector<sw::calibration_dump::Result>& iss) {
+    if (vp.size() != iss.size())
+        throw std::runtime_error(fmt::format("calibrate: the firmware answered {} words of {}", iss.size(), vp.size()));
+    size_t keypoints = 0, exact = 0, mismatched = 0;
+    double worst = 0;
+    for (size_t i = 0; i < vp.size(); ++i) {
+        if (vp[i].keypoint != iss[i].keypoint || vp[i].laplacian != iss[i].laplacian) {
+            ++mismatched;
+            continue;
+        }
+        if (!vp[i].keypoint) continue;
+        ++keypoints;
+        const float* a = &vp[i].x;
+        const float* b = &iss[i].x;
+        double diff = 0;
+        for (int k = 0; k < 5; ++k) diff = std::max(diff, double(std::fabs(a[k] - b[k])));
+        for (int k = 0; k < 64; ++k) diff = std::max(diff, double(std::fabs(vp[i].descriptor[k] - iss[i].descriptor[k])));
+        if (diff == 0) ++exact;
+        if (diff > kTolerance) ++mismatched;
+        worst = std::max(worst, diff);
+    }
+    return {{"words", vp.size()}, {"keypoints", keypoints}, {"bit_exact", exact}, {"max_difference", worst},
+            {"tolerance", kTolerance}, {"mismatched", mismatched}, {"agree", mismatched == 0}};
+}
+
+sw::TraceReplay run_firmware(const CalibrateOptions& o, const fs::path& dir, const std::vector<sw::PipelineParams>& sets) {
+    std::ifstream map(o.firmware + ".map");
+    if (!map) throw ConfigError("calibrate: no link map " + o.firmware + ".map beside the firmware");
+    sw::TraceReplay replay(sw::read_link_map(map), sets);
+    const std::string command =
+        fmt::format("{} -cpu {} -d in_asm,exec,nochain -D /dev/stdout '{}' '{}' '{}'", kQemu, kQemuCpu, o.firmware,
+                    (dir / "inputs.bin").string(), (dir / "iss_results.bin").string());
+    FILE* pipe = ::popen(command.c_str(), "r");
+    if (!pipe) throw std::runtime_error("calibrate: cannot start " + command);
+    __gnu_cxx::stdio_filebuf<char> buffer(pipe, std::ios::in);
+    std::istream log(&buffer);
+    replay.read(log);
+    const int status = ::pclose(pipe);
+    if (status != 0) throw std::runtime_error(fmt::format("calibrate: `{}` failed (status {})", command, status));
+    return replay;
+}
+
+// The stream's cycles per step (at the defaults) beside what the table prices the same units at.
+Json agreement(const std::vector<sw::CandidateStream>& stream_of, const std::vector<std::array<uint64_t, sw::kUnits>>& units,
+               const std::array<double, sw::kUnits>& prices, uint64_t keypoints) {
+    std::array<double, sw::kSteps> stream{}, model{}, instructions{}, libm{};
+    std::array<std::array<double, sw::kInsnClasses>, sw::kSteps> mix{};
+    std::array<double, sw::kUnits> per_unit{};
+    for (const auto& n : units)
+        for (size_t u = 0; u < sw::kUnits; ++u) {
+            per_unit[u] += double(n[u]);
+            model[size_t(sw::step_of(sw::Unit(u)))] += double(n[u]) * prices[u];
+        }
+    for (const sw::CandidateStream& c : stream_of)
+        for (size_t s = 0; s < sw::kSteps; ++s) {
+            stream[s] += c[s].cycles[0];
+            instructions[s] += double(c[s].instructions);
+            libm[s] += double(c[s].libm_calls);
+            for (size_t k = 0; k < sw::kInsnClasses; ++k) mix[s][k] += double(c[s].mix[k]);
+        }
+    double total_stream = 0, total_model = 0, worst = 0;
+    for (size_t s = 0; s < sw::kSteps; ++s) total_stream += stream[s], total_model += model[s];
+    Json steps = Json::object();
+    const double per = keypoints ? double(keypoints) : 1.0;
+    for (size_t s = 0; s < sw::kSteps; ++s) {
+        const double error = stream[s] > 0 ? model[s] / stream[s] - 1 : 0;
+        if (stream[s] > 0.01 * total_stream) worst = std::max(worst, std::fabs(error));
+        Json classes = Json::object();
+        for (size_t k = 0; k < sw::kInsnClasses; ++k)
+            if (mix[s][k] > 0) classes[sw::insn_class_name(sw::InsnClass(k))] = mix[s][k] / per;
+        steps[sw::step_name(sw::Step(s))] = {{"stream_cycles_per_keypoint", stream[s] / per},
+                                             {"model_cycles_per_keypoint", model[s] / per},
+                                             {"instructions_per_keypoint", instructions[s] / per},
+                                             {"libm_calls_per_keypoint", libm[s] / per},
+                                             {"mix_per_keypoint", classes},
+                                             {"error", error}};
+    }
+    Json units_per_keypoint = Json::object();
+    for (size_t u = 0; u < sw::kUnits; ++u) units_per_keypoint[sw::unit_name(sw::Unit(u))] = per_unit[u] / per;
+    return {{"keypoints", keypoints},
+            {"candidates", units.size()},
+            {"units_per_keypoint", units_per_keypoint},
+            {"steps", steps},
+            {"stream_cycles", total_stream},
+            {"model_cycles", total_model},
+            {"total_error", total_stream > 0 ? total_model / total_stream - 1 : 0},
+            {"worst_step_error", worst}};
+}
+
+struct RunResult {
+    std::vector<std::array<uint64_t, sw::kUnits>> units;
+    std::vector<sw::CandidateStream> stream;
+    Json record;
+};
+
+RunResult calibration_run(const CalibrateOptions& o, const std::string& scenario, const std::string& haar,
+                          const std::vector<sw::PipelineParams>& sets) {
+    const fs::path dir = fs::path(o.out) / fmt::format("{}_{}", fs::path(scenario).stem().string(), haar);
+    fs::create_directories(dir);
+    for (const char* f : {"inputs.bin", "vp_results.bin", "iss_results.bin"}) fs::remove(dir / f);
+    // The paper's budget of ~100 keypoints per frame unless the caller sets another.
+    std::vector<std::string> sets_text{"surf.target_keypoints=100"};
+    sets_text.insert(sets_text.end(), o.sets.begin(), o.sets.end());
+    sets_text.push_back(fmt::format("surf.frames={}", o.frames));
+    sets_text.push_back("surf.haar=" + haar);
+    sets_text.push_back("budget.fps=0");  // a frame rate needs frames the calibration need not run
+    const Config config = load_scenario(resolve_scenario(scenario), sets_text);
+    if (!o.quiet) std::fprintf(stderr, "calibrate: %s, %s Haar: VP run\n", scenario.c_str(), haar.c_str());
+    // The VP run in a child (SystemC elaborates once per process), recording what its stage saw.
+    record_stage_inputs((dir / "inputs.bin").string(), (dir / "vp_results.bin").string());
+    Json vp;
+    {
+        Resimulation pool(1, dir / ".vp");
+        pool.submit(config, [&](const Json& r) { vp = r; });
+        pool.run([](size_t, size_t) {});
+    }
+    record_stage_inputs("", "");
+    if (vp.contains("error")) throw ConfigError("calibrate: the VP run of " + scenario + " failed: " + vp["error"].dump());
+    const std::vector<Frame> frames = read_inputs(dir / "inputs.bin");
+    RunResult run;
+    run.units = native_units(frames);
+    if (!o.quiet)
+        std::fprintf(stderr, "calibrate: %s, %s Haar: %zu candidates under qemu-ppc, %zu parameter sets\n",
+                     scenario.c_str(), haar.c_str(), run.units.size(), sets.size());
+    const sw::TraceReplay replay = run_firmware(o, dir, sets);
+    const Json results = compare_results(read_results(dir / "vp_results.bin"), read_results(dir / "iss_results.bin"));
+    if (!results["agree"].get<bool>())
+        throw std::runtime_error("calibrate: the PPC440 build's keypoints differ from the VP's: " + results.dump());
+    run.stream = replay.candidates();
+    fs::remove_all(dir);  // tens of MB of buffers, reproducible from the scenario
+    Json unknown = Json::object();
+    for (const auto& [m, n] : replay.unknown_mnemonics()) unknown[m] = n;
+    run.record = {{"scenario", scenario}, {"haar", haar}, {"frames", frames.size()},
+                  {"results", results},   {"instructions_executed", replay.instructions()},
+                  {"unclassified_mnemonics", unknown}};
+    return run;
+}
+
+std::string first_line(const std::string& command) {
+    FILE* pipe = ::popen(command.c_str(), "r");
+    char line[256] = {};
+    if (pipe) {
+        if (!std::fgets(line, sizeof line, pipe)) line[0] = 0;
+        ::pclose(pipe);
+    }
+    std::string s = line;
+    while (!s.empty() && (s.back() == '\n' || s.back() == '\r')) s.pop_back();
+    return s;
+}
+
+// "integer 22016, load 10526, ..." (classes of at least half an instruction).
+std::string mix_text(const Json& mix) {
+    std::string text;
+    for (const auto& [cls, n] : mix.items())
+        if (n.get<double>() >= 0.5) text += fmt::format("{}{} {:.0f}", text.empty() ? "" : ", ", cls, n.get<double>());
+    return text;
+}
+
+// What an architect reads: per run, each step's stream and model cycles per keypoint; then
+// the table's instructions per unit by class.
+std::string calibration_markdown(const Json& out) {
+    std::string md = "# PPC440 calibration of the software stage\n\n";
+    const Json& prov = out["calibration"]["provenance"];
+    md += fmt::format("Firmware: `{}` with `{}`, run under `{}`; table fitted on {}.\n\n", prov["toolchain"].get<std::string>(),
+                      prov["flags"].get<std::string>(), prov["iss"].get<std::string>(), prov["fitted_on"].get<std::string>());
+    md += "The firmware contracts `a * b + c` into `fmadds` as GCC does by default (an EDK build), the native "
+          "build does not: the same keypoints, with float values that differ in the last bits (compared "
+          "within the tolerance). Cycles per keypoint are all candidates' work divided by the keypoints; "
+          "the stream's are the pipeline model on qemu's instruction stream, every access an L1 hit (the fills "
+          "are timed by the platform).\n\n";
+    for (const Json& r : out["runs"]) {
+        const Json& a = r["agreement"];
+        md += fmt::format("## {}, {} Haar ({}; {} frames, {} candidates, {} keypoints)\n\n", r["scenario"].get<std::string>(),
+                          r["haar"].get<std::string>(), r.value("fitted", false) ? "fitted" : "held out", r["frames"].get<int>(), a["candidates"].get<size_t>(),
+                          a["keypoints"].get<uint64_t>());
+        md += fmt::format("Keypoints: {} of {} words, {} bit-exact, largest difference {:.2g} (tolerance {:.0e}).\n\n",
+                          r["results"]["keypoints"].get<size_t>(), r["results"]["words"].get<size_t>(),
+                          r["results"]["bit_exact"].get<size_t>(), r["results"]["max_difference"].get<double>(), kTolerance);
+        md += "| step | instructions / keypoint | stream cycles / keypoint | model cycles / keypoint | model vs stream | "
+              "libm calls / keypoint | mix / keypoint |\n|---|---:|---:|---:|---:|---:|---|\n";
+        for (const auto& [step, v] : a["steps"].items())
+            md += fmt::format("| {} | {:.0f} | {:.0f} | {:.0f} | {:+.2f} % | {:.1f} | {} |\n", step,
+                              v["instructions_per_keypoint"].get<double>(), v["stream_cycles_per_keypoint"].get<double>(),
+                              v["model_cycles_per_keypoint"].get<double>(), 100 * v["error"].get<double>(),
+                              v["libm_calls_per_keypoint"].get<double>(), mix_text(v["mix_per_keypoint"]));
+        md += fmt::format("| **total** | | {:.0f} | {:.0f} | **{:+.2f} %** | | |\n\n",
+                          a["stream_cycles"].get<double>() / std::max<double>(1, a["keypoints"].get<double>()),
+                          a["model_cycles"].get<double>() / std::max<double>(1, a["keypoints"].get<double>()),
+                          100 * a["total_error"].get<double>());
+    }
+    for (const auto& [haar, units] : out["calibration"]["haar"].items()) {
+        md += fmt::format("## Instructions per unit of work, {} Haar\n\n| unit | cycles | instructions | IPC | libm calls | mix |\n|---|---:|---:|---:|---:|---|\n", haar);
+        for (const auto& [unit, u] : units.items()) {
+            const std::string mix = mix_text(u["mix"]);
+            const double cycles = u["cycles"].get<double>();
+            md += fmt::format("| {} | {:.1f} | {:.1f} | {:.2f} | {:.1f} | {} |\n", unit, cycles, u["instructions"].get<double>(),
+                              cycles > 0 ? u["instructions"].get<double>() / cycles : 0.0, u["libm_calls"].get<double>(), mix);
+        }
+        md += "\n";
+    }
+    return md;
+}
+
+}  // namespace
+
+int calibrate_command(const CalibrateOptions& options) {
+    CalibrateOptions o = options;
+    if (o.firmware.empty()) o.firmware = SURFVP_FIRMWARE_PATH;
+    if (!fs::exists(o.firmware))
+        throw ConfigError("calibrate: no PPC440 firmware at " + o.firmware +
+                          ": install g++-powerpc-linux-gnu and rebuild (./scripts/bootstrap.sh does both)");
+    if (std::system((std::string("command -v ") + kQemu + " > /dev/null").c_str()) != 0)
+        throw ConfigError(std::string("calibrate: no ") + kQemu + ": install qemu-user (./scripts/bootstrap.sh does)");
+    if (o.frames < 1) throw ConfigError("calibrate: --frames must be at least 1");
+    cv::setNumThreads(0);
+    fs::create_directories(o.out);
+    const std::vector<sw::PipelineParams> sets =
+        o.probes ? sw::calibration_parameter_sets() : std::vector<sw::PipelineParams>{sw::PipelineParams{}};
+
+    sw::Calibration table = sw::recorded_calibration();
+    table.agreement = Json::array();
+    table.defaults.clear();
+    for (const sw::PipelineKnob& k : sw::pipeline_knobs()) table.defaults.push_back(sw::PipelineParams{}.*k.field);
+    Json runs = Json::array();
+    std::vector<std::pair<RunResult, int>> done;
+    const char* modes[2] = {"exact", "rounded"};
+    for (int h = 0; h < 2; ++h) {
+        RunResult pooled;
+        for (const std::string& scenario : o.fit) {
+            RunResult fit = calibration_run(o, scenario, modes[h], sets);
+            pooled.stream.insert(pooled.stream.end(), fit.stream.begin(), fit.stream.end());
+            pooled.units.insert(pooled.units.end(), fit.units.begin(), fit.units.end());
+            fit.record["fitted"] = true;
+            done.emplace_back(std::move(fit), h);
+        }
+        table.haar[size_t(h)] = sw::fit_units(pooled.stream, pooled.units);
+        if (!o.probes)  // no probes: the knobs' recorded sensitivities stay as they were
+            for (size_t u = 0; u < sw::kUnits; ++u) {
+                table.haar[size_t(h)][u].low = sw::recorded_calibration().haar[size_t(h)][u].low;
+                table.haar[size_t(h)][u].high = sw::recorded_calibration().haar[size_t(h)][u].high;
+            }
+        for (const std::string& check : o.check)
+            if (check != "none") done.emplace_back(calibration_run(o, check, modes[h], sets), h);
+    }
+    table.provenance = {{"toolchain", first_line("powerpc-linux-gnu-g++ --version")},
+                        {"flags", SURFVP_FIRMWARE_FLAGS},
+                        {"iss", fmt::format("{} -cpu {}", kQemu, kQemuCpu)},
+                        {"fitted_on", fmt::format("{}, {} frames each per Haar mode", fmt::join(o.fit, " + "), o.frames)}};
+    for (auto& [run, h] : done) {
+        uint64_t keypoints = 0;
+        for (const auto& n : run.units) keypoints += n[size_t(sw::Unit::descriptor)];
+        const auto prices = sw::unit_prices(h ? surf::HaarMode::rounded : surf::HaarMode::exact, sw::PipelineParams{}, table);
+        run.record["agreement"] = agreement(run.stream, run.units, prices, keypoints);
+        runs.push_back(run.record);
+        Json summary = {{"scenario", run.record["scenario"]}, {"haar", run.record["haar"]},
+                        {"fitted", run.record.value("fitted", false)}};
+        summary.update(run.record["agreement"]);
+        table.agreement.push_back(summary);
+    }
+    const Json out = {{"calibration", sw::calibration_to_json(table)}, {"runs", runs}};
+    const std::string table_json = sw::calibration_to_json(table).dump(1) + "\n";
+    write_file_atomically(fs::path(o.out) / "calibration_report.json", out.dump(1) + "\n");
+    write_file_atomically(fs::path(o.out) / "calibration.json", table_json);
+    if (!o.table.empty()) write_file_atomically(o.table, table_json);
+    const std::string md = calibration_markdown(out);
+    write_file_atomically(fs::path(o.out) / "calibration.md", md);
+    std::fputs(md.c_str(), stdout);
+    return kExitOk;
+}
+
+}  // namespace surfvp

@@ -1,0 +1,114 @@
+#include "platform/verdict/resimulation.h"
+
+#include <cerrno>
+#include <cstdlib>
+#include <cstring>
+#include <fmt/format.h>
+#include <fstream>
+#include <sstream>
+#include <sys/wait.h>
+#include <thread>
+#include <unistd.h>
+
+#include "platform/run/run.h"
+
+namespace surfvp {
+namespace fs = std::filesystem;
+using Json = nlohmann::ordered_json;
+
+Resimulation::Resimulation(unsigned jobs, fs::path scratch)
+    : jobs_(jobs ? jobs : std::max(1u, std::thread::hardware_concurrency())), scratch_(std::move(scratch)) {
+    fs::create_directories(scratch_);
+}
+
+Resimulation::~Resimulation() {
+    for (const auto& [pid, job] : running_) {  // an exception left children behind: stop them
+        kill(pid, SIGKILL);
+        waitpid(pid, nullptr, 0);
+    }
+    std::error_code ignored;
+    fs::remove_all(scratch_, ignored);
+}
+
+Json Resimulation::point_summary(const Json& r) {
+    Json s = {{"fps", r.value("throughput_fps", 0.0)}, {"passed", r["passed"]},
+              {"limit", r.contains("limit") ? r["limit"]["resource"] : Json()},
+              {"limit_cause", r.contains("limit") ? r["limit"]["cause"] : Json()},
+              {"keypoints_per_frame", r.value("keypoints_per_frame", 0.0)}};
+    if (r.contains("time_per_frame") && r["time_per_frame"].contains("cpu")) {
+        s["cpu_ms_per_frame"] = r["time_per_frame"]["cpu"]["busy_ms"];
+        s["cpu_alone_fps"] = r["time_per_frame"]["cpu"]["alone_fps"];
+    }
+    if (r.contains("failure")) s["failure"] = r["failure"];
+    return s;
+}
+
+void Resimulation::submit(Config config, Done done, bool full, std::string out, std::string trace, bool urgent) {
+    ++submitted_;
+    Job job{std::move(config), std::move(done), full, std::move(out), std::move(trace)};
+    if (urgent) queue_.push_front(std::move(job));
+    else queue_.push_back(std::move(job));
+}
+
+// The child simulates, writes its result as JSON and leaves at once (no destructors of the
+// parent's state run twice).
+void Resimulation::start(Job job) {
+    const fs::path result = scratch_ / fmt::format("{}.json", started_++);
+    std::fflush(nullptr);
+    const pid_t pid = fork();
+    if (pid < 0) throw std::runtime_error(std::string("cannot fork a re-simulation: ") + std::strerror(errno));
+    if (pid == 0) {
+        int code = 3;
+        Json out;
+        try {
+            const Json report = simulate_scenario(job.config, job.out, job.trace, true);
+            out = job.full ? report : point_summary(report);
+            code = 0;
+        } catch (const ConfigError& e) {
+            out = {{"error", e.what()}, {"exit", 2}};
+            code = 2;
+        } catch (const std::exception& e) {
+            out = {{"error", e.what()}, {"exit", 3}};
+        }
+        {
+            std::ofstream file(result);
+            file << out.dump();
+        }
+        std::_Exit(code);
+    }
+    running_.emplace(pid, std::make_pair(std::move(job), result));
+}
+
+void Resimulation::run(const std::function<void(size_t, size_t)>& progress) {
+    while (!queue_.empty() || !running_.empty()) {
+        while (running_.size() < jobs_ && !queue_.empty()) {
+            Job job = std::move(queue_.front());
+            queue_.pop_front();
+            start(std::move(job));
+        }
+        int status = 0;
+        const pid_t pid = waitpid(-1, &status, 0);
+        if (pid < 0 && errno == EINTR) continue;
+        if (pid < 0) throw std::runtime_error(std::string("waiting for a re-simulation: ") + std::strerror(errno));
+        auto it = running_.find(pid);
+        if (it == running_.end()) continue;
+        auto [job, path] = std::move(it->second);
+        running_.erase(it);
+        std::ifstream file(path);
+        std::stringstream text;
+        text << file.rdbuf();
+        Json result = Json::parse(text.str(), nullptr, false);
+        if (result.is_discarded() || !result.is_object())
+            result = {{"error", fmt::format("the re-simulation ended without a result ({})",
+                                            WIFSIGNALED(status) ? fmt::format("signal {}", WTERMSIG(status))
+                                                                : fmt::format("exit {}", WEXITSTATUS(status)))},
+                      {"exit", 3}};
+        std::error_code ignored;
+        fs::remove(path, ignored);
+        ++finished_;
+        job.done(result);
+        if (progress) progress(finished_, submitted_);
+    }
+}
+
+}  // namespace surfvp

@@ -1,0 +1,58 @@
+#pragma once
+// Re-simulations of a scenario at other parameter values, each in a child process forked from
+// this one: SystemC elaborates once per process, and a child inherits what this process has
+// prepared (frames, the threshold calibration, FHG sequences), so it only elaborates and
+// simulates. The caller must not have elaborated SystemC itself. At most `jobs` children run
+// at once; a finished child's result is handed to its callback in this process, which may
+// submit more. POSIX fork/waitpid.
+#include <deque>
+#include <filesystem>
+#include <functional>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <sys/types.h>
+
+#include "platform/scenario/config.h"
+
+namespace surfvp {
+
+class Resimulation {
+public:
+    // `result` is the child's report (whole when `full`, else a point summary: fps, passed,
+    // limit, keypoints per frame), or {"error": ..., "exit": code} when it failed.
+    using Done = std::function<void(const nlohmann::ordered_json& result)>;
+
+    Resimulation(unsigned jobs, std::filesystem::path scratch);
+    ~Resimulation();
+    Resimulation(const Resimulation&) = delete;
+    Resimulation& operator=(const Resimulation&) = delete;
+
+    // One re-simulation of `config`; `out`/`trace` as simulate_scenario's (empty/none for a
+    // point that writes nothing). An urgent one starts before those already waiting (a
+    // search whose next step waits for it).
+    void submit(Config config, Done done, bool full = false, std::string out = "", std::string trace = "none",
+                bool urgent = false);
+    // Runs until every submitted re-simulation, and every one their callbacks submit, is done;
+    // `progress(done, submitted)` after each.
+    void run(const std::function<void(size_t, size_t)>& progress);
+
+    static nlohmann::ordered_json point_summary(const nlohmann::ordered_json& report);
+
+private:
+    struct Job {
+        Config config;
+        Done done;
+        bool full;
+        std::string out, trace;
+    };
+    void start(Job job);
+
+    unsigned jobs_;
+    std::filesystem::path scratch_;
+    std::deque<Job> queue_;
+    std::map<pid_t, std::pair<Job, std::filesystem::path>> running_;
+    size_t submitted_ = 0, finished_ = 0, started_ = 0;
+};
+
+}  // namespace surfvp

@@ -1,0 +1,23 @@
+#pragma once
+// The software stage libSSA2 hands candidates to, built from the configuration.
+#include <memory>
+#include <string>
+#include <nlohmann/json.hpp>
+
+#include "platform/scenario/config.h"
+#include "sw/libssa2/libssa2.h"
+
+namespace surfvp {
+
+std::unique_ptr<sw::ssa2::Describer> make_describer(const Config& config, float threshold);
+
+// `surfvp calibrate`: every describer made after this call appends each frame's buffers and
+// FIFO words to `inputs`, and the native stage's result for each word to `expected`
+// (sw/cpu_cost/calibration_dump.h). Empty paths stop the recording.
+void record_stage_inputs(const std::string& inputs, const std::string& expected);
+
+// Where the software stage's cycles went (per step and per kind of work), its candidates
+// and rejections, and the L1 hit rate, for the report.
+nlohmann::ordered_json describer_report(const sw::ssa2::Describer& describer);
+
+}  // namespace surfvp

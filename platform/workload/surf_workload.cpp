@@ -1,0 +1,355 @@
+// The SURF workload: frames in memory, libSSA2 driving the accelerators, the software stage
+// describing the candidates; judged on frame rate against the budget.
+#include <algorithm>
+#include <filesystem>
+#include <map>
+#include <fmt/format.h>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "platform/address_map.h"
+#include "platform/workload/describer.h"
+#include "models/fhg/fhg_regs.h"
+#include "models/fhg/hessian_core.h"
+#include "platform/soc.h"
+#include "sw/eval/distinguishability.h"
+#include "sw/eval/homography.h"
+#include "sw/eval/keypoint_file.h"
+#include "sw/eval/pose_geometry.h"
+#include "sw/eval/repeatability.h"
+#include "sw/eval/sequence.h"
+#include "sw/libssa2/libssa2.h"
+#include "sw/surf/surf.h"
+#include "platform/workload/workload.h"
+
+namespace surfvp {
+namespace {
+namespace fs = std::filesystem;
+
+constexpr uint64_t kPage = 4096;
+constexpr uint32_t kOutsideMemory = 0xF000'0000;  // fault.frame's determinant buffer: no DDR there
+uint64_t round_up(uint64_t v) { return (v + kPage - 1) / kPage * kPage; }
+
+std::vector<cv::Mat> read_frames(const Config& c) {
+    const std::string source = c.text("surf.source");
+    const size_t count = c.count("surf.frames");
+    std::vector<cv::Mat> frames;
+    std::error_code ec;
+    try {
+        if (fs::is_regular_file(source, ec) && !cv::imread(source, cv::IMREAD_GRAYSCALE).empty()) {
+            frames.assign(count, cv::imread(source, cv::IMREAD_GRAYSCALE));  // one image, repeated
+        } else {
+            eval::SequenceReader reader(eval::open_sequence(source, count));
+            for (cv::Mat frame; frames.size() < count && reader.next(frame);) frames.push_back(frame.clone());
+        }
+    } catch (const std::exception& e) {
+        throw ConfigError(fmt::format("surf.source {}: {}", source, e.what()));
+    }
+    if (frames.empty()) throw ConfigError(fmt::format("surf.source {}: no frames (install opencv-doc / visp-images-data?)", source));
+    const int w = int(c.count("surf.width")), h = int(c.count("surf.height"));
+    for (cv::Mat& f : frames)
+        if (w && h && (f.cols != w || f.rows != h)) {
+            cv::Mat resized;
+            cv::resize(f, resized, cv::Size(w, h), 0, 0, cv::INTER_AREA);
+            f = resized;
+        }
+    for (const cv::Mat& f : frames)
+        if (f.size() != frames[0].size()) throw ConfigError("surf.source: frames differ in size; set surf.width and surf.height");
+    return frames;
+}
+
+// Frames, and frame 0's ranked responses for the calibration, are read once per process and
+// source: the verdict's re-simulations are forked from one process and inherit them.
+std::string source_key(const Config& c) {
+    return fmt::format("{}|{}x{}", c.text("surf.source"), c.count("surf.width"), c.count("surf.height"));
+}
+
+const std::vector<cv::Mat>& load_frames(const Config& c) {
+    static std::map<std::string, std::vector<cv::Mat>> cache;
+    const std::string key = fmt::format("{}|{}", source_key(c), c.count("surf.frames"));
+    auto it = cache.find(key);
+    if (it == cache.end()) it = cache.emplace(key, read_frames(c)).first;
+    return it->second;
+}
+
+// The float reference on frame 0, limited to the chip's two octaves at step 1.
+float calibrate(const Config& c, const cv::Mat& frame) {
+    if (c.count("surf.target_keypoints") == 0) return float(c.real("surf.threshold"));
+    static std::map<std::string, std::vector<float>> ranked;
+    const std::string key = fmt::format("{}|{}", source_key(c), c.choice("surf.upright"));
+    auto it = ranked.find(key);
+    if (it == ranked.end()) {
+        surf::Params p;
+        p.octaves = 2;
+        p.init_step = 1;
+        p.upright = c.choice("surf.upright") == "on";
+        it = ranked.emplace(key, surf::ranked_responses(frame, p)).first;
+    }
+    return surf::threshold_for_rank(it->second, int(c.count("surf.target_keypoints")));
+}
+
+struct FrameResult {
+    surf::Keypoints keypoints;
+    sw::ssa2::Task task;
+    bool reported = false;
+};
+
+class SurfWorkload : public Workload {
+public:
+    explicit SurfWorkload(const Config& c)
+        : config_(c), frames_(load_frames(c)), threshold_(calibrate(c, frames_[0])),
+          describer_(make_describer(c, threshold_)), results_(frames_.size()) {
+        width_ = frames_[0].cols;
+        height_ = frames_[0].rows;
+        layout(c);
+        const fhg::HessianCore core(fhg_params(c).precision);
+        driver_.intc_base = map::intc.base;
+        for (unsigned k = 0; k < c.count("soc.accelerators"); ++k)
+            driver_.accelerators.push_back({map::iig_base(k), map::fhg_base(k), map::irq::iig(k), map::irq::fhg(k)});
+        for (uint64_t set = 0; set < c.count("surf.tasks_in_flight"); ++set)
+            driver_.buffers.push_back({uint32_t(slots_base_ + set * slot_bytes_),
+                                       uint32_t(slots_base_ + set * slot_bytes_ + integral_bytes_),
+                                       uint32_t(slots_base_ + set * slot_bytes_ + integral_bytes_ + det_bytes_)});
+        driver_.fifo_irq_level = uint32_t(c.count("surf.fifo_irq_level"));
+        driver_.threshold = core.from_float(threshold_);
+        budget_fps_ = c.real("budget.fps");
+        // A frame rate needs one whole round of the pairs after the first frame.
+        if (budget_fps_ > 0 && frames_.size() <= c.count("soc.accelerators"))
+            throw ConfigError(fmt::format("surf.frames: {} frames cannot give a frame rate with {} accelerator pair(s): "
+                                          "the steady-state rate needs {}; set more frames or budget.fps = 0",
+                                          frames_.size(), c.count("soc.accelerators"), c.count("soc.accelerators") + 1));
+        fault_frame_ = c.count("fault.frame");
+        cpu_hz_ = c.frequency("cpu.clock").hz;
+    }
+
+    void preload(const Backdoor& memory) override {
+        for (size_t i = 0; i < frames_.size(); ++i) {
+            uint8_t* at = memory(frame_address(i), uint64_t(width_) * height_);
+            for (int y = 0; y < height_; ++y) std::copy_n(frames_[i].ptr(y), width_, at + size_t(y) * width_);
+        }
+    }
+
+    Ppc440::Software software() override {
+        return [this](sw::Hal& hal) {
+            std::vector<sw::ssa2::Task> tasks(frames_.size());
+            for (size_t i = 0; i < tasks.size(); ++i) {
+                tasks[i].image = frame_address(i);
+                tasks[i].width = width_;
+                tasks[i].height = height_;
+            }
+            if (fault_frame_ > 0 && fault_frame_ <= tasks.size()) tasks[fault_frame_ - 1].determinants = kOutsideMemory;
+            sw::ssa2::Driver driver(hal, driver_, *describer_);
+            driver.run(tasks, [this](const sw::ssa2::Task& task, surf::Keypoints&& keypoints) {
+                FrameResult& r = results_[size_t(task.id)];
+                r.task = task;
+                r.keypoints = std::move(keypoints);
+                r.reported = true;
+                ++done_;
+            });
+            accelerator_time_ = driver.accelerator_time();
+        };
+    }
+
+    Progress progress() const override { return {done_, frames_.size(), "frames"}; }
+
+    std::vector<Check> checks() const override {
+        std::vector<Check> checks;
+        std::vector<std::string> failures;
+        for (const FrameResult& r : results_)
+            if (r.task.phase == sw::ssa2::Phase::failed) failures.push_back(fmt::format("frame {}: {}", r.task.id, r.task.error));
+        checks.push_back({"every frame processed", failures.empty() && done_ == frames_.size(),
+                          failures.empty() ? fmt::format("{} of {} frames", done_, frames_.size())
+                                           : fmt::format("{}", fmt::join(failures, "; "))});
+        if (budget_fps_ > 0) {
+            const double fps = throughput();
+            checks.push_back({"frame-rate budget", fps >= budget_fps_,
+                              fmt::format("{:.2f} frames/s against {:.2f}", fps, budget_fps_)});
+        }
+        return checks;
+    }
+
+    nlohmann::ordered_json summary() const override;
+    nlohmann::ordered_json report() const override;
+    std::vector<std::string> write_files(const std::string& dir) const override;
+
+    // Each frame's hardware phases on its accelerator's track and its descriptors on the
+    // CPU's: frames overlapping across the chip.
+    void trace(Tracer& tracer) const override {
+        if (!tracer.perfetto_on()) return;
+        std::vector<int> hardware;
+        for (size_t k = 0; k < driver_.accelerators.size(); ++k)
+            hardware.push_back(tracer.track("frames", fmt::format("accelerator {} (integral + determinants)", k)));
+        const int descriptors = tracer.track("frames", "cpu (descriptors)");
+        auto at = [](uint64_t ps) { return sc_core::sc_time(double(ps), sc_core::SC_PS); };
+        for (const FrameResult& r : results_) {
+            const auto& t = r.task;
+            if (!r.reported || t.t_determinants == 0) continue;
+            const std::string name = fmt::format("frame {}{}", t.id, t.phase == sw::ssa2::Phase::failed ? " (failed)" : "");
+            tracer.slice(hardware[size_t(t.id) % hardware.size()], name, at(t.t_start), at(t.t_determinants));
+            if (t.phase == sw::ssa2::Phase::done) tracer.slice(descriptors, name, at(t.t_determinants), at(t.t_done));
+        }
+    }
+
+private:
+    uint32_t frame_address(size_t i) const { return uint32_t(frames_base_ + i * frame_bytes_); }
+
+    // Frames, then one set of integral image, determinant and descriptor buffers per task in flight.
+    void layout(const Config& c) {
+        frame_bytes_ = round_up(uint64_t(width_) * height_);
+        integral_bytes_ = round_up(uint64_t(width_) * height_ * 4);
+        det_bytes_ = round_up(uint64_t((width_ + 1) / 2) * ((height_ + 1) / 2) *
+                              fhg_regs::record_bytes(fhg_regs::det_bytes_for(c.bits("fhg.det_bits"))));
+        slot_bytes_ = integral_bytes_ + det_bytes_ + round_up(uint64_t(sw::ssa2::kRecordRing) * sw::ssa2::kRecordSlot);
+        frames_base_ = 0x0010'0000;
+        slots_base_ = frames_base_ + frames_.size() * frame_bytes_;
+        const uint64_t end = slots_base_ + c.count("surf.tasks_in_flight") * slot_bytes_;
+        if (end > c.bytes("memory.size").n)
+            throw ConfigError(fmt::format("{} frames of {}x{} and {} buffer sets need {} of memory, memory.size is {}",
+                                          frames_.size(), width_, height_, c.count("surf.tasks_in_flight"),
+                                          format_bytes(Bytes{end}), format_bytes(c.bytes("memory.size"))));
+    }
+
+    double throughput() const;
+    nlohmann::ordered_json evaluation() const;
+    // How the threshold was chosen (calibrate() above).
+    std::string threshold_rule() const {
+        const int64_t target = config_.count("surf.target_keypoints");
+        if (target == 0) return "surf.threshold";
+        return fmt::format("the {}th strongest response of the float reference on frame 0 (2 octaves, step 1; "
+                           "surf.target_keypoints = {}), held for every frame",
+                           target, target);
+    }
+
+    const Config& config_;
+    std::vector<cv::Mat> frames_;
+    float threshold_;
+    std::unique_ptr<sw::ssa2::Describer> describer_;
+    std::vector<FrameResult> results_;
+    sw::ssa2::DriverConfig driver_;
+    int width_ = 0, height_ = 0;
+    uint64_t frame_bytes_ = 0, integral_bytes_ = 0, det_bytes_ = 0, slot_bytes_ = 0, frames_base_ = 0, slots_base_ = 0;
+    uint64_t done_ = 0, fault_frame_ = 0;
+    double budget_fps_ = 0, cpu_hz_ = 0;
+    std::vector<sw::ssa2::AcceleratorTime> accelerator_time_;
+};
+
+// Steady state: frames finished per second over the last whole rounds of the accelerator
+// pairs (with k pairs frames finish in bunches of k, so the span covers a multiple of k
+// frames: a part of a round would count a bunch without its gap).
+double SurfWorkload::throughput() const {
+    std::vector<uint64_t> ends;
+    for (const FrameResult& r : results_)
+        if (r.reported && r.task.phase == sw::ssa2::Phase::done) ends.push_back(r.task.t_done);
+    const size_t k = driver_.accelerators.size();
+    if (ends.size() < k + 1) return 0;
+    std::sort(ends.begin(), ends.end());
+    const size_t span = (ends.size() - 1) / k * k;
+    return double(span) / (double(ends.back() - ends[ends.size() - 1 - span]) * 1e-12);
+}
+
+nlohmann::ordered_json SurfWorkload::summary() const {
+    double latency = 0, integral = 0, determinants = 0, describe = 0, keypoints = 0, cycles = 0;
+    size_t n = 0, min_kp = SIZE_MAX, max_kp = 0;
+    for (const FrameResult& r : results_) {
+        if (r.task.phase != sw::ssa2::Phase::done) continue;
+        const auto& t = r.task;
+        latency += double(t.t_done - t.t_start);
+        integral += double(t.t_integral - t.t_start);
+        determinants += double(t.t_determinants - t.t_start);
+        describe += double(t.t_done - t.t_determinants);
+        keypoints += double(r.keypoints.size());
+        cycles += double(t.descriptor_cycles);
+        min_kp = std::min(min_kp, r.keypoints.size());
+        max_kp = std::max(max_kp, r.keypoints.size());
+        ++n;
+    }
+    const double per = n ? 1.0 / double(n) : 0;
+    const double fps = throughput();
+    nlohmann::ordered_json budget = nullptr;
+    if (budget_fps_ > 0) budget = {{"fps", budget_fps_}, {"met", fps >= budget_fps_}};
+    nlohmann::ordered_json pairs = nlohmann::ordered_json::array();
+    for (const auto& a : accelerator_time_)
+        pairs.push_back({{"working_s", a.working_ps * 1e-12}, {"waiting_for_buffers_s", a.waiting_for_buffers_ps * 1e-12},
+                         {"idle_s", a.idle_ps * 1e-12}});
+    return {{"image", {{"width", width_}, {"height", height_}}},
+            {"frames", frames_.size()},
+            {"frames_done", n},
+            {"throughput_fps", fps},
+            {"latency_ms", latency * per * 1e-9},
+            {"keypoints_per_frame", keypoints * per},
+            {"keypoints_per_frame_range", {n ? min_kp : 0, max_kp}},
+            {"threshold", threshold_},
+            {"threshold_rule", threshold_rule()},
+            {"budget", budget},
+            {"phases_ms", {{"integral_image", integral * per * 1e-9},
+                           {"determinants", determinants * per * 1e-9},
+                           {"descriptors", describe * per * 1e-9}}},
+            {"software_time_per_keypoint_us", keypoints > 0 ? cycles / keypoints / cpu_hz_ * 1e6 : 0.0},
+            {"software_cycles_per_keypoint", keypoints > 0 ? cycles / keypoints : 0.0},
+            {"accelerator_pairs", pairs}};
+}
+
+nlohmann::ordered_json SurfWorkload::report() const {
+    nlohmann::ordered_json frames = nlohmann::ordered_json::array();
+    for (const FrameResult& r : results_) {
+        const auto& t = r.task;
+        nlohmann::ordered_json f = {{"frame", t.id}, {"candidates", t.candidates.size()}, {"keypoints", r.keypoints.size()},
+                                    {"start_ms", t.t_start * 1e-9}, {"integral_done_ms", t.t_integral * 1e-9},
+                                    {"determinants_done_ms", t.t_determinants * 1e-9}, {"done_ms", t.t_done * 1e-9},
+                                    {"descriptor_cycles", t.descriptor_cycles}};
+        if (t.phase == sw::ssa2::Phase::failed) f["error"] = t.error;
+        frames.push_back(f);
+    }
+    return {{"source", config_.text("surf.source")}, {"evaluation", evaluation()},
+            {"software_stage", describer_report(*describer_)}, {"per_frame", frames}};
+}
+
+// Feature quality on the chip's own keypoints, when the scenario gives the geometry.
+nlohmann::ordered_json SurfWorkload::evaluation() const {
+    nlohmann::ordered_json out = nlohmann::ordered_json::object();
+    if (done_ != frames_.size()) return out;
+    const std::string homography = config_.text("eval.homography");
+    if (!homography.empty() && results_.size() >= 2) {
+        const Eigen::Matrix3d h = eval::read_homography_file(homography);
+        const auto rep = eval::repeatability(results_[0].keypoints, results_[1].keypoints, h, frames_[0].size(),
+                                             frames_[1].size());
+        const auto prec = eval::matching_precision(results_[0].keypoints, results_[1].keypoints, h);
+        out["homography"] = {{"repeatability", rep.repeatability}, {"correspondences", rep.correspondences},
+                             {"precision", prec.precision}, {"candidates", prec.candidates}};
+    }
+    const std::string poses = config_.text("eval.poses");
+    if (!poses.empty() && results_.size() >= 2) {
+        std::vector<surf::Keypoints> all;
+        for (const FrameResult& r : results_) all.push_back(r.keypoints);
+        const auto posed = eval::list_posed_frames(poses);
+        const eval::CameraIntrinsics k = eval::kCastleIntrinsics;
+        for (size_t gap : {size_t(1), size_t(2)}) {
+            const auto ransac = eval::sequence_distinguishability(all, gap);
+            const auto truth = eval::sequence_distinguishability(all, gap, [&](size_t i, size_t j) {
+                return eval::fundamental_from_poses(k, posed.at(i).c_m_o, posed.at(j).c_m_o);
+            });
+            out[fmt::format("distinguishability_gap{}", gap)] = {{"ransac", ransac.mean}, {"ground_truth", truth.mean},
+                                                                  {"pairs", ransac.pairs.size()}};
+        }
+    }
+    return out;
+}
+
+std::vector<std::string> SurfWorkload::write_files(const std::string& dir) const {
+    const fs::path folder = fs::path(dir) / "keypoints";
+    fs::create_directories(folder);
+    std::vector<std::string> written;
+    for (const FrameResult& r : results_) {
+        if (!r.reported) continue;
+        const fs::path file = folder / fmt::format("frame_{:04}.surf", r.task.id);
+        eval::write_keypoint_file(file, r.keypoints);
+        written.push_back(fs::relative(file, dir).string());
+    }
+    return written;
+}
+
+}  // namespace
+
+std::unique_ptr<Workload> make_surf_workload(const Config& config) { return std::make_unique<SurfWorkload>(config); }
+
+}  // namespace surfvp

@@ -1,0 +1,53 @@
+#pragma once
+// What the CPU runs in a scenario, and what the run is judged on. Each workload builds its
+// software (against the HAL only), says how far it has come, and lists its checks.
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "platform/scenario/config.h"
+#include "models/common/tracer.h"
+#include "models/ppc440/ppc440.h"
+
+namespace surfvp {
+
+struct Check {
+    std::string name;
+    bool passed;
+    std::string detail;
+};
+
+struct Progress {
+    uint64_t done = 0;
+    uint64_t total = 0;
+    std::string unit;  // "copies", "frames"
+};
+
+// Untimed access to memory before the run (what a camera or loader put there).
+using Backdoor = std::function<uint8_t*(uint64_t address, uint64_t bytes)>;
+
+class Workload {
+public:
+    virtual ~Workload() = default;
+    virtual void preload(const Backdoor&) {}
+    virtual Ppc440::Software software() = 0;
+    virtual Progress progress() const = 0;
+    virtual std::vector<Check> checks() const = 0;
+    virtual nlohmann::ordered_json report() const = 0;  // the workload's own section
+    // Top-level report keys (frame rate, latency, budget...): none by default.
+    virtual nlohmann::ordered_json summary() const { return nlohmann::ordered_json::object(); }
+    // Its own timeline tracks, after the run (frames across the blocks).
+    virtual void trace(Tracer&) const {}
+    // Files of its own under the output folder (keypoints): the names written.
+    virtual std::vector<std::string> write_files(const std::string& /*dir*/) const { return {}; }
+};
+
+// The workload `run.workload` names; throws ConfigError when its parameters do not fit the
+// platform (a buffer outside memory, say).
+std::unique_ptr<Workload> make_workload(const Config& config);
+std::unique_ptr<Workload> make_surf_workload(const Config& config);
+
+}  // namespace surfvp
