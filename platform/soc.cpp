@@ -14,40 +14,26 @@ namespace surfvp {
 namespace {
 
 PlbBus::Params plb_params(const Config& c, const std::string& bus) {
-    PlbBus::Params p;
-    p.clock = c.frequency(bus + ".clock");
-    p.width_bits = c.bits(bus + ".width");
-    p.max_burst_beats = c.beats(bus + ".max_burst");
-    p.arbitration_cycles = static_cast<unsigned>(c.cycles(bus + ".arbitration_latency"));
-    p.address_cycles = static_cast<unsigned>(c.cycles(bus + ".address_latency"));
-    p.arbitration = c.choice(bus + ".arbitration") == "fixed_priority" ? PlbBus::Arbitration::fixed_priority
-                                                                       : PlbBus::Arbitration::round_robin;
-    if (p.width_bits != 32 && p.width_bits != 64 && p.width_bits != 128)
-        throw ConfigError(bus + ".width: a PLB is 32, 64 or 128 bit wide");
-    return p;
+    for (const PlbDeclaration& d : plb_declarations()) {
+        if (d.bus != bus) continue;
+        const PlbBus::Params p = d.table.make(c);
+        if (p.width_bits != 32 && p.width_bits != 64 && p.width_bits != 128)
+            throw ConfigError(bus + ".width: a PLB is 32, 64 or 128 bit wide");
+        return p;
+    }
+    throw std::logic_error("no PLB named " + bus);
 }
 
-DdrMemory::Params memory_params(const Config& c) {
-    DdrMemory::Params p;
-    p.size = c.bytes("memory.size");
-    p.clock = c.frequency("memory.clock");
-    p.width_bits = c.bits("memory.width");
-    p.transfers_per_clock = static_cast<unsigned>(c.count("memory.transfers_per_clock"));
-    p.efficiency = c.real("memory.efficiency");
-    p.latency_cycles = static_cast<unsigned>(c.cycles("memory.latency"));
-    p.write_latency_cycles = static_cast<unsigned>(c.cycles("memory.write_latency"));
-    return p;
-}
-
-MciLink::Params mci_params(const Config& c) {
-    return {c.frequency("mci.clock"), c.bits("mci.width"), unsigned(c.cycles("mci.latency"))};
-}
+DdrMemory::Params memory_params(const Config& c) { return DdrMemory::parameter_table().make(c); }
+MciLink::Params mci_params(const Config& c) { return MciLink::parameter_table().make(c); }
 
 bool cpu_memory_on_plb1(const Config& c) { return c.choice("cpu.memory_path") == "plb1"; }
 
-// A register slave's answer on PLB1: its `block.register_latency` cycles of the bus clock.
-Duration register_latency(const Config& c, const std::string& block) {
-    return Duration{uint64_t(std::llround(double(c.cycles(block + ".register_latency")) * c.frequency("plb1.clock").period_ps()))};
+// The register slaves are on PLB1: their answers are in its cycles.
+template <typename Params>
+Params on_plb1(Params p, const Config& c) {
+    p.registers.bus_clock = c.frequency("plb1.clock");
+    return p;
 }
 
 // One TLM transaction per line (fast) or per burst (finest contention).
@@ -74,54 +60,19 @@ sc_core::sc_time uncontended_fill(const Config& c) {
                                  : MciLink::access_time(mci_params(c), line, ddr);
 }
 
+// A block's own parameters from its declarations; the wiring adds the bus it is on and the
+// simulation setting of its DMA.
 Iig::Params iig_params(const Config& c) {
-    Iig::Params p;
-    p.clock = c.frequency("iig.clock");
-    p.pixels_per_clock = unsigned(c.count("iig.pixels_per_clock"));
-    p.sum_bits = c.bits("iig.sum_bits");
-    p.burst_beats = c.beats("iig.burst");
+    Iig::Params p = on_plb1(Iig::parameter_table().make(c), c);
     p.bus_width_bits = c.bits("plb2.width");
-    p.pixelbus_width_bits = c.bits("pixelbus.width");
-    p.line_buffers = unsigned(c.count("iig.line_buffers"));
-    p.max_width = unsigned(c.count("iig.max_width"));
-    p.max_height = unsigned(c.count("iig.max_height"));
     p.dma_transaction_bytes = dma_transaction_bytes(c, p.burst_beats);
-    p.register_latency = register_latency(c, "iig");
     return p;
 }
 
 Fhg::Params fhg_params(const Config& c) {
-    Fhg::Params p;
-    p.clock = c.frequency("fhg.clock");
-    p.sequence.read_buses = unsigned(c.count("fhg.read_buses"));
-    p.sequence.triple_macs = unsigned(c.count("fhg.triple_macs"));
-    p.sequence.fifo_lines = unsigned(c.count("fhg.fifo_lines"));
-    p.sequence.x3_cycles = unsigned(c.cycles("fhg.x3_cycles"));
-    const std::string& word = c.choice("fhg.bus_word");
-    p.sequence.bus_word = word == "quad" ? fhg::BusWord::quad : word == "pair" ? fhg::BusWord::pair : fhg::BusWord::scalar;
-    p.sequence.line_ports = unsigned(c.count("fhg.line_ports"));
-    p.sequence.line_banks = unsigned(c.count("fhg.line_banks"));
-    p.sequence.scheduler = c.choice("fhg.scheduler") == "improved" ? fhg::Scheduler::improved : fhg::Scheduler::basic;
-    p.cycles_per_block = unsigned(c.cycles("fhg.cycles_per_block"));
-    p.sequence.reuse = c.choice("fhg.reuse") == "on";
-    p.sequence.attempts = unsigned(c.count("fhg.sequence_attempts"));
-    p.precision.accumulator_bits = c.bits("fhg.accumulator_bits");
-    p.precision.recip_shift = c.bits("fhg.recip_shift");
-    p.precision.response_frac_bits = c.bits("fhg.response_frac_bits");
-    p.precision.response_bits = c.bits("fhg.response_bits");
-    p.precision.weight_frac_bits = c.bits("fhg.weight_frac_bits");
-    p.precision.det_frac_bits = c.bits("fhg.det_frac_bits");
-    p.precision.det_bits = c.bits("fhg.det_bits");
-    p.hessian_cycles_per_triple_mac = unsigned(c.cycles("fhg.hessian_cycles_per_triple_mac"));
-    p.pipeline_latency_cycles = unsigned(c.cycles("fhg.pipeline_latency"));
-    p.maxima_fifo_depth = unsigned(c.count("fhg.maxima_fifo_depth"));
-    p.burst_beats = c.beats("fhg.burst");
+    Fhg::Params p = on_plb1(Fhg::parameter_table().make(c), c);
     p.bus_width_bits = c.bits("plb2.width");
-    p.det_row_buffers = unsigned(c.count("fhg.det_row_buffers"));
-    p.max_width = unsigned(c.count("fhg.max_width"));
-    p.max_height = unsigned(c.count("fhg.max_height"));
     p.dma_transaction_bytes = dma_transaction_bytes(c, p.burst_beats);
-    p.register_latency = register_latency(c, "fhg");
     return p;
 }
 
@@ -218,18 +169,16 @@ void Soc::build(const Config& c, Tracer& tracer) {
     plb1_ = std::make_unique<PlbBus>("plb1", plb_params(c, "plb1"), tracer);
     plb2_ = std::make_unique<PlbBus>("plb2", plb_params(c, "plb2"), tracer);
     if (!cpu_memory_on_plb1(c)) mci_ = std::make_unique<MciLink>("mci", mci_params(c));
-    intc_ = std::make_unique<Intc>("intc", Intc::Params{unsigned(c.count("intc.inputs")), register_latency(c, "intc")}, tracer);
-    dma_ = std::make_unique<Dma>("dma", Dma::Params{c.beats("dma.burst"), c.bits("plb2.width"), register_latency(c, "dma")},
-                                 tracer);
+    intc_ = std::make_unique<Intc>("intc", on_plb1(Intc::parameter_table().make(c), c), tracer);
+    Dma::Params dma = on_plb1(Dma::parameter_table().make(c), c);
+    dma.bus_width_bits = c.bits("plb2.width");
+    dma_ = std::make_unique<Dma>("dma", dma, tracer);
     for (unsigned k = 0; k < pairs; ++k) {
         const std::string suffix = pairs > 1 ? std::to_string(k) : "";
         iigs_.push_back(std::make_unique<Iig>(("iig" + suffix).c_str(), iig_params(c), tracer));
         fhgs_.push_back(std::make_unique<Fhg>(("fhg" + suffix).c_str(), fhg_params(c), tracer));
     }
-    Ppc440::Params cpu;
-    cpu.clock = c.frequency("cpu.clock");
-    cpu.quantum = c.duration("cpu.quantum");
-    cpu.line_bytes = static_cast<unsigned>(c.bytes("cpu.cache_line").n);
+    Ppc440::Params cpu = Ppc440::parameter_table().make(c);
     for (unsigned k = 0; k < pairs; ++k) cpu.markers.push_back(fmt::format("accelerator{}_task", k));
     cpu.markers.push_back("describing_task");
     cpu_ = std::make_unique<Ppc440>("cpu", cpu, workload_->software(), tracer);

@@ -3,6 +3,7 @@
 // registers are 32-bit words at word-aligned offsets, read and written whole, big-endian on
 // the bus (see byte_order.h). Anything else is answered with the TLM error response that
 // names what was wrong, never an assert.
+#include <cmath>
 #include <cstdint>
 #include <tlm>
 
@@ -10,6 +11,14 @@
 #include "units.h"
 
 namespace surfvp {
+
+// How long a register slave takes to answer: `cycles` of the clock of the bus its SPLB is on
+// (the cycles are the block's parameter; the wiring tells it the bus clock).
+struct RegisterTiming {
+    unsigned cycles = 0;
+    Frequency bus_clock{100e6};
+    Duration latency() const { return Duration{uint64_t(std::llround(double(cycles) * bus_clock.period_ps()))}; }
+};
 
 // `access(offset, value, is_write)` reads into or writes from `value`; it returns false for
 // an offset that holds no register.

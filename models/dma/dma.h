@@ -12,6 +12,8 @@
 #include <vector>
 
 #include "dma_engine.h"
+#include "models/common/parameter.h"
+#include "models/common/register_target.h"
 #include "models/common/register_bank.h"
 #include "models/common/tracer.h"
 #include "models/common/units.h"
@@ -23,8 +25,10 @@ public:
     struct Params {
         unsigned burst_beats = 16;
         unsigned bus_width_bits = 128;  // of the bus the MPLB port is on
-        Duration register_latency{};    // a register access, as PLB1 sees it
+        RegisterTiming registers;  // a register access: its cycles (block.register_latency) of PLB1's clock
     };
+    // Its scenario parameters with the Params field each sets (dma_params.cpp).
+    static const ParamTable<Params>& parameter_table();
 
     tlm_utils::simple_target_socket<Dma> regs;     // SPLB on PLB1
     tlm_utils::simple_initiator_socket<Dma> mplb;  // bursts on PLB2

@@ -23,6 +23,8 @@
 #include "fhg_registers.h"
 #include "hessian_core.h"
 #include "local_max_finder.h"
+#include "models/common/parameter.h"
+#include "models/common/register_target.h"
 #include "models/common/tracer.h"
 #include "models/common/units.h"
 #include "models/pixelbus/pixel_bus.h"
@@ -45,8 +47,10 @@ public:
         unsigned det_row_buffers = 2;  // block rows of determinants waiting for the writer
         unsigned max_width = 1024, max_height = 1024;
         uint64_t dma_transaction_bytes = 0;  // bytes per TLM transaction: 0 = a whole line (DmaEngine)
-        Duration register_latency{};         // a register access, as PLB1 sees it
+        RegisterTiming registers;  // a register access: its cycles (block.register_latency) of PLB1's clock
     };
+    // Its scenario parameters with the Params field each sets (fhg_params.cpp).
+    static const ParamTable<Params>& parameter_table();
 
     // busy: the frames' whole time; computing: block rows; waiting for lines: the line FIFO
     // did not yet hold the next block row's window (the IIG and PixelBus behind); waiting for

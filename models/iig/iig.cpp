@@ -42,7 +42,7 @@ Iig::Iig(const sc_core::sc_module_name& name, const Params& params, Tracer& trac
 }
 
 void Iig::b_transport(tlm::tlm_generic_payload& tx, sc_time& delay) {
-    answer_register_access(tx, delay, params_.register_latency, [this](uint32_t offset, uint32_t& value, bool write) {
+    answer_register_access(tx, delay, params_.registers.latency(), [this](uint32_t offset, uint32_t& value, bool write) {
         return registers_.access(offset, value, write);
     });
 }

@@ -18,6 +18,8 @@
 
 #include "iig_registers.h"
 #include "integral_core.h"
+#include "models/common/parameter.h"
+#include "models/common/register_target.h"
 #include "models/common/tracer.h"
 #include "models/common/units.h"
 #include "models/pixelbus/pixel_bus.h"
@@ -36,8 +38,10 @@ public:
         unsigned line_buffers = 2;
         unsigned max_width = 1024, max_height = 1024;
         uint64_t dma_transaction_bytes = 0;  // bytes per TLM transaction: 0 = a whole line (DmaEngine)
-        Duration register_latency{};         // a register access, as PLB1 sees it
+        RegisterTiming registers;  // a register access: its cycles (block.register_latency) of PLB1's clock
     };
+    // Its scenario parameters with the Params field each sets (iig_params.cpp).
+    static const ParamTable<Params>& parameter_table();
 
     // Where the integral core's time goes (its compute unit's view of the pipeline): adding
     // rows, waiting for the fetch unit's image rows (image DMA), or waiting for room to hand a

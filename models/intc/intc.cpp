@@ -41,7 +41,7 @@ void Intc::update() {
 }
 
 void Intc::b_transport(tlm::tlm_generic_payload& tx, sc_core::sc_time& delay) {
-    answer_register_access(tx, delay, params_.register_latency, [this](uint32_t offset, uint32_t& value, bool write) {
+    answer_register_access(tx, delay, params_.registers.latency(), [this](uint32_t offset, uint32_t& value, bool write) {
         return registers_.access(offset, value, write);
     });
 }

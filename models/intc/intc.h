@@ -8,6 +8,8 @@
 #include <tlm_utils/simple_target_socket.h>
 
 #include "intc_registers.h"
+#include "models/common/parameter.h"
+#include "models/common/register_target.h"
 #include "models/common/tracer.h"
 #include "models/common/units.h"
 
@@ -17,8 +19,10 @@ class Intc : public sc_core::sc_module {
 public:
     struct Params {
         unsigned inputs = 12;
-        Duration register_latency{};  // a register access, as PLB1 sees it
+        RegisterTiming registers;  // a register access: its cycles (block.register_latency) of PLB1's clock
     };
+    // Its scenario parameters with the Params field each sets (intc_params.cpp).
+    static const ParamTable<Params>& parameter_table();
 
     tlm_utils::simple_target_socket<Intc> regs;  // SPLB on PLB1
     sc_core::sc_vector<sc_core::sc_in<bool>> irq_in;

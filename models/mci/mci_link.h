@@ -14,6 +14,7 @@
 #include <tlm_utils/simple_initiator_socket.h>
 #include <tlm_utils/simple_target_socket.h>
 
+#include "models/common/parameter.h"
 #include "models/common/units.h"
 
 namespace surfvp {
@@ -25,6 +26,8 @@ public:
         unsigned width_bits = 128;
         unsigned latency_cycles = 4;  // crossbar request and MCI address phase
     };
+    // Its scenario parameters with the Params field each sets (mci_link_params.cpp).
+    static const ParamTable<Params>& parameter_table();
 
     struct Stats {
         uint64_t reads = 0, writes = 0, bytes_read = 0, bytes_written = 0;

@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "busy_timeline.h"
+#include "models/common/parameter.h"
 #include "models/common/units.h"
 
 namespace surfvp {
@@ -36,6 +37,8 @@ public:
         unsigned latency_cycles = 25;       // a read's, before the first data
         unsigned write_latency_cycles = 0;  // a write's, as its master sees it (posted)
     };
+    // Its scenario parameters with the Params field each sets (ddr_memory_params.cpp).
+    static const ParamTable<Params>& parameter_table();
 
     struct PortStats {
         std::string name;

@@ -29,6 +29,7 @@
 #include <tlm_utils/multi_passthrough_target_socket.h>
 #include <vector>
 
+#include "models/common/parameter.h"
 #include "models/common/tracer.h"
 #include "models/common/units.h"
 
@@ -46,6 +47,10 @@ public:
         unsigned address_cycles = 1;
         Arbitration arbitration = Arbitration::round_robin;
     };
+    // The scenario parameters of the bus named `bus` ("plb1"), with the Params field each sets
+    // (plb_params.cpp); the two PLBs differ only in their width's default and its source.
+    static ParamTable<Params> parameter_table(const std::string& bus, const std::string& width,
+                                              const std::string& width_source, const std::string& role);
 
     struct MasterStats {
         std::string name;

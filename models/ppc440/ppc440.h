@@ -17,6 +17,7 @@
 #include <tlm_utils/tlm_quantumkeeper.h>
 #include <vector>
 
+#include "models/common/parameter.h"
 #include "models/common/tracer.h"
 #include "models/common/units.h"
 #include "models/common/hal.h"
@@ -31,6 +32,8 @@ public:
         unsigned line_bytes = 32;   // the L1 line: memory goes in lines of this size
         std::vector<std::string> markers;  // names of the software's markers (HAL mark())
     };
+    // Its scenario parameters with the Params field each sets (ppc440_params.cpp).
+    static const ParamTable<Params>& parameter_table();
     using Software = std::function<void(sw::Hal&)>;
 
     struct Stats {

@@ -18,7 +18,7 @@ struct ConfigError : std::runtime_error {
     using std::runtime_error::runtime_error;
 };
 
-class Config {
+class Config : public ParamValues {
 public:
     struct Entry {
         const ParamSpec* spec;
@@ -31,16 +31,16 @@ public:
     // Throws ConfigError naming `where`, the key and the problem.
     void set(const std::string& key, const std::string& value, const std::string& origin);
 
-    Frequency frequency(const std::string& key) const;
-    Duration duration(const std::string& key) const;
-    unsigned bits(const std::string& key) const;
-    Bytes bytes(const std::string& key) const;
-    uint64_t cycles(const std::string& key) const;
-    unsigned beats(const std::string& key) const;
-    uint64_t count(const std::string& key) const;
-    double real(const std::string& key) const;
+    Frequency frequency(const std::string& key) const override;
+    Duration duration(const std::string& key) const override;
+    unsigned bits(const std::string& key) const override;
+    Bytes bytes(const std::string& key) const override;
+    uint64_t cycles(const std::string& key) const override;
+    unsigned beats(const std::string& key) const override;
+    uint64_t count(const std::string& key) const override;
+    double real(const std::string& key) const override;
     uint32_t address(const std::string& key) const;
-    const std::string& choice(const std::string& key) const;
+    const std::string& choice(const std::string& key) const override;
     const std::string& text(const std::string& key) const;
     // Any parameter: its value as written, and as a number in its kind's base unit (0 for
     // choices and texts).

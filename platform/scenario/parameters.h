@@ -1,32 +1,27 @@
 #pragma once
-// Every scenario parameter, defined once: its key ("section.name"), the kind of value (and
-// so its units), its default, its range, a one-line description, and the source of the
-// default or the assumption behind it ([S] sourced, [D] derived, [A] assumed; see
+// Every scenario parameter, declared once: a block's beside its Params (models/*/*_params.cpp,
+// models/common/parameter.h), the platform's here. Each has its key ("section.name"), the kind
+// of value (and so its units), its default, its range, a one-line description, and the source
+// of the default or the assumption behind it ([S] sourced, [D] derived, [A] assumed; see
 // docs/parameters.md, which `surfvp params` prints).
 #include <string>
 #include <string_view>
 #include <vector>
 
+#include "models/common/parameter.h"
+#include "models/plb/plb_bus.h"
+
 namespace surfvp {
 
-enum class ParamKind { frequency, duration, bits, bytes, cycles, beats, count, real, choice, address, text };
-
-struct ParamSpec {
-    std::string key;
-    ParamKind kind;
-    std::string default_value;
-    double min;                        // in the kind's base unit (Hz, ps, bit, B, cycles, beats)
-    double max;
-    std::vector<std::string> choices;  // for ParamKind::choice
-    std::string description;
-    std::string source;
-    // The assumption band (every [A] parameter has one; a few uncertain others too): the
-    // plausible low and high values and why. Empty when the parameter has none.
-    struct Band {
-        std::string low, high, why;
-    } band{};
+// The two PLBs' declarations (models/plb/plb_params.cpp), by bus name.
+struct PlbDeclaration {
+    std::string bus;
+    ParamTable<PlbBus::Params> table;
 };
+const std::vector<PlbDeclaration>& plb_declarations();
 
+// Every parameter: the blocks' own declarations (models/*/*_params.cpp) and the platform's
+// (run, workload, verdict, software settings), in the order docs/parameters.md lists them.
 const std::vector<ParamSpec>& parameter_table();
 const ParamSpec* find_parameter(std::string_view key);
 
