@@ -76,74 +76,6 @@ Fhg::Params fhg_params(const Config& c) {
     return p;
 }
 
-namespace {
-
-nlohmann::ordered_json seconds(const sc_core::sc_time& t) { return t.to_seconds(); }
-
-double share(const sc_core::sc_time& part, const sc_core::sc_time& whole) {
-    return whole > sc_core::SC_ZERO_TIME ? part.to_seconds() / whole.to_seconds() : 0.0;
-}
-
-nlohmann::ordered_json iig_report(const Iig& iig, const sc_core::sc_time& elapsed) {
-    const auto& s = iig.stats();
-    return {{"frames", s.frames}, {"errors", iig.errors()}, {"busy_s", seconds(s.busy)},
-            {"computing_s", seconds(s.computing)}, {"utilisation", share(s.computing, elapsed)},
-            {"waiting_for_image_s", seconds(s.waiting_for_image)}, {"blocked_by_write_s", seconds(s.blocked_by_write)},
-            {"blocked_by_pixelbus_s", seconds(s.blocked_by_pixelbus)}, {"send_stalled_s", seconds(s.stalled)}};
-}
-
-nlohmann::ordered_json fhg_report(const Fhg& fhg, const sc_core::sc_time& elapsed) {
-    const auto& s = fhg.stats();
-    return {{"frames", s.frames}, {"errors", fhg.errors()},
-            {"cycles_per_block", fhg.block_cycles()}, {"block_limit", fhg.block_limit()},
-            {"schedules", schedule_figures(fhg.params())},
-            {"busy_s", seconds(s.busy)}, {"computing_s", seconds(s.computing)}, {"utilisation", share(s.computing, elapsed)},
-            {"waiting_for_lines_s", seconds(s.waiting_for_lines)}, {"waiting_for_writer_s", seconds(s.waiting_for_writer)},
-            {"candidates", s.candidates}, {"candidates_dropped", s.dropped},
-            {"maxima_fifo_high_water", s.fifo_high_water}, {"line_fifo_high_water", s.lines_high_water}};
-}
-
-// The CPU's memory link; all zero when the CPU's memory goes over PLB1 instead.
-nlohmann::ordered_json mci_report(const MciLink* mci, const sc_core::sc_time& elapsed) {
-    const MciLink::Stats s = mci ? mci->stats() : MciLink::Stats{};
-    return {{"present", mci != nullptr}, {"reads", s.reads}, {"writes", s.writes}, {"bytes_read", s.bytes_read},
-            {"bytes_written", s.bytes_written}, {"busy_s", seconds(s.busy)}, {"utilisation", share(s.busy, elapsed)},
-            {"wait_s", seconds(s.wait)}};
-}
-
-// One block: its object; several: an array of them.
-template <typename Block, typename Report>
-nlohmann::ordered_json blocks_report(const std::vector<std::unique_ptr<Block>>& blocks, Report report,
-                                     const sc_core::sc_time& elapsed) {
-    if (blocks.size() == 1) return report(*blocks[0], elapsed);
-    nlohmann::ordered_json all = nlohmann::ordered_json::array();
-    for (const auto& b : blocks) all.push_back(report(*b, elapsed));
-    return all;
-}
-
-nlohmann::ordered_json bus_report(const PlbBus& bus, const sc_core::sc_time& elapsed) {
-    nlohmann::ordered_json masters = nlohmann::ordered_json::object();
-    for (const auto& m : bus.master_stats()) {
-        nlohmann::ordered_json histogram = nlohmann::ordered_json::object();
-        for (size_t b = 0; b < m.wait_histogram.size(); ++b) histogram[PlbBus::wait_bin_name(b)] = m.wait_histogram[b];
-        masters[m.name] = {{"bursts", m.bursts}, {"bytes_read", m.bytes_read},
-                           {"bytes_written", m.bytes_written}, {"errors", m.errors},
-                           {"busy_s", seconds(m.busy)}, {"wait_s", seconds(m.wait)},
-                           {"max_wait_s", seconds(m.max_wait)}, {"bursts_by_wait_cycles", histogram}};
-    }
-    const auto& p = bus.params();
-    return {{"clock_hz", p.clock.hz},
-            {"width_bits", p.width_bits},
-            {"read", {{"bursts", bus.read_stats().bursts}, {"bytes", bus.read_stats().bytes},
-                      {"busy_s", seconds(bus.read_stats().busy)}, {"utilisation", share(bus.read_stats().busy, elapsed)}}},
-            {"write", {{"bursts", bus.write_stats().bursts}, {"bytes", bus.write_stats().bytes},
-                       {"busy_s", seconds(bus.write_stats().busy)}, {"utilisation", share(bus.write_stats().busy, elapsed)}}},
-            {"decode_errors", bus.decode_errors()},
-            {"masters", masters}};
-}
-
-}  // namespace
-
 Soc::Soc(const Config& c, Tracer& tracer) : workload_(make_workload(c)) {
     try {
         build(c, tracer);
@@ -222,6 +154,7 @@ void Soc::build(const Config& c, Tracer& tracer) {
     }
 
     wire_interrupts(tracer);
+    register_statistics();
 }
 
 // Block lines into the INTC, the INTC into the CPU; unused inputs held low.
@@ -252,35 +185,28 @@ void Soc::wire_interrupts(Tracer& tracer) {
 
 uint64_t Soc::bus_transactions() const { return plb1_->tlm_transactions() + plb2_->tlm_transactions(); }
 
-nlohmann::ordered_json Soc::report(const sc_core::sc_time& elapsed) const {
-    nlohmann::ordered_json ports = nlohmann::ordered_json::object();
-    uint64_t bytes_read = 0, bytes_written = 0;
-    for (const auto& p : memory_->port_stats()) {
-        ports[p.name] = {{"reads", p.reads}, {"writes", p.writes}, {"bytes_read", p.bytes_read},
-                         {"bytes_written", p.bytes_written}, {"wait_s", seconds(p.wait)}};
-        bytes_read += p.bytes_read;
-        bytes_written += p.bytes_written;
+// Every block's statistics under its place in report.json; several pairs are numbered. The
+// wiring adds what only it knows: which path the CPU's memory takes, and that port's wait.
+void Soc::register_statistics() {
+    plb1_->register_statistics(statistics_.scope("buses.plb1"));
+    plb2_->register_statistics(statistics_.scope("buses.plb2"));
+    if (mci_) mci_->register_statistics(statistics_.scope("mci"));
+    memory_->register_statistics(statistics_.scope("memory"));
+    const Statistics::Scope cpu = statistics_.scope("cpu");
+    cpu_->register_statistics(cpu);
+    cpu.text("memory.path", [this] { return cpu_memory_path_; }, "the CPU's way to DDR: mci or plb1");
+    cpu.time("memory.ddr_wait_s", [this] {
+        for (const auto& p : memory_->port_stats())
+            if (p.name == cpu_memory_path_) return p.wait;  // the CPU is the only master behind that port
+        return sc_core::SC_ZERO_TIME;
+    }, "the CPU's accesses waiting for the DRAM behind the DMA's");
+    intc_->register_statistics(statistics_.scope("interrupts"));
+    dma_->register_statistics(statistics_.scope("dma"));
+    for (size_t k = 0; k < iigs_.size(); ++k) {
+        const std::string n = iigs_.size() > 1 ? "." + std::to_string(k) : "";
+        iigs_[k]->register_statistics(statistics_.scope("iig" + n));
+        fhgs_[k]->register_statistics(statistics_.scope("fhg" + n));
     }
-    const auto& s = cpu_->stats();
-    const std::string& path = cpu_memory_path_;  // the CPU is the only master behind that DDR port
-    sc_core::sc_time ddr_wait;
-    for (const auto& p : memory_->port_stats())
-        if (p.name == path) ddr_wait = p.wait;
-    return {{"buses", {{"plb1", bus_report(*plb1_, elapsed)}, {"plb2", bus_report(*plb2_, elapsed)}}},
-            {"mci", mci_report(mci_.get(), elapsed)},
-            {"memory", {{"bytes_read", bytes_read}, {"bytes_written", bytes_written},
-                        {"busy_s", seconds(memory_->busy())}, {"utilisation", share(memory_->busy(), elapsed)},
-                        {"ports", ports}}},
-            {"cpu", {{"mmio_reads", s.mmio_reads}, {"mmio_writes", s.mmio_writes},
-                     {"memory", {{"path", path}, {"bytes_read", s.bytes_read}, {"bytes_written", s.bytes_written},
-                                 {"line_fills", s.fills}, {"write_backs", s.write_backs},
-                                 {"fill_stall_s", seconds(s.fill_stall)}, {"ddr_wait_s", seconds(ddr_wait)}}},
-                     {"cycles_consumed", s.cycles_consumed}, {"irq_waits", s.irq_waits},
-                     {"irq_wait_s", seconds(s.irq_wait_time)}}},
-            {"interrupts", {{"raised", intc_->interrupts_raised()}}},
-            {"dma", {{"copies", dma_->copies()}, {"bytes_copied", dma_->bytes_copied()}}},
-            {"iig", blocks_report(iigs_, iig_report, elapsed)},
-            {"fhg", blocks_report(fhgs_, fhg_report, elapsed)}};
 }
 
 }  // namespace surfvp

@@ -4,10 +4,10 @@
 // It holds no behaviour of its own.
 #include <memory>
 #include <vector>
-#include <nlohmann/json.hpp>
 #include <systemc>
 
 #include "platform/scenario/config.h"
+#include "models/common/statistics.h"
 #include "models/common/tracer.h"
 #include "models/dma/dma.h"
 #include "models/fhg/fhg.h"
@@ -43,14 +43,16 @@ public:
     const std::vector<std::unique_ptr<Fhg>>& fhgs() const { return fhgs_; }
     Workload& workload() { return *workload_; }
 
-    // Bus, memory, CPU and interrupt statistics over `elapsed` of simulated time.
-    nlohmann::ordered_json report(const sc_core::sc_time& elapsed) const;
+    // Every block's statistics, registered at elaboration (platform/report renders them).
+    const Statistics& statistics() const { return statistics_; }
     uint64_t bus_transactions() const;
 
 private:
     void build(const Config& config, Tracer& tracer);
     void wire_interrupts(Tracer& tracer);
+    void register_statistics();
 
+    Statistics statistics_;
     std::unique_ptr<Workload> workload_;
     std::unique_ptr<DdrMemory> memory_;
     std::unique_ptr<PlbBus> plb1_, plb2_;

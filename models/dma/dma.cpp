@@ -90,4 +90,9 @@ void Dma::copy_thread() {
     }
 }
 
+void Dma::register_statistics(Statistics::Scope s) const {
+    s.count("copies", [this] { return copies_; }, "copies", "copies done");
+    s.bytes("bytes_copied", [this] { return bytes_copied_; }, "bytes copied");
+}
+
 }  // namespace surfvp

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "dma_engine.h"
+#include "models/common/statistics.h"
 #include "models/common/parameter.h"
 #include "models/common/register_target.h"
 #include "models/common/register_bank.h"
@@ -38,6 +39,9 @@ public:
 
     uint64_t bytes_copied() const { return bytes_copied_; }
     uint64_t copies() const { return copies_; }
+
+    // Its statistics, registered at elaboration (after every connection) under `scope`.
+    void register_statistics(Statistics::Scope scope) const;
 
 private:
     void b_transport(tlm::tlm_generic_payload& tx, sc_core::sc_time& delay);

@@ -199,4 +199,20 @@ void Fhg::trace_levels() {
 
 void Fhg::update_irq() { irq.write(registers_.irq()); }
 
+void Fhg::register_statistics(Statistics::Scope s) const {
+    s.count("frames", [this] { return stats_.frames; }, "frames", "frames ended (done or failed)");
+    s.count("errors", [this] { return errors(); }, "errors", "ERRORs flagged");
+    s.value("cycles_per_block", block_cycles_, "cycles", "FHG cycles per 2x2 block");
+    s.text("block_limit", [this] { return std::string(block_limit()); }, "what sets the cycles per block");
+    s.time("busy_s", [this] { return stats_.busy; }, "from START to the last determinants written, summed");
+    s.time("computing_s", [this] { return stats_.computing; }, "computing block rows");
+    s.share("utilisation", [this] { return stats_.computing; }, "computing over the run");
+    s.time("waiting_for_lines_s", [this] { return stats_.waiting_for_lines; }, "waiting for the line FIFO to hold a block row's window");
+    s.time("waiting_for_writer_s", [this] { return stats_.waiting_for_writer; }, "waiting for a free determinant row buffer (PLB2)");
+    s.count("candidates", [this] { return stats_.candidates; }, "candidates", "local maxima marked");
+    s.count("candidates_dropped", [this] { return stats_.dropped; }, "candidates", "dropped on a full maxima FIFO");
+    s.high_water("maxima_fifo_high_water", [this] { return uint64_t(stats_.fifo_high_water); }, "entries", "the maxima FIFO's highest level");
+    s.high_water("line_fifo_high_water", [this] { return uint64_t(stats_.lines_high_water); }, "lines", "the line FIFO's highest level");
+}
+
 }  // namespace surfvp

@@ -23,6 +23,7 @@
 #include "fhg_registers.h"
 #include "hessian_core.h"
 #include "local_max_finder.h"
+#include "models/common/statistics.h"
 #include "models/common/parameter.h"
 #include "models/common/register_target.h"
 #include "models/common/tracer.h"
@@ -85,6 +86,9 @@ public:
     const Params& params() const { return params_; }
 
     void send_line(int y, const uint32_t* data, int width, const sc_core::sc_time& transfer) override;
+
+    // Its statistics, registered at elaboration (after every connection) under `scope`.
+    void register_statistics(Statistics::Scope scope) const;
 
 private:
     void b_transport(tlm::tlm_generic_payload& tx, sc_core::sc_time& delay);

@@ -151,4 +151,16 @@ void Iig::update_irq() {
     irq.write(registers_.irq());
 }
 
+void Iig::register_statistics(Statistics::Scope s) const {
+    s.count("frames", [this] { return stats_.frames; }, "frames", "frames ended (done or failed)");
+    s.count("errors", [this] { return errors(); }, "errors", "ERRORs flagged");
+    s.time("busy_s", [this] { return stats_.busy; }, "from START to the last row written and sent, summed");
+    s.time("computing_s", [this] { return stats_.computing; }, "the integral core adding rows");
+    s.share("utilisation", [this] { return stats_.computing; }, "computing over the run");
+    s.time("waiting_for_image_s", [this] { return stats_.waiting_for_image; }, "the core waiting for image rows (image DMA)");
+    s.time("blocked_by_write_s", [this] { return stats_.blocked_by_write; }, "the core waiting for the write unit (integral DMA)");
+    s.time("blocked_by_pixelbus_s", [this] { return stats_.blocked_by_pixelbus; }, "the core waiting for the send unit (PixelBus)");
+    s.time("send_stalled_s", [this] { return stats_.stalled; }, "the send unit waiting on PixelBus back-pressure");
+}
+
 }  // namespace surfvp

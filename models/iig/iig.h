@@ -18,6 +18,7 @@
 
 #include "iig_registers.h"
 #include "integral_core.h"
+#include "models/common/statistics.h"
 #include "models/common/parameter.h"
 #include "models/common/register_target.h"
 #include "models/common/tracer.h"
@@ -64,6 +65,9 @@ public:
     const Stats& stats() const { return stats_; }
     uint64_t errors() const { return registers_.status().errors(); }
     const Params& params() const { return params_; }
+
+    // Its statistics, registered at elaboration (after every connection) under `scope`.
+    void register_statistics(Statistics::Scope scope) const;
 
 private:
     void b_transport(tlm::tlm_generic_payload& tx, sc_core::sc_time& delay);

@@ -8,6 +8,7 @@
 #include <tlm_utils/simple_target_socket.h>
 
 #include "intc_registers.h"
+#include "models/common/statistics.h"
 #include "models/common/parameter.h"
 #include "models/common/register_target.h"
 #include "models/common/tracer.h"
@@ -31,6 +32,9 @@ public:
     Intc(const sc_core::sc_module_name& name, const Params& params, Tracer& tracer);
 
     uint64_t interrupts_raised() const { return raised_; }
+
+    // Its statistics, registered at elaboration (after every connection) under `scope`.
+    void register_statistics(Statistics::Scope scope) const;
 
 private:
     void b_transport(tlm::tlm_generic_payload& tx, sc_core::sc_time& delay);

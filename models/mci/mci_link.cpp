@@ -52,4 +52,14 @@ bool MciLink::get_direct_mem_ptr(tlm::tlm_generic_payload& tx, tlm::tlm_dmi& dmi
 
 unsigned MciLink::transport_dbg(tlm::tlm_generic_payload& tx) { return memory->transport_dbg(tx); }
 
+void MciLink::register_statistics(Statistics::Scope s) const {
+    s.count("reads", [this] { return stats_.reads; }, "accesses", "reads");
+    s.count("writes", [this] { return stats_.writes; }, "accesses", "writes");
+    s.bytes("bytes_read", [this] { return stats_.bytes_read; }, "bytes read");
+    s.bytes("bytes_written", [this] { return stats_.bytes_written; }, "bytes written");
+    s.time("busy_s", [this] { return stats_.busy; }, "the link carrying an access");
+    s.share("utilisation", [this] { return stats_.busy; }, "busy over the run");
+    s.time("wait_s", [this] { return stats_.wait; }, "requests waiting behind earlier ones");
+}
+
 }  // namespace surfvp

@@ -14,6 +14,7 @@
 #include <tlm_utils/simple_initiator_socket.h>
 #include <tlm_utils/simple_target_socket.h>
 
+#include "models/common/statistics.h"
 #include "models/common/parameter.h"
 #include "models/common/units.h"
 
@@ -45,6 +46,9 @@ public:
 
     const Stats& stats() const { return stats_; }
     const Params& params() const { return params_; }
+
+    // Its statistics, registered at elaboration (after every connection) under `scope`.
+    void register_statistics(Statistics::Scope scope) const;
 
 private:
     void b_transport(tlm::tlm_generic_payload& tx, sc_core::sc_time& delay);

@@ -113,4 +113,26 @@ unsigned DdrMemory::transport_dbg(int, tlm::tlm_generic_payload& tx) {
     return n;
 }
 
+void DdrMemory::register_statistics(Statistics::Scope s) const {
+    auto total = [this](uint64_t PortStats::*field) {
+        return [this, field] {
+            uint64_t sum = 0;
+            for (const PortStats& p : port_stats_) sum += p.*field;
+            return sum;
+        };
+    };
+    s.bytes("bytes_read", total(&PortStats::bytes_read), "bytes read, all ports");
+    s.bytes("bytes_written", total(&PortStats::bytes_written), "bytes written, all ports");
+    s.time("busy_s", [this] { return busy_; }, "the DRAM transferring data");
+    s.share("utilisation", [this] { return busy_; }, "busy over the run");
+    for (size_t i = 0; i < port_stats_.size(); ++i) {
+        const Statistics::Scope p = s / "ports" / port_stats_[i].name;
+        p.count("reads", [this, i] { return port_stats_[i].reads; }, "accesses", "reads on this port");
+        p.count("writes", [this, i] { return port_stats_[i].writes; }, "accesses", "writes on this port");
+        p.bytes("bytes_read", [this, i] { return port_stats_[i].bytes_read; }, "bytes read on this port");
+        p.bytes("bytes_written", [this, i] { return port_stats_[i].bytes_written; }, "bytes written on this port");
+        p.time("wait_s", [this, i] { return port_stats_[i].wait; }, "waiting for the DRAM behind other accesses");
+    }
+}
+
 }  // namespace surfvp

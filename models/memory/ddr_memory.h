@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "busy_timeline.h"
+#include "models/common/statistics.h"
 #include "models/common/parameter.h"
 #include "models/common/units.h"
 
@@ -68,6 +69,9 @@ public:
     const std::vector<PortStats>& port_stats() const { return port_stats_; }
     sc_core::sc_time busy() const { return busy_; }
     const Params& params() const { return params_; }
+
+    // Its statistics, registered at elaboration (after every connection) under `scope`.
+    void register_statistics(Statistics::Scope scope) const;
 
 private:
     void b_transport(int port, tlm::tlm_generic_payload& tx, sc_core::sc_time& delay);

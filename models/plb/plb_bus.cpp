@@ -280,4 +280,33 @@ void PlbBus::invalidate_direct_mem_ptr(int slave, sc_dt::uint64 start, sc_dt::ui
     }
 }
 
+void PlbBus::register_statistics(Statistics::Scope s) const {
+    s.value("clock_hz", params_.clock.hz, "Hz", "bus clock");
+    s.value("width_bits", params_.width_bits, "bit", "data width");
+    for (const auto& [name, path] : {std::pair{"read", &read_}, std::pair{"write", &write_}}) {
+        const Statistics::Scope d = s / name;
+        d.count("bursts", [path = path] { return path->stats.bursts; }, "bursts", "bursts on this data path");
+        d.bytes("bytes", [path = path] { return path->stats.bytes; }, "bytes on this data path");
+        d.time("busy_s", [path = path] { return path->stats.busy; }, "the data path carrying a burst");
+        d.share("utilisation", [path = path] { return path->stats.busy; }, "busy over the run");
+    }
+    s.count("decode_errors", [this] { return decode_errors_; }, "accesses", "addresses no slave answers");
+    for (size_t i = 0; i < master_stats_.size(); ++i) {
+        const Statistics::Scope m = s / "masters" / master_stats_[i].name;
+        const MasterStats& st = master_stats_[i];
+        m.count("bursts", [&st] { return st.bursts; }, "bursts", "bursts granted");
+        m.bytes("bytes_read", [&st] { return st.bytes_read; }, "bytes read");
+        m.bytes("bytes_written", [&st] { return st.bytes_written; }, "bytes written");
+        m.count("errors", [&st] { return st.errors; }, "bursts", "error responses");
+        m.time("busy_s", [&st] { return st.busy; }, "from grant to the end of its bursts");
+        m.time("wait_s", [&st] { return st.wait; }, "from request to grant, summed");
+        m.max_time("max_wait_s", [&st] { return st.max_wait; }, "the longest wait for a grant");
+        m.histogram("bursts_by_wait_cycles", [&st] {
+            std::vector<std::pair<std::string, uint64_t>> bins;
+            for (size_t b = 0; b < st.wait_histogram.size(); ++b) bins.emplace_back(wait_bin_name(b), st.wait_histogram[b]);
+            return bins;
+        }, "bursts", "bursts by their wait in bus cycles");
+    }
+}
+
 }  // namespace surfvp

@@ -29,6 +29,7 @@
 #include <tlm_utils/multi_passthrough_target_socket.h>
 #include <vector>
 
+#include "models/common/statistics.h"
 #include "models/common/parameter.h"
 #include "models/common/tracer.h"
 #include "models/common/units.h"
@@ -96,6 +97,9 @@ public:
     const PathStats& write_stats() const { return write_.stats; }
     uint64_t decode_errors() const { return decode_errors_; }
     uint64_t tlm_transactions() const { return tlm_transactions_; }  // a simulation figure: depends on how masters batch
+
+    // Its statistics, registered at elaboration (after every connection) under `scope`.
+    void register_statistics(Statistics::Scope scope) const;
 
 private:
     struct Route {

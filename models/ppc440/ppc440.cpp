@@ -213,4 +213,18 @@ void Ppc440::end() {
     spans_.pop_back();
 }
 
+void Ppc440::register_statistics(Statistics::Scope s) const {
+    s.count("mmio_reads", [this] { return stats_.mmio_reads; }, "accesses", "register reads over PLB1");
+    s.count("mmio_writes", [this] { return stats_.mmio_writes; }, "accesses", "register writes over PLB1");
+    const Statistics::Scope m = s / "memory";
+    m.bytes("bytes_read", [this] { return stats_.bytes_read; }, "read on the memory path: copies and line fills");
+    m.bytes("bytes_written", [this] { return stats_.bytes_written; }, "written on the memory path: copies and write-backs");
+    m.count("line_fills", [this] { return stats_.fills; }, "lines", "L1 line fills");
+    m.count("write_backs", [this] { return stats_.write_backs; }, "lines", "L1 write-backs");
+    m.time("fill_stall_s", [this] { return stats_.fill_stall; }, "the CPU waiting for its line fills");
+    s.count("cycles_consumed", [this] { return stats_.cycles_consumed; }, "cycles", "work, without the stalls");
+    s.count("irq_waits", [this] { return stats_.irq_waits; }, "waits", "times the software slept on the interrupt");
+    s.time("irq_wait_s", [this] { return stats_.irq_wait_time; }, "asleep on the interrupt");
+}
+
 }  // namespace surfvp

@@ -17,6 +17,7 @@
 #include <tlm_utils/tlm_quantumkeeper.h>
 #include <vector>
 
+#include "models/common/statistics.h"
 #include "models/common/parameter.h"
 #include "models/common/tracer.h"
 #include "models/common/units.h"
@@ -57,6 +58,9 @@ public:
     const sc_core::sc_time& finish_time() const { return finish_time_; }
     const std::string& error() const { return error_; }  // empty unless the software threw
     const Stats& stats() const { return stats_; }
+
+    // Its statistics, registered at elaboration (after every connection) under `scope`.
+    void register_statistics(Statistics::Scope scope) const;
 
 private:
     void run();

@@ -6,6 +6,8 @@
 #include <fstream>
 #include <stdexcept>
 
+#include "platform/report/statistics_json.h"
+
 namespace surfvp {
 namespace {
 
@@ -17,31 +19,45 @@ std::string mib(double bytes) {
     return bytes < 10240 ? fmt::format("{:.0f} B", bytes) : fmt::format("{:.2f} MiB", bytes / (1024.0 * 1024.0));
 }
 
-// Each path's traffic (MiB and MB/s over the run) and each master that used the bus.
-void bus_section(std::string& md, const std::string& name, const nlohmann::ordered_json& bus, double seconds) {
+// Each path's traffic (in total, per frame, MB/s over the run) and each master that used the bus.
+void bus_section(std::string& md, const std::string& name, const nlohmann::ordered_json& bus, double seconds, double frames) {
     md += fmt::format("\n### {} ({} bit at {} MHz)\n\n", name, bus["width_bits"].get<unsigned>(),
                       bus["clock_hz"].get<double>() / 1e6);
-    md += "| path | bursts | bytes | MB/s | busy | utilisation |\n|---|---:|---:|---:|---:|---:|\n";
+    md += "| path | bursts | bytes | per frame | MB/s | busy | utilisation |\n|---|---:|---:|---:|---:|---:|---:|\n";
     for (const char* path : {"read", "write"}) {
         const auto& p = bus[path];
         const double bytes = p["bytes"].get<double>();
-        md += fmt::format("| {} | {} | {} | {:.1f} | {} | {} |\n", path, p["bursts"].get<uint64_t>(), mib(bytes),
-                          seconds > 0 ? bytes / seconds / 1e6 : 0.0, ms(p["busy_s"]), percent(p["utilisation"]));
+        md += fmt::format("| {} | {} | {} | {} | {:.1f} | {} | {} |\n", path, p["bursts"].get<uint64_t>(), mib(bytes),
+                          mib(bytes / frames), seconds > 0 ? bytes / seconds / 1e6 : 0.0, ms(p["busy_s"]), percent(p["utilisation"]));
     }
-    md += "\n| master | bursts | read | written | busy | waited | mean wait | max wait | bursts by wait (bus cycles) | errors |\n"
-          "|---|---:|---:|---:|---:|---:|---:|---:|---|---:|\n";
+    md += "\n| master | bursts | read | written | per frame (read + written) | busy | waited | mean wait | max wait | "
+          "bursts by wait (bus cycles) | errors |\n|---|---:|---:|---:|---:|---:|---:|---:|---:|---|---:|\n";
     for (const auto& [master, m] : bus["masters"].items()) {
         if (m["bursts"].get<uint64_t>() == 0 && m["errors"].get<uint64_t>() == 0) continue;  // idle: no row
         std::string histogram;
         for (const auto& [bin, n] : m["bursts_by_wait_cycles"].items())
             if (n.get<uint64_t>()) histogram += fmt::format("{}{}: {}", histogram.empty() ? "" : ", ", bin, n.get<uint64_t>());
         const double bursts = std::max(1.0, m["bursts"].get<double>());
-        md += fmt::format("| {} | {} | {} | {} | {} | {} | {:.1f} ns | {:.1f} ns | {} | {} |\n", master,
-                          m["bursts"].get<uint64_t>(), mib(m["bytes_read"].get<double>()),
-                          mib(m["bytes_written"].get<double>()), ms(m["busy_s"]), ms(m["wait_s"]),
-                          m["wait_s"].get<double>() / bursts * 1e9, m["max_wait_s"].get<double>() * 1e9, histogram,
-                          m["errors"].get<uint64_t>());
+        const double read = m["bytes_read"].get<double>(), written = m["bytes_written"].get<double>();
+        md += fmt::format("| {} | {} | {} | {} | {} | {} | {} | {:.1f} ns | {:.1f} ns | {} | {} |\n", master,
+                          m["bursts"].get<uint64_t>(), mib(read), mib(written), mib((read + written) / frames),
+                          ms(m["busy_s"]), ms(m["wait_s"]), m["wait_s"].get<double>() / bursts * 1e9,
+                          m["max_wait_s"].get<double>() * 1e9, histogram, m["errors"].get<uint64_t>());
     }
+}
+
+// The DDR: bytes over its ports in total and per frame, MB/s, busy; each port's wait.
+std::string memory_section(const nlohmann::ordered_json& mem, double seconds, double frames) {
+    const double read = mem["bytes_read"].get<double>(), written = mem["bytes_written"].get<double>();
+    std::string md = fmt::format(
+        "\n### DDR\n\n{} read, {} written ({} per frame, {:.1f} MB/s); DRAM busy {} ({}).\n\n"
+        "| port | reads | writes | read | written | waited |\n|---|---:|---:|---:|---:|---:|\n",
+        mib(read), mib(written), mib((read + written) / frames), seconds > 0 ? (read + written) / seconds / 1e6 : 0.0,
+        ms(mem["busy_s"]), percent(mem["utilisation"]));
+    for (const auto& [port, p] : mem["ports"].items())
+        md += fmt::format("| {} | {} | {} | {} | {} | {} |\n", port, p["reads"].get<uint64_t>(), p["writes"].get<uint64_t>(),
+                          mib(p["bytes_read"].get<double>()), mib(p["bytes_written"].get<double>()), ms(p["wait_s"]));
+    return md;
 }
 
 // Per resource: its frame period, busy, each wait, idle, and what it alone would allow.
@@ -63,9 +79,18 @@ std::string time_table(const nlohmann::ordered_json& table, bool budget) {
     return md;
 }
 
-// The verdict on frames: rate, budget, latency, where the time goes.
+std::string median_keypoints(const nlohmann::ordered_json& r) {
+    std::vector<double> kp;
+    if (r.contains("workload") && r["workload"].contains("per_frame"))
+        for (const auto& f : r["workload"]["per_frame"]) kp.push_back(f["keypoints"].get<double>());
+    if (kp.empty()) return "-";
+    std::sort(kp.begin(), kp.end());
+    return fmt::format("{:.0f}", kp[kp.size() / 2]);
+}
+
+// The figures behind the verdict: rate, budget, latency, keypoints, threshold, where the time goes.
 std::string frames_section(const nlohmann::ordered_json& r) {
-    std::string md = "\n## Frames\n\n| | |\n|---|---:|\n";
+    std::string md = "\n## Frames: the figures behind the verdict\n\n| | |\n|---|---:|\n";
     md += fmt::format("| image | {} x {} |\n", r["image"]["width"].get<int>(), r["image"]["height"].get<int>());
     md += fmt::format("| frames done | {} of {} |\n", r["frames_done"].get<size_t>(), r["frames"].get<size_t>());
     md += fmt::format("| throughput | **{:.2f} frames/s** |\n", r["throughput_fps"].get<double>());
@@ -73,8 +98,8 @@ std::string frames_section(const nlohmann::ordered_json& r) {
         md += fmt::format("| budget | {:.2f} frames/s: **{}** |\n", r["budget"]["fps"].get<double>(),
                           r["budget"]["met"].get<bool>() ? "met" : "MISSED");
     md += fmt::format("| latency (hardware start to descriptors) | {:.2f} ms |\n", r["latency_ms"].get<double>());
-    md += fmt::format("| keypoints per frame | {:.1f} (min {}, max {}) |\n", r["keypoints_per_frame"].get<double>(),
-                      r["keypoints_per_frame_range"][0].dump(), r["keypoints_per_frame_range"][1].dump());
+    md += fmt::format("| keypoints per frame | {:.1f} mean; min {}, median {}, max {} |\n", r["keypoints_per_frame"].get<double>(),
+                      r["keypoints_per_frame_range"][0].dump(), median_keypoints(r), r["keypoints_per_frame_range"][1].dump());
     if (r.contains("threshold_rule"))
         md += fmt::format("| determinant threshold | {:.3f}: {} |\n", r["threshold"].get<double>(),
                           r["threshold_rule"].get<std::string>());
@@ -99,8 +124,7 @@ std::string fps_or_dash(const nlohmann::ordered_json& side) {
 
 // The verdict and its doubt: the statement, the break-even values, the assumption band.
 std::string verdict_section(const nlohmann::ordered_json& v) {
-    std::string md = "\n## Verdict\n\n";
-    if (v.contains("statement")) md += fmt::format("**{}.**\n", v["statement"].get<std::string>());
+    std::string md = "\n## Verdict\n";  // its statement heads the report
     if (v.contains("limit")) md += fmt::format("\nLimited by {}: {}.\n", v["limit"]["resource"].get<std::string>(),
                                                v["limit"]["reason"].get<std::string>());
     if (v.contains("break_even")) {
@@ -202,7 +226,7 @@ std::string software_stage_section(const nlohmann::ordered_json& st) {
     const double keypoints = std::max(1.0, st["keypoints"].get<double>());
     const auto& rejected = st["rejected"];
     std::string md = fmt::format(
-        "\n## CPU software stage\n\n{} candidates from the maxima FIFOs: {} keypoints; rejected {} not a maximum of "
+        "\n### Software stage\n\n{} candidates from the maxima FIFOs: {} keypoints; rejected {} not a maximum of "
         "its 26 neighbours, {} by the interpolation, {} at the border.\n\n| step | cycles | per keypoint | share |\n"
         "|---|---:|---:|---:|\n",
         st["candidates"].get<uint64_t>(), st["keypoints"].get<uint64_t>(), rejected["not_maximum"].get<uint64_t>(),
@@ -245,7 +269,6 @@ std::string workload_section(const nlohmann::ordered_json& w) {
         }
         md += fmt::format("| {} | {} |\n", key, value.is_string() ? value.get<std::string>() : value.dump());
     }
-    if (w.contains("software_stage") && !w["software_stage"].is_null()) md += software_stage_section(w["software_stage"]);
     return md;
 }
 
@@ -281,9 +304,56 @@ std::string frames_csv(const nlohmann::ordered_json& per_frame) {
     return csv;
 }
 
+namespace {
+
+// One line at the top: the rate against the budget and what limits it.
+std::string headline(const nlohmann::ordered_json& r) {
+    if (r.contains("verdict") && r["verdict"].contains("statement"))
+        return fmt::format("**Verdict: {}.**\n\n", r["verdict"]["statement"].get<std::string>());
+    if (!r.contains("throughput_fps")) return "";
+    std::string line = fmt::format("**{:.2f} frames/s", r["throughput_fps"].get<double>());
+    if (!r["budget"].is_null())
+        line += fmt::format(" against a budget of {:.2f}: {}", r["budget"]["fps"].get<double>(),
+                            r["budget"]["met"].get<bool>() ? "met" : "MISSED");
+    if (r.contains("limit")) line += fmt::format("; limited by {}", r["limit"]["resource"].get<std::string>());
+    return line + ".**\n\n";
+}
+
+// The CPU: what it did over PLB1 and on its memory path; its software stage (by step, by
+// unit of work, its instructions, its L1).
+std::string cpu_section(const nlohmann::ordered_json& r) {
+    const auto& cpu = r["cpu"];
+    const auto& cpu_mem = cpu["memory"];
+    std::string md = fmt::format(
+        "\n## CPU (PPC440)\n\n{} register reads and {} register writes over PLB1; {} cycles of computation; "
+        "{} interrupt waits ({} asleep).\n\nMemory over {}: {} read ({} line fills), {} written ({} write-backs); the "
+        "CPU stalled {} for its fills, of which {} waiting for the DRAM behind other traffic.\n",
+        cpu["mmio_reads"].get<uint64_t>(), cpu["mmio_writes"].get<uint64_t>(), cpu["cycles_consumed"].get<uint64_t>(),
+        cpu["irq_waits"].get<uint64_t>(), ms(cpu["irq_wait_s"]),
+        cpu_mem["path"].get<std::string>() == "mci" ? "the memory controller interface (MCI)" : "PLB1",
+        mib(cpu_mem["bytes_read"].get<double>()), cpu_mem["line_fills"].get<uint64_t>(), mib(cpu_mem["bytes_written"].get<double>()),
+        cpu_mem["write_backs"].get<uint64_t>(), ms(cpu_mem["fill_stall_s"]), ms(cpu_mem["ddr_wait_s"]));
+    if (r.contains("workload") && r["workload"].contains("software_stage") && !r["workload"]["software_stage"].is_null())
+        md += software_stage_section(r["workload"]["software_stage"]);
+    return md;
+}
+
+std::string simulation_section(const nlohmann::ordered_json& r) {
+    std::string md = "\n## Simulation\n\n| | |\n|---|---:|\n";
+    md += fmt::format("| simulated time | {} |\n", ms(r["sim_time_s"]));
+    md += fmt::format("| wall time | {} |\n", ms(r["wall_time_s"]));
+    md += fmt::format("| real-time factor (simulated / wall) | {:.4g} |\n", r["real_time_factor"].get<double>());
+    md += fmt::format("| TLM transactions on the PLBs | {} ({:.3g} per wall second) |\n", r["transactions"].get<uint64_t>(),
+                      r["transactions_per_second"].get<double>());
+    return md;
+}
+
+}  // namespace
+
 std::string report_markdown(const nlohmann::ordered_json& r) {
     std::string md = fmt::format("# surfvp run: {}\n\n{}\n\n", r["scenario"]["name"].get<std::string>(),
                                  r["scenario"]["description"].get<std::string>());
+    md += headline(r);
     md += fmt::format("**Result: {}**", r["passed"].get<bool>() ? "passed" : "FAILED");
     if (r.contains("failure")) md += fmt::format(": {}", r["failure"].get<std::string>());
     md += "\n\n| check | result | detail |\n|---|---|---|\n";
@@ -292,33 +362,18 @@ std::string report_markdown(const nlohmann::ordered_json& r) {
                           c["detail"].get<std::string>());
     if (r.contains("verdict")) md += verdict_section(r["verdict"]);
     if (r.contains("throughput_fps")) md += frames_section(r);
-    md += "\n## Time\n\n| | |\n|---|---:|\n";
-    md += fmt::format("| simulated time | {} |\n", ms(r["sim_time_s"]));
-    md += fmt::format("| wall time | {} |\n", ms(r["wall_time_s"]));
-    md += fmt::format("| real-time factor (simulated / wall) | {:.4g} |\n", r["real_time_factor"].get<double>());
-    md += fmt::format("| TLM transactions on the PLBs | {} ({:.3g} per wall second) |\n", r["transactions"].get<uint64_t>(),
-                      r["transactions_per_second"].get<double>());
     md += accelerators_section(r);
-    md += "\n## Buses\n";
-    for (const auto& [name, bus] : r["buses"].items()) bus_section(md, name, bus, r["sim_time_s"].get<double>());
-    const auto& mem = r["memory"];
-    md += fmt::format("\n## Memory\n\n{} B read, {} B written over the DDR's ports; DRAM busy {} ({}).\n",
-                      mem["bytes_read"].get<uint64_t>(), mem["bytes_written"].get<uint64_t>(), ms(mem["busy_s"]),
-                      percent(mem["utilisation"]));
-    const auto& cpu = r["cpu"];
-    const auto& cpu_mem = cpu["memory"];
-    md += fmt::format("\n## CPU\n\n{} register reads and {} register writes over PLB1; {} cycles of computation; "
-                      "{} interrupt waits ({} asleep).\n\nMemory over {}: {} B read ({} line fills), {} B written "
-                      "({} write-backs); the CPU stalled {} for its fills, of which {} waiting for the DRAM behind "
-                      "other traffic.\n",
-                      cpu["mmio_reads"].get<uint64_t>(), cpu["mmio_writes"].get<uint64_t>(),
-                      cpu["cycles_consumed"].get<uint64_t>(), cpu["irq_waits"].get<uint64_t>(), ms(cpu["irq_wait_s"]),
-                      cpu_mem["path"].get<std::string>() == "mci" ? "the memory controller interface (MCI)" : "PLB1",
-                      cpu_mem["bytes_read"].get<uint64_t>(), cpu_mem["line_fills"].get<uint64_t>(),
-                      cpu_mem["bytes_written"].get<uint64_t>(), cpu_mem["write_backs"].get<uint64_t>(), ms(cpu_mem["fill_stall_s"]),
-                      ms(cpu_mem["ddr_wait_s"]));
+    if (r.contains("cpu")) md += cpu_section(r);
+    const double seconds = r["sim_time_s"].get<double>();
+    const double frames = std::max(1.0, r.value("frames_done", 1.0));
+    md += fmt::format("\n## Buses and DDR (in total over {} and per frame)\n", ms(seconds));
+    for (const auto& [name, bus] : r["buses"].items()) bus_section(md, name, bus, seconds, frames);
+    md += memory_section(r["memory"], seconds, frames);
     if (r.contains("workload")) md += workload_section(r["workload"]);
     md += files_section(r["outputs"]);
+    md += simulation_section(r);
+    md += "\n## Every statistic\n\n<details><summary>As the blocks registered them; report.json holds the same under each "
+          "path.</summary>\n\n" + statistics_markdown(r) + "\n</details>\n";
     return md;
 }
 

@@ -10,6 +10,8 @@
 #include "platform/cli/progress_line.h"
 #include "platform/verdict/verdict.h"
 #include "platform/report/report.h"
+#include "platform/report/statistics_json.h"
+#include "platform/tools/seqgen.h"
 #include "platform/scenario/scenario.h"
 #include "platform/soc.h"
 
@@ -92,8 +94,15 @@ nlohmann::ordered_json build_report(const Config& config, Soc& soc, const Outcom
     r["simulation_fields"] = {"transactions"};
     const nlohmann::ordered_json summary = soc.workload().summary();
     for (const auto& [key, value] : summary.items()) r[key] = value;
-    const nlohmann::ordered_json platform = soc.report(outcome.sim_time);
+    const nlohmann::ordered_json platform = statistics_tree(soc.statistics(), sim_s);
     for (const auto& [key, value] : platform.items()) r[key] = value;
+    r["statistics"] = statistics_legend(soc.statistics());
+    // The FHG's schedules come from its parameters, not from the run: seqgen's figures.
+    nlohmann::ordered_json& fhg = r["fhg"];
+    if (fhg.is_array())
+        for (size_t k = 0; k < fhg.size(); ++k) fhg[k]["schedules"] = schedule_figures(soc.fhgs()[k]->params());
+    else
+        fhg["schedules"] = schedule_figures(soc.fhgs()[0]->params());
     if (summary.contains("frames_done") && summary["frames_done"].get<size_t>() > 1) add_limits(r, config);
     r["workload"] = soc.workload().report();
     r["outputs"] = outputs;

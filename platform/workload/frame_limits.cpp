@@ -60,7 +60,7 @@ std::vector<Account> accounts(const Json& r) {
     a.push_back({"plb2 read", period, plb2["read"]["busy_s"].get<double>() / frames, {}});
     const Json& plb1 = r["buses"]["plb1"];
     a.push_back({"plb1", period, std::max(plb1["read"]["busy_s"].get<double>(), plb1["write"]["busy_s"].get<double>()) / frames, {}});
-    a.push_back({"mci", period, r["mci"]["busy_s"].get<double>() / frames, {}});
+    if (r.contains("mci")) a.push_back({"mci", period, r["mci"]["busy_s"].get<double>() / frames, {}});  // absent on plb1
     a.push_back({"ddr", period, r["memory"]["busy_s"].get<double>() / frames, {}});
     return a;
 }
