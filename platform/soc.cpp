@@ -16,7 +16,8 @@ namespace {
 PlbBus::Params plb_params(const Config& c, const std::string& bus) {
     for (const PlbDeclaration& d : plb_declarations()) {
         if (d.bus != bus) continue;
-        const PlbBus::Params p = d.table.make(c);
+        PlbBus::Params p = d.table.make(c);
+        p.series_bin = c.duration("run.series_bin");
         if (p.width_bits != 32 && p.width_bits != 64 && p.width_bits != 128)
             throw ConfigError(bus + ".width: a PLB is 32, 64 or 128 bit wide");
         return p;
@@ -24,7 +25,11 @@ PlbBus::Params plb_params(const Config& c, const std::string& bus) {
     throw std::logic_error("no PLB named " + bus);
 }
 
-DdrMemory::Params memory_params(const Config& c) { return DdrMemory::parameter_table().make(c); }
+DdrMemory::Params memory_params(const Config& c) {
+    DdrMemory::Params p = DdrMemory::parameter_table().make(c);
+    p.series_bin = c.duration("run.series_bin");
+    return p;
+}
 MciLink::Params mci_params(const Config& c) { return MciLink::parameter_table().make(c); }
 
 bool cpu_memory_on_plb1(const Config& c) { return c.choice("cpu.memory_path") == "plb1"; }
@@ -72,6 +77,7 @@ Iig::Params iig_params(const Config& c) {
 Fhg::Params fhg_params(const Config& c) {
     Fhg::Params p = on_plb1(Fhg::parameter_table().make(c), c);
     p.bus_width_bits = c.bits("plb2.width");
+    p.series_bin = c.duration("run.series_bin");
     p.dma_transaction_bytes = dma_transaction_bytes(c, p.burst_beats);
     return p;
 }

@@ -14,6 +14,7 @@ readonly PACKAGES=(
   build-essential cmake pkg-config
   libsystemc-dev libyaml-cpp-dev libcli11-dev nlohmann-json3-dev libfmt-dev
   libopencv-dev libeigen3-dev libgtest-dev libbenchmark-dev
+  libxml2-dev                   # tests read report.html as XML
   opencv-doc visp-images-data   # real images for tests and scenarios
   g++-powerpc-linux-gnu qemu-user  # surfvp calibrate: the software stage built for the PPC440, run on an ISS
 )

@@ -11,6 +11,8 @@
 #include <utility>
 #include <vector>
 
+#include "time_series.h"
+
 namespace surfvp {
 
 enum class StatKind {
@@ -23,6 +25,7 @@ enum class StatKind {
     value,       // a figure of the configuration the run used (a clock, a width)
     text,        // a named choice the run used
     histogram,   // counts by bin
+    series,      // a figure per time bin over the run (a busy share, a level)
 };
 inline const char* stat_kind_name(StatKind kind) {
     switch (kind) {
@@ -35,6 +38,7 @@ inline const char* stat_kind_name(StatKind kind) {
         case StatKind::value: return "value";
         case StatKind::text: return "text";
         case StatKind::histogram: return "histogram";
+        case StatKind::series: return "series";
     }
     return "?";
 }
@@ -47,6 +51,8 @@ struct Statistic {
     std::function<double(double elapsed_s)> number;  // all kinds but text and histogram
     std::function<std::string()> text;
     std::function<std::vector<std::pair<std::string, uint64_t>>()> bins;
+    std::function<std::vector<double>()> series;  // per bin of `bin_s`
+    double bin_s = 0;
 };
 
 class Statistics {
@@ -83,12 +89,17 @@ public:
             add(name, StatKind::value, unit, meaning, [v](double) { return v; });
         }
         void text(const std::string& name, std::function<std::string()> get, const std::string& meaning) const {
-            Statistic s{path(name), StatKind::text, "", meaning, {}, std::move(get), {}};
+            Statistic s{path(name), StatKind::text, "", meaning, {}, std::move(get), {}, {}, 0};
             registry_.all_.push_back(std::move(s));
         }
         void histogram(const std::string& name, std::function<std::vector<std::pair<std::string, uint64_t>>()> get,
                        const std::string& unit, const std::string& meaning) const {
-            Statistic s{path(name), StatKind::histogram, unit, meaning, {}, {}, std::move(get)};
+            Statistic s{path(name), StatKind::histogram, unit, meaning, {}, {}, std::move(get), {}, 0};
+            registry_.all_.push_back(std::move(s));
+        }
+        void series(const std::string& name, const TimeSeries& series, const std::string& unit, const std::string& meaning) const {
+            Statistic s{path(name), StatKind::series, unit, meaning, {}, {}, {}, [&series] { return series.values(); },
+                        double(series.bin_ps()) * 1e-12};
             registry_.all_.push_back(std::move(s));
         }
 
@@ -96,7 +107,7 @@ public:
         std::string path(const std::string& name) const { return prefix_.empty() ? name : prefix_ + "." + name; }
         void add(const std::string& name, StatKind kind, const std::string& unit, const std::string& meaning,
                  std::function<double(double)> number) const {
-            registry_.all_.push_back({path(name), kind, unit, meaning, std::move(number), {}, {}});
+            registry_.all_.push_back({path(name), kind, unit, meaning, std::move(number), {}, {}, {}, 0});
         }
         Statistics& registry_;
         std::string prefix_;

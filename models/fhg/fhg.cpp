@@ -29,7 +29,9 @@ Fhg::Fhg(const sc_core::sc_module_name& name, const Params& params, Tracer& trac
                  {[this](const FhgRegisters::Frame& f) { start(f); }, [this] { fail(r::ERR_ABORTED); },
                   [this] { changed(); }}),
       slots_(params.det_row_buffers + 1),
-      det_rows_("det_rows", int(params.det_row_buffers)) {
+      det_rows_("det_rows", int(params.det_row_buffers)),
+      line_series_(params.series_bin.ps),
+      maxima_series_(params.series_bin.ps) {
     if (params.det_row_buffers == 0)
         throw std::invalid_argument(fmt::format("{}: determinant row buffers must be above zero", basename()));
     pixels.bind(*this);
@@ -187,6 +189,9 @@ void Fhg::push_candidates(const std::vector<fhg::Candidate>& candidates) {
 }
 
 void Fhg::trace_levels() {
+    const uint64_t now = sc_core::sc_time_stamp().value();
+    line_series_.level(now, double(frame_.received - frame_.oldest));
+    maxima_series_.level(now, double(registers_.fifo_level()));
     if (tracer_.vcd_on()) {
         fifo_level_.write(registers_.fifo_level());
         line_level_.write(unsigned(frame_.received - frame_.oldest));
@@ -212,6 +217,8 @@ void Fhg::register_statistics(Statistics::Scope s) const {
     s.count("candidates", [this] { return stats_.candidates; }, "candidates", "local maxima marked");
     s.count("candidates_dropped", [this] { return stats_.dropped; }, "candidates", "dropped on a full maxima FIFO");
     s.high_water("maxima_fifo_high_water", [this] { return uint64_t(stats_.fifo_high_water); }, "entries", "the maxima FIFO's highest level");
+    s.series("line_fifo_series", line_series_, "lines", "the line FIFO's highest level per time bin");
+    s.series("maxima_fifo_series", maxima_series_, "entries", "the maxima FIFO's highest level per time bin");
     s.high_water("line_fifo_high_water", [this] { return uint64_t(stats_.lines_high_water); }, "lines", "the line FIFO's highest level");
 }
 

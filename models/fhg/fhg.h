@@ -48,6 +48,7 @@ public:
         unsigned det_row_buffers = 2;  // block rows of determinants waiting for the writer
         unsigned max_width = 1024, max_height = 1024;
         uint64_t dma_transaction_bytes = 0;  // bytes per TLM transaction: 0 = a whole line (DmaEngine)
+        Duration series_bin{1'000'000'000};  // report.html's time bins (the wiring's run.series_bin)
         RegisterTiming registers;  // a register access: its cycles (block.register_latency) of PLB1's clock
     };
     // Its scenario parameters with the Params field each sets (fhg_params.cpp).
@@ -127,6 +128,7 @@ private:
     sc_core::sc_signal<unsigned, sc_core::SC_UNCHECKED_WRITERS> fifo_level_{"maxima_fifo_level"};
     sc_core::sc_signal<unsigned, sc_core::SC_UNCHECKED_WRITERS> line_level_{"line_fifo_level"};
     Stats stats_;
+    TimeSeries line_series_, maxima_series_;  // FIFO levels per time bin
     int frame_track_ = -1, row_track_ = -1, level_track_ = -1;
 };
 

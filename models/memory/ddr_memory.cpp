@@ -14,7 +14,7 @@ using sc_core::sc_time;
 void DdrMemory::FreeDeleter::operator()(uint8_t* p) const { std::free(p); }
 
 DdrMemory::DdrMemory(const sc_core::sc_module_name& name, const Params& params)
-    : sc_module(name), ports("ports"), params_(params) {
+    : sc_module(name), ports("ports"), params_(params), series_(params.series_bin.ps) {
     if (params.size.n == 0) throw std::invalid_argument(fmt::format("{}: memory size must be above zero", basename()));
     if (params.efficiency <= 0 || params.efficiency > 1)
         throw std::invalid_argument(fmt::format("{}: efficiency must be in (0, 1], not {}", basename(), params.efficiency));
@@ -88,6 +88,7 @@ void DdrMemory::b_transport(int port, tlm::tlm_generic_payload& tx, sc_time& del
     dram_.forget_before(sc_core::sc_time_stamp().value());
     const sc_time start(double(dram_.reserve(request.value(), transfer.value())), sc_core::SC_PS);
     busy_ += transfer;
+    series_.busy(start.value(), (start + transfer).value());
     s.wait += start - request;
     const unsigned latency = tx.is_write() ? params_.write_latency_cycles : params_.latency_cycles;
     delay += (start - request) + cycles(params_.clock, latency) + transfer;
@@ -125,6 +126,7 @@ void DdrMemory::register_statistics(Statistics::Scope s) const {
     s.bytes("bytes_written", total(&PortStats::bytes_written), "bytes written, all ports");
     s.time("busy_s", [this] { return busy_; }, "the DRAM transferring data");
     s.share("utilisation", [this] { return busy_; }, "busy over the run");
+    s.series("busy_series", series_, "share", "busy share per time bin");
     for (size_t i = 0; i < port_stats_.size(); ++i) {
         const Statistics::Scope p = s / "ports" / port_stats_[i].name;
         p.count("reads", [this, i] { return port_stats_[i].reads; }, "accesses", "reads on this port");

@@ -37,6 +37,7 @@ public:
         double efficiency = 0.8;           // fraction of the peak that sustained traffic gets
         unsigned latency_cycles = 25;       // a read's, before the first data
         unsigned write_latency_cycles = 0;  // a write's, as its master sees it (posted)
+        Duration series_bin{1'000'000'000};  // report.html's time bins (the wiring's run.series_bin)
     };
     // Its scenario parameters with the Params field each sets (ddr_memory_params.cpp).
     static const ParamTable<Params>& parameter_table();
@@ -89,6 +90,7 @@ private:
     std::vector<PortStats> port_stats_;
     BusyTimeline dram_;
     sc_core::sc_time busy_;
+    TimeSeries series_;  // busy share per time bin
 };
 
 }  // namespace surfvp

@@ -13,6 +13,7 @@ using sc_core::SC_ZERO_TIME;
 
 PlbBus::PlbBus(const sc_core::sc_module_name& name, const Params& params, Tracer& tracer)
     : sc_module(name), masters("masters"), slaves("slaves"), params_(params), tracer_(tracer) {
+    read_.series = write_.series = TimeSeries(params.series_bin.ps);
     if (params.width_bits != 32 && params.width_bits != 64 && params.width_bits != 128)
         throw std::invalid_argument(fmt::format("{}: PLB width must be 32, 64 or 128 bit, not {}", basename(),
                                                 params.width_bits));
@@ -219,6 +220,7 @@ void PlbBus::b_transport(int master, tlm::tlm_generic_payload& tx, sc_time& dela
         stats.busy += duration;
         ++path.stats.bursts;
         path.stats.busy += duration;
+        path.series.busy(granted.value(), end.value());
         if (!tx.is_response_ok()) break;
         done += std::max<uint64_t>(n, 1);
     }
@@ -289,6 +291,7 @@ void PlbBus::register_statistics(Statistics::Scope s) const {
         d.bytes("bytes", [path = path] { return path->stats.bytes; }, "bytes on this data path");
         d.time("busy_s", [path = path] { return path->stats.busy; }, "the data path carrying a burst");
         d.share("utilisation", [path = path] { return path->stats.busy; }, "busy over the run");
+        d.series("busy_series", path->series, "share", "busy share per time bin");
     }
     s.count("decode_errors", [this] { return decode_errors_; }, "accesses", "addresses no slave answers");
     for (size_t i = 0; i < master_stats_.size(); ++i) {

@@ -47,6 +47,7 @@ public:
         unsigned arbitration_cycles = 3;
         unsigned address_cycles = 1;
         Arbitration arbitration = Arbitration::round_robin;
+        Duration series_bin{1'000'000'000};  // report.html's time bins (the wiring's run.series_bin)
     };
     // The scenario parameters of the bus named `bus` ("plb1"), with the Params field each sets
     // (plb_params.cpp); the two PLBs differ only in their width's default and its source.
@@ -124,6 +125,7 @@ private:
         std::deque<sc_core::sc_event> granted;  // one per master
         std::unique_ptr<sc_core::sc_signal<bool, sc_core::SC_UNCHECKED_WRITERS>> busy;  // written by the arbiter and by a master granted at once
         PathStats stats;
+        TimeSeries series;  // busy share per time bin
         int track = -1;
     };
 

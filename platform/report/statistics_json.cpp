@@ -1,5 +1,6 @@
 #include "statistics_json.h"
 
+#include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
 
@@ -23,6 +24,7 @@ nlohmann::ordered_json value_of(const Statistic& s, double elapsed_s) {
             for (const auto& [name, n] : s.bins()) bins[name] = n;
             return bins;
         }
+        case StatKind::series: return {{"bin_s", s.bin_s}, {"values", s.series()}};
         case StatKind::count: case StatKind::bytes: case StatKind::high_water: return uint64_t(std::llround(s.number(elapsed_s)));
         case StatKind::value: {
             const double v = s.number(elapsed_s);
@@ -66,6 +68,11 @@ Json* find(Json& report, const std::string& path) {
 
 std::string cell(const nlohmann::ordered_json& v, const std::string& kind) {
     if (v.is_string()) return v.get<std::string>();
+    if (kind == "series") {
+        double peak = 0;
+        for (const auto& x : v["values"]) peak = std::max(peak, x.get<double>());
+        return fmt::format("{} bins of {:g} ms, peak {:g} (report.html)", v["values"].size(), v["bin_s"].get<double>() * 1e3, peak);
+    }
     if (v.is_object()) {
         std::string bins;
         for (const auto& [name, n] : v.items()) bins += fmt::format("{}{}: {}", bins.empty() ? "" : ", ", name, n.dump());

@@ -10,6 +10,7 @@
 #include "platform/cli/progress_line.h"
 #include "platform/verdict/verdict.h"
 #include "platform/report/report.h"
+#include "platform/report/report_html.h"
 #include "platform/report/statistics_json.h"
 #include "platform/tools/seqgen.h"
 #include "platform/scenario/scenario.h"
@@ -176,7 +177,9 @@ nlohmann::ordered_json simulate_scenario(const Config& config, const std::string
     for (const std::string& f : tracer.finish()) outputs.push_back(fs::path(f).filename().string());
     if (!out.empty())
         for (const std::string& f : soc.workload().write_files(out)) outputs.push_back(f);
-    return build_report(config, soc, outcome, wall_s, outputs);
+    nlohmann::ordered_json report = build_report(config, soc, outcome, wall_s, outputs);
+    if (!out.empty()) report["figures"]["first_frame_svg"] = soc.workload().first_frame_svg();  // for report.html only
+    return report;
 }
 
 int write_run(const Config& config, const std::string& out, const nlohmann::ordered_json& run_report, bool quiet) {
@@ -186,7 +189,12 @@ int write_run(const Config& config, const std::string& out, const nlohmann::orde
         write_file_atomically((dir / "frames.csv").string(), frames_csv(report["workload"]["per_frame"]));
         report["outputs"].push_back("frames.csv");
     }
+    // The workload's picture goes into report.html, not into report.json.
+    const std::string picture = report.contains("figures") ? report["figures"].value("first_frame_svg", "") : "";
+    report.erase("figures");
+    report["outputs"].push_back("report.html");
     write_file_atomically((dir / "config.yaml").string(), config.to_yaml());
+    write_file_atomically((dir / "report.html").string(), report_html(report, picture));
     write_file_atomically((dir / "report.md").string(), report_markdown(report));
     write_file_atomically((dir / "report.json").string(), report.dump(2) + "\n");
     if (!quiet)

@@ -131,6 +131,9 @@ std::vector<ParamSpec> make_table() {
                  "Simulated time after which a run that has not finished is stopped as stalled",
                  "[-] tool setting: a guard against a livelocked run, far above any shipped scenario (castle, exact Haar: 11 s)"});
 
+    t.push_back({"run.series_bin", ParamKind::duration, "1 ms", 1 * us, 1 * s, {},
+                 "Width of the time bins of report.html's charts (bus utilisation and FIFO levels over time)",
+                 "[-] report setting: a 118 ms frame in about a hundred bins"});
     t.push_back({"run.dma_granularity", ParamKind::choice, "line", 0, 0, {"line", "burst"},
                  "IP blocks' DMA: one TLM transaction per line or per burst; the bus arbitrates every burst either "
                  "way, so the figures are the same",

@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
+#include <yaml-cpp/binary.h>
 
 #include "platform/address_map.h"
 #include "platform/workload/describer.h"
@@ -20,6 +21,7 @@
 #include "sw/eval/sequence.h"
 #include "sw/libssa2/libssa2.h"
 #include "sw/surf/surf.h"
+#include "platform/report/report_html.h"
 #include "platform/workload/workload.h"
 
 namespace surfvp {
@@ -171,6 +173,7 @@ public:
     nlohmann::ordered_json summary() const override;
     nlohmann::ordered_json report() const override;
     std::vector<std::string> write_files(const std::string& dir) const override;
+    std::string first_frame_svg() const override;
 
     // Each frame's hardware phases on its accelerator's track and its descriptors on the
     // CPU's: frames overlapping across the chip.
@@ -351,5 +354,30 @@ std::vector<std::string> SurfWorkload::write_files(const std::string& dir) const
 }  // namespace
 
 std::unique_ptr<Workload> make_surf_workload(const Config& config) { return std::make_unique<SurfWorkload>(config); }
+
+// Frame 0 at most 640 pixels wide, PNG inline, each keypoint a circle of 2.5 scales with a
+// stroke to its orientation (green: dark blob, Laplacian +1; red: bright blob).
+std::string SurfWorkload::first_frame_svg() const {
+    if (results_.empty() || !results_[0].reported) return "";
+    const cv::Mat& frame = frames_[0];
+    const double f = std::min(1.0, 640.0 / frame.cols);
+    cv::Mat shown;
+    cv::resize(frame, shown, cv::Size(), f, f, cv::INTER_AREA);
+    std::vector<uchar> png;
+    cv::imencode(".png", shown, png);
+    std::string svg = fmt::format(
+        "<svg xmlns=\"http://www.w3.org/2000/svg\" id=\"keypoints\" width=\"{0}\" height=\"{1}\" viewBox=\"0 0 {0} {1}\">"
+        "<image width=\"{0}\" height=\"{1}\" href=\"data:image/png;base64,{2}\"/>",
+        shown.cols, shown.rows, YAML::EncodeBase64(png.data(), png.size()));
+    for (const surf::Keypoint& k : results_[0].keypoints) {
+        const double x = (k.x + 0.5) * f, y = (k.y + 0.5) * f, r = std::max(2.0, 2.5 * k.scale * f);
+        const char* c = k.laplacian > 0 ? "#00e000" : "#ff3030";
+        svg += fmt::format("<circle class=\"keypoint\" cx=\"{:.1f}\" cy=\"{:.1f}\" r=\"{:.1f}\" fill=\"none\" stroke=\"{}\"/>"
+                           "<line x1=\"{:.1f}\" y1=\"{:.1f}\" x2=\"{:.1f}\" y2=\"{:.1f}\" stroke=\"{}\"/>",
+                           x, y, r, c, x, y, x + r * std::cos(k.orientation), y - r * std::sin(k.orientation), c);
+    }
+    return svg + fmt::format("<text x=\"6\" y=\"{}\" fill=\"yellow\" font-family=\"sans-serif\">frame 0: {} keypoints</text></svg>",
+                             shown.rows - 8, results_[0].keypoints.size());
+}
 
 }  // namespace surfvp

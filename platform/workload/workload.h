@@ -43,6 +43,9 @@ public:
     virtual void trace(Tracer&) const {}
     // Files of its own under the output folder (keypoints): the names written.
     virtual std::vector<std::string> write_files(const std::string& /*dir*/) const { return {}; }
+    // Its first frame with what it found drawn on it, as an <svg> element for report.html
+    // (the image inline): "" when it has none.
+    virtual std::string first_frame_svg() const { return ""; }
 };
 
 // The workload `run.workload` names; throws ConfigError when its parameters do not fit the

@@ -11,7 +11,7 @@ using test::ns;
 
 struct Bench {
     Tracer tracer;
-    Intc intc{"intc", Intc::Params{4}, tracer};
+    Intc intc{"intc", Intc::Params{4, {}}, tracer};
     sc_core::sc_signal<bool> lines[4];
     sc_core::sc_signal<bool> out;
     std::unique_ptr<Initiator> cpu;
