@@ -8,6 +8,7 @@
 #include <tlm>
 
 #include "byte_order.h"
+#include "parameter.h"
 #include "units.h"
 
 namespace surfvp {
@@ -19,6 +20,18 @@ struct RegisterTiming {
     Frequency bus_clock{100e6};
     Duration latency() const { return Duration{uint64_t(std::llround(double(cycles) * bus_clock.period_ps()))}; }
 };
+
+// A register slave's `block.register_latency` parameter, the same for every block but its
+// name, what it answers for ("SSA IIG registers") and the reason of its band.
+template <typename Params>
+ParamField<Params> register_latency(const std::string& block, const std::string& what, const std::string& band_why) {
+    return field<Params>({block + ".register_latency", ParamKind::cycles, "2 cycles", 0, 64, {},
+                          what + ": PLB1 cycles from the address phase to the register's data",
+                          "[A] an XPS PLBv46 slave (IPIF) decodes the address and registers its data: a few cycles (DS561 "
+                          "timing not retrieved)",
+                          {"1 cycle", "4 cycles", band_why}},
+                         [](Params& p) -> unsigned& { return p.registers.cycles; });
+}
 
 // `access(offset, value, is_write)` reads into or writes from `value`; it returns false for
 // an offset that holds no register.

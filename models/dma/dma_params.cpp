@@ -12,13 +12,7 @@ const ParamTable<Dma::Params>& Dma::parameter_table() {
            {"8 beats", "16 beats",
             "the test DMA's own bursts"}},
                  &P::burst_beats),
-        field<P>({"dma.register_latency", ParamKind::cycles, "2 cycles", 0, 64, {},
-           "Test DMA registers: PLB1 cycles from the address phase to the register's data",
-           "[A] an XPS PLBv46 slave (IPIF) decodes the address and registers its data: a few cycles (DS561 "
-           "timing not retrieved)",
-           {"1 cycle", "4 cycles",
-            "as intc.register_latency"}},
-                 [](P& p) -> unsigned& { return p.registers.cycles; })
+        register_latency<P>("dma", "Test DMA registers", "as intc.register_latency")
     });
     return table;
 }

@@ -10,13 +10,7 @@ const ParamTable<Intc::Params>& Intc::parameter_table() {
         field<P>({"intc.inputs", ParamKind::count, "12", 1, 32, {}, "Interrupt inputs of the XPS INTC",
            "[S] ML507 DTS: xps_intc with 12 inputs"},
                  &P::inputs),
-        field<P>({"intc.register_latency", ParamKind::cycles, "2 cycles", 0, 64, {},
-           "XPS INTC registers: PLB1 cycles from the address phase to the register's data",
-           "[A] an XPS PLBv46 slave (IPIF) decodes the address and registers its data: a few cycles (DS561 "
-           "timing not retrieved)",
-           {"1 cycle", "4 cycles",
-            "a registered or a pipelined IPIF answer"}},
-                 [](P& p) -> unsigned& { return p.registers.cycles; })
+        register_latency<P>("intc", "XPS INTC registers", "a registered or a pipelined IPIF answer")
     });
     return table;
 }
