@@ -19,15 +19,15 @@ void write_file_atomically(const std::filesystem::path& file, const std::string&
     {
         std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
         if (!out) {
-            throw std::runtime_error(file.string() + ": cannot create temporary " +
+            throw EnvironmentError(file.string() + ": cannot create temporary " +
                                      temporary.string() + " (" + std::strerror(errno) + ")");
         }
         out.write(content.data(), static_cast<std::streamsize>(content.size()));
-        out.flush();
+        out.close();
         if (!out) {
             std::error_code ignored;
             std::filesystem::remove(temporary, ignored);
-            throw std::runtime_error(file.string() + ": write failed (" + std::strerror(errno) + ")");
+            throw EnvironmentError(file.string() + ": write failed (" + std::strerror(errno) + ")");
         }
     }
     std::error_code ec;
@@ -35,7 +35,7 @@ void write_file_atomically(const std::filesystem::path& file, const std::string&
     if (ec) {
         std::error_code ignored;
         std::filesystem::remove(temporary, ignored);
-        throw std::runtime_error(file.string() + ": cannot rename temporary into place (" +
+        throw EnvironmentError(file.string() + ": cannot rename temporary into place (" +
                                  ec.message() + ")");
     }
 }

@@ -5,15 +5,18 @@
 #include <cstdio>
 #include <filesystem>
 #include <fmt/format.h>
+#include <fstream>
 #include <iterator>
+#include <unistd.h>
 
 namespace surfvp {
 namespace fs = std::filesystem;
 namespace {
 
+// Temporary names of this process's traces (two runs on one folder never share one);
 // SystemC appends ".vcd" to the name it is given.
-const char* const kVcdTemp = "trace.vcd.partial";
-const char* const kPerfettoTemp = "trace.perfetto.json.partial";
+std::string vcd_temp() { return fmt::format("trace.vcd.{}.partial", ::getpid()); }
+std::string perfetto_temp() { return fmt::format("trace.perfetto.json.{}.partial", ::getpid()); }
 
 // Trace-event timestamps are microseconds; the simulator resolves picoseconds.
 std::string micros(const sc_core::sc_time& t) {
@@ -33,16 +36,33 @@ std::string json_string(std::string_view text) {
     return out + "\"";
 }
 
+// SystemC's VCD writer does not report failed writes; a complete file ends with the run's
+// end time ("#<ps>"), which a file cut short by a full disk lacks.
+void check_vcd_complete(const fs::path& vcd) {
+    const std::string end = fmt::format("#{}\n", sc_core::sc_time_stamp().value());
+    std::ifstream in(vcd, std::ios::binary | std::ios::ate);
+    const std::streamoff size = in ? std::streamoff(in.tellg()) : 0;
+    std::string tail(std::min<std::streamoff>(size, std::streamoff(end.size())), '\0');
+    if (in && size >= std::streamoff(end.size())) {
+        in.seekg(size - std::streamoff(end.size()));
+        in.read(tail.data(), std::streamsize(tail.size()));
+    }
+    if (tail == end) return;
+    std::error_code ignored;
+    fs::remove(vcd, ignored);
+    throw EnvironmentError(vcd.parent_path().string() + "/trace.vcd: the write failed, the file was cut short (disk full?)");
+}
+
 }  // namespace
 
 Tracer::Tracer(const Options& options) : options_(options) {
     if (options.vcd) {
-        vcd_ = sc_core::sc_create_vcd_trace_file((fs::path(options.dir) / kVcdTemp).string().c_str());
+        vcd_ = sc_core::sc_create_vcd_trace_file((fs::path(options.dir) / vcd_temp()).string().c_str());
         vcd_->set_time_unit(1, sc_core::SC_PS);
     }
     if (options.perfetto) {
-        perfetto_.open(fs::path(options.dir) / kPerfettoTemp, std::ios::binary | std::ios::trunc);
-        if (!perfetto_) throw std::runtime_error("cannot write " + (fs::path(options.dir) / kPerfettoTemp).string());
+        perfetto_.open(fs::path(options.dir) / perfetto_temp(), std::ios::binary | std::ios::trunc);
+        if (!perfetto_) throw EnvironmentError("cannot write " + (fs::path(options.dir) / perfetto_temp()).string());
         perfetto_ << "{\"displayTimeUnit\":\"ns\",\"traceEvents\":[";
     }
 }
@@ -53,8 +73,8 @@ Tracer::~Tracer() {
     if (vcd_) sc_core::sc_close_vcd_trace_file(vcd_);
     if (perfetto_.is_open()) perfetto_.close();
     std::error_code ignored;
-    fs::remove(fs::path(options_.dir) / (std::string(kVcdTemp) + ".vcd"), ignored);
-    fs::remove(fs::path(options_.dir) / kPerfettoTemp, ignored);
+    fs::remove(fs::path(options_.dir) / (vcd_temp() + ".vcd"), ignored);
+    fs::remove(fs::path(options_.dir) / perfetto_temp(), ignored);
 }
 
 void Tracer::event_separator() {
@@ -94,15 +114,17 @@ void Tracer::slice(int track, std::string_view name, const sc_core::sc_time& sta
     if (!perfetto_on() || track < 0) return;
     const Track& t = tracks_[track];
     event_separator();
-    fmt::format_to(std::ostreambuf_iterator<char>(perfetto_), R"({{"ph":"X","name":{},"pid":{},"tid":{},"ts":{},"dur":{}}})",
-                   json_string(name), t.pid, t.tid, micros(start), micros(end - start));
+    // Formatted into a string and written through the stream, so that a failed stream (a full
+    // disk) only stops taking data: writing into its buffer directly would run past its end.
+    perfetto_ << fmt::format(R"({{"ph":"X","name":{},"pid":{},"tid":{},"ts":{},"dur":{}}})", json_string(name), t.pid, t.tid,
+                             micros(start), micros(end - start));
 }
 
 void Tracer::counter(int track, std::string_view name, const sc_core::sc_time& at, double value) {
     if (!perfetto_on() || track < 0) return;
     event_separator();
-    fmt::format_to(std::ostreambuf_iterator<char>(perfetto_), R"({{"ph":"C","name":{},"pid":{},"ts":{},"args":{{"value":{}}}}})",
-                   json_string(name), tracks_[track].pid, micros(at), value);
+    perfetto_ << fmt::format(R"({{"ph":"C","name":{},"pid":{},"ts":{},"args":{{"value":{}}}}})", json_string(name),
+                             tracks_[track].pid, micros(at), value);
 }
 
 std::vector<std::string> Tracer::write_gtkwave_save(const fs::path& dir) {
@@ -124,15 +146,20 @@ std::vector<std::string> Tracer::finish() {
     if (vcd_) {
         sc_core::sc_close_vcd_trace_file(vcd_);
         vcd_ = nullptr;
-        fs::rename(dir / (std::string(kVcdTemp) + ".vcd"), dir / "trace.vcd");
+        check_vcd_complete(dir / (vcd_temp() + ".vcd"));
+        fs::rename(dir / (vcd_temp() + ".vcd"), dir / "trace.vcd");
         written.push_back((dir / "trace.vcd").string());
         for (const std::string& f : write_gtkwave_save(dir)) written.push_back(f);
     }
     if (perfetto_.is_open()) {
         perfetto_ << "\n]}\n";
         perfetto_.close();
-        if (!perfetto_) throw std::runtime_error("writing the Perfetto trace failed");
-        fs::rename(dir / kPerfettoTemp, dir / "trace.perfetto.json");
+        if (!perfetto_) {
+            std::error_code ignored;
+            fs::remove(dir / perfetto_temp(), ignored);
+            throw EnvironmentError((dir / "trace.perfetto.json").string() + ": the write failed (disk full?)");
+        }
+        fs::rename(dir / perfetto_temp(), dir / "trace.perfetto.json");
         written.push_back((dir / "trace.perfetto.json").string());
     }
     finished_ = true;

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <fmt/format.h>
+#include <limits>
 #include <utility>
 #include <vector>
 
@@ -87,6 +88,15 @@ std::string format(double value, UnitKind which) {
     return fmt::format("{} {}", value, k.units.front().name);
 }
 
+// A parsed value as the integer type that holds it: a value the type cannot hold is out of
+// range, never wrapped or truncated.
+template <typename T>
+T fitting(double value, const std::string& text) {
+    if (!(value <= double(std::numeric_limits<T>::max())))  // also catches NaN
+        throw UnitError(fmt::format("'{}' is out of range: at most {} fits", text, std::numeric_limits<T>::max()));
+    return static_cast<T>(value);
+}
+
 }  // namespace
 
 Frequency parse_frequency(const std::string& text) {
@@ -95,12 +105,12 @@ Frequency parse_frequency(const std::string& text) {
     return f;
 }
 Duration parse_duration(const std::string& text) {
-    return Duration{static_cast<uint64_t>(parse(text, UnitKind::duration))};
+    return Duration{fitting<uint64_t>(parse(text, UnitKind::duration), text)};
 }
-unsigned parse_bits(const std::string& text) { return static_cast<unsigned>(parse(text, UnitKind::bits)); }
-Bytes parse_bytes(const std::string& text) { return Bytes{static_cast<uint64_t>(parse(text, UnitKind::bytes))}; }
-uint64_t parse_cycles(const std::string& text) { return static_cast<uint64_t>(parse(text, UnitKind::cycles)); }
-unsigned parse_beats(const std::string& text) { return static_cast<unsigned>(parse(text, UnitKind::beats)); }
+unsigned parse_bits(const std::string& text) { return fitting<unsigned>(parse(text, UnitKind::bits), text); }
+Bytes parse_bytes(const std::string& text) { return Bytes{fitting<uint64_t>(parse(text, UnitKind::bytes), text)}; }
+uint64_t parse_cycles(const std::string& text) { return fitting<uint64_t>(parse(text, UnitKind::cycles), text); }
+unsigned parse_beats(const std::string& text) { return fitting<unsigned>(parse(text, UnitKind::beats), text); }
 
 std::string format_frequency(Frequency f) { return format(f.hz, UnitKind::frequency); }
 std::string format_duration(Duration d) { return format(static_cast<double>(d.ps), UnitKind::duration); }

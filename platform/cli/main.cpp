@@ -5,6 +5,7 @@
 #include <exception>
 #include <systemc>
 
+#include "models/common/atomic_file.h"
 #include "platform/tools/bench.h"
 #include "platform/tools/calibrate.h"
 #include "platform/scenario/config.h"
@@ -105,6 +106,9 @@ int dispatch(int argc, char** argv) {
     } catch (const ConfigError& e) {
         std::fprintf(stderr, "surfvp: error: %s\n", e.what());
         return kExitBadInput;
+    } catch (const EnvironmentError& e) {
+        std::fprintf(stderr, "surfvp: cannot write: %s\n", e.what());
+        return kExitEnvironment;
     } catch (const std::exception& e) {
         std::fprintf(stderr, "surfvp: internal error: %s\n", e.what());
         return kExitInternal;

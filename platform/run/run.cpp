@@ -114,7 +114,8 @@ fs::path output_dir(const RunOptions& options, const Config& config) {
     const fs::path dir = options.out.empty() ? fs::path("traces") / config.name : fs::path(options.out);
     std::error_code error;
     fs::create_directories(dir, error);
-    if (error || !fs::is_directory(dir)) throw ConfigError(fmt::format("--out {}: cannot create the folder: {}", dir.string(), error.message()));
+    if (error || !fs::is_directory(dir))
+        throw EnvironmentError(fmt::format("--out {}: cannot create the folder: {}", dir.string(), error.message()));
     return dir;
 }
 

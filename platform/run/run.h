@@ -9,7 +9,7 @@
 
 namespace surfvp {
 
-enum ExitCode { kExitOk = 0, kExitFailed = 1, kExitBadInput = 2, kExitInternal = 3 };
+enum ExitCode { kExitOk = 0, kExitFailed = 1, kExitBadInput = 2, kExitInternal = 3, kExitEnvironment = 4 };
 
 struct RunOptions {
     std::string scenario;

@@ -229,8 +229,8 @@ double parse_plain(const std::string& text, bool integer) {
     } catch (const std::exception&) {
         used = 0;
     }
-    if (used == 0 || used != text.size())
-        throw UnitError(fmt::format("'{}' is not a {}", text, integer ? "whole number" : "number"));
+    if (used == 0 || used != text.size() || !std::isfinite(value))
+        throw UnitError(fmt::format("'{}' is not a {}", text, integer ? "whole number" : "finite number"));
     if (integer && value != std::floor(value)) throw UnitError(fmt::format("'{}' is not a whole number", text));
     return value;
 }
@@ -300,7 +300,7 @@ double parse_value(const ParamSpec& spec, const std::string& text) {
                 throw UnitError(fmt::format("'{}' is not one of: {}", text, fmt::join(spec.choices, ", ")));
             return 0;
     }
-    if (value < spec.min || value > spec.max)
+    if (!(value >= spec.min && value <= spec.max))  // NaN is out of every range
         throw UnitError(fmt::format("'{}' is out of range: {} must be between {} and {}", text, spec.key,
                                     format_value(spec, spec.min), format_value(spec, spec.max)));
     return value;

@@ -36,6 +36,12 @@ TEST(Units, ErrorsSayWhatIsWrong) {
     expect_error([] { parse_cycles("2.5 cycles"); }, "not a whole number");
     expect_error([] { parse_bytes("-4 KiB"); }, "negative");
     expect_error([] { parse_frequency("0 Hz"); }, "above zero");
+    // A value its type cannot hold is out of range, never wrapped (4294967306 = 2^32 + 10).
+    expect_error([] { parse_bits("4294967306 bit"); }, "out of range");
+    expect_error([] { parse_cycles("1e30 cycles"); }, "out of range");
+    expect_error([] { parse_beats("5e9 beats"); }, "out of range");
+    expect_error([] { parse_frequency("inf MHz"); }, "is not a frequency");
+    expect_error([] { parse_duration("nan s"); }, "is not a duration");
 }
 
 TEST(Units, FormatParsesBackToTheSameValue) {
