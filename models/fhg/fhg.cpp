@@ -24,8 +24,7 @@ Fhg::Fhg(const sc_core::sc_module_name& name, const Params& params, Tracer& trac
       core_(params.precision),
       sequence_(fhg::cached_sequence(params.sequence)),
       block_cycles_(block_cycles(sequence_, params)),
-      registers_({params.max_width, params.max_height, params.maxima_fifo_depth, params.precision.det_frac_bits,
-                  r::det_bytes_for(params.precision.det_bits)},
+      registers_(register_limits(params),
                  {[this](const FhgRegisters::Frame& f) { start(f); }, [this] { fail(r::ERR_ABORTED); },
                   [this] { changed(); }}),
       slots_(params.det_row_buffers + 1),
@@ -65,6 +64,10 @@ const char* Fhg::block_limit(const fhg::Sequence& sequence, const Params& params
 }
 
 uint32_t Fhg::det_bytes() const { return r::det_bytes_for(params_.precision.det_bits); }
+
+FhgRegisters::Limits Fhg::register_limits(const Params& p) {
+    return {p.max_width, p.max_height, p.maxima_fifo_depth, p.precision.det_frac_bits, r::det_bytes_for(p.precision.det_bits)};
+}
 
 // A register write or a FIFO pop: the levels and the interrupt line may have changed.
 void Fhg::changed() {

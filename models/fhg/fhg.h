@@ -82,6 +82,8 @@ public:
     static const char* block_limit(const fhg::Sequence& sequence, const Params& params);
     const fhg::HessianCore& core() const { return core_; }
     uint32_t det_bytes() const;  // bytes of one determinant in memory (fhg_regs.h)
+    // What its registers check START against and report (the model and direct mode alike).
+    static FhgRegisters::Limits register_limits(const Params& params);
     const Stats& stats() const { return stats_; }
     uint64_t errors() const { return registers_.status().errors(); }
     const Params& params() const { return params_; }

@@ -40,11 +40,9 @@ DirectChip::DirectChip(const Config& config, unsigned accelerators)
       fill_cycles_(uncontended_fill(config).to_seconds() * config.frequency("cpu.clock").hz) {
     if (!memory_) throw std::runtime_error("direct mode: cannot allocate the memory");
     const Iig::Params iig = iig_params(config);
-    const Fhg::Params fhg = fhg_params(config);
-    const FhgRegisters::Limits fhg_limits{fhg.max_width, fhg.max_height, fhg.maxima_fifo_depth, fhg.precision.det_frac_bits,
-                                          f::det_bytes_for(fhg.precision.det_bits)};
+    const FhgRegisters::Limits fhg = Fhg::register_limits(fhg_params(config));
     for (unsigned k = 0; k < accelerators; ++k)
-        pairs_.push_back(std::make_unique<Pair>(*this, IigRegisters::Limits{iig.max_width, iig.max_height}, fhg_limits));
+        pairs_.push_back(std::make_unique<Pair>(*this, IigRegisters::Limits{iig.max_width, iig.max_height}, fhg));
 }
 
 bool DirectChip::in_memory(uint64_t address, uint64_t bytes) const { return address + bytes <= memory_size_; }
@@ -162,14 +160,13 @@ uint32_t DirectChip::block_row(Pair& p) {
     const IntegralView view{p.lines.data(), int(h.width), int(h.height), h.width};
     const uint32_t blocks_x = (h.width + 1) / 2, by = p.next_row++;
     const uint32_t n = f::det_bytes_for(core_.precision().det_bits);
-    std::vector<int32_t>& records = records_;
-    records.resize(size_t(blocks_x) * fhg::kDeterminantsPerBlock);
-    core_.block_row(view, int(by), records.data());
+    records_.resize(size_t(blocks_x) * fhg::kDeterminantsPerBlock);
+    core_.block_row(view, int(by), records_.data());
     const uint64_t at = h.det_addr + uint64_t(by) * blocks_x * f::record_bytes(n);
-    if (!in_memory(at, records.size() * n)) return f::ERR_WRITE;
-    for (size_t k = 0; k < records.size(); ++k) f::store_det(memory_.get() + at + n * k, records[k], n);
+    if (!in_memory(at, records_.size() * n)) return f::ERR_WRITE;
+    for (size_t k = 0; k < records_.size(); ++k) f::store_det(memory_.get() + at + n * k, records_[k], n);
     std::vector<fhg::Candidate> found;
-    fhg::LocalMaxFinder(h.threshold).block_row(records.data(), int(blocks_x), int(by), found);
+    fhg::LocalMaxFinder(h.threshold).block_row(records_.data(), int(blocks_x), int(by), found);
     p.fhg.push(found);
     return f::ERR_NONE;
 }

@@ -79,13 +79,18 @@ std::string time_table(const nlohmann::ordered_json& table, bool budget) {
     return md;
 }
 
-std::string median_keypoints(const nlohmann::ordered_json& r) {
+// Each frame's keypoint count (the workload's per-frame list), smallest first.
+std::vector<double> sorted_keypoints(const nlohmann::ordered_json& per_frame) {
     std::vector<double> kp;
-    if (r.contains("workload") && r["workload"].contains("per_frame"))
-        for (const auto& f : r["workload"]["per_frame"]) kp.push_back(f["keypoints"].get<double>());
-    if (kp.empty()) return "-";
+    for (const auto& f : per_frame) kp.push_back(f["keypoints"].get<double>());
     std::sort(kp.begin(), kp.end());
-    return fmt::format("{:.0f}", kp[kp.size() / 2]);
+    return kp;
+}
+
+std::string median_keypoints(const nlohmann::ordered_json& r) {
+    if (!r.contains("workload") || !r["workload"].contains("per_frame")) return "-";
+    const std::vector<double> kp = sorted_keypoints(r["workload"]["per_frame"]);
+    return kp.empty() ? "-" : fmt::format("{:.0f}", kp[kp.size() / 2]);
 }
 
 // The figures behind the verdict: rate, budget, latency, keypoints, threshold, where the time goes.
@@ -259,9 +264,7 @@ std::string workload_section(const nlohmann::ordered_json& w) {
     for (const auto& [key, value] : w.items()) {
         if (key == "software_stage" || (value.is_object() && value.empty())) continue;
         if (key == "per_frame") {
-            std::vector<double> kp;
-            for (const auto& f : value) kp.push_back(f["keypoints"].get<double>());
-            std::sort(kp.begin(), kp.end());
+            const std::vector<double> kp = sorted_keypoints(value);
             if (!kp.empty())
                 md += fmt::format("| frames | {} in `frames.csv`; keypoints per frame min {:.0f}, median {:.0f}, max {:.0f} |\n",
                                   kp.size(), kp.front(), kp[kp.size() / 2], kp.back());

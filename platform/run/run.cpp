@@ -100,10 +100,8 @@ nlohmann::ordered_json build_report(const Config& config, Soc& soc, const Outcom
     r["statistics"] = statistics_legend(soc.statistics());
     // The FHG's schedules come from its parameters, not from the run: seqgen's figures.
     nlohmann::ordered_json& fhg = r["fhg"];
-    if (fhg.is_array())
-        for (size_t k = 0; k < fhg.size(); ++k) fhg[k]["schedules"] = schedule_figures(soc.fhgs()[k]->params());
-    else
-        fhg["schedules"] = schedule_figures(soc.fhgs()[0]->params());
+    for (size_t k = 0; k < soc.fhgs().size(); ++k)
+        (fhg.is_array() ? fhg[k] : fhg)["schedules"] = schedule_figures(soc.fhgs()[k]->params());
     if (summary.contains("frames_done") && summary["frames_done"].get<size_t>() > 1) add_limits(r, config);
     r["workload"] = soc.workload().report();
     r["outputs"] = outputs;
