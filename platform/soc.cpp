@@ -82,7 +82,7 @@ Fhg::Params fhg_params(const Config& c) {
     return p;
 }
 
-Soc::Soc(const Config& c, Tracer& tracer) : workload_(make_workload(c)) {
+Soc::Soc(const Config& c, Tracer& tracer) : faults_(c.faults), workload_(make_workload(c)) {
     try {
         build(c, tracer);
     } catch (const std::invalid_argument& e) {
@@ -161,6 +161,14 @@ void Soc::build(const Config& c, Tracer& tracer) {
 
     wire_interrupts(tracer);
     register_statistics();
+    if (!faults_.empty()) {
+        workload_->inject(faults_);
+        plb2_->set_faults(&faults_);
+        for (unsigned k = 0; k < pairs; ++k) {
+            iigs_[k]->set_faults(&faults_, k);
+            fhgs_[k]->set_faults(&faults_, k);
+        }
+    }
 }
 
 // Block lines into the INTC, the INTC into the CPU; unused inputs held low.

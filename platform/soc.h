@@ -53,6 +53,7 @@ private:
     void register_statistics();
 
     Statistics statistics_;
+    FaultPlan faults_;
     std::unique_ptr<Workload> workload_;
     std::unique_ptr<DdrMemory> memory_;
     std::unique_ptr<PlbBus> plb1_, plb2_;

@@ -25,6 +25,7 @@ public:
     }
     void set(uint32_t sticky) { bits_ |= sticky; }  // a block's own STATUS flag
     void start() { bits_ = kBusy; }
+    void reset() { bits_ = code_ = 0; }  // CTRL.RESET once idle
     void end(bool failed, uint32_t failure) {
         bits_ &= ~kBusy;
         if (failed) flag(failure);

@@ -49,8 +49,12 @@ public:
     // outside memory.
     virtual const uint8_t* map(uint32_t address, size_t bytes) = 0;
 
-    // Blocks until the CPU's interrupt input is high.
-    virtual void wait_for_irq() = 0;
+    // Blocks until the CPU's interrupt input is high, or until `timeout_ps` of the time base
+    // have passed (a watchdog): false on the timeout. Where there is no time (direct mode) the
+    // timeout passes when nothing else can happen.
+    virtual bool wait_for_irq(uint64_t timeout_ps) = 0;
+    void wait_for_irq() { wait_for_irq(kNoTimeout); }
+    static constexpr uint64_t kNoTimeout = UINT64_MAX;
     // The interrupt input's level now: software that computes for long checks it between
     // pieces of work, as an interrupt would preempt it.
     virtual bool irq_pending() = 0;

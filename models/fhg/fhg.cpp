@@ -26,7 +26,7 @@ Fhg::Fhg(const sc_core::sc_module_name& name, const Params& params, Tracer& trac
       block_cycles_(block_cycles(sequence_, params)),
       registers_(register_limits(params),
                  {[this](const FhgRegisters::Frame& f) { start(f); }, [this] { fail(r::ERR_ABORTED); },
-                  [this] { changed(); }}),
+                  [this] { changed(); }, [this] { reset(); }}),
       slots_(params.det_row_buffers + 1),
       det_rows_("det_rows", int(params.det_row_buffers)),
       line_series_(params.series_bin.ps),
@@ -98,13 +98,72 @@ void Fhg::start(const FhgRegisters::Frame& f) {
     lines_.assign(size_t(f.width) * f.height, 0);
     for (auto& slot : slots_) slot.assign(size_t(frame_.blocks_x) * fhg::kDeterminantsPerBlock, 0);
     busy_.write(true);
+    irq_lost_ = false;
+    corruption_.row = -1;
     start_.notify(sc_core::SC_ZERO_TIME);
 }
 
+bool Fhg::strikes(FaultKind kind) const {
+    return faults_ && faults_->strike(kind, "fhg", pair_, sc_core::sc_time_stamp().value());
+}
+
+// CTRL.RESET: a frame that never ended is dropped (the registers then clear STATUS and the
+// FIFO), one in progress is aborted; an injected stuck line lets go.
+void Fhg::reset() {
+    if (hung_) {
+        hung_ = false;
+        registers_.status().reset();
+        busy_.write(false);
+    } else if (registers_.status().busy()) {
+        fail(r::ERR_ABORTED);
+    }
+    irq_stuck_ = irq_lost_ = false;
+    changed();
+}
+
+namespace {
+
+// The software stage checks a candidate (and so reads its determinant) only when its whole
+// 3x3x3 neighbourhood lies inside the image (sw/stage: the FHG writes 0 where a filter does
+// not fit); these are the sizes of its three scales.
+bool checked_by_software(const fhg::Candidate& c, uint32_t width, uint32_t height) {
+    static constexpr int kOctave1[] = {9, 15, 21, 27}, kOctave2[] = {15, 27, 39, 51};
+    const bool second = c.octave() == 2;
+    const int layer = second ? c.size_index - 2 : c.size_index, step = second ? 2 : 1;
+    for (int l = layer - 1; l <= layer + 1; ++l)
+        for (int d : {-step, step})
+            if (!fhg::HessianCore::inside(int(width), int(height), c.x + d, c.y + d, second ? kOctave2[l] : kOctave1[l]))
+                return false;
+    return true;
+}
+
+// Where a candidate's own determinant is among its block row's records (fhg_regs.h's layout).
+size_t record_index(const fhg::Candidate& c) {
+    const size_t bx = size_t(c.x / 2);
+    const size_t k = c.octave() == 2 ? (c.size_index == 3 ? 12 : 16) : size_t(4 * c.size_index + 2 * (c.y % 2) + c.x % 2);
+    return bx * fhg::kDeterminantsPerBlock + k;
+}
+
+}  // namespace
+
+// corrupt_determinant: the first candidate the software will check has its determinant
+// inverted on the way to memory (the row is written after its candidates are marked).
+void Fhg::corrupt_first_checked(const std::vector<fhg::Candidate>& candidates, int by) {
+    for (const fhg::Candidate& c : candidates)
+        if (checked_by_software(c, frame_.width, frame_.height)) {
+            if (strikes(FaultKind::corrupt_determinant)) corruption_ = {by, record_index(c)};
+            return;
+        }
+}
 // PixelBus: the IIG's send thread calls this; it waits while the line FIFO is full.
 void Fhg::send_line(int y, const uint32_t* data, int width, const sc_time& transfer) {
     if (!frame_.running || frame_.failed) return;  // nobody listens: the line is lost
     if (uint32_t(width) != frame_.width || y != frame_.received) return fail(r::ERR_PIXELBUS);
+    if (y == 0 && faults_) {  // the IIG has started: the frame is known
+        irq_stuck_ = irq_stuck_ || strikes(FaultKind::stuck_interrupt);
+        if (strikes(FaultKind::fifo_overflow)) registers_.refuse_candidates();
+        changed();
+    }
     while (y - frame_.oldest >= int(params_.sequence.fifo_lines) && frame_.running && !frame_.failed)
         sc_core::wait(room_);
     if (frame_.failed) return;
@@ -121,6 +180,7 @@ void Fhg::compute_block_row(int by, int32_t* records) {
     core_.block_row(view, by, records);
     std::vector<fhg::Candidate> found;
     fhg::LocalMaxFinder(frame_.threshold).block_row(records, int(frame_.blocks_x), by, found);
+    if (faults_ && corruption_.row < 0) corrupt_first_checked(found, by);
     push_candidates(found);
 }
 
@@ -155,8 +215,13 @@ void Fhg::frame_thread() {
         stats_.busy += sc_core::sc_time_stamp() - frame_.began;
         ++stats_.frames;
         frame_.running = false;
-        registers_.status().end(frame_.failed, frame_.error);
-        busy_.write(false);
+        if (strikes(FaultKind::never_finishes)) {
+            hung_ = true;  // the units are idle, STATUS stays BUSY
+        } else {
+            registers_.status().end(frame_.failed, frame_.error);
+            busy_.write(false);
+        }
+        irq_lost_ = strikes(FaultKind::lost_interrupt);
         room_.notify(sc_core::SC_ZERO_TIME);  // a sender still waiting gives up
         if (tracer_.perfetto_on())
             tracer_.slice(frame_track_, fmt::format("determinants {}x{}", frame_.width, frame_.height), frame_.began,
@@ -176,6 +241,10 @@ void Fhg::writer_thread() {
             const uint32_t n = det_bytes();
             bytes.resize(records.size() * n);
             for (size_t i = 0; i < records.size(); ++i) r::store_det(bytes.data() + n * i, records[i], n);
+            if (corruption_.row == by) {
+                r::store_det(bytes.data() + n * corruption_.index, ~records[corruption_.index], n);
+                corruption_.row = -1;
+            }
             const uint64_t at = frame_.det_addr + uint64_t(by) * frame_.blocks_x * r::record_bytes(n);
             if (!dma.write(at, bytes.data(), bytes.size()).ok) fail(r::ERR_WRITE);
         }
@@ -205,7 +274,7 @@ void Fhg::trace_levels() {
     }
 }
 
-void Fhg::update_irq() { irq.write(registers_.irq()); }
+void Fhg::update_irq() { irq.write(irq_stuck_ || (registers_.irq() && !irq_lost_)); }
 
 void Fhg::register_statistics(Statistics::Scope s) const {
     s.count("frames", [this] { return stats_.frames; }, "frames", "frames ended (done or failed)");

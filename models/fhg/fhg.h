@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "fhg_registers.h"
+#include "models/common/fault_plan.h"
 #include "hessian_core.h"
 #include "local_max_finder.h"
 #include "models/common/statistics.h"
@@ -92,6 +93,11 @@ public:
 
     // Its statistics, registered at elaboration (after every connection) under `scope`.
     void register_statistics(Statistics::Scope scope) const;
+    // Faults to inject (none by default); it is the FHG of accelerator pair `pair`.
+    void set_faults(FaultPlan* faults, unsigned pair) {
+        faults_ = faults;
+        pair_ = pair;
+    }
 
 private:
     void b_transport(tlm::tlm_generic_payload& tx, sc_core::sc_time& delay);
@@ -104,6 +110,9 @@ private:
     void push_candidates(const std::vector<fhg::Candidate>& candidates);
     void update_irq();
     void trace_levels();
+    void reset();
+    bool strikes(FaultKind kind) const;
+    void corrupt_first_checked(const std::vector<fhg::Candidate>& candidates, int by);
 
     Params params_;
     Tracer& tracer_;
@@ -132,6 +141,15 @@ private:
     Stats stats_;
     TimeSeries line_series_, maxima_series_;  // FIFO levels per time bin
     int frame_track_ = -1, row_track_ = -1, level_track_ = -1;
+    FaultPlan* faults_ = nullptr;
+    unsigned pair_ = 0;
+    // Injected faults in effect: the frame's end withheld (STATUS stays BUSY), its interrupt
+    // lost, the line stuck high until RESET; a determinant to invert as its row is written.
+    bool hung_ = false, irq_lost_ = false, irq_stuck_ = false;
+    struct Corruption {
+        int row = -1;        // block row
+        size_t index = 0;    // determinant within the row's records
+    } corruption_;
 };
 
 }  // namespace surfvp

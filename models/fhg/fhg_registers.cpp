@@ -30,6 +30,15 @@ bool FhgRegisters::access(uint32_t offset, uint32_t& value, bool write) {
 }
 
 void FhgRegisters::command(uint32_t ctrl) {
+    if (ctrl & r::CTRL_RESET) {
+        if (hooks_.reset) hooks_.reset();
+        if (!status_.busy()) {
+            status_.reset();
+            fifo_.clear();
+            refusing_ = false;
+        }
+        return;
+    }
     if (ctrl & r::CTRL_ABORT) {
         if (status_.busy() && hooks_.abort) hooks_.abort();
         return;
@@ -40,6 +49,7 @@ void FhgRegisters::command(uint32_t ctrl) {
     if (width == 0 || height == 0 || width > limits_.max_width || height > limits_.max_height)
         return status_.flag(r::ERR_SIZE);
     fifo_.clear();
+    refusing_ = false;
     bank_.value(r::OVERFLOW_COUNT) = bank_.value(r::CANDIDATES) = 0;
     status_.start();
     hooks_.start({bank_.value(r::DET_ADDR), width, height, int32_t(bank_.value(r::THRESHOLD))});
@@ -49,7 +59,7 @@ unsigned FhgRegisters::push(const std::vector<fhg::Candidate>& candidates) {
     unsigned dropped = 0;
     for (const fhg::Candidate& c : candidates) {
         ++bank_.value(r::CANDIDATES);
-        if (fifo_.size() < limits_.fifo_depth) {
+        if (fifo_.size() < limits_.fifo_depth && !refusing_) {
             fifo_.push_back(fhg::pack_candidate(c));
             continue;
         }

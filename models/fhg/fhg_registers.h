@@ -32,6 +32,7 @@ public:
         std::function<void(const Frame&)> start;  // STATUS is BUSY: take the frame
         std::function<void()> abort;              // CTRL.ABORT while busy
         std::function<void()> changed;            // a write or a FIFO pop: levels and the interrupt may change
+        std::function<void()> reset;              // CTRL.RESET: abort a running frame, drop one that never ended
     };
 
     FhgRegisters(const Limits& limits, Hooks hooks);
@@ -45,6 +46,9 @@ public:
     // LocMaxFinder's candidates, in order; returns how many were dropped on a full FIFO.
     unsigned push(const std::vector<fhg::Candidate>& candidates);
     unsigned fifo_level() const { return unsigned(fifo_.size()); }
+    // Fault injection (fifo_overflow): every candidate is dropped as if the FIFO were full,
+    // until the next START or RESET.
+    void refuse_candidates() { refusing_ = true; }
     bool irq() const;
 
 private:
@@ -57,6 +61,7 @@ private:
     Limits limits_;
     Hooks hooks_;
     std::deque<uint32_t> fifo_;
+    bool refusing_ = false;
 };
 
 }  // namespace surfvp

@@ -8,7 +8,7 @@
 
 namespace surfvp::fhg_regs {
 
-constexpr uint32_t CTRL = 0x00;            // START, IRQ_EN_DONE, IRQ_EN_FIFO, ABORT
+constexpr uint32_t CTRL = 0x00;            // START, IRQ_EN_DONE, IRQ_EN_FIFO, ABORT, RESET
 constexpr uint32_t STATUS = 0x04;          // BUSY, DONE, ERROR, FIFO_OVERFLOW, FIFO_IRQ; write 1 to clear DONE/ERROR/FIFO_OVERFLOW
 constexpr uint32_t ERROR_CODE = 0x08;      // ErrorCode of the last ERROR (read only)
 constexpr uint32_t DET_ADDR = 0x0C;        // determinant buffer (bus address on PLB2)
@@ -27,6 +27,7 @@ constexpr uint32_t CTRL_START = 1u << 0;
 constexpr uint32_t CTRL_IRQ_EN_DONE = 1u << 1;
 constexpr uint32_t CTRL_IRQ_EN_FIFO = 1u << 2;
 constexpr uint32_t CTRL_ABORT = 1u << 3;
+constexpr uint32_t CTRL_RESET = 1u << 4;  // back to idle (see the table)
 
 constexpr uint32_t STATUS_BUSY = 1u << 0;
 constexpr uint32_t STATUS_DONE = 1u << 1;
@@ -53,7 +54,10 @@ inline const RegisterTable& table() {
           {{"START", 0, 1, Access::command, "listen for a frame with the registers as they are (ERROR START_BUSY while busy)"},
            {"IRQ_EN_DONE", 1, 1, Access::RW, "raise the interrupt while DONE or ERROR"},
            {"IRQ_EN_FIFO", 2, 1, Access::RW, "raise the interrupt while FIFO_IRQ"},
-           {"ABORT", 3, 1, Access::command, "stop the frame in progress (ERROR ABORTED)"}}},
+           {"ABORT", 3, 1, Access::command, "stop the frame in progress (ERROR ABORTED)"},
+           {"RESET", 4, 1, Access::command,
+            "back to idle: a frame in progress is aborted (as ABORT), one that never ended is dropped; once idle, STATUS "
+            "and ERROR_CODE are cleared and the maxima FIFO emptied"}}},
          {"STATUS", STATUS, Access::W1C, 0, "the frame's state and the maxima FIFO's",
           {{"BUSY", 0, 1, Access::RO, "a frame is running"},
            {"DONE", 1, 1, Access::W1C, "the last frame ended well"},

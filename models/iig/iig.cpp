@@ -21,7 +21,7 @@ Iig::Iig(const sc_core::sc_module_name& name, const Params& params, Tracer& trac
       core_(params.sum_bits),
       registers_({params.max_width, params.max_height},
                  {[this](const IigRegisters::Frame& f) { start(f); }, [this] { fail(iig::ERR_ABORTED); },
-                  [this] { irq_changed_.notify(sc_core::SC_ZERO_TIME); }}),
+                  [this] { irq_changed_.notify(sc_core::SC_ZERO_TIME); }, [this] { reset(); }}),
       fetched_("fetched", int(params.line_buffers)),
       computed_for_write_("computed_for_write", int(params.line_buffers)),
       computed_for_send_("computed_for_send", int(params.line_buffers)) {
@@ -62,7 +62,30 @@ void Iig::start(const IigRegisters::Frame& f) {
     bytes_.resize(size_t(frame_.width) * 4);
     stall_total_ = sc_core::SC_ZERO_TIME;
     busy_.write(true);
+    irq_lost_ = false;
+    if (faults_) {
+        faults_->frame_started(pair_, f.src);
+        irq_stuck_ = irq_stuck_ || strikes(FaultKind::stuck_interrupt);
+    }
     start_.notify(sc_core::SC_ZERO_TIME);
+}
+
+bool Iig::strikes(FaultKind kind) const {
+    return faults_ && faults_->strike(kind, "iig", pair_, sc_core::sc_time_stamp().value());
+}
+
+// CTRL.RESET: a frame that never ended is dropped (the registers then clear STATUS), one in
+// progress is aborted; an injected stuck line lets go.
+void Iig::reset() {
+    if (hung_) {
+        hung_ = false;
+        registers_.status().reset();
+        busy_.write(false);
+    } else if (registers_.status().busy()) {
+        fail(iig::ERR_ABORTED);
+    }
+    irq_stuck_ = irq_lost_ = false;
+    irq_changed_.notify(sc_core::SC_ZERO_TIME);
 }
 
 void Iig::fetch_thread() {
@@ -139,8 +162,13 @@ void Iig::finish_row() {
     stats_.stalled += stall_total_;
     stats_.busy += sc_core::sc_time_stamp() - frame_.began;
     ++stats_.frames;
-    registers_.end(frame_.failed, frame_.error, uint32_t(stall_total_.to_seconds() * params_.clock.hz + 0.5));
-    busy_.write(false);
+    if (strikes(FaultKind::never_finishes)) {
+        hung_ = true;  // the units are idle, STATUS stays BUSY
+    } else {
+        registers_.end(frame_.failed, frame_.error, uint32_t(stall_total_.to_seconds() * params_.clock.hz + 0.5));
+        busy_.write(false);
+    }
+    irq_lost_ = strikes(FaultKind::lost_interrupt);
     if (tracer_.perfetto_on())
         tracer_.slice(track_, fmt::format("integral {}x{}", frame_.width, frame_.height), frame_.began,
                       sc_core::sc_time_stamp());
@@ -148,7 +176,7 @@ void Iig::finish_row() {
 }
 
 void Iig::update_irq() {
-    irq.write(registers_.irq());
+    irq.write(irq_stuck_ || (registers_.irq() && !irq_lost_));
 }
 
 void Iig::register_statistics(Statistics::Scope s) const {

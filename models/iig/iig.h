@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "iig_registers.h"
+#include "models/common/fault_plan.h"
 #include "integral_core.h"
 #include "models/common/statistics.h"
 #include "models/common/parameter.h"
@@ -68,6 +69,11 @@ public:
 
     // Its statistics, registered at elaboration (after every connection) under `scope`.
     void register_statistics(Statistics::Scope scope) const;
+    // Faults to inject (none by default); it is the IIG of accelerator pair `pair`.
+    void set_faults(FaultPlan* faults, unsigned pair) {
+        faults_ = faults;
+        pair_ = pair;
+    }
 
 private:
     void b_transport(tlm::tlm_generic_payload& tx, sc_core::sc_time& delay);
@@ -79,6 +85,8 @@ private:
     void send_thread();
     void finish_row();
     void update_irq();
+    void reset();
+    bool strikes(FaultKind kind) const;
 
     Params params_;
     Tracer& tracer_;
@@ -103,6 +111,11 @@ private:
     Stats stats_;
     sc_core::sc_time stall_total_;
     int track_ = -1;
+    FaultPlan* faults_ = nullptr;
+    unsigned pair_ = 0;
+    // Injected faults in effect: the frame's end withheld (STATUS stays BUSY), its interrupt
+    // lost, the interrupt line stuck high until RESET.
+    bool hung_ = false, irq_lost_ = false, irq_stuck_ = false;
 };
 
 }  // namespace surfvp

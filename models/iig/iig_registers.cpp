@@ -20,6 +20,11 @@ bool IigRegisters::access(uint32_t offset, uint32_t& value, bool write) {
 }
 
 void IigRegisters::command(uint32_t ctrl) {
+    if (ctrl & iig::CTRL_RESET) {
+        if (hooks_.reset) hooks_.reset();
+        if (!status_.busy()) status_.reset();
+        return;
+    }
     if (ctrl & iig::CTRL_ABORT) {
         if (status_.busy() && hooks_.abort) hooks_.abort();
         return;

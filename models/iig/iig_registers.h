@@ -25,6 +25,7 @@ public:
         std::function<void(const Frame&)> start;  // STATUS is BUSY: run the frame
         std::function<void()> abort;              // CTRL.ABORT while busy
         std::function<void()> changed;            // after any write: the interrupt line may change
+        std::function<void()> reset;              // CTRL.RESET: abort a running frame, drop one that never ended
     };
 
     IigRegisters(const Limits& limits, Hooks hooks);

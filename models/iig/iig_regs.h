@@ -6,7 +6,7 @@
 
 namespace surfvp::iig {
 
-constexpr uint32_t CTRL = 0x00;          // START, IRQ_EN, STREAM, ABORT
+constexpr uint32_t CTRL = 0x00;          // START, IRQ_EN, STREAM, ABORT, RESET
 constexpr uint32_t STATUS = 0x04;        // BUSY, DONE, ERROR; write 1 to DONE/ERROR to clear
 constexpr uint32_t ERROR_CODE = 0x08;    // ErrorCode of the last ERROR (read only)
 constexpr uint32_t SRC = 0x0C;           // 8-bit image in memory (bus address on PLB2)
@@ -21,6 +21,7 @@ constexpr uint32_t CTRL_START = 1u << 0;
 constexpr uint32_t CTRL_IRQ_EN = 1u << 1;
 constexpr uint32_t CTRL_STREAM = 1u << 2;  // also send each line over PixelBus to the FHG
 constexpr uint32_t CTRL_ABORT = 1u << 3;   // stop the frame in progress (status ERROR, code ABORTED)
+constexpr uint32_t CTRL_RESET = 1u << 4;   // back to idle (see the table)
 
 constexpr uint32_t STATUS_BUSY = 1u << 0;
 constexpr uint32_t STATUS_DONE = 1u << 1;
@@ -45,7 +46,10 @@ inline const RegisterTable& table() {
           {{"START", 0, 1, Access::command, "begin a frame with the registers as they are (ERROR START_BUSY while busy)"},
            {"IRQ_EN", 1, 1, Access::RW, "raise the interrupt while DONE or ERROR"},
            {"STREAM", 2, 1, Access::RW, "also send each integral line over PixelBus to the FHG"},
-           {"ABORT", 3, 1, Access::command, "stop the frame in progress (ERROR ABORTED)"}}},
+           {"ABORT", 3, 1, Access::command, "stop the frame in progress (ERROR ABORTED)"},
+           {"RESET", 4, 1, Access::command,
+            "back to idle: a frame in progress is aborted (as ABORT), one that never ended is dropped; once idle, STATUS "
+            "and ERROR_CODE are cleared"}}},
          {"STATUS", STATUS, Access::W1C, 0, "the frame's state",
           {{"BUSY", 0, 1, Access::RO, "a frame is running"},
            {"DONE", 1, 1, Access::W1C, "the last frame ended well"},

@@ -210,7 +210,10 @@ void PlbBus::b_transport(int master, tlm::tlm_generic_payload& tx, sc_time& dela
         tx.set_data_ptr(data + done);
         tx.set_data_length(unsigned(n));
         tx.set_streaming_width(unsigned(n));
-        slaves[route->slave]->b_transport(tx, slave_time);
+        if (faults_ && faults_->bus_error(stats.name, stats.bursts + 1, granted.value()))
+            tx.set_response_status(tlm::TLM_GENERIC_ERROR_RESPONSE);  // the slave never sees it
+        else
+            slaves[route->slave]->b_transport(tx, slave_time);
         const sc_time duration = burst_time(params_, n, slave_time - ahead);
         end = granted + duration;
         path.free_at = end;

@@ -29,6 +29,7 @@
 #include <tlm_utils/multi_passthrough_target_socket.h>
 #include <vector>
 
+#include "models/common/fault_plan.h"
 #include "models/common/statistics.h"
 #include "models/common/parameter.h"
 #include "models/common/tracer.h"
@@ -94,6 +95,8 @@ public:
 
     const Params& params() const { return params_; }
     const std::vector<MasterStats>& master_stats() const { return master_stats_; }
+    // Faults to inject (bus_error: a master's Nth burst answered with an error); none by default.
+    void set_faults(FaultPlan* faults) { faults_ = faults; }
     const PathStats& read_stats() const { return read_.stats; }
     const PathStats& write_stats() const { return write_.stats; }
     uint64_t decode_errors() const { return decode_errors_; }
@@ -152,6 +155,7 @@ private:
     std::vector<MasterStats> master_stats_;
     std::vector<int> master_tracks_;
     std::vector<unsigned> master_burst_;  // beats per burst, per master
+    FaultPlan* faults_ = nullptr;
     Path read_{Path("read")};
     Path write_{Path("write")};
     uint64_t decode_errors_ = 0;

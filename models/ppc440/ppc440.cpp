@@ -179,16 +179,18 @@ bool Ppc440::irq_pending() {
 
 uint64_t Ppc440::time_ps() { return now().value(); }
 
-void Ppc440::wait_for_irq() {
+bool Ppc440::wait_for_irq(uint64_t timeout_ps) {
     keeper_.sync();
     ++stats_.irq_waits;
-    if (irq.read()) return;
+    if (irq.read()) return true;
     const sc_time began = sc_core::sc_time_stamp();
     waiting_.write(true);
-    sc_core::wait(irq.posedge_event());
+    if (timeout_ps == kNoTimeout) sc_core::wait(irq.posedge_event());
+    else sc_core::wait(sc_time(double(timeout_ps), sc_core::SC_PS), irq.posedge_event());
     waiting_.write(false);
     stats_.irq_wait_time += sc_core::sc_time_stamp() - began;
     if (tracer_.perfetto_on()) tracer_.slice(track_, "wait for irq", began, sc_core::sc_time_stamp());
+    return irq.read();
 }
 
 void Ppc440::consume(uint64_t count) {

@@ -69,7 +69,8 @@ private:
     void read(uint32_t address, void* data, size_t bytes) override;
     void write(uint32_t address, const void* data, size_t bytes) override;
     const uint8_t* map(uint32_t address, size_t bytes) override;
-    void wait_for_irq() override;
+    using Hal::wait_for_irq;
+    bool wait_for_irq(uint64_t timeout_ps) override;
     bool irq_pending() override;
     uint64_t time_ps() override;
     void consume(uint64_t cycles) override;

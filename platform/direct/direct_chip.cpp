@@ -23,13 +23,17 @@ DirectChip::Pair::Pair(DirectChip& chip, const IigRegisters::Limits& iig_limits,
                            integral = f;
                            chip.run_integral(*this);
                        },
-                       [this] { iig.end(true, iig::ERR_ABORTED, 0); }, {}}),
+                       [this] { iig.end(true, iig::ERR_ABORTED, 0); }, {}, {}}),
       fhg(fhg_limits, {[this](const FhgRegisters::Frame& f) {
                            determinants = f;
                            next_row = 0;
                            lines.clear();
                        },
-                       [this] { fhg.status().end(true, f::ERR_ABORTED); }, {}}) {}
+                       [this] { fhg.status().end(true, f::ERR_ABORTED); }, {},
+                       [this] {  // RESET: a frame still listening is aborted at once (no time here)
+                           if (fhg.status().busy()) fhg.status().end(true, f::ERR_ABORTED);
+                           lines.clear();
+                       }}) {}
 
 DirectChip::DirectChip(const Config& config, unsigned accelerators)
     : memory_size_(config.bytes("memory.size").n),
@@ -90,10 +94,15 @@ bool DirectChip::irq_pending() {
     return intc_.output();
 }
 
-// The software waits: the hardware works until a line is up.
-void DirectChip::wait_for_irq() {
+// The software waits: the hardware works until a line is up. Without time, a watchdog's
+// timeout passes when nothing is left to do.
+bool DirectChip::wait_for_irq(uint64_t timeout_ps) {
     while (!irq_pending())
-        if (!step()) throw std::runtime_error("direct mode: the software waits for an interrupt that nothing can raise");
+        if (!step()) {
+            if (timeout_ps != kNoTimeout) return false;
+            throw std::runtime_error("direct mode: the software waits for an interrupt that nothing can raise");
+        }
+    return true;
 }
 
 // One block row of every FHG that has one to do; false when none had.

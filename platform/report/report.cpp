@@ -353,6 +353,29 @@ std::string simulation_section(const nlohmann::ordered_json& r) {
 
 }  // namespace
 
+// Injected faults: the counts, then each fault and what became of its frame.
+std::string faults_section(const nlohmann::ordered_json& f) {
+    const auto& d = f["driver"];
+    std::string md = fmt::format(
+        "\n## Injected faults\n\n{} given, {} struck, {} detected, {} recovered (their pair finished a later frame, or the "
+        "frame itself went on); {} frames lost. The driver's watchdog expired {} times, {} interrupts had nothing to serve, "
+        "{} pair resets.\n\n| fault | given at | struck | frame | detected | recovered | outcome |\n|---|---|---:|---:|---|---|---|\n",
+        f["given"].get<size_t>(), f["injected"].get<size_t>(), f["detected"].get<size_t>(), f["recovered"].get<size_t>(),
+        f["tasks_lost"].get<size_t>(), d["watchdog_expiries"].get<uint64_t>(), d["spurious_interrupts"].get<uint64_t>(),
+        d["pair_resets"].get<uint64_t>());
+    auto yes = [](const nlohmann::ordered_json& j, const char* key) { return j.value(key, false) ? "yes" : "**no**"; };
+    for (const auto& x : f["list"]) {
+        if (!x["struck"].get<bool>()) {
+            md += fmt::format("| {} | {} | **never** | | | | |\n", x["fault"].get<std::string>(), x["origin"].get<std::string>());
+            continue;
+        }
+        md += fmt::format("| {} | {} | {:.3f} ms | {} | {} | {} | {} |\n", x["fault"].get<std::string>(),
+                          x["origin"].get<std::string>(), x["at_ms"].get<double>(), x["frame"].get<int64_t>(), yes(x, "detected"),
+                          yes(x, "recovered"), x.value("outcome", ""));
+    }
+    return md;
+}
+
 std::string report_markdown(const nlohmann::ordered_json& r) {
     std::string md = fmt::format("# surfvp run: {}\n\n{}\n\n", r["scenario"]["name"].get<std::string>(),
                                  r["scenario"]["description"].get<std::string>());
@@ -364,6 +387,7 @@ std::string report_markdown(const nlohmann::ordered_json& r) {
         md += fmt::format("| {} | {} | {} |\n", c["name"].get<std::string>(), c["passed"].get<bool>() ? "pass" : "FAIL",
                           c["detail"].get<std::string>());
     if (r.contains("verdict")) md += verdict_section(r["verdict"]);
+    if (r.contains("faults")) md += faults_section(r["faults"]);
     if (r.contains("throughput_fps")) md += frames_section(r);
     md += accelerators_section(r);
     if (r.contains("cpu")) md += cpu_section(r);

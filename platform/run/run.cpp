@@ -206,6 +206,9 @@ int write_run(const Config& config, const std::string& out, const nlohmann::orde
 int run_scenario(const RunOptions& options) {
     const Config config = load_scenario(resolve_scenario(options.scenario), options.sets);
     trace_options(options.trace, "");  // a bad --trace is bad input before anything is written
+    if (options.direct && !config.faults.empty())
+        throw ConfigError(fmt::format("{}: faults: --direct has no time, buses or interrupts to inject them into; "
+                                      "run without --direct", config.faults.front().origin));
     const fs::path dir = output_dir(options, config);
     if (options.direct) return run_direct(config, dir, options);
     if (verdict_requested(config)) return run_with_verdict(config, dir.string(), options.trace, options.quiet);

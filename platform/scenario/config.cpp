@@ -3,6 +3,8 @@
 #include <fmt/format.h>
 #include <yaml-cpp/yaml.h>
 
+#include "platform/scenario/faults.h"
+
 namespace surfvp {
 
 Config::Config() {
@@ -82,7 +84,7 @@ std::string Config::to_yaml() const {
     }
     if (!section.empty()) out << YAML::EndMap;
     out << YAML::EndMap;
-    return std::string(out.c_str()) + "\n";
+    return std::string(out.c_str()) + "\n" + faults_yaml(faults);
 }
 
 }  // namespace surfvp

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "models/common/fault_plan.h"
 #include "models/common/units.h"
 #include "platform/scenario/parameters.h"
 
@@ -52,6 +53,7 @@ public:
     std::string name;         // the scenario's name (its file's stem unless it says)
     std::string description;  // its one-line description
     std::string file;         // the scenario file, as given
+    std::vector<Fault> faults;  // to inject (the scenario's faults:, docs/faults.md)
 
     // The configuration as a scenario YAML that reproduces it, each value commented with
     // its origin.

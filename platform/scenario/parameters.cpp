@@ -73,6 +73,16 @@ void add_surf(std::vector<ParamSpec>& t) {
                  "[S] paper §III-D: tasks overlap; two let the CPU describe one while the hardware does the next"});
     t.push_back({"surf.fifo_irq_level", ParamKind::count, "256", 1, 1 << 20, {},
                  "Maxima FIFO level that interrupts the CPU to drain it", "[A] a quarter of the default FIFO"});
+    t.push_back({"surf.watchdog", ParamKind::duration, "0 s", 0, 3600 * s, {},
+                 "libSSA2's watchdog: a task's hardware still unfinished this long after its start is checked "
+                 "(a block found finished lost its interrupt; one still BUSY fails the task); 0: off",
+                 "[-] off unless a scenario arms it (scenarios/faults.yaml: 100 ms): an armed timeout moves one PLB2 "
+                 "burst in 10^5 by a wait bin between DMA granularities (an open kernel-ordering sensitivity)"});
+    t.push_back({"surf.spurious_irq_limit", ParamKind::count, "64", 0, 1 << 20, {},
+                 "Interrupts in a row from one line with nothing to serve that make libSSA2 call the line stuck "
+                 "(fail the task, reset the pair); 0: never",
+                 "[-] driver setting (no fault-free figure depends on it): a line that has just let go can give one; in "
+                 "scenarios/faults.yaml all 64 came from the stuck line"});
     t.push_back({"budget.fps", ParamKind::real, "10", 0, 1e6, {}, "Frames per second the scenario must sustain (0: no budget)",
                  "[S] paper: ~10 FPS at 1024 x 768"});
     t.push_back({"verdict.break_even", ParamKind::choice, "off", 0, 0, {"on", "off"},
@@ -94,9 +104,6 @@ void add_surf(std::vector<ParamSpec>& t) {
     t.push_back({"verdict.jobs", ParamKind::count, "0", 0, 256, {},
                  "Re-simulations run at once (0: one per core); no figure depends on it",
                  "[-] simulation setting"});
-    t.push_back({"fault.frame", ParamKind::count, "0", 0, 100000, {},
-                 "Fault injection: frame number (from 1) whose determinant buffer is placed outside memory; 0: none",
-                 "[-] test hook: a DMA bus error in one task"});
     t.push_back({"eval.homography", ParamKind::text, "", 0, 0, {},
                  "Homography from frame 0 to frame 1 (Oxford or OpenCV file): report repeatability and precision", "[-] evaluation"});
     t.push_back({"eval.poses", ParamKind::text, "", 0, 0, {},

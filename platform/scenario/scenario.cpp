@@ -7,6 +7,8 @@
 #include <set>
 #include <yaml-cpp/yaml.h>
 
+#include "platform/scenario/faults.h"
+
 namespace surfvp {
 namespace fs = std::filesystem;
 namespace {
@@ -68,9 +70,11 @@ Config load_scenario(const std::string& path, const std::vector<std::string>& ov
         const std::string key = item.first.Scalar();
         if (key == "name") config.name = scalar(path, key, item.second);
         else if (key == "description") config.description = scalar(path, key, item.second);
+        else if (key == "faults") config.faults = parse_faults(path, item.second);
         else apply_section(config, path, key, item.second, seen);
     }
     apply_overrides(config, overrides);
+    check_faults(config);
     return config;
 }
 
@@ -79,6 +83,10 @@ void apply_overrides(Config& config, const std::vector<std::string>& overrides) 
         const auto eq = o.find('=');
         if (eq == std::string::npos || eq == 0)
             throw ConfigError(fmt::format("--set '{}': expected KEY=VALUE, e.g. plb2.width=64 bit", o));
+        if (o.substr(0, eq) == "faults") {  // the whole list, in place of the scenario's
+            config.faults = parse_faults_option(o.substr(eq + 1));
+            continue;
+        }
         config.set(o.substr(0, eq), o.substr(eq + 1), "--set");
     }
 }

@@ -4,9 +4,11 @@
 #include <fstream>
 #include <stdexcept>
 #include <string>
+#include <fmt/format.h>
 #include <vector>
 
 #include "models/fhg/fhg_regs.h"
+#include "models/fhg/local_max_finder.h"
 #include "platform/soc.h"
 #include "models/common/byte_order.h"
 #include "sw/cpu_cost/calibration.h"
@@ -117,7 +119,14 @@ public:
             recorded_task_ = frame.task;
         }
         const double start = stage_.cost().exact_cycles();
+        const uint64_t inconsistent = stage_.stats().inconsistent;
         auto keypoint = stage_.process(word, buffers);
+        if (stage_.stats().inconsistent != inconsistent) {
+            const fhg::Candidate c = fhg::unpack_candidate(word);
+            work.inconsistency = fmt::format("candidate ({}, {}, size {}) is not above the threshold in the determinant "
+                                             "buffer, though the FHG marked it: the buffer is corrupted",
+                                             c.x, c.y, fhg::kSizes[size_t(c.size_index)]);
+        }
         if (recorder_) recorder_->word(word, keypoint);
         work.cycles = stage_.cost().take_cycles();
         for (const sw::CostCounter::Miss& m : stage_.cost().misses())

@@ -29,7 +29,7 @@ namespace {
 namespace fs = std::filesystem;
 
 constexpr uint64_t kPage = 4096;
-constexpr uint32_t kOutsideMemory = 0xF000'0000;  // fault.frame's determinant buffer: no DDR there
+constexpr uint32_t kOutsideMemory = 0xF000'0000;  // a dma_outside_memory fault's buffer: no DDR there
 uint64_t round_up(uint64_t v) { return (v + kPage - 1) / kPage * kPage; }
 
 std::vector<cv::Mat> read_frames(const Config& c) {
@@ -114,13 +114,14 @@ public:
                                        uint32_t(slots_base_ + set * slot_bytes_ + integral_bytes_ + det_bytes_)});
         driver_.fifo_irq_level = uint32_t(c.count("surf.fifo_irq_level"));
         driver_.threshold = core.from_float(threshold_);
+        driver_.watchdog_ps = c.duration("surf.watchdog").ps;
+        driver_.spurious_irq_limit = unsigned(c.count("surf.spurious_irq_limit"));
         budget_fps_ = c.real("budget.fps");
         // A frame rate needs one whole round of the pairs after the first frame.
         if (budget_fps_ > 0 && frames_.size() <= c.count("soc.accelerators"))
             throw ConfigError(fmt::format("surf.frames: {} frames cannot give a frame rate with {} accelerator pair(s): "
                                           "the steady-state rate needs {}; set more frames or budget.fps = 0",
                                           frames_.size(), c.count("soc.accelerators"), c.count("soc.accelerators") + 1));
-        fault_frame_ = c.count("fault.frame");
         cpu_hz_ = c.frequency("cpu.clock").hz;
     }
 
@@ -131,6 +132,13 @@ public:
         }
     }
 
+    void inject(FaultPlan& faults) override {
+        faults_ = &faults;
+        std::vector<uint32_t> images;
+        for (size_t i = 0; i < frames_.size(); ++i) images.push_back(frame_address(i));
+        faults.set_frame_images(std::move(images));
+    }
+
     Ppc440::Software software() override {
         return [this](sw::Hal& hal) {
             std::vector<sw::ssa2::Task> tasks(frames_.size());
@@ -139,7 +147,7 @@ public:
                 tasks[i].width = width_;
                 tasks[i].height = height_;
             }
-            if (fault_frame_ > 0 && fault_frame_ <= tasks.size()) tasks[fault_frame_ - 1].determinants = kOutsideMemory;
+            if (faults_) give_buffers_outside_memory(tasks, hal.time_ps());
             sw::ssa2::Driver driver(hal, driver_, *describer_);
             driver.run(tasks, [this](const sw::ssa2::Task& task, surf::Keypoints&& keypoints) {
                 FrameResult& r = results_[size_t(task.id)];
@@ -149,6 +157,7 @@ public:
                 ++done_;
             });
             accelerator_time_ = driver.accelerator_time();
+            recovery_ = driver.recovery();
         };
     }
 
@@ -157,11 +166,18 @@ public:
     std::vector<Check> checks() const override {
         std::vector<Check> checks;
         std::vector<std::string> failures;
-        for (const FrameResult& r : results_)
-            if (r.task.phase == sw::ssa2::Phase::failed) failures.push_back(fmt::format("frame {}: {}", r.task.id, r.task.error));
-        checks.push_back({"every frame processed", failures.empty() && done_ == frames_.size(),
-                          failures.empty() ? fmt::format("{} of {} frames", done_, frames_.size())
+        size_t lost_to_faults = 0, done = 0;
+        for (const FrameResult& r : results_) {
+            done += r.task.phase == sw::ssa2::Phase::done;
+            if (r.task.phase != sw::ssa2::Phase::failed) continue;
+            if (struck_by_fault(r.task.id)) ++lost_to_faults;
+            else failures.push_back(fmt::format("frame {}: {}", r.task.id, r.task.error));
+        }
+        const std::string lost = lost_to_faults ? fmt::format("; {} lost to injected faults", lost_to_faults) : "";
+        checks.push_back({"every frame processed", failures.empty() && done + lost_to_faults == frames_.size(),
+                          failures.empty() ? fmt::format("{} of {} frames{}", done, frames_.size(), lost)
                                            : fmt::format("{}", fmt::join(failures, "; "))});
+        if (faults_) checks.push_back(fault_check());
         if (budget_fps_ > 0) {
             const double fps = throughput();
             checks.push_back({"frame-rate budget", fps >= budget_fps_,
@@ -214,6 +230,12 @@ private:
 
     double throughput() const;
     nlohmann::ordered_json evaluation() const;
+    void give_buffers_outside_memory(std::vector<sw::ssa2::Task>& tasks, uint64_t now_ps) const;
+    bool struck_by_fault(int frame) const;
+    bool detected(const Fault& fault) const;
+    bool recovered(const Fault& fault) const;
+    Check fault_check() const;
+    nlohmann::ordered_json fault_report() const;
     // How the threshold was chosen (calibrate() above).
     std::string threshold_rule() const {
         const int64_t target = config_.count("surf.target_keypoints");
@@ -231,7 +253,9 @@ private:
     sw::ssa2::DriverConfig driver_;
     int width_ = 0, height_ = 0;
     uint64_t frame_bytes_ = 0, integral_bytes_ = 0, det_bytes_ = 0, slot_bytes_ = 0, frames_base_ = 0, slots_base_ = 0;
-    uint64_t done_ = 0, fault_frame_ = 0;
+    uint64_t done_ = 0;
+    FaultPlan* faults_ = nullptr;
+    sw::ssa2::Driver::Recovery recovery_;
     double budget_fps_ = 0, cpu_hz_ = 0;
     std::vector<sw::ssa2::AcceleratorTime> accelerator_time_;
 };
@@ -248,6 +272,84 @@ double SurfWorkload::throughput() const {
     std::sort(ends.begin(), ends.end());
     const size_t span = (ends.size() - 1) / k * k;
     return double(span) / (double(ends.back() - ends[ends.size() - 1 - span]) * 1e-12);
+}
+
+// dma_outside_memory: the driver is given a buffer where there is no memory for that frame
+// (when the software starts).
+void SurfWorkload::give_buffers_outside_memory(std::vector<sw::ssa2::Task>& tasks, uint64_t now_ps) const {
+    for (size_t i = 0; i < faults_->faults().size(); ++i) {
+        const Fault& f = faults_->faults()[i];
+        if (f.kind != FaultKind::dma_outside_memory) continue;
+        (f.block == "iig" ? tasks[f.frame].integral : tasks[f.frame].determinants) = kOutsideMemory;
+        faults_->strike_in_software(i, now_ps);
+    }
+}
+
+bool SurfWorkload::struck_by_fault(int frame) const {
+    if (!faults_) return false;
+    const auto& all = faults_->faults();
+    return std::any_of(all.begin(), all.end(), [&](const Fault& f) { return f.fired && f.struck_frame == frame; });
+}
+
+// The driver noticed: the frame it struck failed, or the driver recovered from it (a lost
+// interrupt found by the watchdog).
+bool SurfWorkload::detected(const Fault& f) const {
+    if (!f.fired || f.struck_frame < 0 || size_t(f.struck_frame) >= results_.size()) return false;
+    const sw::ssa2::Task& t = results_[size_t(f.struck_frame)].task;
+    return t.phase == sw::ssa2::Phase::failed || !t.incidents.empty();
+}
+
+// Detected, and the frame went on, or its accelerator pair finished a later frame well.
+bool SurfWorkload::recovered(const Fault& f) const {
+    if (!detected(f)) return false;
+    const sw::ssa2::Task& struck = results_[size_t(f.struck_frame)].task;
+    if (struck.phase == sw::ssa2::Phase::done) return true;
+    return std::any_of(results_.begin(), results_.end(), [&](const FrameResult& r) {
+        return r.task.phase == sw::ssa2::Phase::done && r.task.described_on == struck.described_on &&
+               r.task.t_start > struck.t_start;
+    });
+}
+
+Check SurfWorkload::fault_check() const {
+    std::vector<std::string> missed;
+    for (const Fault& f : faults_->faults()) {
+        if (!f.fired) missed.push_back(f.describe() + " never struck (" + f.origin + ")");
+        else if (!detected(f)) missed.push_back(f.describe() + " went undetected");
+    }
+    const size_t n = faults_->faults().size();
+    return {"every injected fault detected", missed.empty(),
+            missed.empty() ? fmt::format("{} of {} faults struck and were detected", n, n) : fmt::format("{}", fmt::join(missed, "; "))};
+}
+
+nlohmann::ordered_json SurfWorkload::fault_report() const {
+    nlohmann::ordered_json list = nlohmann::ordered_json::array();
+    size_t injected = 0, detected_n = 0, recovered_n = 0, lost = 0;
+    for (const Fault& f : faults_->faults()) {
+        nlohmann::ordered_json j = {{"fault", f.describe()}, {"origin", f.origin}, {"struck", f.fired}};
+        if (f.fired) {
+            ++injected;
+            j["at_ms"] = double(f.fired_ps) * 1e-9;
+            j["frame"] = f.struck_frame;
+            j["detected"] = detected(f);
+            j["recovered"] = recovered(f);
+            detected_n += detected(f);
+            recovered_n += recovered(f);
+            if (f.struck_frame >= 0 && size_t(f.struck_frame) < results_.size()) {
+                const sw::ssa2::Task& t = results_[size_t(f.struck_frame)].task;
+                j["outcome"] = t.phase == sw::ssa2::Phase::failed ? "frame failed: " + t.error
+                               : t.incidents.empty()               ? std::string("frame done, nothing noticed")
+                                                                   : "frame done: " + fmt::format("{}", fmt::join(t.incidents, "; "));
+            }
+        }
+        list.push_back(j);
+    }
+    for (const FrameResult& r : results_) lost += r.task.phase == sw::ssa2::Phase::failed;
+    return {{"given", faults_->faults().size()}, {"injected", injected}, {"detected", detected_n},
+            {"tasks_lost", lost}, {"recovered", recovered_n},
+            {"driver", {{"watchdog_expiries", recovery_.watchdog_expiries},
+                        {"spurious_interrupts", recovery_.spurious_interrupts},
+                        {"pair_resets", recovery_.pair_resets}}},
+            {"list", list}};
 }
 
 nlohmann::ordered_json SurfWorkload::summary() const {
@@ -274,7 +376,7 @@ nlohmann::ordered_json SurfWorkload::summary() const {
     for (const auto& a : accelerator_time_)
         pairs.push_back({{"working_s", a.working_ps * 1e-12}, {"waiting_for_buffers_s", a.waiting_for_buffers_ps * 1e-12},
                          {"idle_s", a.idle_ps * 1e-12}});
-    return {{"image", {{"width", width_}, {"height", height_}}},
+    nlohmann::ordered_json out = {{"image", {{"width", width_}, {"height", height_}}},
             {"frames", frames_.size()},
             {"frames_done", n},
             {"throughput_fps", fps},
@@ -290,6 +392,8 @@ nlohmann::ordered_json SurfWorkload::summary() const {
             {"software_time_per_keypoint_us", keypoints > 0 ? cycles / keypoints / cpu_hz_ * 1e6 : 0.0},
             {"software_cycles_per_keypoint", keypoints > 0 ? cycles / keypoints : 0.0},
             {"accelerator_pairs", pairs}};
+    if (faults_) out["faults"] = fault_report();
+    return out;
 }
 
 nlohmann::ordered_json SurfWorkload::report() const {
@@ -301,6 +405,7 @@ nlohmann::ordered_json SurfWorkload::report() const {
                                     {"determinants_done_ms", t.t_determinants * 1e-9}, {"done_ms", t.t_done * 1e-9},
                                     {"descriptor_cycles", t.descriptor_cycles}};
         if (t.phase == sw::ssa2::Phase::failed) f["error"] = t.error;
+        if (!t.incidents.empty()) f["incidents"] = t.incidents;
         frames.push_back(f);
     }
     return {{"source", config_.text("surf.source")}, {"evaluation", evaluation()},
@@ -343,7 +448,7 @@ std::vector<std::string> SurfWorkload::write_files(const std::string& dir) const
     fs::create_directories(folder);
     std::vector<std::string> written;
     for (const FrameResult& r : results_) {
-        if (!r.reported) continue;
+        if (!r.reported || r.task.phase != sw::ssa2::Phase::done) continue;  // a failed frame has no keypoints
         const fs::path file = folder / fmt::format("frame_{:04}.surf", r.task.id);
         eval::write_keypoint_file(file, r.keypoints);
         written.push_back(fs::relative(file, dir).string());

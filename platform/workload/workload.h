@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "platform/scenario/config.h"
+#include "models/common/fault_plan.h"
 #include "models/common/tracer.h"
 #include "models/ppc440/ppc440.h"
 
@@ -33,6 +34,9 @@ class Workload {
 public:
     virtual ~Workload() = default;
     virtual void preload(const Backdoor&) {}
+    // The faults the scenario injects (the platform hands them to the blocks as well): the
+    // workload tells the plan its frames, and reports what became of each.
+    virtual void inject(FaultPlan&) {}
     virtual Ppc440::Software software() = 0;
     virtual Progress progress() const = 0;
     virtual std::vector<Check> checks() const = 0;

@@ -13,6 +13,10 @@ namespace f = fhg_regs;
 
 namespace {
 
+// Register polls after a CTRL.RESET before the driver gives up on a pair: an aborted frame
+// runs out within its DMA in flight, a few hundred polls at PLB1's speed.
+constexpr unsigned kResetPolls = 100000;
+
 const char* fhg_error(uint32_t code) {
     switch (code) {
         case f::ERR_WRITE: return "FHG determinant DMA write got a bus error";
@@ -58,6 +62,7 @@ void Driver::enable_interrupts() {
 
 void Driver::run(std::vector<Task>& tasks, const Callback& callback) {
     keypoints_.assign(tasks.size(), {});
+    spurious_.assign(32, 0);
     for (size_t i = 0; i < tasks.size(); ++i) tasks[i].id = int(i);
     enable_interrupts();
     auto unfinished = [&] {
@@ -75,7 +80,7 @@ void Driver::run(std::vector<Task>& tasks, const Callback& callback) {
             describe_one(*t, callback);
         } else {
             Span span(hal_, "idle");
-            hal_.wait_for_irq();
+            if (!hal_.wait_for_irq(watchdog_timeout(tasks))) watchdog(tasks);
         }
         // Tasks that failed are reported as soon as their accelerator has let go of them.
         for (Task& t : tasks)
@@ -124,7 +129,10 @@ void Driver::start(Task& task, int accelerator) {
     task.t_start = hal_.time_ps();
     const BufferSet& buffers = config_.buffers[size_t(task.buffer_set)];
     task.integral = buffers.integral;
+    task.watchdog_at = task.t_start + config_.watchdog_ps;
     task.records = buffers.records;
+    // A preset buffer stays (fault injection: dma_outside_memory).
+    if (task.integral == 0) task.integral = buffers.integral;
     if (task.determinants == 0) task.determinants = buffers.determinants;
     // The FHG first: it must be listening before the IIG streams.
     hal_.write32(a.fhg_base + f::DET_ADDR, task.determinants);
@@ -148,28 +156,107 @@ void Driver::service_interrupts(std::vector<Task>& tasks) {
     const uint32_t pending = hal_.read32(config_.intc_base + intc::IPR);
     for (size_t i = 0; i < config_.accelerators.size(); ++i) {
         const Accelerator& a = config_.accelerators[i];
+        for (const bool fhg : {true, false}) {
+            const unsigned line = fhg ? a.fhg_irq : a.iig_irq;
+            if (!(pending & (1u << line))) continue;
+            Task* task = running_[i] >= 0 ? &tasks[size_t(running_[i])] : nullptr;
+            if (task && (fhg ? on_fhg(*task, a) : on_iig(*task, a))) spurious_[line] = 0;
+            else spurious(tasks, i, fhg);
+        }
         if (running_[i] < 0) continue;
         Task& task = tasks[size_t(running_[i])];
-        if (pending & (1u << a.fhg_irq)) on_fhg(task, a);
-        if (pending & (1u << a.iig_irq)) on_iig(task, a);
         if (task.integral_done && task.determinants_done) hardware_finished(task);
     }
     // Acknowledge after the sources have let go of their lines (they are level sensitive).
     hal_.write32(config_.intc_base + intc::IAR, pending);
 }
 
-void Driver::drain_fifo(Task& task, const Accelerator& a) {
+// An interrupt with nothing to serve (one can follow a line that has just let go). Many in a
+// row: the line is stuck; the pair's task fails and the pair's reset lets the line go.
+void Driver::spurious(std::vector<Task>& tasks, size_t i, bool fhg) {
+    ++recovery_.spurious_interrupts;
+    const Accelerator& a = config_.accelerators[i];
+    unsigned& in_a_row = spurious_[fhg ? a.fhg_irq : a.iig_irq];
+    if (config_.spurious_irq_limit == 0 || ++in_a_row < config_.spurious_irq_limit) return;
+    in_a_row = 0;
+    if (running_[i] < 0) return reset_pair(i);
+    Task& task = tasks[size_t(running_[i])];
+    fail(task, fmt::format("the {}'s interrupt line is stuck: {} interrupts in a row with nothing to serve",
+                           fhg ? "FHG" : "IIG", config_.spurious_irq_limit));
+    task.integral_done = task.determinants_done = true;
+    hardware_finished(task);
+}
+
+// The time until the earliest watchdog of a task in hardware.
+uint64_t Driver::watchdog_timeout(const std::vector<Task>& tasks) {
+    if (config_.watchdog_ps == 0) return Hal::kNoTimeout;
+    uint64_t due = Hal::kNoTimeout;
+    for (const int id : running_)
+        if (id >= 0) due = std::min(due, tasks[size_t(id)].watchdog_at);
+    const uint64_t now = hal_.time_ps();
+    return due == Hal::kNoTimeout ? due : due > now ? due - now : 0;
+}
+
+// A task's hardware has run longer than the watchdog. A block found finished had its
+// interrupt lost: it is served now and the task goes on. A block still BUSY never finishes:
+// the task fails and the pair is reset. Without time (direct mode) every task in hardware is due.
+void Driver::watchdog(std::vector<Task>& tasks) {
+    Span span(hal_, "watchdog");
+    const uint64_t now = hal_.time_ps();
+    for (size_t i = 0; i < running_.size(); ++i) {
+        if (running_[i] < 0) continue;
+        Task& task = tasks[size_t(running_[i])];
+        if (now != 0 && task.watchdog_at > now) continue;
+        ++recovery_.watchdog_expiries;
+        const Accelerator& a = config_.accelerators[i];
+        const bool iig_ended = !task.integral_done && (hal_.read32(a.iig_base + iig::STATUS) & (iig::STATUS_DONE | iig::STATUS_ERROR));
+        const bool fhg_ended = !task.determinants_done && (hal_.read32(a.fhg_base + f::STATUS) & (f::STATUS_DONE | f::STATUS_ERROR));
+        for (const auto& [ended, block] : {std::pair{iig_ended, "IIG"}, std::pair{fhg_ended, "FHG"}})
+            if (ended) task.incidents.push_back(fmt::format("the {}'s interrupt was lost: the watchdog found it finished", block));
+        if (iig_ended) on_iig(task, a);
+        if (fhg_ended) on_fhg(task, a);
+        if (iig_ended || fhg_ended) {
+            task.watchdog_at = now + config_.watchdog_ps;
+        } else {
+            const char* which = !task.integral_done && !task.determinants_done ? "IIG and the FHG" : !task.integral_done ? "IIG" : "FHG";
+            fail(task, fmt::format("the {} did not finish within the watchdog ({:g} ms)", which, double(config_.watchdog_ps) * 1e-9));
+            task.integral_done = task.determinants_done = true;
+        }
+        if (task.integral_done && task.determinants_done) hardware_finished(task);
+    }
+}
+
+// CTRL.RESET to both blocks of a pair; a frame in progress is aborted and runs out, so the
+// blocks are polled until neither is BUSY and reset again, which clears them.
+void Driver::reset_pair(size_t i) {
+    Span span(hal_, "reset");
+    ++recovery_.pair_resets;
+    const Accelerator& a = config_.accelerators[i];
+    auto reset = [&] {
+        hal_.write32(a.fhg_base + f::CTRL, f::CTRL_RESET);
+        hal_.write32(a.iig_base + iig::CTRL, iig::CTRL_RESET);
+    };
+    reset();
+    for (unsigned polls = 0; (hal_.read32(a.fhg_base + f::STATUS) & f::STATUS_BUSY) ||
+                             (hal_.read32(a.iig_base + iig::STATUS) & iig::STATUS_BUSY); ++polls)
+        if (polls == kResetPolls) throw std::runtime_error(fmt::format("libSSA2: accelerator pair {} stays BUSY after CTRL.RESET", i));
+    reset();
+}
+
+size_t Driver::drain_fifo(Task& task, const Accelerator& a) {
     const uint32_t level = hal_.read32(a.fhg_base + f::FIFO_LEVEL);
     for (uint32_t i = 0; i < level; ++i) {
         const uint32_t word = hal_.read32(a.fhg_base + f::FIFO_DATA);
         if (word >> 31) task.candidates.push_back(word);
     }
+    return level;
 }
 
-void Driver::on_fhg(Task& task, const Accelerator& a) {
+// Both return whether there was anything to serve.
+bool Driver::on_fhg(Task& task, const Accelerator& a) {
     const uint32_t status = hal_.read32(a.fhg_base + f::STATUS);
-    drain_fifo(task, a);
-    if (!(status & (f::STATUS_DONE | f::STATUS_ERROR))) return;
+    const size_t drained = drain_fifo(task, a);
+    if (!(status & (f::STATUS_DONE | f::STATUS_ERROR))) return drained > 0;
     drain_fifo(task, a);  // what arrived after the first read-out
     task.t_determinants = hal_.time_ps();
     task.determinants_done = true;
@@ -180,11 +267,12 @@ void Driver::on_fhg(Task& task, const Accelerator& a) {
         fail(task, fmt::format("the maxima FIFO overflowed: {} candidates dropped", dropped));
     }
     hal_.write32(a.fhg_base + f::STATUS, f::STATUS_DONE | f::STATUS_ERROR | f::STATUS_FIFO_OVERFLOW);
+    return true;
 }
 
-void Driver::on_iig(Task& task, const Accelerator& a) {
+bool Driver::on_iig(Task& task, const Accelerator& a) {
     const uint32_t status = hal_.read32(a.iig_base + iig::STATUS);
-    if (!(status & (iig::STATUS_DONE | iig::STATUS_ERROR))) return;
+    if (!(status & (iig::STATUS_DONE | iig::STATUS_ERROR))) return false;
     task.t_integral = hal_.time_ps();
     task.integral_done = true;
     if (status & iig::STATUS_ERROR) {
@@ -193,6 +281,7 @@ void Driver::on_iig(Task& task, const Accelerator& a) {
         hal_.write32(a.fhg_base + f::CTRL, f::CTRL_ABORT | f::CTRL_IRQ_EN_DONE);  // the FHG waits for lines that will not come
     }
     hal_.write32(a.iig_base + iig::STATUS, iig::STATUS_DONE | iig::STATUS_ERROR);
+    return true;
 }
 
 void Driver::fail(Task& task, const std::string& why) {
@@ -201,8 +290,10 @@ void Driver::fail(Task& task, const std::string& why) {
     task.error = why;
 }
 
-// Both units are done with the task: the pair is free, and the CPU may describe it.
+// Both units are done with the task: the pair is free (reset first when the task failed),
+// and the CPU may describe it.
 void Driver::hardware_finished(Task& task) {
+    if (task.phase == Phase::failed) reset_pair(size_t(task.accelerator));
     account(size_t(task.accelerator), time_[size_t(task.accelerator)].working_ps);
     running_[size_t(task.accelerator)] = -1;
     hal_.mark(unsigned(task.accelerator), -1);
@@ -228,6 +319,12 @@ void Driver::describe_one(Task& task, const Callback& callback) {
         auto keypoint = describer_.describe(hal_, task.candidates[task.described++], frame, work);
         task.descriptor_cycles += hal_.compute(work.cycles, work.lines);
         if (keypoint) keypoints_[size_t(task.id)].push_back(*keypoint);
+        if (!work.inconsistency.empty()) {  // the hardware's results cannot be trusted: no keypoints from them
+            fail(task, "software check: " + work.inconsistency);
+            keypoints_[size_t(task.id)].clear();
+            hal_.mark(unsigned(config_.accelerators.size()), -1);
+            return finish(task, callback);
+        }
     }
     if (task.described == task.candidates.size()) {
         hal_.mark(unsigned(config_.accelerators.size()), -1);

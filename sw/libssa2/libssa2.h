@@ -11,8 +11,14 @@
 //   4. descriptors         the software stage on every candidate     (CPU)
 // Phases overlap, and so do tasks: while the CPU describes task n, the accelerators already
 // work on task n+1 (as many tasks between start and end as there are buffer sets). With several
-// accelerator pairs, tasks go to whichever pair is free. A hardware error (bus error, size,
-// FIFO overflow) fails that task with its reason; the others go on.
+// accelerator pairs, tasks go to whichever pair is free.
+//
+// What goes wrong fails that task with its reason, and the others go on: a block's ERROR (bus
+// error, size), the maxima FIFO's overflow, a watchdog (a task's hardware not finished within
+// `watchdog_ps`: a block that is found finished had its interrupt lost and the task goes on;
+// one still BUSY never finishes), an interrupt line that keeps asking with nothing to serve
+// (stuck), and the software stage's check of the determinants it reads. A pair whose task
+// failed in hardware is reset through its CTRL.RESET before it takes the next task.
 #include <cstdint>
 #include <functional>
 #include <optional>
@@ -49,6 +55,8 @@ struct DriverConfig {
     std::vector<BufferSet> buffers;  // as many tasks are in flight as there are sets
     uint32_t fifo_irq_level = 256;  // FHG FIFO_THRESHOLD
     int32_t threshold = 0;          // FHG THRESHOLD (determinant fixed point)
+    uint64_t watchdog_ps = 0;       // a task's hardware longer than this is checked (0: never)
+    unsigned spurious_irq_limit = 0;  // interrupts in a row with nothing to serve that make a line stuck (0: never)
     // HAL markers: accelerator k's task is marker k (-1 when idle); the task being described
     // is marker accelerators.size() (-1 when none).
 };
@@ -68,6 +76,7 @@ struct FrameInMemory {
 struct Work {
     uint64_t cycles = 0;
     std::vector<LineTransfer> lines;
+    std::string inconsistency;  // the software's check of the hardware's results failed: why
 };
 
 // The CPU's part of phase 4 (sw/stage): one candidate word -> a keypoint or none. It reads
@@ -93,6 +102,8 @@ struct Task {
     int described_on = -1;  // the pair whose results it holds (its determinant format)
     int buffer_set = -1;
     std::string error;                 // why it failed
+    std::vector<std::string> incidents;  // what went wrong and was recovered from (a lost interrupt)
+    uint64_t watchdog_at = 0;          // when its hardware is checked next (ps)
     std::vector<uint32_t> candidates;  // maxima FIFO words, in FIFO order
     size_t described = 0;              // candidates handed to the describer so far
     uint64_t descriptor_cycles = 0;
@@ -119,6 +130,12 @@ public:
     void run(std::vector<Task>& tasks, const Callback& callback);
 
     uint64_t interrupts_served() const { return interrupts_; }
+    // What the driver's detection did: watchdog expiries, interrupts with nothing to serve,
+    // and CTRL.RESETs of a pair.
+    struct Recovery {
+        uint64_t watchdog_expiries = 0, spurious_interrupts = 0, pair_resets = 0;
+    };
+    const Recovery& recovery() const { return recovery_; }
     const std::vector<AcceleratorTime>& accelerator_time() const { return time_; }
 
 private:
@@ -126,9 +143,13 @@ private:
     void start_hardware(std::vector<Task>& tasks);
     void start(Task& task, int accelerator);
     void service_interrupts(std::vector<Task>& tasks);
-    void on_fhg(Task& task, const Accelerator& a);
-    void on_iig(Task& task, const Accelerator& a);
-    void drain_fifo(Task& task, const Accelerator& a);
+    void spurious(std::vector<Task>& tasks, size_t accelerator, bool fhg);
+    uint64_t watchdog_timeout(const std::vector<Task>& tasks);
+    void watchdog(std::vector<Task>& tasks);
+    void reset_pair(size_t accelerator);
+    bool on_fhg(Task& task, const Accelerator& a);
+    bool on_iig(Task& task, const Accelerator& a);
+    size_t drain_fifo(Task& task, const Accelerator& a);
     void fail(Task& task, const std::string& why);
     void hardware_finished(Task& task);
     Task* describing(std::vector<Task>& tasks);
@@ -150,6 +171,8 @@ private:
     static bool queued(const std::vector<Task>& tasks);
     std::vector<surf::Keypoints> keypoints_;
     uint64_t interrupts_ = 0;
+    std::vector<unsigned> spurious_;  // per INTC line: interrupts in a row with nothing to serve
+    Recovery recovery_;
 };
 
 }  // namespace surfvp::sw::ssa2

@@ -66,6 +66,10 @@ public:
     struct Stats {
         uint64_t candidates = 0, rejected_not_maximum = 0, rejected_interpolation = 0, rejected_border = 0,
                  keypoints = 0;
+        // Candidates whose own determinant in memory is not above the threshold, although the
+        // FHG marks only those above it: the determinant buffer does not hold what the FHG
+        // computed (counted among rejected_not_maximum too).
+        uint64_t inconsistent = 0;
     };
     const Stats& stats() const { return stats_; }
 

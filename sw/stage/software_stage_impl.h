@@ -146,7 +146,10 @@ bool BasicSoftwareStage<Meter>::is_maximum(const Scan& s, const FrameBuffers& f,
     meter_.count(Unit::scan, 1);
     const double threshold = std::floor(std::ldexp(static_cast<double>(params_.threshold), int(f.det_frac_bits)));
     const int32_t centre = load(0, 0, 0);
-    if (!(centre > threshold)) return false;
+    if (!(centre > threshold)) {
+        ++stats_.inconsistent;
+        return false;
+    }
     for (int dl : {0, -1, 1})
         for (int dy = -1; dy <= 1; ++dy)
             for (int dx = -1; dx <= 1; ++dx)

@@ -126,12 +126,13 @@ TEST(SurfRun, BudgetVerdictFollowsTheFhgClock) {
 TEST(SurfRun, HardwareErrorFailsOnlyItsTask) {
     // Castle frames differ from each other, so a frame described from another's buffers shows.
     const std::string sets = " --set surf.frames=4";
-    const auto r = run("fault", sets + " --set fault.frame=2", 1, kCastle);
+    const auto r = run("fault", sets + " --set 'faults=[{kind: dma_outside_memory, block: fhg, frame: 1}]'", 0, kCastle);
     run("no_fault", sets, 0, kCastle);
     // The other frames' keypoints are those of a run without the fault: the failed task did not
     // let a later one overwrite buffers the CPU was still reading.
     for (const char* f : {"frame_0000.surf", "frame_0002.surf", "frame_0003.surf"})
         EXPECT_EQ(slurp(fresh_path("fault") + "/keypoints/" + f), slurp(fresh_path("no_fault") + "/keypoints/" + f)) << f;
+    EXPECT_FALSE(std::filesystem::exists(fresh_path("fault") + "/keypoints/frame_0001.surf"));  // a failed frame has none
     const auto& frames = r["workload"]["per_frame"];
     ASSERT_EQ(frames.size(), 4u);
     EXPECT_NE(frames[1]["error"].get<std::string>().find("bus error"), std::string::npos) << frames[1];
