@@ -3,11 +3,13 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <fmt/format.h>
 
 #include "platform/direct/direct_chip.h"
 #include "platform/workload/frame_limits.h"
 #include "platform/cli/progress_line.h"
+#include "platform/run/output_folder.h"
 #include "platform/verdict/verdict.h"
 #include "platform/report/report.h"
 #include "platform/report/report_html.h"
@@ -108,17 +110,24 @@ nlohmann::ordered_json build_report(const Config& config, Soc& soc, const Outcom
     return r;
 }
 
-fs::path output_dir(const RunOptions& options, const Config& config) {
-    const fs::path dir = options.out.empty() ? fs::path("traces") / config.name : fs::path(options.out);
-    std::error_code error;
-    fs::create_directories(dir, error);
-    if (error || !fs::is_directory(dir))
-        throw EnvironmentError(fmt::format("--out {}: cannot create the folder: {}", dir.string(), error.message()));
-    return dir;
+fs::path output_path(const RunOptions& options, const Config& config) {
+    return options.out.empty() ? fs::path("traces") / config.name : fs::path(options.out);
+}
+
+// The summary line, from the report as it was published.
+void print_summary(const Config& config, const fs::path& dir, bool direct) {
+    const auto r = nlohmann::json::parse(std::ifstream(dir / "report.json"));
+    const char* verdict = r["passed"].get<bool>() ? "passed" : "FAILED";
+    if (direct) {
+        std::fprintf(stderr, "surfvp: %s (direct): %s; report in %s\n", config.name.c_str(), verdict, (dir / "report.json").c_str());
+        return;
+    }
+    std::fprintf(stderr, "surfvp: %s: %s in %.3f ms simulated (%.3f s wall); report in %s\n", config.name.c_str(), verdict,
+                 r["sim_time_s"].get<double>() * 1e3, r["wall_time_s"].get<double>(), (dir / "report.md").c_str());
 }
 
 // The same driver and software without SystemC: keypoints, no time.
-int run_direct(const Config& config, const fs::path& dir, const RunOptions& options) {
+int run_direct(const Config& config, const fs::path& dir) {
     const auto workload = make_workload(config);
     DirectChip chip(config, unsigned(config.count("soc.accelerators")));
     workload->preload([&chip](uint64_t address, uint64_t bytes) { return chip.backdoor(address, bytes); });
@@ -149,9 +158,6 @@ int run_direct(const Config& config, const fs::path& dir, const RunOptions& opti
     r["outputs"] = outputs;
     write_file_atomically((dir / "config.yaml").string(), config.to_yaml());
     write_file_atomically((dir / "report.json").string(), r.dump(2) + "\n");
-    if (!options.quiet)
-        std::fprintf(stderr, "surfvp: %s (direct): %s; report in %s\n", config.name.c_str(), passed ? "passed" : "FAILED",
-                     (dir / "report.json").c_str());
     return passed ? kExitOk : kExitFailed;
 }
 
@@ -181,7 +187,7 @@ nlohmann::ordered_json simulate_scenario(const Config& config, const std::string
     return report;
 }
 
-int write_run(const Config& config, const std::string& out, const nlohmann::ordered_json& run_report, bool quiet) {
+int write_run(const Config& config, const std::string& out, const nlohmann::ordered_json& run_report) {
     const fs::path dir(out);
     nlohmann::ordered_json report = run_report;
     if (report.contains("workload") && report["workload"].contains("per_frame")) {
@@ -196,10 +202,6 @@ int write_run(const Config& config, const std::string& out, const nlohmann::orde
     write_file_atomically((dir / "report.html").string(), report_html(report, picture));
     write_file_atomically((dir / "report.md").string(), report_markdown(report));
     write_file_atomically((dir / "report.json").string(), report.dump(2) + "\n");
-    if (!quiet)
-        std::fprintf(stderr, "surfvp: %s: %s in %.3f ms simulated (%.3f s wall); report in %s\n", config.name.c_str(),
-                     report["passed"].get<bool>() ? "passed" : "FAILED", report["sim_time_s"].get<double>() * 1e3,
-                     report["wall_time_s"].get<double>(), (dir / "report.md").c_str());
     return report["passed"].get<bool>() ? kExitOk : kExitFailed;
 }
 
@@ -209,10 +211,20 @@ int run_scenario(const RunOptions& options) {
     if (options.direct && !config.faults.empty())
         throw ConfigError(fmt::format("{}: faults: --direct has no time, buses or interrupts to inject them into; "
                                       "run without --direct", config.faults.front().origin));
-    const fs::path dir = output_dir(options, config);
-    if (options.direct) return run_direct(config, dir, options);
-    if (verdict_requested(config)) return run_with_verdict(config, dir.string(), options.trace, options.quiet);
-    return write_run(config, dir.string(), simulate_scenario(config, dir.string(), options.trace, options.quiet), options.quiet);
+    OutputFolder out(output_path(options, config));
+    const std::string staging = out.staging().string();
+    int code = kExitOk;
+    try {
+        if (options.direct) code = run_direct(config, staging);
+        else if (verdict_requested(config)) code = run_with_verdict(config, staging, options.trace, options.quiet);
+        else code = write_run(config, staging, simulate_scenario(config, staging, options.trace, options.quiet));
+        out.publish();
+    } catch (const EnvironmentError& e) {
+        throw EnvironmentError(fmt::format("{}; what was in {} before this run is as it was", out.as_published(e.what()),
+                                           out.folder().string()));
+    }
+    if (!options.quiet) print_summary(config, out.folder(), options.direct);
+    return code;
 }
 
 int validate_scenario(const RunOptions& options) {

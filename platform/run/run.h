@@ -29,8 +29,8 @@ int validate_scenario(const RunOptions& options);
 // when `out` is empty). Throws ConfigError for bad input.
 nlohmann::ordered_json simulate_scenario(const Config& config, const std::string& out, const std::string& trace, bool quiet);
 
-// Writes config.yaml, report.md and report.json of a run into `out`, prints the summary line
-// unless quiet, and returns the run's exit code.
-int write_run(const Config& config, const std::string& out, const nlohmann::ordered_json& report, bool quiet);
+// Writes config.yaml, report.md, report.html, frames.csv and report.json of a run into `out`
+// and returns the run's exit code.
+int write_run(const Config& config, const std::string& out, const nlohmann::ordered_json& report);
 
 }  // namespace surfvp

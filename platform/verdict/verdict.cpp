@@ -388,7 +388,7 @@ int run_with_verdict(const Config& config, const std::string& out, const std::st
     if (want_software) verdict["software"] = software_json(settings, software, reference_point, fps, budget);
     if (budget > 0) verdict["statement"] = statement(fps, budget, band_result);
     base["verdict"] = verdict;
-    return write_run(config, out, base, quiet);
+    return write_run(config, out, base);
 }
 
 }  // namespace surfvp

@@ -1,6 +1,7 @@
 // Inputs a hostile user gives and machines that refuse writes: each ends with a message that
 // names the thing and its documented exit code (README: 2 bad input, 4 a refused write), and
 // no file is left under a final name half written.
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <gtest/gtest.h>
@@ -47,19 +48,62 @@ TEST(Environment, AFullDiskWhileTracingEndsWithItsOwnExitCodeAndNoPartialFile) {
     }
 }
 
-// Two runs on one folder at once: each trace has a temporary name of its own, so both
-// finish and what is left is complete.
+// Two runs on one folder at once: the later one is refused while the first holds the folder,
+// and what is left is the first one's complete output.
 TEST(Environment, TwoRunsOnOneFolderDoNotCorruptEachOther) {
     const std::string out = fresh_dir("twice");
     const std::string run = std::string(SURFVP_BINARY) + " run " + kBudget + " --quiet --trace all --out " + out + kShort;
-    const int status = std::system(("(" + run + " & " + run + " & wait) 2>/dev/null").c_str());
+    const std::string codes = fresh_path("twice.codes"), errors = fresh_path("twice.err");
+    const int status = std::system(("(" + run + "; echo $? >>" + codes + ") 2>>" + errors + " & (" + run + "; echo $? >>" +
+                                    codes + ") 2>>" + errors + "; wait").c_str());
     ASSERT_TRUE(WIFEXITED(status));
+    std::string sorted = slurp(codes);
+    std::sort(sorted.begin(), sorted.end());
+    EXPECT_EQ(sorted, "\n\n04") << slurp(errors);
+    EXPECT_NE(slurp(errors).find("surfvp: cannot write: --out " + out + ": another surfvp run (pid "), std::string::npos)
+        << slurp(errors);
     EXPECT_NO_THROW(nlohmann::json::parse(slurp(out + "/trace.perfetto.json")));
     EXPECT_NO_THROW(nlohmann::json::parse(slurp(out + "/report.json")));
     for (const auto& f : fs::directory_iterator(out))
         EXPECT_EQ(f.path().string().find("partial"), std::string::npos) << f.path();
     const std::string vcd = slurp(out + "/trace.vcd");
     EXPECT_EQ(vcd.rfind("#") != std::string::npos && vcd.back() == '\n', true);
+}
+
+// A folder used again holds only the last run's files: keypoints of frames it did not have
+// and traces it did not ask for are gone; files surfvp did not write stay.
+TEST(Environment, AReusedFolderHoldsOnlyTheLastRunsFiles) {
+    const std::string out = fresh_dir("reused");
+    write_file(out, "notes.txt", "mine");
+    ASSERT_EQ(surfvp("run " + kBudget + " --quiet --trace all --out " + out + kShort).exit_code, 0);
+    ASSERT_TRUE(fs::exists(out + "/keypoints/frame_0002.surf"));
+    ASSERT_EQ(surfvp("run " + kBudget + " --quiet --trace none --out " + out + kShort + " --set surf.frames=2").exit_code, 0);
+    EXPECT_TRUE(fs::exists(out + "/keypoints/frame_0001.surf"));
+    for (const char* gone : {"keypoints/frame_0002.surf", "keypoints/frame_0002.surf.meta", "trace.vcd", "trace.perfetto.json",
+                             "trace.gtkw"})
+        EXPECT_FALSE(fs::exists(out + "/" + gone)) << gone;
+    EXPECT_EQ(slurp(out + "/notes.txt"), "mine");
+    EXPECT_EQ(nlohmann::json::parse(slurp(out + "/report.json"))["frames"], 2);
+}
+
+// A run that cannot write, or is killed, leaves the earlier output as it was; the next run
+// clears what the killed one left.
+TEST(Environment, AFailedOrKilledRunLeavesTheEarlierOutputIntact) {
+    const std::string out = fresh_dir("intact");
+    ASSERT_EQ(surfvp("run " + kBudget + " --quiet --trace none --out " + out + kShort).exit_code, 0);
+    const std::string before = slurp(out + "/report.json");
+    std::string err;
+    EXPECT_EQ(run_with_file_limit("run " + kBudget + " --quiet --trace all --out " + out + kShort, 64, err), 4) << err;
+    EXPECT_NE(err.find("what was in " + out + " before this run is as it was"), std::string::npos) << err;
+    EXPECT_EQ(slurp(out + "/report.json"), before);
+
+    const std::string run = std::string(SURFVP_BINARY) + " run " + kBudget + " --quiet --trace all --out " + out + kShort;
+    std::system(("(" + run + " 2>/dev/null & pid=$!; while ! ls -d " + out + "/.partial-* >/dev/null 2>&1; do sleep 0.05; done;"
+                 " sleep 0.3; kill -9 $pid; wait $pid) 2>/dev/null").c_str());
+    EXPECT_EQ(slurp(out + "/report.json"), before);
+    ASSERT_EQ(surfvp("run " + kBudget + " --quiet --trace none --out " + out + kShort).exit_code, 0);
+    for (const auto& f : fs::directory_iterator(out))
+        EXPECT_EQ(f.path().filename().string().find(".partial-"), std::string::npos) << f.path();
 }
 
 }  // namespace

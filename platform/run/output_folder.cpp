@@ -1,0 +1,130 @@
+#include "platform/run/output_folder.h"
+
+#include <cerrno>
+#include <cstring>
+#include <fcntl.h>
+#include <fmt/format.h>
+#include <fstream>
+#include <sys/file.h>
+#include <unistd.h>
+
+#include "models/common/atomic_file.h"
+
+namespace surfvp {
+namespace fs = std::filesystem;
+namespace {
+
+constexpr const char* kLock = ".surfvp.lock";
+constexpr const char* kManifest = ".surfvp-outputs";
+constexpr const char* kStagingPrefix = ".partial-";
+
+// What surfvp writes into a folder, for one written before the manifest existed.
+const std::set<std::string> kKnownOutputs = {"report.json", "report.md",        "report.html",          "config.yaml",
+                                             "frames.csv",  "tornado.svg",      "trace.vcd",            "trace.perfetto.json",
+                                             "trace.gtkw",  "trace.tasks.txt"};
+
+[[noreturn]] void refuse(const fs::path& folder, const std::string& why) {
+    throw EnvironmentError(fmt::format("--out {}: {}", folder.string(), why));
+}
+
+// Every regular file under `root`, as paths relative to it; hidden folders (a verdict's
+// scratch) are not outputs.
+std::set<std::string> files_under(const fs::path& root) {
+    std::set<std::string> files;
+    for (auto it = fs::recursive_directory_iterator(root); it != fs::recursive_directory_iterator(); ++it) {
+        if (it->is_directory() && it->path().filename().string().front() == '.') {
+            it.disable_recursion_pending();
+            continue;
+        }
+        if (it->is_regular_file()) files.insert(fs::relative(it->path(), root).string());
+    }
+    return files;
+}
+
+}  // namespace
+
+OutputFolder::OutputFolder(const fs::path& folder) : folder_(folder) {
+    std::error_code error;
+    fs::create_directories(folder_, error);
+    if (error || !fs::is_directory(folder_)) refuse(folder_, "cannot create the folder: " + (error ? error.message() : "a file is in the way"));
+    const fs::path lock = folder_ / kLock;
+    lock_ = ::open(lock.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+    if (lock_ < 0) refuse(folder_, fmt::format("cannot create {} ({})", lock.string(), std::strerror(errno)));
+    if (::flock(lock_, LOCK_EX | LOCK_NB) != 0) {
+        std::string pid;
+        std::getline(std::ifstream(lock), pid);
+        ::close(lock_);
+        refuse(folder_, fmt::format("another surfvp run (pid {}) is writing there; wait for it or give another --out",
+                                    pid.empty() ? "?" : pid));
+    }
+    const std::string pid = std::to_string(::getpid()) + "\n";
+    if (::ftruncate(lock_, 0) != 0 || ::pwrite(lock_, pid.data(), pid.size(), 0) != ssize_t(pid.size()))
+        refuse(folder_, fmt::format("cannot write {} ({})", lock.string(), std::strerror(errno)));
+    // Holding the lock, any staging folder here is a killed run's.
+    for (const auto& entry : fs::directory_iterator(folder_, error))
+        if (entry.path().filename().string().rfind(kStagingPrefix, 0) == 0) fs::remove_all(entry.path(), error);
+    staging_ = folder_ / (kStagingPrefix + std::to_string(::getpid()));
+    fs::create_directories(staging_, error);
+    if (error) refuse(folder_, "cannot create " + staging_.string() + ": " + error.message());
+}
+
+OutputFolder::~OutputFolder() {
+    std::error_code ignored;
+    if (!published_) fs::remove_all(staging_, ignored);
+    ::close(lock_);  // releases the lock
+}
+
+std::set<std::string> OutputFolder::previous_outputs() const {
+    std::set<std::string> previous;
+    std::ifstream manifest(folder_ / kManifest);
+    if (manifest) {
+        for (std::string line; std::getline(manifest, line);)
+            if (!line.empty()) previous.insert(line);
+        return previous;
+    }
+    std::error_code error;
+    for (const std::string& name : kKnownOutputs)
+        if (fs::exists(folder_ / name, error)) previous.insert(name);
+    if (fs::is_directory(folder_ / "keypoints", error))
+        for (const std::string& f : files_under(folder_ / "keypoints")) previous.insert("keypoints/" + f);
+    return previous;
+}
+
+void OutputFolder::publish() {
+    const std::set<std::string> written = files_under(staging_), previous = previous_outputs();
+    std::error_code error;
+    for (const std::string& f : written) {
+        const fs::path to = folder_ / f;
+        if (fs::path(f).extension() == ".gtkw") name_published_files(staging_ / f);
+        fs::create_directories(to.parent_path(), error);
+        if (!error) fs::rename(staging_ / f, to, error);
+        if (error) refuse(folder_, fmt::format("cannot move {} into place: {}", f, error.message()));
+    }
+    for (const std::string& f : previous) {
+        if (written.count(f)) continue;
+        fs::remove(folder_ / f, error);
+        const fs::path parent = (folder_ / f).parent_path();
+        if (parent != folder_ && fs::is_empty(parent, error)) fs::remove(parent, error);
+    }
+    std::string manifest;
+    for (const std::string& f : written) manifest += f + "\n";
+    write_file_atomically(folder_ / kManifest, manifest);
+    fs::remove_all(staging_, error);
+    published_ = true;
+}
+
+// GTKWave's save file names the VCD by its absolute path: the one it is published under.
+void OutputFolder::name_published_files(const fs::path& file) const {
+    std::ifstream in(file, std::ios::binary);
+    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    write_file_atomically(file, as_published(text));
+}
+
+std::string OutputFolder::as_published(std::string message) const {
+    const std::string from = staging_.string(), to = folder_.string();
+    for (size_t at = message.find(from); at != std::string::npos; at = message.find(from, at + to.size()))
+        message.replace(at, from.size(), to);
+    return message;
+}
+
+}  // namespace surfvp
