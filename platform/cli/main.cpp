@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
+#include <opencv2/core/utils/logger.hpp>
 #include <systemc>
 
 #include "models/common/atomic_file.h"
@@ -121,6 +122,9 @@ int dispatch(int argc, char** argv) {
 int sc_main(int argc, char** argv) {
     // SystemC's informational notes (e.g. the VCD time unit) are not the user's business.
     sc_core::sc_report_handler::set_actions(sc_core::SC_INFO, sc_core::SC_DO_NOTHING);
+    // Nor are OpenCV's warnings about a file it cannot open: the message that names the file
+    // and the key is ours, and comes first.
+    cv::utils::logging::setLogLevel(cv::utils::logging::LOG_LEVEL_SILENT);
     return dispatch(argc, argv);
 }
 
@@ -128,5 +132,6 @@ int sc_main(int argc, char** argv) {
 // this is set.
 int main(int argc, char** argv) {
     setenv("SYSTEMC_DISABLE_COPYRIGHT_MESSAGE", "1", 0);
+    setenv("OPENCV_FFMPEG_LOGLEVEL", "-8", 0);  // FFmpeg's own complaints about a damaged video: AV_LOG_QUIET
     return sc_core::sc_elab_and_sim(argc, argv);
 }

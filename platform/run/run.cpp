@@ -13,6 +13,7 @@
 #include "platform/report/report_html.h"
 #include "platform/report/statistics_json.h"
 #include "platform/tools/seqgen.h"
+#include "platform/scenario/consistency.h"
 #include "platform/scenario/scenario.h"
 #include "platform/soc.h"
 
@@ -155,6 +156,10 @@ int run_direct(const Config& config, const fs::path& dir, const RunOptions& opti
     return passed ? kExitOk : kExitFailed;
 }
 
+void print_warnings(const Config& config) {
+    for (const std::string& w : scenario_warnings(config)) std::fprintf(stderr, "surfvp: warning: %s\n", w.c_str());
+}
+
 }  // namespace
 
 nlohmann::ordered_json simulate_scenario(const Config& config, const std::string& out, const std::string& trace, bool quiet) {
@@ -203,9 +208,17 @@ int write_run(const Config& config, const std::string& out, const nlohmann::orde
     return report["passed"].get<bool>() ? kExitOk : kExitFailed;
 }
 
+void check_scenario(const Config& config) {
+    check_consistency(config);
+    check_surf_inputs(config);
+    make_workload(config);  // what the workload checks as it is made (its buffers in memory)
+}
+
 int run_scenario(const RunOptions& options) {
     const Config config = load_scenario(resolve_scenario(options.scenario), options.sets);
     trace_options(options.trace, "");  // a bad --trace is bad input before anything is written
+    check_scenario(config);
+    print_warnings(config);
     const fs::path dir = output_dir(options, config);
     if (options.direct) return run_direct(config, dir, options);
     if (verdict_requested(config)) return run_with_verdict(config, dir.string(), options.trace, options.quiet);
@@ -215,8 +228,10 @@ int run_scenario(const RunOptions& options) {
 int validate_scenario(const RunOptions& options) {
     const std::string path = resolve_scenario(options.scenario);
     const Config config = load_scenario(path, options.sets);
+    check_scenario(config);
     Tracer tracer;  // elaborate with every trace off: catches what only the wiring can see
     Soc soc(config, tracer);
+    print_warnings(config);
     size_t from_file = 0, from_set = 0;
     for (const auto& e : config.entries()) {
         if (e.origin == "--set") ++from_set;

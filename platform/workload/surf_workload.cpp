@@ -20,6 +20,7 @@
 #include "sw/eval/repeatability.h"
 #include "sw/eval/sequence.h"
 #include "sw/libssa2/libssa2.h"
+#include "sw/surf/image_io.h"
 #include "sw/surf/surf.h"
 #include "platform/report/report_html.h"
 #include "platform/workload/workload.h"
@@ -32,32 +33,88 @@ constexpr uint64_t kPage = 4096;
 constexpr uint32_t kOutsideMemory = 0xF000'0000;  // fault.frame's determinant buffer: no DDR there
 uint64_t round_up(uint64_t v) { return (v + kPage - 1) / kPage * kPage; }
 
-std::vector<cv::Mat> read_frames(const Config& c) {
+// The frames surf.source names, as the chip takes them (grey, resized to surf.width x
+// surf.height when both are set), and each frame's file when it has one. Every problem is bad
+// input named at surf.source's origin, found before anything is built.
+struct SourceFrames {
+    std::vector<cv::Mat> images;
+    std::vector<fs::path> files;  // empty for a video or one repeated image
+    cv::Size original;            // frame 0 before resizing
+};
+
+// Frames the chip can take: at least the filters' minimum (the float reference that
+// calibrates the threshold runs on frame 0), at most what the IIG and FHG accept.
+void check_frame_size(const Config& c, const SourceFrames& f) {
+    const cv::Size size = f.images[0].size();
+    const bool resized = size != f.original;
+    const std::string where = resized ? c.where("surf.width") : c.where("surf.source");
+    const std::string what = resized ? fmt::format("frames resized to {}x{} (surf.width x surf.height)", size.width, size.height)
+                                     : fmt::format("frames of {}x{}", size.width, size.height);
+    surf::Params reference;
+    reference.octaves = 2;
+    reference.init_step = 1;
+    const int side = surf::minimum_image_side(reference);
+    if (size.width < side || size.height < side)
+        throw ConfigError(fmt::format("{}: {} are too small: the first octave's largest filter needs at least {}x{}", where,
+                                      what, side, side));
+    for (const char* block : {"iig", "fhg"})
+        for (const auto& [key, pixels] : {std::pair{fmt::format("{}.max_width", block), size.width},
+                                          std::pair{fmt::format("{}.max_height", block), size.height}})
+            if (uint64_t(pixels) > c.count(key))
+                throw ConfigError(fmt::format("{}: {} are larger than the chip takes: {} is {} (from {})", where, what, key,
+                                              c.count(key), c.source_of(key)));
+}
+
+SourceFrames read_frames(const Config& c) {
     const std::string source = c.text("surf.source");
+    const std::string where = c.where("surf.source");
     const size_t count = c.count("surf.frames");
-    std::vector<cv::Mat> frames;
     std::error_code ec;
+    const fs::file_status status = fs::status(source, ec);
+    if (!fs::exists(status)) throw ConfigError(fmt::format("{}: {}: no such file or folder", where, source));
+    // A FIFO or a device would be read until it ends, which may be never.
+    if (!fs::is_regular_file(status) && !fs::is_directory(status))
+        throw ConfigError(fmt::format("{}: {}: not a regular file or a folder", where, source));
+    SourceFrames out;
     try {
-        if (fs::is_regular_file(source, ec) && !cv::imread(source, cv::IMREAD_GRAYSCALE).empty()) {
-            frames.assign(count, cv::imread(source, cv::IMREAD_GRAYSCALE));  // one image, repeated
+        surf::QuietDecoding quiet;
+        if (fs::is_regular_file(status) && (eval::is_image_file(source) || !cv::imread(source, cv::IMREAD_GRAYSCALE).empty())) {
+            out.images.assign(count, surf::load_gray(source));  // one image, repeated
         } else {
             eval::SequenceReader reader(eval::open_sequence(source, count));
-            for (cv::Mat frame; frames.size() < count && reader.next(frame);) frames.push_back(frame.clone());
+            for (cv::Mat frame; out.images.size() < count && reader.next(frame);) {
+                out.images.push_back(frame.clone());
+                const fs::path& file = reader.sequence().frames[out.images.size() - 1].image;
+                if (!file.empty()) out.files.push_back(file);
+            }
         }
+    } catch (const ConfigError&) {
+        throw;
     } catch (const std::exception& e) {
-        throw ConfigError(fmt::format("surf.source {}: {}", source, e.what()));
+        throw ConfigError(fmt::format("{}: {}", where, e.what()));
     }
-    if (frames.empty()) throw ConfigError(fmt::format("surf.source {}: no frames (install opencv-doc / visp-images-data?)", source));
+    // More frames than the source has would be fewer frames than asked, silently.
+    if (out.images.size() < count)
+        throw ConfigError(fmt::format("{}: surf.frames is {} (from {}), but {} has only {}", where, count,
+                                      c.source_of("surf.frames"), source, out.images.size()));
+    auto name = [&](size_t i) { return i < out.files.size() ? out.files[i].string() : fmt::format("{} frame {}", source, i); };
+    out.original = out.images[0].size();
+    const bool resizing = c.count("surf.width") && c.count("surf.height");
+    for (size_t i = 1; i < out.images.size(); ++i)
+        if (!resizing && out.images[i].size() != out.original)
+            throw ConfigError(fmt::format("{}: frames differ in size: {} is {}x{}, {} is {}x{}; set surf.width and surf.height "
+                                          "to resize them alike",
+                                          where, name(0), out.original.width, out.original.height, name(i),
+                                          out.images[i].cols, out.images[i].rows));
     const int w = int(c.count("surf.width")), h = int(c.count("surf.height"));
-    for (cv::Mat& f : frames)
-        if (w && h && (f.cols != w || f.rows != h)) {
+    for (cv::Mat& f : out.images)
+        if (w && h && f.size() != cv::Size(w, h)) {
             cv::Mat resized;
             cv::resize(f, resized, cv::Size(w, h), 0, 0, cv::INTER_AREA);
             f = resized;
         }
-    for (const cv::Mat& f : frames)
-        if (f.size() != frames[0].size()) throw ConfigError("surf.source: frames differ in size; set surf.width and surf.height");
-    return frames;
+    check_frame_size(c, out);
+    return out;
 }
 
 // Frames, and frame 0's ranked responses for the calibration, are read once per process and
@@ -66,12 +123,54 @@ std::string source_key(const Config& c) {
     return fmt::format("{}|{}x{}", c.text("surf.source"), c.count("surf.width"), c.count("surf.height"));
 }
 
-const std::vector<cv::Mat>& load_frames(const Config& c) {
-    static std::map<std::string, std::vector<cv::Mat>> cache;
+const SourceFrames& load_source(const Config& c) {
+    static std::map<std::string, SourceFrames> cache;
     const std::string key = fmt::format("{}|{}", source_key(c), c.count("surf.frames"));
     auto it = cache.find(key);
     if (it == cache.end()) it = cache.emplace(key, read_frames(c)).first;
     return it->second;
+}
+
+const std::vector<cv::Mat>& load_frames(const Config& c) { return load_source(c).images; }
+
+// The evaluation's geometry, read before anything is built: a homography from frame 0 to
+// frame 1 at the frames' own size, and camera poses that belong to the very frames the source
+// gives, one each.
+void check_eval_inputs(const Config& c, const SourceFrames& frames) {
+    const std::string homography = c.text("eval.homography");
+    if (!homography.empty()) {
+        try {
+            eval::read_homography_file(homography);
+        } catch (const std::exception& e) {
+            throw ConfigError(fmt::format("{}: {}", c.where("eval.homography"), e.what()));
+        }
+        if (frames.images[0].size() != frames.original)
+            throw ConfigError(fmt::format("{}: the homography maps frame 0 to frame 1 at their own size ({}x{}), but "
+                                          "surf.width x surf.height (from {}) resize them to {}x{}; set both to 0",
+                                          c.where("eval.homography"), frames.original.width, frames.original.height,
+                                          c.source_of("surf.width"), frames.images[0].cols, frames.images[0].rows));
+    }
+    const std::string poses = c.text("eval.poses");
+    if (poses.empty()) return;
+    std::vector<eval::PosedFrame> posed;
+    try {
+        posed = eval::list_posed_frames(poses);
+    } catch (const std::exception& e) {
+        throw ConfigError(fmt::format("{}: {}", c.where("eval.poses"), e.what()));
+    }
+    if (frames.files.size() != frames.images.size())
+        throw ConfigError(fmt::format("{}: poses belong to image files, but surf.source {} (from {}) is one image or a video",
+                                      c.where("eval.poses"), c.text("surf.source"), c.source_of("surf.source")));
+    if (posed.size() < frames.images.size())
+        throw ConfigError(fmt::format("{}: {} poses for {} frames (surf.frames from {})", c.where("eval.poses"), posed.size(),
+                                      frames.images.size(), c.source_of("surf.frames")));
+    for (size_t i = 0; i < frames.files.size(); ++i) {
+        std::error_code ec;
+        if (!fs::equivalent(frames.files[i], posed[i].image, ec))
+            throw ConfigError(fmt::format("{}: frame {} is {}, but pose {} ({}) belongs to {}", c.where("eval.poses"), i,
+                                          frames.files[i].string(), i, posed[i].pose_file.filename().string(),
+                                          posed[i].image.string()));
+    }
 }
 
 // The float reference on frame 0, limited to the chip's two octaves at step 1.
@@ -207,8 +306,8 @@ private:
         slots_base_ = frames_base_ + frames_.size() * frame_bytes_;
         const uint64_t end = slots_base_ + c.count("surf.tasks_in_flight") * slot_bytes_;
         if (end > c.bytes("memory.size").n)
-            throw ConfigError(fmt::format("{} frames of {}x{} and {} buffer sets need {} of memory, memory.size is {}",
-                                          frames_.size(), width_, height_, c.count("surf.tasks_in_flight"),
+            throw ConfigError(fmt::format("{}: {} frames of {}x{} and {} buffer sets need {} of memory, memory.size is {}",
+                                          c.where("memory.size"), frames_.size(), width_, height_, c.count("surf.tasks_in_flight"),
                                           format_bytes(Bytes{end}), format_bytes(c.bytes("memory.size"))));
     }
 
@@ -354,6 +453,11 @@ std::vector<std::string> SurfWorkload::write_files(const std::string& dir) const
 }  // namespace
 
 std::unique_ptr<Workload> make_surf_workload(const Config& config) { return std::make_unique<SurfWorkload>(config); }
+
+void check_surf_inputs(const Config& config) {
+    if (config.choice("run.workload") != "surf") return;
+    check_eval_inputs(config, load_source(config));
+}
 
 // Frame 0 at most 640 pixels wide, PNG inline, each keypoint a circle of 2.5 scales with a
 // stroke to its orientation (green: dark blob, Laplacian +1; red: bright blob).
