@@ -4,6 +4,7 @@
 #include <cstdlib>
 #include <exception>
 #include <opencv2/core/utils/logger.hpp>
+#include <string>
 #include <systemc>
 
 #include "models/common/atomic_file.h"
@@ -85,8 +86,17 @@ int dispatch(int argc, char** argv) {
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
-        const int code = app.exit(e);
-        return code == 0 ? kExitOk : kExitBadInput;
+        if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version
+        std::string message = e.what();
+        if (argc > 1 && argv[1][0] != '-') {  // CLI11 says only that a command is required
+            try {
+                app.get_subcommand(argv[1]);
+            } catch (const CLI::OptionNotFound&) {
+                message = std::string("'") + argv[1] + "' is not a command (run, validate, list, params, ...)";
+            }
+        }
+        std::fprintf(stderr, "surfvp: error: %s\nRun with --help for more information.\n", message.c_str());
+        return kExitBadInput;
     }
     try {
         if (const auto code = quality.run()) return *code;

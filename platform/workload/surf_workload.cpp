@@ -75,13 +75,20 @@ SourceFrames read_frames(const Config& c) {
     // A FIFO or a device would be read until it ends, which may be never.
     if (!fs::is_regular_file(status) && !fs::is_directory(status))
         throw ConfigError(fmt::format("{}: {}: not a regular file or a folder", where, source));
+    // More frames than the source has would be fewer frames than asked, silently.
+    auto too_few = [&](size_t has) {
+        return ConfigError(fmt::format("{}: surf.frames is {} (from {}), but {} has only {}", where, count,
+                                       c.source_of("surf.frames"), source, has));
+    };
     SourceFrames out;
     try {
         surf::QuietDecoding quiet;
         if (fs::is_regular_file(status) && (eval::is_image_file(source) || !cv::imread(source, cv::IMREAD_GRAYSCALE).empty())) {
             out.images.assign(count, surf::load_gray(source));  // one image, repeated
         } else {
-            eval::SequenceReader reader(eval::open_sequence(source, count));
+            eval::Sequence sequence = eval::open_sequence(source, count);
+            if (sequence.frames.size() < count) throw too_few(sequence.frames.size());  // before decoding them all
+            eval::SequenceReader reader(std::move(sequence));
             for (cv::Mat frame; out.images.size() < count && reader.next(frame);) {
                 out.images.push_back(frame.clone());
                 const fs::path& file = reader.sequence().frames[out.images.size() - 1].image;
@@ -93,10 +100,7 @@ SourceFrames read_frames(const Config& c) {
     } catch (const std::exception& e) {
         throw ConfigError(fmt::format("{}: {}", where, e.what()));
     }
-    // More frames than the source has would be fewer frames than asked, silently.
-    if (out.images.size() < count)
-        throw ConfigError(fmt::format("{}: surf.frames is {} (from {}), but {} has only {}", where, count,
-                                      c.source_of("surf.frames"), source, out.images.size()));
+    if (out.images.size() < count) throw too_few(out.images.size());
     auto name = [&](size_t i) { return i < out.files.size() ? out.files[i].string() : fmt::format("{} frame {}", source, i); };
     out.original = out.images[0].size();
     const bool resizing = c.count("surf.width") && c.count("surf.height");
