@@ -130,6 +130,16 @@ TEST(BadInput, InconsistentParametersAreReportedAtTheirOrigin) {
                    {"--set intc.inputs: 8 inputs are too few for 4 accelerator pairs", "they need 9"}, "INTC");
     expect_refused(surfvp("validate " + kBudget + " --set 'memory.size=1 MiB'"),
                    {"--set memory.size: 20 frames of 1024x768", "memory.size is 1 MiB"}, "memory");
+    // A model's own refusal (the FHG's fixed-point formats, its read sequence) names where each
+    // parameter it names came from, and comes before a run makes its folder.
+    expect_refused(surfvp("validate " + kBudget + " --set 'fhg.det_frac_bits=48 bit'"),
+                   {"fhg precision: det_frac_bits must not exceed 2 x response_frac_bits", "fhg.det_frac_bits = 48 bit from --set",
+                    "fhg.response_frac_bits = 9 bit from the default"},
+                   "precision");
+    const std::string out = fresh_path("inconsistent_out");
+    expect_refused(surfvp("run " + kBudget + kOneRun + " --quiet --out " + out + " --set fhg.line_ports=1"),
+                   {"fhg.line_ports: a quad word reads 2 values", "fhg.line_ports = 1 from --set"}, "sequence");
+    EXPECT_FALSE(fs::exists(out)) << "an empty output folder was made";
     expect_refused(surfvp("validate " + kBudget + " --set surf.frames=1"),
                    {"--set surf.frames: 1 frames cannot give a frame rate", "budget.fps = 0 (from " + kBudget + ":12)"}, "budget");
 }
