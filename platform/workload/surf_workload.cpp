@@ -168,6 +168,15 @@ void check_eval_inputs(const Config& c, const SourceFrames& frames) {
     if (posed.size() < frames.images.size())
         throw ConfigError(fmt::format("{}: {} poses for {} frames (surf.frames from {})", c.where("eval.poses"), posed.size(),
                                       frames.images.size(), c.source_of("surf.frames")));
+    // The evaluation's pairs (gaps 1 and 2, evaluation() below) need two distinct camera centres.
+    for (size_t i = 0; i < frames.images.size(); ++i)
+        for (size_t j : {i + 1, i + 2})
+            if (j < frames.images.size()) try {
+                    eval::fundamental_from_poses(eval::kCastleIntrinsics, posed[i].c_m_o, posed[j].c_m_o);
+                } catch (const std::invalid_argument& e) {
+                    throw ConfigError(fmt::format("{}: frames {} and {} ({} and {}): {}", c.where("eval.poses"), i, j,
+                                                  posed[i].pose_file.string(), posed[j].pose_file.string(), e.what()));
+                }
     for (size_t i = 0; i < frames.files.size(); ++i) {
         std::error_code ec;
         if (!fs::equivalent(frames.files[i], posed[i].image, ec))

@@ -252,6 +252,15 @@ TEST(BadInput, PosesMissingTooFewOrOfOtherFrames) {
     expect_refused(surfvp("validate " + none), {none + ":12: eval.poses: " + dir + "/none/Images: no such folder"}, "missing");
     const std::string single = surf_scenario(dir, kGraf1, "eval:\n  poses: " + kCastle + "\n");
     expect_refused(surfvp("validate " + single), {single + ":12: eval.poses", "is one image or a video"}, "one image");
+    // Three frames, one camera position: no geometry between them (was: exit 3 after simulating).
+    for (const std::string sub : {"Images", "CameraPose"}) fs::create_directories(dir + "/still/" + sub);
+    for (const char* n : {"1", "2", "3"}) {
+        fs::copy_file(kCastle + "/Images/Image_000" + n + ".pgm", dir + "/still/Images/Image_000" + n + ".pgm");
+        fs::copy_file(kCastle + "/CameraPose/Camera_001.txt", dir + "/still/CameraPose/Camera_00" + n + ".txt");
+    }
+    const std::string still = surf_scenario(dir, dir + "/still/Images", "eval:\n  poses: " + dir + "/still\n");
+    expect_refused(surfvp("validate " + still + " --set surf.frames=3"),
+                   {still + ":12: eval.poses: frames 0 and 1", "the camera centres coincide"}, "one place");
     const std::string swapped = write_file(dir, "swapped.txt", images + "/Image_0002.pgm\n" + images + "/Image_0001.pgm\n");
     const std::string other = surf_scenario(dir, swapped, "eval:\n  poses: " + kCastle + "\n");
     expect_refused(surfvp("validate " + other),
