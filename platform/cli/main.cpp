@@ -3,6 +3,8 @@
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
+#include <opencv2/core/utils/logger.hpp>
+#include <string>
 #include <systemc>
 
 #include "models/common/atomic_file.h"
@@ -84,8 +86,17 @@ int dispatch(int argc, char** argv) {
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
-        const int code = app.exit(e);
-        return code == 0 ? kExitOk : kExitBadInput;
+        if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version
+        std::string message = e.what();
+        if (argc > 1 && argv[1][0] != '-') {  // CLI11 says only that a command is required
+            try {
+                app.get_subcommand(argv[1]);
+            } catch (const CLI::OptionNotFound&) {
+                message = std::string("'") + argv[1] + "' is not a command (run, validate, list, params, ...)";
+            }
+        }
+        std::fprintf(stderr, "surfvp: error: %s\nRun with --help for more information.\n", message.c_str());
+        return kExitBadInput;
     }
     try {
         if (const auto code = quality.run()) return *code;
@@ -121,6 +132,9 @@ int dispatch(int argc, char** argv) {
 int sc_main(int argc, char** argv) {
     // SystemC's informational notes (e.g. the VCD time unit) are not the user's business.
     sc_core::sc_report_handler::set_actions(sc_core::SC_INFO, sc_core::SC_DO_NOTHING);
+    // Nor are OpenCV's warnings about a file it cannot open: the message that names the file
+    // and the key is ours, and comes first.
+    cv::utils::logging::setLogLevel(cv::utils::logging::LOG_LEVEL_SILENT);
     return dispatch(argc, argv);
 }
 
@@ -128,5 +142,6 @@ int sc_main(int argc, char** argv) {
 // this is set.
 int main(int argc, char** argv) {
     setenv("SYSTEMC_DISABLE_COPYRIGHT_MESSAGE", "1", 0);
+    setenv("OPENCV_FFMPEG_LOGLEVEL", "-8", 0);  // FFmpeg's own complaints about a damaged video: AV_LOG_QUIET
     return sc_core::sc_elab_and_sim(argc, argv);
 }

@@ -126,7 +126,21 @@ struct FrameKeypoints {
     double seconds = 0;
 };
 
+// Two images of one stem (a/x.png and b/x.png in a list, x.png and x.jpg in a folder) would
+// write one keypoint file, the second over the first.
+void check_keypoint_names(const Frames& frames, const EvalSeqCommand& c) {
+    std::map<fs::path, fs::path> written;
+    for (const eval::SequenceFrame& frame : frames.sequence.frames) {
+        const fs::path file = keypoint_file_name(c.keypoints_dir, frame, frames.sequence);
+        const auto [first, fresh] = written.emplace(file, frame.image);
+        if (!fresh)
+            throw ConfigError("--keypoints: " + first->second.string() + " and " + frame.image.string() +
+                              " would both be written to " + file.string() + "; rename one");
+    }
+}
+
 FrameKeypoints detect_frames(const Frames& frames, const EvalSeqCommand& c) {
+    if (!c.keypoints_dir.empty()) check_keypoint_names(frames, c);
     if (!c.keypoints_dir.empty())
         read_input("--keypoints", [&] { fs::create_directories(c.keypoints_dir); });
     const auto start = std::chrono::steady_clock::now();

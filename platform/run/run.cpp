@@ -1,11 +1,14 @@
 #include "platform/run/run.h"
 
+#include <cctype>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <fmt/format.h>
 
+#include "models/fhg/hessian_core.h"
+#include "models/fhg/sequence_generator.h"
 #include "platform/direct/direct_chip.h"
 #include "platform/workload/frame_limits.h"
 #include "platform/cli/progress_line.h"
@@ -15,6 +18,7 @@
 #include "platform/report/report_html.h"
 #include "platform/report/statistics_json.h"
 #include "platform/tools/seqgen.h"
+#include "platform/scenario/consistency.h"
 #include "platform/scenario/scenario.h"
 #include "platform/soc.h"
 
@@ -161,6 +165,29 @@ int run_direct(const Config& config, const fs::path& dir) {
     return passed ? kExitOk : kExitFailed;
 }
 
+// A model's own refusal names its fields ("fhg precision: det_frac_bits must not exceed 2 x
+// response_frac_bits"): add where each of those parameters came from.
+std::string with_origins(const Config& config, const std::string& message) {
+    std::vector<std::string> origins;
+    auto word_at = [&](size_t at, size_t length) {
+        auto inside = [&](size_t i) { return i < message.size() && (std::isalnum((unsigned char)message[i]) || message[i] == '_'); };
+        return (at == 0 || !inside(at - 1)) && !inside(at + length);
+    };
+    for (const Config::Entry& e : config.entries()) {
+        const std::string& key = e.spec->key;
+        const std::string section = key.substr(0, key.find('.')), name = key.substr(key.find('.') + 1);
+        const size_t full = message.find(key), bare = message.find(name);
+        const bool named = (full != std::string::npos && word_at(full, key.size())) ||
+                           (message.rfind(section, 0) == 0 && bare != std::string::npos && word_at(bare, name.size()));
+        if (named) origins.push_back(fmt::format("{} = {} from {}", key, e.value, config.source_of(key)));
+    }
+    return origins.empty() ? message : fmt::format("{} ({})", message, fmt::join(origins, "; "));
+}
+
+void print_warnings(const Config& config) {
+    for (const std::string& w : scenario_warnings(config)) std::fprintf(stderr, "surfvp: warning: %s\n", w.c_str());
+}
+
 }  // namespace
 
 nlohmann::ordered_json simulate_scenario(const Config& config, const std::string& out, const std::string& trace, bool quiet) {
@@ -205,12 +232,27 @@ int write_run(const Config& config, const std::string& out, const nlohmann::orde
     return report["passed"].get<bool>() ? kExitOk : kExitFailed;
 }
 
+void check_scenario(const Config& config) {
+    check_consistency(config);
+    check_surf_inputs(config);
+    try {
+        const Fhg::Params fhg = fhg_params(config);
+        const fhg::HessianCore precision(fhg.precision);  // the FHG's fixed-point formats
+        fhg::cached_sequence(fhg.sequence);                // its read sequence (the FHG takes it from the cache)
+        make_workload(config);  // what the workload checks as it is made (its buffers in memory)
+    } catch (const std::invalid_argument& e) {
+        throw ConfigError(with_origins(config, e.what()));
+    }
+}
+
 int run_scenario(const RunOptions& options) {
     const Config config = load_scenario(resolve_scenario(options.scenario), options.sets);
     trace_options(options.trace, "");  // a bad --trace is bad input before anything is written
     if (options.direct && !config.faults.empty())
         throw ConfigError(fmt::format("{}: faults: --direct has no time, buses or interrupts to inject them into; "
                                       "run without --direct", config.faults.front().origin));
+    check_scenario(config);
+    print_warnings(config);
     OutputFolder out(output_path(options, config));
     const std::string staging = out.staging().string();
     int code = kExitOk;
@@ -230,8 +272,10 @@ int run_scenario(const RunOptions& options) {
 int validate_scenario(const RunOptions& options) {
     const std::string path = resolve_scenario(options.scenario);
     const Config config = load_scenario(path, options.sets);
+    check_scenario(config);
     Tracer tracer;  // elaborate with every trace off: catches what only the wiring can see
     Soc soc(config, tracer);
+    print_warnings(config);
     size_t from_file = 0, from_set = 0;
     for (const auto& e : config.entries()) {
         if (e.origin == "--set") ++from_set;

@@ -20,9 +20,15 @@ struct RunOptions {
     bool direct = false;  // no SystemC: the driver and software on the untimed DirectChip
 };
 
-// Both throw ConfigError for bad input; the caller turns it into kExitBadInput.
+// Both throw ConfigError for bad input; the caller turns it into kExitBadInput. Both print the
+// scenario's stated warnings (parameters given that have no effect) on stderr.
 int run_scenario(const RunOptions& options);
 int validate_scenario(const RunOptions& options);
+
+// Everything about a loaded scenario that needs no simulation and no SystemC: the parameters'
+// consistency, the files it names, the workload's layout. run and validate call it before
+// anything is built or written; throws ConfigError at the first problem.
+void check_scenario(const Config& config);
 
 // One simulation of `config` on the VP and its report (not yet written), with the traces
 // (`trace`: none, vcd, perfetto, all) and the workload's files written into `out` (nothing

@@ -1,5 +1,6 @@
 #include "platform/scenario/config.h"
 
+#include <algorithm>
 #include <fmt/format.h>
 #include <yaml-cpp/yaml.h>
 
@@ -8,7 +9,7 @@
 namespace surfvp {
 
 Config::Config() {
-    for (const ParamSpec& spec : parameter_table()) entries_.push_back({&spec, spec.default_value, "default"});
+    for (const ParamSpec& spec : parameter_table()) entries_.push_back({&spec, spec.default_value, "default", ""});
 }
 
 void Config::set(const std::string& key, const std::string& value, const std::string& origin) {
@@ -35,6 +36,25 @@ const Config::Entry& Config::entry(const std::string& key, ParamKind kind) const
             return e;
         }
     throw std::logic_error("no parameter " + key);
+}
+
+const std::string& Config::origin(const std::string& key) const { return entry(key, find_parameter(key)->kind).origin; }
+
+std::string Config::source_of(const std::string& key) const {
+    const std::string& from = origin(key);
+    return from == "default" ? "the default" : from;
+}
+
+std::string Config::where(const std::string& key) const {
+    const std::string& from = origin(key);
+    if (from == "default") return key + " (default)";
+    if (from == "--set") return "--set " + key;
+    return from + ": " + key;
+}
+
+void Config::note(const std::string& key, const std::string& why) {
+    for (Entry& e : entries_)
+        if (e.spec->key == key) e.note = why;
 }
 
 Frequency Config::frequency(const std::string& key) const { return parse_frequency(entry(key, ParamKind::frequency).value); }
@@ -70,19 +90,25 @@ std::string Config::to_yaml() const {
     out << YAML::BeginMap;
     out << YAML::Key << "name" << YAML::Value << name;
     out << YAML::Key << "description" << YAML::Value << description;
-    std::string section;
+    // One map per section, in the order sections first appear in the table (a section's keys
+    // are not all adjacent there: cpu.memory_path follows the CPU's own): a section given twice
+    // would not load back.
+    std::vector<std::string> sections;
     for (const Entry& e : entries_) {
-        const auto dot = e.spec->key.find('.');
-        const std::string head = e.spec->key.substr(0, dot);
-        if (head != section) {
-            if (!section.empty()) out << YAML::EndMap;
-            out << YAML::Key << head << YAML::Value << YAML::BeginMap;
-            section = head;
-        }
-        out << YAML::Key << e.spec->key.substr(dot + 1) << YAML::Value << e.value
-            << YAML::Comment(e.origin == "default" ? "default " + e.spec->source : e.origin);
+        const std::string head = e.spec->key.substr(0, e.spec->key.find('.'));
+        if (std::find(sections.begin(), sections.end(), head) == sections.end()) sections.push_back(head);
     }
-    if (!section.empty()) out << YAML::EndMap;
+    for (const std::string& section : sections) {
+        out << YAML::Key << section << YAML::Value << YAML::BeginMap;
+        for (const Entry& e : entries_) {
+            const auto dot = e.spec->key.find('.');
+            if (e.spec->key.compare(0, dot, section) != 0 || dot != section.size()) continue;
+            out << YAML::Key << e.spec->key.substr(dot + 1) << YAML::Value << e.value
+                << YAML::Comment((e.origin == "default" ? "default " + e.spec->source : e.origin) +
+                                 (e.note.empty() ? "" : "; no effect: " + e.note));
+        }
+        out << YAML::EndMap;
+    }
     out << YAML::EndMap;
     return std::string(out.c_str()) + "\n" + faults_yaml(faults);
 }

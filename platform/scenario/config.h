@@ -25,6 +25,7 @@ public:
         const ParamSpec* spec;
         std::string value;
         std::string origin;  // "default", "FILE:LINE" or "--set"
+        std::string note;    // why a value given has no effect in this scenario, or ""
     };
 
     Config();  // every parameter at its default
@@ -49,6 +50,16 @@ public:
     double base_value(const std::string& key) const;
 
     const std::vector<Entry>& entries() const { return entries_; }
+
+    // Where a parameter's value came from ("FILE:LINE", "--set" or "default"); the same for a
+    // message's middle ("FILE:LINE", "--set", "the default"), and for its head ("FILE:LINE:
+    // key", "--set key" or "key (default)").
+    const std::string& origin(const std::string& key) const;
+    std::string source_of(const std::string& key) const;
+    std::string where(const std::string& key) const;
+
+    // Records that `key`'s value has no effect, and why: config.yaml says so beside it.
+    void note(const std::string& key, const std::string& why);
 
     std::string name;         // the scenario's name (its file's stem unless it says)
     std::string description;  // its one-line description

@@ -1,7 +1,10 @@
 #include "platform/scenario/parameters.h"
 
 #include <algorithm>
+#include <cctype>
+#include <cerrno>
 #include <cmath>
+#include <cstdlib>
 #include <fmt/format.h>
 #include <limits>
 
@@ -212,6 +215,8 @@ size_t edit_distance(std::string_view a, std::string_view b) {
     return row[b.size()];
 }
 
+// Both return infinity for a number too large for any type, so that the range check calls it
+// out of range (never wrapped, never "not a number").
 double parse_address(const std::string& text) {
     std::string digits;
     for (char c : text)
@@ -220,6 +225,8 @@ double parse_address(const std::string& text) {
     unsigned long long value = 0;
     try {
         value = std::stoull(digits, &used, 0);
+    } catch (const std::out_of_range&) {
+        return kInf;
     } catch (const std::exception&) {
         used = 0;
     }
@@ -229,16 +236,15 @@ double parse_address(const std::string& text) {
 }
 
 double parse_plain(const std::string& text, bool integer) {
-    size_t used = 0;
-    double value = 0;
-    try {
-        value = std::stod(text, &used);
-    } catch (const std::exception&) {
-        used = 0;
-    }
-    if (used == 0 || used != text.size() || !std::isfinite(value))
+    const char* begin = text.c_str();
+    char* end = nullptr;
+    errno = 0;
+    const double value = std::strtod(begin, &end);
+    const bool too_large = errno == ERANGE && std::isinf(value);  // "1e400": a number, beyond any double
+    if (end == begin || size_t(end - begin) != text.size() || std::isspace(static_cast<unsigned char>(text[0])) ||
+        (!std::isfinite(value) && !too_large))
         throw UnitError(fmt::format("'{}' is not a {}", text, integer ? "whole number" : "finite number"));
-    if (integer && value != std::floor(value)) throw UnitError(fmt::format("'{}' is not a whole number", text));
+    if (integer && !too_large && value != std::floor(value)) throw UnitError(fmt::format("'{}' is not a whole number", text));
     return value;
 }
 

@@ -4,9 +4,10 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fmt/format.h>
-#include <set>
+#include <map>
 #include <yaml-cpp/yaml.h>
 
+#include "platform/scenario/consistency.h"
 #include "platform/scenario/faults.h"
 
 namespace surfvp {
@@ -24,15 +25,24 @@ std::string scalar(const std::string& path, const std::string& key, const YAML::
     return node.Scalar();
 }
 
+// A key is a plain word: a list or map as a key (`? [a, b]`) names nothing.
+std::string key_of(const std::string& path, const YAML::Node& key) {
+    if (!key.IsScalar() || key.Scalar().empty())
+        throw ConfigError(fmt::format("{}: a key must be a plain name, not a {}", at(path, key),
+                                      key.IsMap() ? "map" : key.IsSequence() ? "list" : "empty value"));
+    return key.Scalar();
+}
+
 void apply_section(Config& config, const std::string& path, const std::string& section, const YAML::Node& body,
-                   std::set<std::string>& seen) {
+                   std::map<std::string, std::string>& seen) {
     if (!body.IsMap())
         throw ConfigError(fmt::format("{}: '{}' must be a section of parameters (key: value lines indented below it)",
                                       at(path, body), section));
     for (const auto& item : body) {
-        const std::string key = section + "." + item.first.Scalar();
-        if (!seen.insert(key).second)
-            throw ConfigError(fmt::format("{}: {} is set twice", at(path, item.first), key));
+        const std::string key = section + "." + key_of(path, item.first);
+        // yaml-cpp keeps both of two equal keys: the second would silently win.
+        const auto [first, fresh] = seen.emplace(key, at(path, item.first));
+        if (!fresh) throw ConfigError(fmt::format("{}: {} is set twice (first at {})", at(path, item.first), key, first->second));
         std::string value = scalar(path, key, item.second);
         // Paths in a scenario are relative to the scenario's own folder.
         const ParamSpec* spec = find_parameter(key);
@@ -44,15 +54,35 @@ void apply_section(Config& config, const std::string& path, const std::string& s
 
 YAML::Node parse_file(const std::string& path) {
     std::error_code error;
-    if (!fs::exists(path, error)) throw ConfigError(fmt::format("{}: no such scenario file", path));
-    if (fs::is_directory(path, error)) throw ConfigError(fmt::format("{}: is a folder, not a scenario file", path));
+    const fs::file_status status = fs::status(path, error);
+    if (!fs::exists(status)) throw ConfigError(fmt::format("{}: no such scenario file", path));
+    if (fs::is_directory(status)) throw ConfigError(fmt::format("{}: is a folder, not a scenario file", path));
+    // A FIFO or a device would be read until it ends, which may be never.
+    if (!fs::is_regular_file(status)) throw ConfigError(fmt::format("{}: is not a regular file", path));
+    std::vector<YAML::Node> documents;
     try {
-        return YAML::LoadFile(path);
+        documents = YAML::LoadAllFromFile(path);
     } catch (const YAML::BadFile&) {
         throw ConfigError(fmt::format("{}: cannot be read", path));
     } catch (const YAML::ParserException& e) {
         throw ConfigError(fmt::format("{}:{}: not valid YAML: {}", path, e.mark.line + 1, e.msg));
     }
+    // Two scenarios pasted into one file: which one was meant is not ours to guess.
+    if (documents.size() > 1)
+        throw ConfigError(fmt::format("{}: holds {} YAML documents (the second starts near line {}); a scenario is one",
+                                      path, documents.size(), documents[1].Mark().line + 1));
+    return documents.empty() ? YAML::Node() : documents[0];
+}
+
+// The default output folder is traces/<name>: a name is one folder's name, so that no
+// scenario writes outside traces/.
+void check_name(const std::string& path, const YAML::Node& node, const std::string& name) {
+    const bool plain = !name.empty() && name != "." && name != ".." &&
+                       std::none_of(name.begin(), name.end(), [](unsigned char c) { return c == '/' || c == '\\' || c < ' '; });
+    if (!plain)
+        throw ConfigError(fmt::format("{}: name '{}' cannot name the output folder traces/<name>: it must not be empty, "
+                                      "'.' or '..', nor hold '/', '\\' or control characters",
+                                      at(path, node), name));
 }
 
 }  // namespace
@@ -65,29 +95,52 @@ Config load_scenario(const std::string& path, const std::vector<std::string>& ov
     if (!root.IsNull() && !root.IsMap())
         throw ConfigError(fmt::format("{}: a scenario is a map of sections (name:, description:, cpu:, plb1:, ...)",
                                       at(path, root)));
-    std::set<std::string> seen;
+    std::map<std::string, std::string> seen;  // every key given, and where
     for (const auto& item : root) {
-        const std::string key = item.first.Scalar();
-        if (key == "name") config.name = scalar(path, key, item.second);
-        else if (key == "description") config.description = scalar(path, key, item.second);
-        else if (key == "faults") config.faults = parse_faults(path, item.second);
-        else apply_section(config, path, key, item.second, seen);
+        const std::string key = key_of(path, item.first);
+        const bool whole_section = key != "name" && key != "description";
+        const auto [first, fresh] = seen.emplace(whole_section ? key + ":" : key, at(path, item.first));
+        if (!fresh)
+            throw ConfigError(fmt::format("{}: {} appears twice (first at {})", at(path, item.first),
+                                          whole_section ? "section '" + key + "'" : "'" + key + "'", first->second));
+        if (key == "name") {
+            config.name = scalar(path, key, item.second);
+            check_name(path, item.second, config.name);
+        } else if (key == "description") {
+            config.description = scalar(path, key, item.second);
+        } else if (key == "faults") {
+            config.faults = parse_faults(path, item.second);
+        } else {
+            apply_section(config, path, key, item.second, seen);
+        }
     }
     apply_overrides(config, overrides);
     check_faults(config);
+    for (const Ineffective& i : ineffective_parameters(config)) config.note(i.key, i.reason);
     return config;
 }
 
+std::vector<std::string> scenario_warnings(const Config& config) {
+    std::vector<std::string> out;
+    for (const Config::Entry& e : config.entries())
+        if (!e.note.empty())
+            out.push_back(fmt::format("{} = {} has no effect: {}", config.where(e.spec->key), e.value, e.note));
+    return out;
+}
+
 void apply_overrides(Config& config, const std::vector<std::string>& overrides) {
+    std::map<std::string, std::string> given;
     for (const std::string& o : overrides) {
         const auto eq = o.find('=');
         if (eq == std::string::npos || eq == 0)
             throw ConfigError(fmt::format("--set '{}': expected KEY=VALUE, e.g. plb2.width=64 bit", o));
-        if (o.substr(0, eq) == "faults") {  // the whole list, in place of the scenario's
-            config.faults = parse_faults_option(o.substr(eq + 1));
-            continue;
-        }
-        config.set(o.substr(0, eq), o.substr(eq + 1), "--set");
+        const std::string key = o.substr(0, eq), value = o.substr(eq + 1);
+        // The first of two would silently not count.
+        if (const auto it = given.find(key); it != given.end())
+            throw ConfigError(fmt::format("--set {}: given twice ('{}', then '{}')", key, it->second, value));
+        given.emplace(key, value);
+        if (key == "faults") config.faults = parse_faults_option(value);  // the whole list, in place of the scenario's
+        else config.set(key, value, "--set");
     }
 }
 

@@ -10,10 +10,16 @@
 
 namespace surfvp {
 
-// Throws ConfigError.
+// Throws ConfigError: a file that is not one YAML map, a key given twice (name and
+// description too), an unknown key, a wrong unit, a value out of range.
 Config load_scenario(const std::string& path, const std::vector<std::string>& overrides);
-// `--set KEY=VALUE` overrides, applied in order; throws ConfigError.
+// `--set KEY=VALUE` overrides, applied in order (a key at most once); throws ConfigError.
 void apply_overrides(Config& config, const std::vector<std::string>& overrides);
+
+// A loaded scenario's stated warnings, one line each: every parameter given that has no
+// effect in it ("FILE:LINE: surf.threshold = 300 has no effect: ..."). validate and run print
+// them; config.yaml notes them beside the value.
+std::vector<std::string> scenario_warnings(const Config& config);
 
 // A scenario argument is a file path, or the name of a scenario shipped in scenario_dir().
 std::string resolve_scenario(const std::string& argument);

@@ -20,6 +20,7 @@
 #include "sw/eval/repeatability.h"
 #include "sw/eval/sequence.h"
 #include "sw/libssa2/libssa2.h"
+#include "sw/surf/image_io.h"
 #include "sw/surf/surf.h"
 #include "platform/report/report_html.h"
 #include "platform/workload/workload.h"
@@ -32,32 +33,121 @@ constexpr uint64_t kPage = 4096;
 constexpr uint32_t kOutsideMemory = 0xF000'0000;  // a dma_outside_memory fault's buffer: no DDR there
 uint64_t round_up(uint64_t v) { return (v + kPage - 1) / kPage * kPage; }
 
-std::vector<cv::Mat> read_frames(const Config& c) {
+// Where a run's buffers are in memory: the frames, then one set of integral image,
+// determinant and descriptor buffers per task in flight. Throws ConfigError when they do not
+// fit memory.size.
+struct Layout {
+    uint64_t frame_bytes, integral_bytes, det_bytes, slot_bytes, frames_base, slots_base;
+};
+
+Layout layout_for(const Config& c, size_t frames, int width, int height) {
+    Layout l{};
+    l.frame_bytes = round_up(uint64_t(width) * height);
+    l.integral_bytes = round_up(uint64_t(width) * height * 4);
+    l.det_bytes = round_up(uint64_t((width + 1) / 2) * ((height + 1) / 2) *
+                           fhg_regs::record_bytes(fhg_regs::det_bytes_for(c.bits("fhg.det_bits"))));
+    l.slot_bytes = l.integral_bytes + l.det_bytes + round_up(uint64_t(sw::ssa2::kRecordRing) * sw::ssa2::kRecordSlot);
+    l.frames_base = 0x0010'0000;
+    l.slots_base = l.frames_base + frames * l.frame_bytes;
+    const uint64_t end = l.slots_base + c.count("surf.tasks_in_flight") * l.slot_bytes;
+    if (end > c.bytes("memory.size").n)
+        throw ConfigError(fmt::format("{}: {} frames of {}x{} and {} buffer sets need {} of memory, memory.size is {}",
+                                      c.where("memory.size"), frames, width, height, c.count("surf.tasks_in_flight"),
+                                      format_bytes(Bytes{end}), format_bytes(c.bytes("memory.size"))));
+    return l;
+}
+
+// The frames surf.source names, as the chip takes them (grey, resized to surf.width x
+// surf.height when both are set), and each frame's file when it has one. Every problem is bad
+// input named at surf.source's origin, found before anything is built.
+struct SourceFrames {
+    std::vector<cv::Mat> images;
+    std::vector<fs::path> files;  // empty for a video or one repeated image
+    cv::Size original;            // frame 0 before resizing
+};
+
+// Frames the chip can take: at least the filters' minimum (the float reference that
+// calibrates the threshold runs on frame 0), at most what the IIG and FHG accept.
+void check_frame_size(const Config& c, const SourceFrames& f) {
+    const cv::Size size = f.images[0].size();
+    const bool resized = size != f.original;
+    const std::string where = resized ? c.where("surf.width") : c.where("surf.source");
+    const std::string what = resized ? fmt::format("frames resized to {}x{} (surf.width x surf.height)", size.width, size.height)
+                                     : fmt::format("frames of {}x{}", size.width, size.height);
+    surf::Params reference;
+    reference.octaves = 2;
+    reference.init_step = 1;
+    const int side = surf::minimum_image_side(reference);
+    if (size.width < side || size.height < side)
+        throw ConfigError(fmt::format("{}: {} are too small: the first octave's largest filter needs at least {}x{}", where,
+                                      what, side, side));
+    for (const char* block : {"iig", "fhg"})
+        for (const auto& [key, pixels] : {std::pair{fmt::format("{}.max_width", block), size.width},
+                                          std::pair{fmt::format("{}.max_height", block), size.height}})
+            if (uint64_t(pixels) > c.count(key))
+                throw ConfigError(fmt::format("{}: {} are larger than the chip takes: {} is {} (from {})", where, what, key,
+                                              c.count(key), c.source_of(key)));
+}
+
+SourceFrames read_frames(const Config& c) {
     const std::string source = c.text("surf.source");
+    const std::string where = c.where("surf.source");
     const size_t count = c.count("surf.frames");
-    std::vector<cv::Mat> frames;
     std::error_code ec;
+    const fs::file_status status = fs::status(source, ec);
+    if (!fs::exists(status)) throw ConfigError(fmt::format("{}: {}: no such file or folder", where, source));
+    // A FIFO or a device would be read until it ends, which may be never.
+    if (!fs::is_regular_file(status) && !fs::is_directory(status))
+        throw ConfigError(fmt::format("{}: {}: not a regular file or a folder", where, source));
+    // More frames than the source has would be fewer frames than asked, silently.
+    auto too_few = [&](size_t has) {
+        return ConfigError(fmt::format("{}: surf.frames is {} (from {}), but {} has only {}", where, count,
+                                       c.source_of("surf.frames"), source, has));
+    };
+    SourceFrames out;
     try {
-        if (fs::is_regular_file(source, ec) && !cv::imread(source, cv::IMREAD_GRAYSCALE).empty()) {
-            frames.assign(count, cv::imread(source, cv::IMREAD_GRAYSCALE));  // one image, repeated
+        surf::QuietDecoding quiet;
+        if (fs::is_regular_file(status) && (eval::is_image_file(source) || !cv::imread(source, cv::IMREAD_GRAYSCALE).empty())) {
+            out.images.assign(count, surf::load_gray(source));  // one image, repeated
         } else {
-            eval::SequenceReader reader(eval::open_sequence(source, count));
-            for (cv::Mat frame; frames.size() < count && reader.next(frame);) frames.push_back(frame.clone());
+            eval::Sequence sequence = eval::open_sequence(source, count);
+            if (sequence.frames.size() < count) throw too_few(sequence.frames.size());  // before decoding them all
+            eval::SequenceReader reader(std::move(sequence));
+            for (cv::Mat frame; out.images.size() < count && reader.next(frame);) {
+                // Host memory stays bounded: what the frames need in the chip's memory is
+                // checked on the first, before the others are decoded.
+                if (out.images.empty())
+                    layout_for(c, count, c.count("surf.width") && c.count("surf.height") ? int(c.count("surf.width")) : frame.cols,
+                               c.count("surf.width") && c.count("surf.height") ? int(c.count("surf.height")) : frame.rows);
+                out.images.push_back(frame.clone());
+                const fs::path& file = reader.sequence().frames[out.images.size() - 1].image;
+                if (!file.empty()) out.files.push_back(file);
+            }
         }
+    } catch (const ConfigError&) {
+        throw;
     } catch (const std::exception& e) {
-        throw ConfigError(fmt::format("surf.source {}: {}", source, e.what()));
+        throw ConfigError(fmt::format("{}: {}", where, e.what()));
     }
-    if (frames.empty()) throw ConfigError(fmt::format("surf.source {}: no frames (install opencv-doc / visp-images-data?)", source));
+    if (out.images.size() < count) throw too_few(out.images.size());
+    auto name = [&](size_t i) { return i < out.files.size() ? out.files[i].string() : fmt::format("{} frame {}", source, i); };
+    out.original = out.images[0].size();
+    const bool resizing = c.count("surf.width") && c.count("surf.height");
+    for (size_t i = 1; i < out.images.size(); ++i)
+        if (!resizing && out.images[i].size() != out.original)
+            throw ConfigError(fmt::format("{}: frames differ in size: {} is {}x{}, {} is {}x{}; set surf.width and surf.height "
+                                          "to resize them alike",
+                                          where, name(0), out.original.width, out.original.height, name(i),
+                                          out.images[i].cols, out.images[i].rows));
     const int w = int(c.count("surf.width")), h = int(c.count("surf.height"));
-    for (cv::Mat& f : frames)
-        if (w && h && (f.cols != w || f.rows != h)) {
+    for (cv::Mat& f : out.images)
+        if (w && h && f.size() != cv::Size(w, h)) {
             cv::Mat resized;
             cv::resize(f, resized, cv::Size(w, h), 0, 0, cv::INTER_AREA);
             f = resized;
         }
-    for (const cv::Mat& f : frames)
-        if (f.size() != frames[0].size()) throw ConfigError("surf.source: frames differ in size; set surf.width and surf.height");
-    return frames;
+    check_frame_size(c, out);
+    return out;
 }
 
 // Frames, and frame 0's ranked responses for the calibration, are read once per process and
@@ -66,12 +156,63 @@ std::string source_key(const Config& c) {
     return fmt::format("{}|{}x{}", c.text("surf.source"), c.count("surf.width"), c.count("surf.height"));
 }
 
-const std::vector<cv::Mat>& load_frames(const Config& c) {
-    static std::map<std::string, std::vector<cv::Mat>> cache;
+const SourceFrames& load_source(const Config& c) {
+    static std::map<std::string, SourceFrames> cache;
     const std::string key = fmt::format("{}|{}", source_key(c), c.count("surf.frames"));
     auto it = cache.find(key);
     if (it == cache.end()) it = cache.emplace(key, read_frames(c)).first;
     return it->second;
+}
+
+const std::vector<cv::Mat>& load_frames(const Config& c) { return load_source(c).images; }
+
+// The evaluation's geometry, read before anything is built: a homography from frame 0 to
+// frame 1 at the frames' own size, and camera poses that belong to the very frames the source
+// gives, one each.
+void check_eval_inputs(const Config& c, const SourceFrames& frames) {
+    const std::string homography = c.text("eval.homography");
+    if (!homography.empty()) {
+        try {
+            eval::read_homography_file(homography);
+        } catch (const std::exception& e) {
+            throw ConfigError(fmt::format("{}: {}", c.where("eval.homography"), e.what()));
+        }
+        if (frames.images[0].size() != frames.original)
+            throw ConfigError(fmt::format("{}: the homography maps frame 0 to frame 1 at their own size ({}x{}), but "
+                                          "surf.width x surf.height (from {}) resize them to {}x{}; set both to 0",
+                                          c.where("eval.homography"), frames.original.width, frames.original.height,
+                                          c.source_of("surf.width"), frames.images[0].cols, frames.images[0].rows));
+    }
+    const std::string poses = c.text("eval.poses");
+    if (poses.empty()) return;
+    std::vector<eval::PosedFrame> posed;
+    try {
+        posed = eval::list_posed_frames(poses);
+    } catch (const std::exception& e) {
+        throw ConfigError(fmt::format("{}: {}", c.where("eval.poses"), e.what()));
+    }
+    if (frames.files.size() != frames.images.size())
+        throw ConfigError(fmt::format("{}: poses belong to image files, but surf.source {} (from {}) is one image or a video",
+                                      c.where("eval.poses"), c.text("surf.source"), c.source_of("surf.source")));
+    if (posed.size() < frames.images.size())
+        throw ConfigError(fmt::format("{}: {} poses for {} frames (surf.frames from {})", c.where("eval.poses"), posed.size(),
+                                      frames.images.size(), c.source_of("surf.frames")));
+    // The evaluation's pairs (gaps 1 and 2, evaluation() below) need two distinct camera centres.
+    for (size_t i = 0; i < frames.images.size(); ++i)
+        for (size_t j : {i + 1, i + 2})
+            if (j < frames.images.size()) try {
+                    eval::fundamental_from_poses(eval::kCastleIntrinsics, posed[i].c_m_o, posed[j].c_m_o);
+                } catch (const std::invalid_argument& e) {
+                    throw ConfigError(fmt::format("{}: frames {} and {} ({} and {}): {}", c.where("eval.poses"), i, j,
+                                                  posed[i].pose_file.string(), posed[j].pose_file.string(), e.what()));
+                }
+    for (size_t i = 0; i < frames.files.size(); ++i) {
+        std::error_code ec;
+        if (!fs::equivalent(frames.files[i], posed[i].image, ec))
+            throw ConfigError(fmt::format("{}: frame {} is {}, but pose {} ({}) belongs to {}", c.where("eval.poses"), i,
+                                          frames.files[i].string(), i, posed[i].pose_file.filename().string(),
+                                          posed[i].image.string()));
+    }
 }
 
 // The float reference on frame 0, limited to the chip's two octaves at step 1.
@@ -103,15 +244,14 @@ public:
           describer_(make_describer(c, threshold_)), results_(frames_.size()) {
         width_ = frames_[0].cols;
         height_ = frames_[0].rows;
-        layout(c);
+        layout_ = layout_for(c, frames_.size(), width_, height_);
         const fhg::HessianCore core(fhg_params(c).precision);
         driver_.intc_base = map::intc.base;
         for (unsigned k = 0; k < c.count("soc.accelerators"); ++k)
             driver_.accelerators.push_back({map::iig_base(k), map::fhg_base(k), map::irq::iig(k), map::irq::fhg(k)});
-        for (uint64_t set = 0; set < c.count("surf.tasks_in_flight"); ++set)
-            driver_.buffers.push_back({uint32_t(slots_base_ + set * slot_bytes_),
-                                       uint32_t(slots_base_ + set * slot_bytes_ + integral_bytes_),
-                                       uint32_t(slots_base_ + set * slot_bytes_ + integral_bytes_ + det_bytes_)});
+        for (uint64_t set = 0, at = layout_.slots_base; set < c.count("surf.tasks_in_flight"); ++set, at += layout_.slot_bytes)
+            driver_.buffers.push_back({uint32_t(at), uint32_t(at + layout_.integral_bytes),
+                                       uint32_t(at + layout_.integral_bytes + layout_.det_bytes)});
         driver_.fifo_irq_level = uint32_t(c.count("surf.fifo_irq_level"));
         driver_.threshold = core.from_float(threshold_);
         driver_.watchdog_ps = c.duration("surf.watchdog").ps;
@@ -210,23 +350,8 @@ public:
     }
 
 private:
-    uint32_t frame_address(size_t i) const { return uint32_t(frames_base_ + i * frame_bytes_); }
+    uint32_t frame_address(size_t i) const { return uint32_t(layout_.frames_base + i * layout_.frame_bytes); }
 
-    // Frames, then one set of integral image, determinant and descriptor buffers per task in flight.
-    void layout(const Config& c) {
-        frame_bytes_ = round_up(uint64_t(width_) * height_);
-        integral_bytes_ = round_up(uint64_t(width_) * height_ * 4);
-        det_bytes_ = round_up(uint64_t((width_ + 1) / 2) * ((height_ + 1) / 2) *
-                              fhg_regs::record_bytes(fhg_regs::det_bytes_for(c.bits("fhg.det_bits"))));
-        slot_bytes_ = integral_bytes_ + det_bytes_ + round_up(uint64_t(sw::ssa2::kRecordRing) * sw::ssa2::kRecordSlot);
-        frames_base_ = 0x0010'0000;
-        slots_base_ = frames_base_ + frames_.size() * frame_bytes_;
-        const uint64_t end = slots_base_ + c.count("surf.tasks_in_flight") * slot_bytes_;
-        if (end > c.bytes("memory.size").n)
-            throw ConfigError(fmt::format("{} frames of {}x{} and {} buffer sets need {} of memory, memory.size is {}",
-                                          frames_.size(), width_, height_, c.count("surf.tasks_in_flight"),
-                                          format_bytes(Bytes{end}), format_bytes(c.bytes("memory.size"))));
-    }
 
     double throughput() const;
     nlohmann::ordered_json evaluation() const;
@@ -252,7 +377,7 @@ private:
     std::vector<FrameResult> results_;
     sw::ssa2::DriverConfig driver_;
     int width_ = 0, height_ = 0;
-    uint64_t frame_bytes_ = 0, integral_bytes_ = 0, det_bytes_ = 0, slot_bytes_ = 0, frames_base_ = 0, slots_base_ = 0;
+    Layout layout_{};
     uint64_t done_ = 0;
     FaultPlan* faults_ = nullptr;
     sw::ssa2::Driver::Recovery recovery_;
@@ -459,6 +584,11 @@ std::vector<std::string> SurfWorkload::write_files(const std::string& dir) const
 }  // namespace
 
 std::unique_ptr<Workload> make_surf_workload(const Config& config) { return std::make_unique<SurfWorkload>(config); }
+
+void check_surf_inputs(const Config& config) {
+    if (config.choice("run.workload") != "surf") return;
+    check_eval_inputs(config, load_source(config));
+}
 
 // Frame 0 at most 640 pixels wide, PNG inline, each keypoint a circle of 2.5 scales with a
 // stroke to its orientation (green: dark blob, Laplacian +1; red: bright blob).

@@ -57,4 +57,10 @@ public:
 std::unique_ptr<Workload> make_workload(const Config& config);
 std::unique_ptr<Workload> make_surf_workload(const Config& config);
 
+// The files a SURF scenario names (surf.source, eval.homography, eval.poses), read and checked
+// against the parameters and the chip's limits, so that nothing a run could find in them is
+// found after simulating; throws ConfigError naming the key's origin. Nothing for other
+// workloads.
+void check_surf_inputs(const Config& config);
+
 }  // namespace surfvp

@@ -71,8 +71,9 @@ Eigen::Matrix3d read_plain_text(const std::filesystem::path& file) {
 }  // namespace
 
 Eigen::Matrix3d read_homography_file(const std::filesystem::path& file) {
+    if (!std::filesystem::exists(file)) throw std::runtime_error(file.string() + ": no such file");
     if (!std::filesystem::is_regular_file(file)) {
-        throw std::runtime_error(file.string() + ": no such file");
+        throw std::runtime_error(file.string() + ": not a regular file (a folder, a FIFO or a device is not read)");
     }
     Eigen::Matrix3d h = looks_like_file_storage(file) ? read_file_storage(file) : read_plain_text(file);
     if (!h.allFinite()) throw FormatError(file, 0, "the homography has non-finite elements");

@@ -21,14 +21,6 @@ std::string lower_extension(const std::filesystem::path& file) {
     return ext;
 }
 
-bool is_image_file(const std::filesystem::path& file) {
-    static constexpr std::array<std::string_view, 11> kExtensions = {
-        ".pgm", ".ppm", ".pnm", ".pbm", ".png", ".jpg", ".jpeg", ".bmp", ".tif", ".tiff", ".webp"};
-    std::string ext = lower_extension(file);
-    return std::any_of(kExtensions.begin(), kExtensions.end(),
-                       [&](std::string_view e) { return ext == e; });
-}
-
 std::string trim(const std::string& s) {
     auto first = s.find_first_not_of(" \t\r\n\v\f");
     if (first == std::string::npos) return {};
@@ -68,6 +60,14 @@ Sequence video_sequence(const std::filesystem::path& source, std::size_t max_fra
 
 }  // namespace
 
+bool is_image_file(const std::filesystem::path& file) {
+    static constexpr std::array<std::string_view, 11> kExtensions = {
+        ".pgm", ".ppm", ".pnm", ".pbm", ".png", ".jpg", ".jpeg", ".bmp", ".tif", ".tiff", ".webp"};
+    std::string ext = lower_extension(file);
+    return std::any_of(kExtensions.begin(), kExtensions.end(),
+                       [&](std::string_view e) { return ext == e; });
+}
+
 std::vector<std::filesystem::path> list_image_folder(const std::filesystem::path& folder) {
     if (!std::filesystem::is_directory(folder)) {
         throw std::runtime_error(folder.string() + ": no such folder");
@@ -89,9 +89,8 @@ std::vector<std::filesystem::path> read_image_list(const std::filesystem::path& 
     while (reader.next(tokens)) {
         std::filesystem::path image = trim(reader.text());
         if (image.is_relative()) image = list_file.parent_path() / image;
-        if (!std::filesystem::is_regular_file(image)) {
-            reader.fail("image '" + image.string() + "' does not exist");
-        }
+        if (!std::filesystem::exists(image)) reader.fail("image '" + image.string() + "' does not exist");
+        if (!std::filesystem::is_regular_file(image)) reader.fail("image '" + image.string() + "' is not a regular file");
         images.push_back(image);
     }
     return images;
@@ -106,6 +105,10 @@ Sequence open_sequence(const std::filesystem::path& source, std::size_t max_fram
     }
     if (!std::filesystem::exists(source)) {
         throw std::runtime_error(source.string() + ": no such file or folder");
+    }
+    // A FIFO or a device would be read until it ends, which may be never.
+    if (!std::filesystem::is_regular_file(source)) {
+        throw std::runtime_error(source.string() + ": not a regular file or a folder");
     }
     std::string ext = lower_extension(source);
     if (ext == ".txt" || ext == ".lst") {
@@ -124,6 +127,9 @@ bool SequenceReader::next(cv::Mat& image) {
     if (next_ >= sequence_.frames.size()) return false;
     const SequenceFrame& frame = sequence_.frames[next_];
     if (sequence_.kind != SequenceKind::video) {
+        std::error_code ec;
+        if (std::filesystem::file_size(frame.image, ec) == 0 && !ec)
+            throw std::runtime_error(frame.image.string() + ": the image file is empty (0 bytes)");
         image = cv::imread(frame.image.string(), flags_);
         if (image.empty()) throw std::runtime_error(frame.image.string() + ": cannot decode the image");
     } else {

@@ -29,6 +29,9 @@ struct Sequence {
     std::vector<SequenceFrame> frames;
 };
 
+// Whether a file's extension is one of the image extensions below (any case).
+bool is_image_file(const std::filesystem::path& file);
+
 // The image files of a folder (extensions .pgm .ppm .pnm .pbm .png .jpg .jpeg .bmp .tif .tiff
 // .webp, any case), sorted by file name (byte order). Throws std::runtime_error naming the
 // folder when it does not exist.

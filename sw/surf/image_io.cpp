@@ -1,6 +1,9 @@
 #include "sw/surf/image_io.h"
 
+#include <cstdio>
+#include <fcntl.h>
 #include <filesystem>
+#include <unistd.h>
 #include <fstream>
 
 #include <fmt/format.h>
@@ -9,6 +12,22 @@
 #include "sw/surf/fast_hessian.h"
 
 namespace surfvp::surf {
+
+QuietDecoding::QuietDecoding() : saved_stderr_(-1) {
+    std::fflush(stderr);
+    const int null = ::open("/dev/null", O_WRONLY);
+    if (null < 0) return;
+    saved_stderr_ = ::dup(STDERR_FILENO);
+    if (saved_stderr_ >= 0) ::dup2(null, STDERR_FILENO);
+    ::close(null);
+}
+
+QuietDecoding::~QuietDecoding() {
+    if (saved_stderr_ < 0) return;
+    std::fflush(stderr);
+    ::dup2(saved_stderr_, STDERR_FILENO);
+    ::close(saved_stderr_);
+}
 
 int minimum_image_side(const Params& params) { return filter_size(0, params.intervals - 1) + 1 + 2 * params.init_step; }
 
@@ -33,7 +52,11 @@ cv::Mat load_gray(const std::string& path, const Params& params) {
     if (!std::ifstream(path, std::ios::binary).good())
         throw ImageError(fmt::format("{}: file cannot be opened for reading (permissions?)", path));
     if (fs::file_size(path, ec) == 0) throw ImageError(fmt::format("{}: file is empty (0 bytes)", path));
-    cv::Mat gray = cv::imread(path, cv::IMREAD_GRAYSCALE);
+    cv::Mat gray;
+    {
+        QuietDecoding quiet;
+        gray = cv::imread(path, cv::IMREAD_GRAYSCALE);
+    }
     if (gray.empty()) throw ImageError(fmt::format("{}: file is not an image OpenCV can decode", path));
     check_image(gray, params, path);
     return gray;

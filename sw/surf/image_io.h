@@ -16,6 +16,20 @@ public:
     using std::runtime_error::runtime_error;
 };
 
+// While one is alive, what the image and video libraries print on stderr (libpng's "Read
+// Error", FFmpeg's complaints about a damaged stream) goes nowhere: a damaged file is then
+// reported once, by the caller, with its name. Only around decoding; not thread-safe.
+class QuietDecoding {
+public:
+    QuietDecoding();
+    ~QuietDecoding();
+    QuietDecoding(const QuietDecoding&) = delete;
+    QuietDecoding& operator=(const QuietDecoding&) = delete;
+
+private:
+    int saved_stderr_;
+};
+
 // Smallest width and height that hold the first octave's largest filter with the border rule
 // (fast_hessian.h) and room for one 3x3 non-maximum neighbourhood: L + 1 + 2 * init_step,
 // 30 pixels with the default parameters.

@@ -77,7 +77,9 @@ TEST(Environment, AReusedFolderHoldsOnlyTheLastRunsFiles) {
     write_file(out, "notes.txt", "mine");
     ASSERT_EQ(surfvp("run " + kBudget + " --quiet --trace all --out " + out + kShort).exit_code, 0);
     ASSERT_TRUE(fs::exists(out + "/keypoints/frame_0002.surf"));
-    ASSERT_EQ(surfvp("run " + kBudget + " --quiet --trace none --out " + out + kShort + " --set surf.frames=2").exit_code, 0);
+    std::string two_frames = kShort;
+    two_frames.replace(two_frames.find("surf.frames=3"), 13, "surf.frames=2");
+    ASSERT_EQ(surfvp("run " + kBudget + " --quiet --trace none --out " + out + two_frames).exit_code, 0);
     EXPECT_TRUE(fs::exists(out + "/keypoints/frame_0001.surf"));
     for (const char* gone : {"keypoints/frame_0002.surf", "keypoints/frame_0002.surf.meta", "trace.vcd", "trace.perfetto.json",
                              "trace.gtkw"})

@@ -1,0 +1,86 @@
+#include "platform/scenario/consistency.h"
+
+#include <fmt/format.h>
+
+#include "platform/address_map.h"
+
+namespace surfvp {
+namespace {
+
+// config.yaml gives every parameter: one at its default changes nothing, wherever it is.
+bool at_default(const Config::Entry& e) {
+    if (e.spec->kind == ParamKind::text || e.spec->kind == ParamKind::choice) return e.value == e.spec->default_value;
+    return parse_value(*e.spec, e.value) == parse_value(*e.spec, e.spec->default_value);
+}
+
+bool in_section(const std::string& key, const char* section) { return key.rfind(std::string(section) + ".", 0) == 0; }
+
+}  // namespace
+
+void check_consistency(const Config& c) {
+    for (const char* bus : {"plb1", "plb2"}) {
+        const std::string key = std::string(bus) + ".width";
+        const unsigned width = c.bits(key);
+        if (width != 32 && width != 64 && width != 128)
+            throw ConfigError(fmt::format("{}: {} bit: a PLB is 32, 64 or 128 bit wide", c.where(key), width));
+    }
+    const uint64_t pairs = c.count("soc.accelerators");
+    const uint64_t needed = map::irq::fhg(unsigned(pairs) - 1) + 1;
+    if (c.count("intc.inputs") < needed)
+        throw ConfigError(fmt::format("{}: {} inputs are too few for {} accelerator pairs (soc.accelerators): they need {}",
+                                      c.where("intc.inputs"), c.count("intc.inputs"), pairs, needed));
+    if (c.choice("run.workload") != "surf") return;
+
+    // surf.width and surf.height resize together: one alone would be ignored.
+    if ((c.count("surf.width") == 0) != (c.count("surf.height") == 0)) {
+        const std::string zero = c.count("surf.width") == 0 ? "surf.width" : "surf.height";
+        const std::string other = zero == "surf.width" ? "surf.height" : "surf.width";
+        throw ConfigError(fmt::format("{}: {} with {} = 0 (from {}): frames are resized only when both are set; set both, "
+                                      "or both to 0 to keep the frames as they are",
+                                      c.where(other), c.count(other), zero, c.source_of(zero)));
+    }
+    const uint64_t frames = c.count("surf.frames");
+    for (const char* key : {"eval.homography", "eval.poses"})
+        if (!c.text(key).empty() && frames < 2)
+            throw ConfigError(fmt::format("{}: the evaluation compares frames, and surf.frames is {} (from {}): it needs at "
+                                          "least 2",
+                                          c.where(key), frames, c.source_of("surf.frames")));
+    // A frame rate needs one whole round of the pairs after the first frame.
+    if (c.real("budget.fps") > 0 && frames <= pairs)
+        throw ConfigError(fmt::format("{}: {} frames cannot give a frame rate with {} accelerator pair(s): the steady-state "
+                                      "rate needs {}; set more frames or budget.fps = 0 (from {})",
+                                      c.where("surf.frames"), frames, pairs, pairs + 1, c.source_of("budget.fps")));
+}
+
+std::vector<Ineffective> ineffective_parameters(const Config& c) {
+    std::vector<Ineffective> out;
+    const std::string workload = c.choice("run.workload");
+    const bool verdict = workload == "surf" && (c.choice("verdict.band") == "on" || c.choice("verdict.break_even") == "on" ||
+                                                c.choice("verdict.software") == "on");
+    for (const Config::Entry& e : c.entries()) {
+        const std::string& key = e.spec->key;
+        if (e.origin == "default" || at_default(e)) continue;
+        std::string reason;
+        if (workload != "surf" && (in_section(key, "surf") || in_section(key, "budget") || in_section(key, "eval") ||
+                                   in_section(key, "verdict") || in_section(key, "fault")))
+            reason = fmt::format("run.workload is {}", workload);
+        else if (workload != "smoke" && in_section(key, "smoke"))
+            reason = fmt::format("run.workload is {}", workload);
+        else if (key == "surf.threshold" && c.count("surf.target_keypoints") > 0)
+            reason = fmt::format("surf.target_keypoints is {}, so the threshold is calibrated on frame 0",
+                                 c.count("surf.target_keypoints"));
+        else if ((key == "verdict.frames" || key == "verdict.jobs") && !verdict)
+            reason = "verdict.band, verdict.break_even and verdict.software are all off";
+        else if (key == "verdict.break_even" && e.value == "on" && c.real("budget.fps") <= 0)
+            reason = "budget.fps is 0: there is no budget to break even with";
+        else if (key == "verdict.frames" && c.count("verdict.frames") > c.count("surf.frames"))
+            reason = fmt::format("the re-simulations run at most surf.frames = {} frames", c.count("surf.frames"));
+        else if (in_section(key, "mci") && c.choice("cpu.memory_path") == "plb1" &&
+                 !(verdict && c.choice("verdict.band") == "on"))  // the band tries the MCI too
+            reason = "cpu.memory_path is plb1: the CPU reaches DDR over PLB1, not the MCI";
+        if (!reason.empty()) out.push_back({key, reason});
+    }
+    return out;
+}
+
+}  // namespace surfvp
