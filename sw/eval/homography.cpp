@@ -36,6 +36,9 @@ Eigen::Matrix3d read_file_storage(const std::filesystem::path& file) {
     }
     if (!storage.isOpened()) throw FormatError(file, 0, "OpenCV cannot open it as a FileStorage");
     for (const auto& node : storage.root()) {
+        // OpenCV allocates rows x cols before it reads the data: a small file declaring a huge
+        // matrix would ask for gigabytes. Only a 3x3 node can be the homography.
+        if (!node.isMap() || int(node["rows"]) != 3 || int(node["cols"]) != 3) continue;
         cv::Mat m;
         try {
             node >> m;
