@@ -80,7 +80,8 @@ std::string format(double value, UnitKind which) {
     const Kind& k = kind(which);
     for (auto it = k.units.rbegin(); it != k.units.rend(); ++it) {
         double scaled = value / it->scale;
-        if (scaled >= 1 && std::abs(scaled - std::round(scaled)) < 1e-9)
+        // Whole numbers as integers while they fit one (a frequency has no upper bound).
+        if (scaled >= 1 && scaled < 0x1p64 && std::abs(scaled - std::round(scaled)) < 1e-9)
             return fmt::format("{} {}", static_cast<uint64_t>(std::round(scaled)), it->name);
     }
     for (auto it = k.units.rbegin(); it != k.units.rend(); ++it)
@@ -92,7 +93,8 @@ std::string format(double value, UnitKind which) {
 // range, never wrapped or truncated.
 template <typename T>
 T fitting(double value, const std::string& text) {
-    if (!(value <= double(std::numeric_limits<T>::max())))  // also catches NaN
+    // Below 2^digits: double(max) of a 64-bit type rounds up to 2^64, which does not fit.
+    if (!(value < std::ldexp(1.0, std::numeric_limits<T>::digits)))  // also catches NaN
         throw UnitError(fmt::format("'{}' is out of range: at most {} fits", text, std::numeric_limits<T>::max()));
     return static_cast<T>(value);
 }
