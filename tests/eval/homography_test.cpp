@@ -82,6 +82,15 @@ TEST(Homography, AHugeDeclaredMatrixIsSkippedNotAllocated) {
     }
 }
 
+// Found by tests/fuzz (homography): on this broken YAML, OpenCV 4.6's parser throws
+// std::length_error, not cv::Exception, which escaped the reader as a bare exception.
+TEST(Homography, AFileOpenCvCannotParseIsAFormatError) {
+    test::TemporaryFolder dir;
+    std::ofstream(dir / "broken.yml") << "%YAML:1.0\n---\nH13: !!opencv-matrix\n   rows: 3\n   cols: 3\n   :td d\n"
+                                         "5671230e+02, 3.3443473050e, 1.00000000e+00 ]\n";
+    EXPECT_THROW(read_homography_file(dir / "broken.yml"), FormatError);
+}
+
 TEST(Homography, MapsPointsAndHasTheRightJacobian) {
     Eigen::Matrix3d t = translation_homography(5, -2);
     EXPECT_EQ(apply_homography(t, {1, 1}), Eigen::Vector2d(6, -1));
