@@ -64,6 +64,10 @@ TEST(Units, FormatParsesBackToTheSameValue) {
     const Frequency f = parse_frequency("8.2762 MHz");
     EXPECT_EQ(format_frequency(f), "8276200 Hz");
     EXPECT_NEAR(parse_frequency(format_frequency(f)).hz, f.hz, 1e-12 * f.hz);
+    // Found by tests/fuzz (units): a duration within 1e-9 of a whole number of seconds was
+    // written as that number, 208 ps lost; durations and sizes are integers, written exactly.
+    const Duration d = parse_duration("10000000000208 ps");
+    EXPECT_EQ(parse_duration(format_duration(d)).ps, d.ps) << format_duration(d);
 }
 
 }  // namespace
