@@ -44,7 +44,7 @@ cmake --build build -j2
 case "$1" in
   run) ./build/surfvp run "$DEFAULT_SCENARIO" || [ $? -eq 1 ] ;;  # 1: the budget verdict, reported, not a failure to run
   test) cd build && ctest --output-on-failure -j2
-    ../scripts/fuzz.sh ;;  # the libFuzzer targets (tests/fuzz): regressions, seeds, 20 s each; ~5 min with the build
+    ../scripts/fuzz.sh ;;  # the libFuzzer targets (tests/fuzz): regressions, seeds, then 20 s each
   calibrate)
     ./build/surfvp calibrate --table sw/cpu_cost/calibration.json --out traces/calibration
     cp traces/calibration/calibration.md sw/cpu_cost/calibration.md
