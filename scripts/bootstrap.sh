@@ -17,6 +17,7 @@ readonly PACKAGES=(
   libxml2-dev                   # tests read report.html as XML
   opencv-doc visp-images-data   # real images for tests and scenarios
   g++-powerpc-linux-gnu qemu-user  # surfvp calibrate: the software stage built for the PPC440, run on an ISS
+  clang libclang-rt-14-dev      # scripts/fuzz.sh: libFuzzer targets with ASan/UBSan (tests/fuzz)
 )
 
 usage() { echo "usage: $0 run|test|calibrate" >&2; exit 2; }
@@ -42,7 +43,10 @@ cmake --build build -j2
 
 case "$1" in
   run) ./build/surfvp run "$DEFAULT_SCENARIO" || [ $? -eq 1 ] ;;  # 1: the budget verdict, reported, not a failure to run
-  test) cd build && ctest --output-on-failure -j2 ;;
+  test)
+    (cd build && ctest --output-on-failure -j2)
+    ./scripts/sanitize.sh  # the suite again under ASan + UBSan (build-asan)
+    ./scripts/fuzz.sh ;;   # the libFuzzer targets (tests/fuzz): regressions, seeds, then 20 s each
   calibrate)
     ./build/surfvp calibrate --table sw/cpu_cost/calibration.json --out traces/calibration
     cp traces/calibration/calibration.md sw/cpu_cost/calibration.md

@@ -37,6 +37,10 @@ RegisterBank::RegisterBank(const RegisterTable& table) : table_(table) {
     for (const Register& r : table.registers) {
         if (r.offset % 4) throw std::logic_error(fmt::format("{}.{}: offset {:#x} is not word aligned", table.block, r.name, r.offset));
         if (table.find(r.offset) != &r) throw std::logic_error(fmt::format("{}.{}: offset {:#x} taken twice", table.block, r.name, r.offset));
+        for (const RegisterField& f : r.fields)
+            if (f.lsb >= 32 || f.width > 32 - f.lsb)  // RegisterField::mask() could not shift it
+                throw std::logic_error(fmt::format("{}.{}.{}: bits {}..{} are outside the 32-bit word", table.block, r.name,
+                                                   f.name, f.lsb, f.lsb + f.width - 1));
         Slot s{&r, r.reset, 0, 0, {}, {}};
         if (r.access == Access::RW) s.writable = r.fields.empty() ? ~0u : fields_mask(r, Access::RW);
         if (r.access == Access::W1C) s.clearable = r.fields.empty() ? ~0u : fields_mask(r, Access::W1C);

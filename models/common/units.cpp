@@ -74,13 +74,16 @@ double parse(const std::string& text, UnitKind which) {
     throw UnitError(fmt::format("'{}' has the wrong unit '{}': {} takes {}", text, unit, k.what, unit_list(k)));
 }
 
-// The largest unit in which the value is a whole number; a fractional frequency goes in the
-// largest unit it is at least one of, printed so that it parses back exactly.
+// The largest unit in which the value is a whole number; otherwise the largest unit it is at
+// least one of, printed so that it parses back (units.h says how exactly).
 std::string format(double value, UnitKind which) {
     const Kind& k = kind(which);
     for (auto it = k.units.rbegin(); it != k.units.rend(); ++it) {
         double scaled = value / it->scale;
-        if (scaled >= 1 && std::abs(scaled - std::round(scaled)) < 1e-9)
+        // Whole numbers as integers while they fit one (a frequency has no upper bound). Only a
+        // frequency is rounded to a near whole number: 10 s + 208 ps is not "10 s".
+        const double tolerance = k.integer ? 0 : 1e-9;
+        if (scaled >= 1 && scaled < 0x1p64 && std::abs(scaled - std::round(scaled)) <= tolerance)
             return fmt::format("{} {}", static_cast<uint64_t>(std::round(scaled)), it->name);
     }
     for (auto it = k.units.rbegin(); it != k.units.rend(); ++it)
@@ -92,7 +95,8 @@ std::string format(double value, UnitKind which) {
 // range, never wrapped or truncated.
 template <typename T>
 T fitting(double value, const std::string& text) {
-    if (!(value <= double(std::numeric_limits<T>::max())))  // also catches NaN
+    // Below 2^digits: double(max) of a 64-bit type rounds up to 2^64, which does not fit.
+    if (!(value < std::ldexp(1.0, std::numeric_limits<T>::digits)))  // also catches NaN
         throw UnitError(fmt::format("'{}' is out of range: at most {} fits", text, std::numeric_limits<T>::max()));
     return static_cast<T>(value);
 }

@@ -1,10 +1,12 @@
 #include "platform/scenario/scenario.h"
 
 #include <algorithm>
+#include <cstdint>
 #include <cstdlib>
 #include <filesystem>
 #include <fmt/format.h>
 #include <map>
+#include <string_view>
 #include <yaml-cpp/yaml.h>
 
 #include "platform/scenario/consistency.h"
@@ -18,10 +20,32 @@ std::string at(const std::string& path, const YAML::Node& node) {
     return fmt::format("{}:{}", path, node.Mark().line + 1);
 }
 
+// Well-formed UTF-8 (no overlong forms, surrogates or code points above U+10FFFF). YAML is
+// Unicode text, and config.yaml could not give back a value that is not: its writer replaces
+// each stray byte with U+FFFD, so such a value is refused here, where it can be named.
+bool is_utf8(std::string_view text) {
+    for (size_t i = 0; i < text.size();) {
+        const auto byte = [&](size_t k) { return k < text.size() ? uint8_t(text[k]) : uint8_t(0); };
+        const uint8_t lead = byte(i);
+        const size_t length = lead < 0x80 ? 1 : (lead >> 5) == 0x6 ? 2 : (lead >> 4) == 0xE ? 3 : (lead >> 3) == 0x1E ? 4 : 0;
+        if (length == 0) return false;
+        uint32_t code = length == 1 ? lead : lead & (0x7F >> length);
+        for (size_t k = 1; k < length; ++k) {
+            if ((byte(i + k) & 0xC0) != 0x80) return false;
+            code = code << 6 | (byte(i + k) & 0x3F);
+        }
+        const uint32_t least[] = {0, 0, 0x80, 0x800, 0x10000};
+        if (code < least[length] || code > 0x10FFFF || (code >= 0xD800 && code <= 0xDFFF)) return false;
+        i += length;
+    }
+    return true;
+}
+
 std::string scalar(const std::string& path, const std::string& key, const YAML::Node& node) {
     if (!node.IsScalar())
         throw ConfigError(fmt::format("{}: {}: expected a single value, found a {}", at(path, node), key,
                                       node.IsMap() ? "map" : node.IsSequence() ? "list" : "null"));
+    if (!is_utf8(node.Scalar())) throw ConfigError(fmt::format("{}: {}: not UTF-8 text", at(path, node), key));
     return node.Scalar();
 }
 
@@ -134,6 +158,7 @@ void apply_overrides(Config& config, const std::vector<std::string>& overrides) 
         const auto eq = o.find('=');
         if (eq == std::string::npos || eq == 0)
             throw ConfigError(fmt::format("--set '{}': expected KEY=VALUE, e.g. plb2.width=64 bit", o));
+        if (!is_utf8(o)) throw ConfigError(fmt::format("--set '{}': not UTF-8 text", o));
         const std::string key = o.substr(0, eq), value = o.substr(eq + 1);
         // The first of two would silently not count.
         if (const auto it = given.find(key); it != given.end())

@@ -3,6 +3,7 @@
 #include <cctype>
 #include <cmath>
 #include <fstream>
+#include <stdexcept>
 #include <string>
 
 #include <Eigen/Dense>
@@ -33,9 +34,14 @@ Eigen::Matrix3d read_file_storage(const std::filesystem::path& file) {
         storage.open(file.string(), cv::FileStorage::READ);
     } catch (const cv::Exception& e) {
         throw FormatError(file, 0, "OpenCV cannot parse it: " + e.msg);
+    } catch (const std::length_error& e) {  // OpenCV 4.6's YAML parser on some broken files
+        throw FormatError(file, 0, std::string("OpenCV cannot parse it: ") + e.what());
     }
     if (!storage.isOpened()) throw FormatError(file, 0, "OpenCV cannot open it as a FileStorage");
     for (const auto& node : storage.root()) {
+        // OpenCV allocates rows x cols before it reads the data: a small file declaring a huge
+        // matrix would ask for gigabytes. Only a 3x3 node can be the homography.
+        if (!node.isMap() || int(node["rows"]) != 3 || int(node["cols"]) != 3) continue;
         cv::Mat m;
         try {
             node >> m;

@@ -1,5 +1,6 @@
 #include "sw/eval/keypoint_file.h"
 
+#include <algorithm>
 #include <cmath>
 #include <iterator>
 #include <stdexcept>
@@ -175,7 +176,11 @@ KeypointFile read_keypoint_file(const std::filesystem::path& file) {
     std::vector<std::string_view> t;
     result.dimension = read_dimension(reader, t);
     std::size_t n = read_header_value(reader, t, "keypoint count", kMaxKeypoints);
-    result.keypoints.reserve(n);
+    // Not n itself: a 30-byte file may claim 10^8 keypoints (28 GB). A keypoint line has at least
+    // 10 bytes ("x y a b c" and its newline), so the file holds no more than its size / 10.
+    std::error_code size_error;
+    const std::uintmax_t bytes = std::filesystem::file_size(file, size_error);
+    result.keypoints.reserve(size_error ? 0 : std::min<std::size_t>(n, bytes / 10));
     for (std::size_t i = 0; i < n; ++i) {
         if (!reader.next(t)) {
             throw FormatError(file, reader.line(),

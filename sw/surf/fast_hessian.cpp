@@ -38,7 +38,9 @@ FilterCorners filter_corners(int filter_size, ptrdiff_t stride) {
 // Straight-line integer code on fixed offsets: with kStep known the compiler vectorises it,
 // and an AVX2 clone (chosen at load time when the CPU has it) doubles the vector width.
 template <int kStep>
+#if !defined(__clang__)  // clang 14 cannot multiversion a template (the fuzz build): the default version only
 __attribute__((target_clones("avx2", "default")))
+#endif
 void determinant_row(const uint32_t* centre, int count, int step, const FilterCorners& fc, float inv_area,
                      float* out) {
     const ptrdiff_t st = kStep > 0 ? kStep : step;

@@ -49,6 +49,30 @@ void simulate_frames(benchmark::State& state, const std::string& trace) {
 void BM_FrameTracesOff(benchmark::State& state) { simulate_frames(state, "none"); }
 void BM_FrameTracesAll(benchmark::State& state) { simulate_frames(state, "all"); }
 
+// A long run holds flat memory: peak resident memory of a run of 100 and of 1000 small frames
+// (160x120, traces off); what grows with the frames is their images and results, a few KB each.
+void BM_LongRunMemory(benchmark::State& state) {
+    const std::string frames = fmt::format("surf.frames={}", state.range(0));
+    const std::string out = fmt::format("/tmp/surfvp_longbench_{}", ::getpid());
+    double peak = 0;
+    for (auto _ : state) {
+        const pid_t pid = fork();
+        if (pid == 0) {
+            execl(SURFVP_BINARY, SURFVP_BINARY, "run", SURFVP_SOURCE_DIR "/scenarios/budget_1024x768.yaml", "--quiet", "--trace",
+                  "none", "--out", out.c_str(), "--set", frames.c_str(), "--set", "surf.width=160", "--set", "surf.height=120",
+                  "--set", "surf.target_keypoints=20", "--set", "budget.fps=0", "--set", "verdict.band=off", "--set",
+                  "verdict.break_even=off", "--set", "verdict.software=off", nullptr);
+            _exit(127);
+        }
+        int status = 0;
+        rusage usage{};
+        wait4(pid, &status, 0, &usage);
+        peak = usage.ru_maxrss / 1024.0;
+    }
+    state.counters["peak_rss_mb"] = peak;
+}
+BENCHMARK(BM_LongRunMemory)->Arg(100)->Arg(1000)->Unit(benchmark::kSecond)->Iterations(1);
+
 // Iteration time = wall time per simulated frame.
 BENCHMARK(BM_FrameTracesOff)->Arg(10)->UseManualTime()->Unit(benchmark::kMillisecond)->Iterations(3);
 BENCHMARK(BM_FrameTracesAll)->Arg(10)->UseManualTime()->Unit(benchmark::kMillisecond)->Iterations(3);

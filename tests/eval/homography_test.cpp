@@ -67,6 +67,30 @@ TEST(Homography, MalformedFilesAreNamed) {
     EXPECT_THROW(read_homography_file(dir / "absent"), std::runtime_error);
 }
 
+// Found by tests/fuzz (homography): OpenCV allocates rows x cols before reading the data, so
+// a 300-byte file declaring a 100000 x 100000 matrix asked for 80 GB.
+TEST(Homography, AHugeDeclaredMatrixIsSkippedNotAllocated) {
+    test::TemporaryFolder dir;
+    std::ofstream(dir / "huge.xml") << "<?xml version=\"1.0\"?>\n<opencv_storage>\n"
+                                       "<H type_id=\"opencv-matrix\"><rows>100000</rows><cols>100000</cols>"
+                                       "<dt>d</dt><data>1 0 0 0 1 0 0 0 1</data></H>\n</opencv_storage>\n";
+    try {
+        read_homography_file(dir / "huge.xml");
+        ADD_FAILURE() << "no FormatError";
+    } catch (const FormatError& e) {
+        EXPECT_NE(e.problem().find("no 3x3 matrix"), std::string::npos) << e.what();
+    }
+}
+
+// Found by tests/fuzz (homography): on this broken YAML, OpenCV 4.6's parser throws
+// std::length_error, not cv::Exception, which escaped the reader as a bare exception.
+TEST(Homography, AFileOpenCvCannotParseIsAFormatError) {
+    test::TemporaryFolder dir;
+    std::ofstream(dir / "broken.yml") << "%YAML:1.0\n---\nH13: !!opencv-matrix\n   rows: 3\n   cols: 3\n   :td d\n"
+                                         "5671230e+02, 3.3443473050e, 1.00000000e+00 ]\n";
+    EXPECT_THROW(read_homography_file(dir / "broken.yml"), FormatError);
+}
+
 TEST(Homography, MapsPointsAndHasTheRightJacobian) {
     Eigen::Matrix3d t = translation_homography(5, -2);
     EXPECT_EQ(apply_homography(t, {1, 1}), Eigen::Vector2d(6, -1));

@@ -185,6 +185,8 @@ TEST(KeypointFile, MalformedFilesNameFileLineAndProblem) {
         {"sign", "65\n1\n1 2 0.04 0 0.04 2" + zeros(64) + "\n", 3, "Laplacian sign '2'"},
         {"nan", "64\n1\n1 2 0.04 0 0.04 nan" + zeros(63) + "\n", 3, "is not a finite float"},
         {"extra", "64\n1\n" + good64 + "\n" + good64, 5, "more keypoint lines than the count 1"},
+        // Found by tests/fuzz (keypoint_file): the count was reserved as it stood, 28 GB here.
+        {"claims", "64\n100000000\n" + good64, 3, "file ends after 1 of 100000000 keypoints"},
     };
     for (const auto& c : cases) {
         SCOPED_TRACE(c.name);

@@ -57,6 +57,17 @@ TEST(RegisterBank, ATableWithTwoRegistersAtOneOffsetIsRefused) {
     EXPECT_THROW(RegisterBank{twice}, std::logic_error);
 }
 
+// Found by tests/fuzz (register_bank): a field past bit 31 made RegisterField::mask() shift
+// by more than the word (undefined behaviour) instead of being refused like a bad offset.
+TEST(RegisterBank, AFieldOutsideTheWordIsRefused) {
+    const RegisterTable beyond{"beyond", "", {{"CTRL", 0x0, Access::RW, 0, "", {{"HIGH", 30, 4, Access::RW, ""}}}}};
+    EXPECT_THROW(RegisterBank{beyond}, std::logic_error);
+    const RegisterTable past{"past", "", {{"CTRL", 0x0, Access::RW, 0, "", {{"HIGH", 39, 1, Access::RW, ""}}}}};
+    EXPECT_THROW(RegisterBank{past}, std::logic_error);
+    const RegisterTable top{"top", "", {{"CTRL", 0x0, Access::RW, 0, "", {{"TOP", 31, 1, Access::RW, ""}}}}};
+    EXPECT_NO_THROW(RegisterBank{top});
+}
+
 TEST(RegisterBank, DocumentationListsRegistersAndFields) {
     const std::string md = registers_markdown({{&sample(), "Its window is nowhere"}});
     EXPECT_NE(md.find("## sample\n\nA block with one register of each kind. Its window is nowhere."), std::string::npos) << md;
@@ -69,7 +80,7 @@ TEST(RegisterBank, DocumentationListsRegistersAndFields) {
 TEST(FhgRegisters, FifoKeepsTheFirstCandidatesAndCountsTheRest) {
     namespace r = fhg_regs;
     int started = 0;
-    FhgRegisters regs({64, 64, 3, 8, 4}, {[&](const FhgRegisters::Frame& f) { started += int(f.width); }, {}, {}});
+    FhgRegisters regs({64, 64, 3, 8, 4}, {[&](const FhgRegisters::Frame& f) { started += int(f.width); }, {}, {}, {}});
     uint32_t v = 0;
     auto set = [&](uint32_t offset, uint32_t value) { ASSERT_TRUE(regs.access(offset, value, true)); };
     auto get = [&](uint32_t offset) {

@@ -100,6 +100,15 @@ TEST(ScenarioErrors, SetWithoutEquals) { expect_bad("", {"plb2.width"}, {"--set 
 
 TEST(ScenarioErrors, SetOfUnknownKey) { expect_bad("", {"cpu.clok=1 MHz"}, {"--set", "did you mean 'cpu.clock'"}); }
 
+// Found by tests/fuzz (scenario): a description with a stray byte loaded, but config.yaml
+// wrote U+FFFD for it, so the effective configuration did not load back to the same text.
+TEST(ScenarioErrors, TextThatIsNotUtf8) {
+    expect_bad("name: x\ndescription: caf\xe9\n", {}, {"FILE:2", "description: not UTF-8 text"});
+    expect_bad("surf:\n  source: \xc0\xaf.png\n", {}, {"FILE:2", "surf.source: not UTF-8 text"});  // overlong '/'
+    expect_bad("", {"surf.source=\xed\xa0\x80.png"}, {"--set", "not UTF-8 text"});  // a surrogate
+    EXPECT_EQ(load_scenario(scenario("description: caf\xc3\xa9 \xf0\x9f\x9a\x80\n"), {}).description, "caf\xc3\xa9 \xf0\x9f\x9a\x80");
+}
+
 TEST(Scenario, EffectiveConfigurationLoadsBackToTheSameValues) {
     const Config original = load_scenario(scenario("plb2:\n  width: 64 bit\n"), {"cpu.clock=300 MHz"});
     const std::string copy = write_file(fresh_dir("copy"), "effective.yaml", original.to_yaml());

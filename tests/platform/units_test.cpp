@@ -42,6 +42,11 @@ TEST(Units, ErrorsSayWhatIsWrong) {
     expect_error([] { parse_beats("5e9 beats"); }, "out of range");
     expect_error([] { parse_frequency("inf MHz"); }, "is not a frequency");
     expect_error([] { parse_duration("nan s"); }, "is not a duration");
+    // Found by tests/fuzz (units): 2^64 passed the check against double(UINT64_MAX), which is
+    // 2^64 itself, and the conversion to uint64_t was undefined.
+    expect_error([] { parse_duration("18446744073709551616 ps"); }, "out of range");
+    expect_error([] { parse_bytes("16 EiB"); }, "wrong unit");
+    expect_error([] { parse_bytes("17179869184 GiB"); }, "out of range");  // 2^64 B
 }
 
 TEST(Units, FormatParsesBackToTheSameValue) {
@@ -51,6 +56,18 @@ TEST(Units, FormatParsesBackToTheSameValue) {
     EXPECT_EQ(format_duration(Duration{1000000}), "1 us");
     EXPECT_EQ(format_bytes(Bytes{65536}), "64 KiB");
     EXPECT_EQ(format_bytes(Bytes{1000}), "1000 B");
+    // Found by tests/fuzz (units): a whole number of a unit too large for uint64_t (a frequency
+    // has no upper bound) was converted to one; now it is written as a real number.
+    const Frequency huge{1.18228e122};
+    EXPECT_DOUBLE_EQ(parse_frequency(format_frequency(huge)).hz, huge.hz) << format_frequency(huge);
+    // units.h's 1e-12: "8.2762 MHz" is 8276199.999999999 Hz, written as the whole 8276200 Hz.
+    const Frequency f = parse_frequency("8.2762 MHz");
+    EXPECT_EQ(format_frequency(f), "8276200 Hz");
+    EXPECT_NEAR(parse_frequency(format_frequency(f)).hz, f.hz, 1e-12 * f.hz);
+    // Found by tests/fuzz (units): a duration within 1e-9 of a whole number of seconds was
+    // written as that number, 208 ps lost; durations and sizes are integers, written exactly.
+    const Duration d = parse_duration("10000000000208 ps");
+    EXPECT_EQ(parse_duration(format_duration(d)).ps, d.ps) << format_duration(d);
 }
 
 }  // namespace
