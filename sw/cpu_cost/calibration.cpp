@@ -140,7 +140,10 @@ UnitTable fit_units(const std::vector<CandidateStream>& stream, const std::vecto
             for (size_t i = 0; i < own.size(); ++i) store(table[size_t(own[i])], per[i]);
         };
         fit([](const StepStream& st) { return st.cycles[0]; }, [](UnitCalibration& u, double v) { u.cycles = v; });
-        for (size_t k = 0; k < knobs(); ++k) {
+        // The knobs' sensitivities only from a stream timed at their probes too (the caller
+        // keeps the recorded ones otherwise).
+        const bool probed = !stream.empty() && stream.front()[s].cycles.size() >= 1 + 2 * knobs();
+        for (size_t k = 0; probed && k < knobs(); ++k) {
             fit([&](const StepStream& st) { return st.cycles[1 + 2 * k]; }, [&](UnitCalibration& u, double v) { u.low[k] = v; });
             fit([&](const StepStream& st) { return st.cycles[2 + 2 * k]; }, [&](UnitCalibration& u, double v) { u.high[k] = v; });
         }
