@@ -80,10 +80,9 @@ std::string format(double value, UnitKind which) {
     const Kind& k = kind(which);
     for (auto it = k.units.rbegin(); it != k.units.rend(); ++it) {
         double scaled = value / it->scale;
-        // Whole numbers as integers while they fit one (a frequency has no upper bound). Only a
-        // frequency is rounded to a near whole number: 10 s + 208 ps is not "10 s".
-        const double tolerance = k.integer ? 0 : 1e-9;
-        if (scaled >= 1 && scaled < 0x1p64 && std::abs(scaled - std::round(scaled)) <= tolerance)
+        // A frequency (durations and sizes: format_whole) as a whole number of a unit when
+        // within 1e-9 of one, while it fits an integer (a frequency has no upper bound).
+        if (scaled >= 1 && scaled < 0x1p64 && std::abs(scaled - std::round(scaled)) <= 1e-9)
             return fmt::format("{} {}", static_cast<uint64_t>(std::round(scaled)), it->name);
     }
     for (auto it = k.units.rbegin(); it != k.units.rend(); ++it)
@@ -117,7 +116,22 @@ uint64_t parse_cycles(const std::string& text) { return fitting<uint64_t>(parse(
 unsigned parse_beats(const std::string& text) { return fitting<unsigned>(parse(text, UnitKind::beats), text); }
 
 std::string format_frequency(Frequency f) { return format(f.hz, UnitKind::frequency); }
-std::string format_duration(Duration d) { return format(static_cast<double>(d.ps), UnitKind::duration); }
-std::string format_bytes(Bytes b) { return format(static_cast<double>(b.n), UnitKind::bytes); }
+namespace {
+
+// A whole number of picoseconds or bytes in the largest unit that divides it, in integers: a
+// double's 53 bits would round 18444674407370954752 ps to a "whole" 18444674407370956 ns.
+std::string format_whole(uint64_t value, UnitKind which) {
+    const Kind& k = kind(which);
+    for (auto it = k.units.rbegin(); it != k.units.rend(); ++it) {
+        const auto scale = static_cast<uint64_t>(it->scale);
+        if (value >= scale && value % scale == 0) return fmt::format("{} {}", value / scale, it->name);
+    }
+    return fmt::format("{} {}", value, k.units.front().name);
+}
+
+}  // namespace
+
+std::string format_duration(Duration d) { return format_whole(d.ps, UnitKind::duration); }
+std::string format_bytes(Bytes b) { return format_whole(b.n, UnitKind::bytes); }
 
 }  // namespace surfvp

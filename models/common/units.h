@@ -40,7 +40,7 @@ uint64_t parse_cycles(const std::string& text);       // cycle cycles
 unsigned parse_beats(const std::string& text);        // beat beats
 
 // The canonical text of a value, which parses back to the same value: exactly for durations
-// and sizes, to a relative 1e-12 for frequencies, which are written as a whole number of a unit
+// and sizes, to a relative 1e-9 for frequencies, which are written as a whole number of a unit
 // when within 1e-9 of one ("8.2762 MHz" parses to 8276199.999999999 Hz, written "8276200 Hz").
 std::string format_frequency(Frequency f);
 std::string format_duration(Duration d);

@@ -9,7 +9,7 @@
 // parameters.h on text that parses:
 //   - the canonical text of a value (format_frequency, format_duration, format_bytes,
 //     format_value) parses back to the same value: exactly, but for a frequency to units.h's
-//     relative 1e-12;
+//     relative 1e-9;
 //   - a parameter's value lies in its range.
 #include <algorithm>
 #include <cmath>
@@ -38,7 +38,7 @@ void unit_parser(unsigned which, const std::string& text) {
         case 0: {
             const Frequency f = parse_frequency(text);
             const std::string canonical = format_frequency(f);
-            same(text, canonical, f.hz, parse_frequency(canonical).hz, 1e-12);
+            same(text, canonical, f.hz, parse_frequency(canonical).hz, 1e-9);
             break;
         }
         case 1: {
@@ -65,7 +65,7 @@ void parameter(const ParamSpec& spec, const std::string& text) {
     if (!(value >= spec.min && value <= spec.max))
         fuzz::bug(fmt::format("{} = '{}' reads as {}, outside its range", spec.key, text, value));
     const std::string canonical = format_value(spec, value);
-    same(text, canonical, value, parse_value(spec, canonical), spec.kind == ParamKind::frequency ? 1e-12 : 0);
+    same(text, canonical, value, parse_value(spec, canonical), spec.kind == ParamKind::frequency ? 1e-9 : 0);
 }
 
 }  // namespace
