@@ -75,6 +75,32 @@ private:
     std::vector<int64_t> current_;
 };
 
+// One IP block's side of the plan (the IIG's or the FHG's of a pair): whether a fault strikes
+// it now, and the injected faults in effect on its STATUS and interrupt line.
+class BlockFaults {
+public:
+    explicit BlockFaults(const char* block) : block_(block) {}
+    void attach(FaultPlan* plan, unsigned pair) {
+        plan_ = plan;
+        pair_ = pair;
+    }
+    bool attached() const { return plan_ != nullptr; }
+    bool strikes(FaultKind kind, uint64_t now_ps) const { return plan_ && plan_->strike(kind, block_, pair_, now_ps); }
+    FaultPlan& plan() const { return *plan_; }
+    unsigned pair() const { return pair_; }
+    // The interrupt line the INTC sees: stuck high, or the block's own line unless lost.
+    bool line(bool raised) const { return irq_stuck || (raised && !irq_lost); }
+
+    bool hung = false;       // the frame's end withheld: STATUS stays BUSY until CTRL.RESET
+    bool irq_lost = false;   // the frame's end raises no interrupt
+    bool irq_stuck = false;  // the line stays high until CTRL.RESET
+
+private:
+    const char* block_;
+    FaultPlan* plan_ = nullptr;
+    unsigned pair_ = 0;
+};
+
 // The pair a block or master name belongs to: "fhg" 0, "iig1" 1; nullopt for others (dma, cpu).
 std::optional<unsigned> pair_of(std::string_view name);
 

@@ -98,26 +98,23 @@ void Fhg::start(const FhgRegisters::Frame& f) {
     lines_.assign(size_t(f.width) * f.height, 0);
     for (auto& slot : slots_) slot.assign(size_t(frame_.blocks_x) * fhg::kDeterminantsPerBlock, 0);
     busy_.write(true);
-    irq_lost_ = false;
+    faults_.irq_lost = false;
     corruption_.row = -1;
     start_.notify(sc_core::SC_ZERO_TIME);
 }
 
-bool Fhg::strikes(FaultKind kind) const {
-    return faults_ && faults_->strike(kind, "fhg", pair_, sc_core::sc_time_stamp().value());
-}
 
 // CTRL.RESET: a frame that never ended is dropped (the registers then clear STATUS and the
 // FIFO), one in progress is aborted; an injected stuck line lets go.
 void Fhg::reset() {
-    if (hung_) {
-        hung_ = false;
+    if (faults_.hung) {
+        faults_.hung = false;
         registers_.status().reset();
         busy_.write(false);
     } else if (registers_.status().busy()) {
         fail(r::ERR_ABORTED);
     }
-    irq_stuck_ = irq_lost_ = false;
+    faults_.irq_stuck = faults_.irq_lost = false;
     changed();
 }
 
@@ -159,8 +156,8 @@ void Fhg::corrupt_first_checked(const std::vector<fhg::Candidate>& candidates, i
 void Fhg::send_line(int y, const uint32_t* data, int width, const sc_time& transfer) {
     if (!frame_.running || frame_.failed) return;  // nobody listens: the line is lost
     if (uint32_t(width) != frame_.width || y != frame_.received) return fail(r::ERR_PIXELBUS);
-    if (y == 0 && faults_) {  // the IIG has started: the frame is known
-        irq_stuck_ = irq_stuck_ || strikes(FaultKind::stuck_interrupt);
+    if (y == 0 && faults_.attached()) {  // the IIG has started: the frame is known
+        faults_.irq_stuck = faults_.irq_stuck || strikes(FaultKind::stuck_interrupt);
         if (strikes(FaultKind::fifo_overflow)) registers_.refuse_candidates();
         changed();
     }
@@ -180,7 +177,7 @@ void Fhg::compute_block_row(int by, int32_t* records) {
     core_.block_row(view, by, records);
     std::vector<fhg::Candidate> found;
     fhg::LocalMaxFinder(frame_.threshold).block_row(records, int(frame_.blocks_x), by, found);
-    if (faults_ && corruption_.row < 0) corrupt_first_checked(found, by);
+    if (faults_.attached() && corruption_.row < 0) corrupt_first_checked(found, by);
     push_candidates(found);
 }
 
@@ -216,12 +213,12 @@ void Fhg::frame_thread() {
         ++stats_.frames;
         frame_.running = false;
         if (strikes(FaultKind::never_finishes)) {
-            hung_ = true;  // the units are idle, STATUS stays BUSY
+            faults_.hung = true;  // the units are idle, STATUS stays BUSY
         } else {
             registers_.status().end(frame_.failed, frame_.error);
             busy_.write(false);
         }
-        irq_lost_ = strikes(FaultKind::lost_interrupt);
+        faults_.irq_lost = strikes(FaultKind::lost_interrupt);
         room_.notify(sc_core::SC_ZERO_TIME);  // a sender still waiting gives up
         if (tracer_.perfetto_on())
             tracer_.slice(frame_track_, fmt::format("determinants {}x{}", frame_.width, frame_.height), frame_.began,
@@ -274,7 +271,7 @@ void Fhg::trace_levels() {
     }
 }
 
-void Fhg::update_irq() { irq.write(irq_stuck_ || (registers_.irq() && !irq_lost_)); }
+void Fhg::update_irq() { irq.write(faults_.line(registers_.irq())); }
 
 void Fhg::register_statistics(Statistics::Scope s) const {
     s.count("frames", [this] { return stats_.frames; }, "frames", "frames ended (done or failed)");

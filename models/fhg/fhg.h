@@ -94,10 +94,7 @@ public:
     // Its statistics, registered at elaboration (after every connection) under `scope`.
     void register_statistics(Statistics::Scope scope) const;
     // Faults to inject (none by default); it is the FHG of accelerator pair `pair`.
-    void set_faults(FaultPlan* faults, unsigned pair) {
-        faults_ = faults;
-        pair_ = pair;
-    }
+    void set_faults(FaultPlan* faults, unsigned pair) { faults_.attach(faults, pair); }
 
 private:
     void b_transport(tlm::tlm_generic_payload& tx, sc_core::sc_time& delay);
@@ -111,7 +108,7 @@ private:
     void update_irq();
     void trace_levels();
     void reset();
-    bool strikes(FaultKind kind) const;
+    bool strikes(FaultKind kind) const { return faults_.strikes(kind, sc_core::sc_time_stamp().value()); }
     void corrupt_first_checked(const std::vector<fhg::Candidate>& candidates, int by);
 
     Params params_;
@@ -141,12 +138,8 @@ private:
     Stats stats_;
     TimeSeries line_series_, maxima_series_;  // FIFO levels per time bin
     int frame_track_ = -1, row_track_ = -1, level_track_ = -1;
-    FaultPlan* faults_ = nullptr;
-    unsigned pair_ = 0;
-    // Injected faults in effect: the frame's end withheld (STATUS stays BUSY), its interrupt
-    // lost, the line stuck high until RESET; a determinant to invert as its row is written.
-    bool hung_ = false, irq_lost_ = false, irq_stuck_ = false;
-    struct Corruption {
+    BlockFaults faults_{"fhg"};
+    struct Corruption {  // a determinant to invert as its row is written
         int row = -1;        // block row
         size_t index = 0;    // determinant within the row's records
     } corruption_;

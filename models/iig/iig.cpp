@@ -62,29 +62,26 @@ void Iig::start(const IigRegisters::Frame& f) {
     bytes_.resize(size_t(frame_.width) * 4);
     stall_total_ = sc_core::SC_ZERO_TIME;
     busy_.write(true);
-    irq_lost_ = false;
-    if (faults_) {
-        faults_->frame_started(pair_, f.src);
-        irq_stuck_ = irq_stuck_ || strikes(FaultKind::stuck_interrupt);
+    faults_.irq_lost = false;
+    if (faults_.attached()) {
+        faults_.plan().frame_started(faults_.pair(), f.src);
+        faults_.irq_stuck = faults_.irq_stuck || strikes(FaultKind::stuck_interrupt);
     }
     start_.notify(sc_core::SC_ZERO_TIME);
 }
 
-bool Iig::strikes(FaultKind kind) const {
-    return faults_ && faults_->strike(kind, "iig", pair_, sc_core::sc_time_stamp().value());
-}
 
 // CTRL.RESET: a frame that never ended is dropped (the registers then clear STATUS), one in
 // progress is aborted; an injected stuck line lets go.
 void Iig::reset() {
-    if (hung_) {
-        hung_ = false;
+    if (faults_.hung) {
+        faults_.hung = false;
         registers_.status().reset();
         busy_.write(false);
     } else if (registers_.status().busy()) {
         fail(iig::ERR_ABORTED);
     }
-    irq_stuck_ = irq_lost_ = false;
+    faults_.irq_stuck = faults_.irq_lost = false;
     irq_changed_.notify(sc_core::SC_ZERO_TIME);
 }
 
@@ -165,12 +162,12 @@ void Iig::finish_row() {
     stats_.busy += sc_core::sc_time_stamp() - frame_.began;
     ++stats_.frames;
     if (strikes(FaultKind::never_finishes)) {
-        hung_ = true;  // the units are idle, STATUS stays BUSY
+        faults_.hung = true;  // the units are idle, STATUS stays BUSY
     } else {
         registers_.end(frame_.failed, frame_.error, uint32_t(stall_total_.to_seconds() * params_.clock.hz + 0.5));
         busy_.write(false);
     }
-    irq_lost_ = strikes(FaultKind::lost_interrupt);
+    faults_.irq_lost = strikes(FaultKind::lost_interrupt);
     if (tracer_.perfetto_on())
         tracer_.slice(track_, fmt::format("integral {}x{}", frame_.width, frame_.height), frame_.began,
                       sc_core::sc_time_stamp());
@@ -178,7 +175,7 @@ void Iig::finish_row() {
 }
 
 void Iig::update_irq() {
-    irq.write(irq_stuck_ || (registers_.irq() && !irq_lost_));
+    irq.write(faults_.line(registers_.irq()));
 }
 
 void Iig::register_statistics(Statistics::Scope s) const {

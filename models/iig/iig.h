@@ -70,10 +70,7 @@ public:
     // Its statistics, registered at elaboration (after every connection) under `scope`.
     void register_statistics(Statistics::Scope scope) const;
     // Faults to inject (none by default); it is the IIG of accelerator pair `pair`.
-    void set_faults(FaultPlan* faults, unsigned pair) {
-        faults_ = faults;
-        pair_ = pair;
-    }
+    void set_faults(FaultPlan* faults, unsigned pair) { faults_.attach(faults, pair); }
 
 private:
     void b_transport(tlm::tlm_generic_payload& tx, sc_core::sc_time& delay);
@@ -86,7 +83,7 @@ private:
     void finish_row();
     void update_irq();
     void reset();
-    bool strikes(FaultKind kind) const;
+    bool strikes(FaultKind kind) const { return faults_.strikes(kind, sc_core::sc_time_stamp().value()); }
 
     Params params_;
     Tracer& tracer_;
@@ -111,11 +108,7 @@ private:
     Stats stats_;
     sc_core::sc_time stall_total_;
     int track_ = -1;
-    FaultPlan* faults_ = nullptr;
-    unsigned pair_ = 0;
-    // Injected faults in effect: the frame's end withheld (STATUS stays BUSY), its interrupt
-    // lost, the interrupt line stuck high until RESET.
-    bool hung_ = false, irq_lost_ = false, irq_stuck_ = false;
+    BlockFaults faults_{"iig"};
 };
 
 }  // namespace surfvp
