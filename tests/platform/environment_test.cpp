@@ -52,7 +52,10 @@ TEST(Environment, AFullDiskWhileTracingEndsWithItsOwnExitCodeAndNoPartialFile) {
 // and what is left is the first one's complete output.
 TEST(Environment, TwoRunsOnOneFolderDoNotCorruptEachOther) {
     const std::string out = fresh_dir("twice");
-    const std::string run = std::string(SURFVP_BINARY) + " run " + kBudget + " --quiet --trace all --out " + out + kShort;
+    // Long enough (40 frames) that it is still running when killed.
+    std::string long_run = kShort;
+    long_run.replace(long_run.find("surf.frames=3"), 13, "surf.frames=40");
+    const std::string run = std::string(SURFVP_BINARY) + " run " + kBudget + " --quiet --trace all --out " + out + long_run;
     const std::string codes = fresh_path("twice.codes"), errors = fresh_path("twice.err");
     const int status = std::system(("(" + run + "; echo $? >>" + codes + ") 2>>" + errors + " & (" + run + "; echo $? >>" +
                                     codes + ") 2>>" + errors + "; wait").c_str());
@@ -99,7 +102,10 @@ TEST(Environment, AFailedOrKilledRunLeavesTheEarlierOutputIntact) {
     EXPECT_NE(err.find("what was in " + out + " before this run is as it was"), std::string::npos) << err;
     EXPECT_EQ(slurp(out + "/report.json"), before);
 
-    const std::string run = std::string(SURFVP_BINARY) + " run " + kBudget + " --quiet --trace all --out " + out + kShort;
+    // Long enough (40 frames) that it is still running when killed.
+    std::string long_run = kShort;
+    long_run.replace(long_run.find("surf.frames=3"), 13, "surf.frames=40");
+    const std::string run = std::string(SURFVP_BINARY) + " run " + kBudget + " --quiet --trace all --out " + out + long_run;
     std::system(("(" + run + " 2>/dev/null & pid=$!; while ! ls -d " + out + "/.partial-* >/dev/null 2>&1; do sleep 0.05; done;"
                  " sleep 0.3; kill -9 $pid; wait $pid) 2>/dev/null").c_str());
     EXPECT_EQ(slurp(out + "/report.json"), before);
