@@ -91,6 +91,38 @@ TEST(Homography, AFileOpenCvCannotParseIsAFormatError) {
     EXPECT_THROW(read_homography_file(dir / "broken.yml"), FormatError);
 }
 
+// Found by tests/fuzz (homography): OpenCV 4.6's YAML parser never returns on this file, so
+// YAML is read with yaml-cpp; the file is refused, at once.
+TEST(Homography, AYamlFileOpenCvsParserHangsOnIsAFormatError) {
+    test::TemporaryFolder dir;
+    std::ofstream(dir / "hang.yml") << "%YAML:1.\n L:0\n--3-\n";
+    EXPECT_THROW(read_homography_file(dir / "hang.yml"), FormatError);
+}
+
+// The YAML reader reads what OpenCV writes: the 3x3 node among others, a float matrix as
+// OpenCV reads it (rounded to float), and names the line of an element that is no number.
+TEST(Homography, YamlMatricesAsOpenCvWritesThem) {
+    test::TemporaryFolder dir;
+    cv::Mat f = (cv::Mat_<float>(3, 3) << 0.1f, 0, 5, 0, 1, 0, 0, 0, 1);
+    cv::Mat wide = cv::Mat::eye(3, 4, CV_64F);
+    {
+        cv::FileStorage out((dir / "f.yml").string(), cv::FileStorage::WRITE);
+        out << "wide" << wide << "Hf" << f;
+    }
+    const Eigen::Matrix3d h = read_homography_file(dir / "f.yml");
+    EXPECT_EQ(h(0, 0), double(0.1f));
+    EXPECT_EQ(h(0, 2), 5.0);
+    std::ofstream(dir / "word.yml") << "%YAML:1.0\n---\nH: !!opencv-matrix\n   rows: 3\n   cols: 3\n   dt: d\n"
+                                       "   data: [ 1, 0, 0,\n      0, one, 0, 0, 0, 1 ]\n";
+    try {
+        read_homography_file(dir / "word.yml");
+        ADD_FAILURE() << "no FormatError";
+    } catch (const FormatError& e) {
+        EXPECT_EQ(e.line(), 8u);
+        EXPECT_NE(e.problem().find("element 4 is not a number"), std::string::npos) << e.what();
+    }
+}
+
 TEST(Homography, MapsPointsAndHasTheRightJacobian) {
     Eigen::Matrix3d t = translation_homography(5, -2);
     EXPECT_EQ(apply_homography(t, {1, 1}), Eigen::Vector2d(6, -1));
