@@ -13,6 +13,7 @@
 #include "platform/workload/frame_limits.h"
 #include "platform/cli/progress_line.h"
 #include "platform/run/output_folder.h"
+#include "platform/run/sanitizer_stacks.h"
 #include "platform/verdict/verdict.h"
 #include "platform/report/report.h"
 #include "platform/report/report_html.h"
@@ -62,6 +63,7 @@ Outcome simulate(Soc& soc, const Config& config, ProgressLine& progress) {
                     "stalled: nothing is left to simulate but the software has not finished "
                     "(is it waiting for an interrupt that never comes?)"};
         sc_core::sc_start(slice);
+        back_on_main_stack();
         const Progress p = soc.workload().progress();
         const double sim_s = sc_core::sc_time_stamp().to_seconds();
         progress.update([&](double wall_s) {
