@@ -139,11 +139,18 @@ SourceFrames read_frames(const Config& c) {
                                           "to resize them alike",
                                           where, name(0), out.original.width, out.original.height, name(i),
                                           out.images[i].cols, out.images[i].rows));
+    // Frames that share their pixels (one image, repeated) share the resized pixels too: one
+    // resize, not one copy per frame.
     const int w = int(c.count("surf.width")), h = int(c.count("surf.height"));
+    const uchar* shared = nullptr;
+    cv::Mat resized;
     for (cv::Mat& f : out.images)
         if (w && h && f.size() != cv::Size(w, h)) {
-            cv::Mat resized;
-            cv::resize(f, resized, cv::Size(w, h), 0, 0, cv::INTER_AREA);
+            if (f.data != shared) {
+                shared = f.data;
+                resized = cv::Mat();
+                cv::resize(f, resized, cv::Size(w, h), 0, 0, cv::INTER_AREA);
+            }
             f = resized;
         }
     check_frame_size(c, out);
