@@ -9,7 +9,8 @@
 // next throw's request to clear the stack's redzones ("ASan is ignoring requested
 // __asan_handle_no_return") and reports false stack errors in the destructors that unwind.
 // sanitizer_stacks.cpp announces the main stack's real bounds in the first case;
-// back_on_main_stack() puts them back after the second.
+// back_on_main_stack() puts them back after the second. Written for GCC's ASan runtime, a
+// shared library that the hooks forward to; untried with clang's, which is linked statically.
 #if defined(__SANITIZE_ADDRESS__)  // GCC
 #define SURFVP_ASAN 1
 #elif defined(__has_feature)  // clang
