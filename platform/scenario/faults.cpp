@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 #include <yaml-cpp/yaml.h>
 
+#include "models/common/yaml_text.h"
 #include "platform/scenario/config.h"
 
 namespace surfvp {
@@ -89,7 +90,7 @@ std::vector<Fault> parse_faults(const std::string& path, const YAML::Node& list)
 std::vector<Fault> parse_faults_option(const std::string& value) {
     YAML::Node node;
     try {
-        node = YAML::Load(value);
+        node = load_yaml(value);
     } catch (const YAML::Exception& e) {
         throw ConfigError(fmt::format("--set faults: not a YAML list: {}", e.msg));
     }

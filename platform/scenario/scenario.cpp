@@ -4,11 +4,13 @@
 #include <cstdint>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <fmt/format.h>
 #include <map>
 #include <string_view>
 #include <yaml-cpp/yaml.h>
 
+#include "models/common/yaml_text.h"
 #include "platform/scenario/consistency.h"
 #include "platform/scenario/faults.h"
 
@@ -83,11 +85,12 @@ YAML::Node parse_file(const std::string& path) {
     if (fs::is_directory(status)) throw ConfigError(fmt::format("{}: is a folder, not a scenario file", path));
     // A FIFO or a device would be read until it ends, which may be never.
     if (!fs::is_regular_file(status)) throw ConfigError(fmt::format("{}: is not a regular file", path));
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw ConfigError(fmt::format("{}: cannot be read", path));
+    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
     std::vector<YAML::Node> documents;
     try {
-        documents = YAML::LoadAllFromFile(path);
-    } catch (const YAML::BadFile&) {
-        throw ConfigError(fmt::format("{}: cannot be read", path));
+        documents = load_all_yaml(text);
     } catch (const YAML::ParserException& e) {
         throw ConfigError(fmt::format("{}:{}: not valid YAML: {}", path, e.mark.line + 1, e.msg));
     }

@@ -8,8 +8,8 @@
 
 #include <Eigen/Dense>
 #include <opencv2/core.hpp>
-#include <yaml-cpp/yaml.h>
 
+#include "models/common/yaml_text.h"
 #include "sw/eval/text_io.h"
 
 namespace surfvp::eval {
@@ -44,7 +44,7 @@ Eigen::Matrix3d read_yaml(const std::filesystem::path& file) {
     if (text.compare(header, 6, "%YAML:") == 0) text.replace(header, text.find('\n', header) - header, "");
     YAML::Node root;
     try {
-        root = YAML::Load(text);
+        root = load_yaml(text);
     } catch (const YAML::Exception& e) {
         throw FormatError(file, std::size_t(e.mark.line + 1), "not YAML: " + e.msg);
     }

@@ -56,6 +56,11 @@ TEST(BadInput, ScenarioSyntaxNamesFileAndLine) {
     expect_refused(surfvp("validate " + bracket), {bracket + ":", "not valid YAML"}, "unclosed list");
     const std::string list = scenario("- cpu\n- plb1\n");
     expect_refused(surfvp("validate " + list), {list + ":1", "a scenario is a map of sections"}, "a list");
+    // yaml-cpp 0.7 never returns on a ',' where a node begins (found by tests/fuzz scenario):
+    // refused with its line, in a file and in --set faults.
+    const std::string comma = scenario("# a scenario\n,: e!Un\n");
+    expect_refused(surfvp("validate " + comma), {comma + ":2", "not valid YAML", "a ',' where a node begins"}, "a comma");
+    expect_refused(surfvp("validate smoke --set faults=,"), {"--set faults: not a YAML list"}, "a comma in --set");
     const std::string key = scenario("cpu:\n  ? [a, b]\n  : 1\n");
     expect_refused(surfvp("validate " + key), {key + ":2", "a key must be a plain name, not a list"}, "a list as a key");
 }

@@ -1,0 +1,52 @@
+#include "models/common/yaml_text.h"
+
+namespace surfvp {
+
+std::size_t yaml_hang_line(const std::string& text) {
+    // yaml-cpp skips a byte-order mark and breaks lines at \n, \r\n and a lone \r.
+    const std::size_t bom = text.compare(0, 3, "\xEF\xBB\xBF") == 0 ? 3 : 0;
+    bool document_started = false;  // a token of the current document has been seen
+    std::size_t number = 0;
+    for (std::size_t at = bom; at <= text.size();) {
+        std::size_t end = text.find_first_of("\r\n", at);
+        if (end == std::string::npos) end = text.size();
+        const std::string line = text.substr(at, end - at);
+        at = end + (text.compare(end, 2, "\r\n") == 0 ? 2 : 1);
+        ++number;
+        std::size_t first = line.find_first_not_of(" \t");
+        if (first == std::string::npos || line[first] == '#') continue;
+        if (!document_started && line[first] == '%') continue;  // a directive
+        if (line.compare(0, 3, "---") == 0 || line.compare(0, 3, "...") == 0) {
+            document_started = false;
+            first = line.find_first_not_of(" \t", 3);  // "--- ,": the document's first token
+            if (first == std::string::npos || line[first] == '#') continue;
+        }
+        if (line[first] == ',' && (!document_started || first == 0)) return number;
+        document_started = true;
+    }
+    return 0;
+}
+
+namespace {
+
+void refuse_hang(const std::string& text) {
+    if (const std::size_t line = yaml_hang_line(text)) {
+        YAML::Mark mark;
+        mark.line = int(line - 1);
+        throw YAML::ParserException(mark, "a ',' where a node begins (',' only separates the entries of [ ] or { })");
+    }
+}
+
+}  // namespace
+
+std::vector<YAML::Node> load_all_yaml(const std::string& text) {
+    refuse_hang(text);
+    return YAML::LoadAll(text);
+}
+
+YAML::Node load_yaml(const std::string& text) {
+    refuse_hang(text);
+    return YAML::Load(text);
+}
+
+}  // namespace surfvp

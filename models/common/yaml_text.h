@@ -1,0 +1,24 @@
+#pragma once
+// YAML text through yaml-cpp, with yaml-cpp 0.7's one known hang refused first.
+//
+// Debian 12's yaml-cpp 0.7.0 never returns (it builds nodes until memory runs out) when a
+// document begins with a ',' where a node is expected: a document whose first token is ','
+// (",", ",: a", "--- ,", a comment then ","), or a line at column 0 that begins with ','
+// ("- a\n,"). Found by tests/fuzz scenario (",: e!Un"). Such text is never valid YAML: a
+// ',' only separates the entries of a flow collection, and no node begins with one.
+#include <string>
+#include <vector>
+
+#include <yaml-cpp/yaml.h>
+
+namespace surfvp {
+
+// The 1-based line of the first ',' that would hang yaml-cpp, or 0 when there is none.
+std::size_t yaml_hang_line(const std::string& text);
+
+// YAML::LoadAll / YAML::Load after that check: a YAML::ParserException (with the line) for
+// text that would hang, as for any other text yaml-cpp refuses.
+std::vector<YAML::Node> load_all_yaml(const std::string& text);
+YAML::Node load_yaml(const std::string& text);
+
+}  // namespace surfvp

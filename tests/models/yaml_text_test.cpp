@@ -1,0 +1,38 @@
+// YAML text that would hang yaml-cpp 0.7 is refused before it reaches it; other text is
+// parsed as yaml-cpp parses it.
+#include "models/common/yaml_text.h"
+
+#include <gtest/gtest.h>
+
+namespace surfvp {
+namespace {
+
+TEST(YamlText, ACommaWhereANodeBeginsIsFoundWithItsLine) {
+    EXPECT_EQ(yaml_hang_line(",: e!Un"), 1u);  // the fuzzer's input
+    EXPECT_EQ(yaml_hang_line(" ,:"), 1u);
+    EXPECT_EQ(yaml_hang_line("# comment\n\n,"), 3u);
+    EXPECT_EQ(yaml_hang_line("%YAML 1.2\n--- ,:"), 2u);
+    EXPECT_EQ(yaml_hang_line("a: 1\n---\n,"), 3u);
+    EXPECT_EQ(yaml_hang_line("- a\n,"), 2u);
+    EXPECT_EQ(yaml_hang_line("# c\r,"), 2u);  // a lone \r breaks the line too
+    EXPECT_EQ(yaml_hang_line("\xEF\xBB\xBF,"), 1u);
+}
+
+TEST(YamlText, CommasInsideNodesAreLeftToYamlCpp) {
+    EXPECT_EQ(yaml_hang_line("a: [1, 2]\nb: 1, 2\nc:\n  - x,\n  ,y: 3\n"), 0u);
+    EXPECT_EQ(load_yaml("a: [1, 2]\nb: 1, 2\n")["b"].as<std::string>(), "1, 2");
+    EXPECT_EQ(load_all_yaml("a: 1\n---\nb: 2\n").size(), 2u);
+}
+
+TEST(YamlText, RefusalIsAParserExceptionAtTheLine) {
+    try {
+        load_all_yaml("name: x\n---\n,: e!Un\n");
+        ADD_FAILURE() << "no exception";
+    } catch (const YAML::ParserException& e) {
+        EXPECT_EQ(e.mark.line, 2);
+        EXPECT_NE(e.msg.find("a ',' where a node begins"), std::string::npos) << e.msg;
+    }
+}
+
+}  // namespace
+}  // namespace surfvp
