@@ -2,6 +2,22 @@
 
 namespace surfvp {
 
+namespace {
+
+// Past a node's properties (tags "!t", "!!str", "!<x>" and anchors "&a") and the blanks after
+// them: where the node's content begins in `line`.
+std::size_t past_properties(const std::string& line, std::size_t at) {
+    while (at < line.size() && (line[at] == '!' || line[at] == '&')) {
+        at = line.find_first_of(" \t,", at);
+        if (at == std::string::npos) return line.size();
+        at = line.find_first_not_of(" \t", at);
+        if (at == std::string::npos) return line.size();
+    }
+    return at;
+}
+
+}  // namespace
+
 std::size_t yaml_hang_line(const std::string& text) {
     // yaml-cpp skips a byte-order mark and breaks lines at \n, \r\n and a lone \r.
     const std::size_t bom = text.compare(0, 3, "\xEF\xBB\xBF") == 0 ? 3 : 0;
@@ -21,7 +37,10 @@ std::size_t yaml_hang_line(const std::string& text) {
             first = line.find_first_not_of(" \t", 3);  // "--- ,": the document's first token
             if (first == std::string::npos || line[first] == '#') continue;
         }
-        if (line[first] == ',' && (!document_started || first == 0)) return number;
+        if (!document_started || first == 0) {
+            const std::size_t content = past_properties(line, first);
+            if (content < line.size() && line[content] == ',') return number;
+        }
         document_started = true;
     }
     return 0;

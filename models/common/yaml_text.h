@@ -1,11 +1,11 @@
 #pragma once
 // YAML text through yaml-cpp, with yaml-cpp 0.7's one known hang refused first.
 //
-// Debian 12's yaml-cpp 0.7.0 never returns (it builds nodes until memory runs out) when a
-// document begins with a ',' where a node is expected: a document whose first token is ','
-// (",", ",: a", "--- ,", a comment then ","), or a line at column 0 that begins with ','
-// ("- a\n,"). Found by tests/fuzz scenario (",: e!Un"). Such text is never valid YAML: a
-// ',' only separates the entries of a flow collection, and no node begins with one.
+// Debian 12's yaml-cpp 0.7.0 never returns (it builds nodes until memory runs out) on a ','
+// where a top-level node begins: as a document's first token (",", ",: a", "--- ,", a comment
+// then ","), at column 0 ("- a\n,"), or after such a node's tag or anchor ("!t ,", "&a ,",
+// "!,"). Found by tests/fuzz scenario (",: e!Un", then "!s,et ..."). Such text is never valid
+// YAML: a ',' only separates the entries of a flow collection, and no node begins with one.
 #include <string>
 #include <vector>
 

@@ -1,5 +1,6 @@
 #include "sw/eval/homography.h"
 
+#include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <fstream>
@@ -73,6 +74,13 @@ Eigen::Matrix3d read_yaml(const std::filesystem::path& file) {
 }
 
 Eigen::Matrix3d read_file_storage(const std::filesystem::path& file) {
+    // Neither XML nor JSON holds a NUL byte, and OpenCV 4.6's XML parser dereferences a null
+    // pointer on one in the XML declaration (found by tests/fuzz homography).
+    std::ifstream in(file, std::ios::binary);
+    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    if (const std::size_t nul = text.find('\0'); nul != std::string::npos)
+        throw FormatError(file, std::size_t(std::count(text.begin(), text.begin() + long(nul), '\n') + 1),
+                          "a NUL byte: not a text file");
     cv::FileStorage storage;
     try {
         storage.open(file.string(), cv::FileStorage::READ);

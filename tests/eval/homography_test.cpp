@@ -92,6 +92,21 @@ TEST(Homography, AFileOpenCvCannotParseIsAFormatError) {
     EXPECT_THROW(read_homography_file(dir / "broken.yml"), FormatError);
 }
 
+// Found by tests/fuzz (homography): OpenCV 4.6's XML parser crashes (a null pointer) on a NUL
+// byte in the XML declaration; a file with a NUL byte is refused before OpenCV reads it.
+TEST(Homography, AFileStorageWithANulByteIsAFormatError) {
+    test::TemporaryFolder dir;
+    const char xml[] = "<?xml version=\0\0\"1.0\"?>\n<opencv_storage>\n</opencv_storage>\n";
+    std::ofstream(dir / "nul.xml", std::ios::binary) << std::string(xml, sizeof xml - 1);
+    try {
+        read_homography_file(dir / "nul.xml");
+        ADD_FAILURE() << "no FormatError";
+    } catch (const FormatError& e) {
+        EXPECT_EQ(e.line(), 1u);
+        EXPECT_NE(e.problem().find("a NUL byte"), std::string::npos) << e.what();
+    }
+}
+
 // Found by tests/fuzz (homography): OpenCV 4.6's YAML parser never returns on this file, so
 // YAML is read with yaml-cpp; the file is refused, at once.
 TEST(Homography, AYamlFileOpenCvsParserHangsOnIsAFormatError) {

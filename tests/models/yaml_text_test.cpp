@@ -16,10 +16,15 @@ TEST(YamlText, ACommaWhereANodeBeginsIsFoundWithItsLine) {
     EXPECT_EQ(yaml_hang_line("- a\n,"), 2u);
     EXPECT_EQ(yaml_hang_line("# c\r,"), 2u);  // a lone \r breaks the line too
     EXPECT_EQ(yaml_hang_line("\xEF\xBB\xBF,"), 1u);
+    // After the node's properties (found by tests/fuzz scenario with seed 2: "!s,et ...").
+    for (const char* text : {"!,", "! ,", "!!str ,", "&a ,", "!t,", "&a !t ,", "!<x> ,", "--- !t ,", "- a\n!,"})
+        EXPECT_NE(yaml_hang_line(text), 0u) << text;
 }
 
 TEST(YamlText, CommasInsideNodesAreLeftToYamlCpp) {
     EXPECT_EQ(yaml_hang_line("a: [1, 2]\nb: 1, 2\nc:\n  - x,\n  ,y: 3\n"), 0u);
+    EXPECT_EQ(yaml_hang_line("!t [a, b]\n"), 0u);
+    EXPECT_EQ(yaml_hang_line("&a x,y\n"), 0u);
     EXPECT_EQ(load_yaml("a: [1, 2]\nb: 1, 2\n")["b"].as<std::string>(), "1, 2");
     EXPECT_EQ(load_all_yaml("a: 1\n---\nb: 2\n").size(), 2u);
 }
