@@ -88,8 +88,10 @@ std::string Config::to_yaml() const {
     YAML::Emitter out;
     out << YAML::Comment(fmt::format("surfvp effective configuration of '{}': every parameter, with where its value came from", name));
     out << YAML::BeginMap;
-    out << YAML::Key << "name" << YAML::Value << name;
-    out << YAML::Key << "description" << YAML::Value << description;
+    // Double-quoted: escapes keep any text as it was (a lone \r in a plain scalar read back as
+    // a line break; found by tests/fuzz scenario).
+    out << YAML::Key << "name" << YAML::Value << YAML::DoubleQuoted << name;
+    out << YAML::Key << "description" << YAML::Value << YAML::DoubleQuoted << description;
     // One map per section, in the order sections first appear in the table (a section's keys
     // are not all adjacent there: cpu.memory_path follows the CPU's own): a section given twice
     // would not load back.

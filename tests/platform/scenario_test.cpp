@@ -120,6 +120,18 @@ TEST(Scenario, EffectiveConfigurationLoadsBackToTheSameValues) {
     EXPECT_NE(original.to_yaml().find("# --set"), std::string::npos);
 }
 
+// Found by tests/fuzz scenario: a description with lone carriage returns did not load back from
+// config.yaml as it was; name and description are written double-quoted.
+TEST(Scenario, NameAndDescriptionLoadBackAsTheyWere) {
+    const std::string path = write_file(fresh_dir("cr"), "cr.yaml",
+                                        test::slurp(SURFVP_SOURCE_DIR "/tests/fuzz/regressions/scenario/description_with_lone_carriage_returns"));
+    const Config original = load_scenario(path, {});
+    ASSERT_NE(original.description.find('\r'), std::string::npos);
+    const Config again = load_scenario(write_file(fresh_dir("cr_again"), "config.yaml", original.to_yaml()), {});
+    EXPECT_EQ(again.name, original.name);
+    EXPECT_EQ(again.description, original.description);
+}
+
 TEST(Scenario, EveryParameterDefaultIsValidAndHasASource) {
     for (const ParamSpec& p : parameter_table()) {
         EXPECT_NO_THROW(parse_value(p, p.default_value)) << p.key;
