@@ -1,7 +1,7 @@
 #include "sw/eval/homography.h"
 
 #include <algorithm>
-#include <cctype>
+#include <cstring>
 #include <cmath>
 #include <fstream>
 #include <stdexcept>
@@ -19,27 +19,20 @@ namespace {
 
 enum class Format { plain_text, yaml, opencv };  // opencv: FileStorage XML or JSON
 
-// FileStorage files announce themselves in their first characters.
-Format format_of(const std::filesystem::path& file) {
-    std::ifstream in(file);
-    std::string start(16, '\0');
-    in.read(start.data(), static_cast<std::streamsize>(start.size()));
-    start.resize(static_cast<std::size_t>(in.gcount()));
-    std::size_t i = 0;
-    while (i < start.size() && std::isspace(static_cast<unsigned char>(start[i]))) ++i;
-    start.erase(0, i);
-    if (start.rfind("%YAML", 0) == 0) return Format::yaml;
-    if (start.rfind("<?xml", 0) == 0 || start.rfind("<opencv_storage", 0) == 0 || start.rfind("{", 0) == 0)
-        return Format::opencv;
+// FileStorage files announce themselves in their first 16 characters.
+Format format_of(const std::string& text) {
+    const std::string head = text.substr(0, 16);
+    const std::size_t start = std::min(head.find_first_not_of(" \t\n\v\f\r"), head.size());
+    auto starts_with = [&](const char* word) { return head.compare(start, std::strlen(word), word) == 0; };
+    if (starts_with("%YAML")) return Format::yaml;
+    if (starts_with("<?xml") || starts_with("<opencv_storage") || starts_with("{")) return Format::opencv;
     return Format::plain_text;
 }
 
 // The YAML form of a FileStorage (as OpenCV writes it: a "%YAML:1.0" line, then a map whose
 // matrices are maps of rows, cols, dt and data), read with yaml-cpp: OpenCV 4.6's own YAML
 // parser never returns on some 20-byte files (found by tests/fuzz homography: "%YAML:1.\n L:0\n--3-\n").
-Eigen::Matrix3d read_yaml(const std::filesystem::path& file) {
-    std::ifstream in(file, std::ios::binary);
-    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+Eigen::Matrix3d read_yaml(const std::filesystem::path& file, std::string text) {
     // OpenCV's header is no YAML directive ("%YAML 1.0" is): blank it, keeping the line count.
     const std::size_t header = text.find('%');
     if (text.compare(header, 6, "%YAML:") == 0) text.replace(header, text.find('\n', header) - header, "");
@@ -73,11 +66,9 @@ Eigen::Matrix3d read_yaml(const std::filesystem::path& file) {
     throw FormatError(file, 0, "no 3x3 matrix at the top level of the YAML file");
 }
 
-Eigen::Matrix3d read_file_storage(const std::filesystem::path& file) {
+Eigen::Matrix3d read_file_storage(const std::filesystem::path& file, const std::string& text) {
     // Neither XML nor JSON holds a NUL byte, and OpenCV 4.6's XML parser dereferences a null
     // pointer on one in the XML declaration (found by tests/fuzz homography).
-    std::ifstream in(file, std::ios::binary);
-    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
     if (const std::size_t nul = text.find('\0'); nul != std::string::npos)
         throw FormatError(file, std::size_t(std::count(text.begin(), text.begin() + long(nul), '\n') + 1),
                           "a NUL byte: not a text file");
@@ -131,9 +122,11 @@ Eigen::Matrix3d read_homography_file(const std::filesystem::path& file) {
     if (!std::filesystem::is_regular_file(file)) {
         throw std::runtime_error(file.string() + ": not a regular file (a folder, a FIFO or a device is not read)");
     }
-    const Format format = format_of(file);
-    Eigen::Matrix3d h = format == Format::yaml     ? read_yaml(file)
-                        : format == Format::opencv ? read_file_storage(file)
+    std::ifstream in(file, std::ios::binary);
+    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const Format format = format_of(text);
+    Eigen::Matrix3d h = format == Format::yaml     ? read_yaml(file, text)
+                        : format == Format::opencv ? read_file_storage(file, text)
                                                    : read_plain_text(file);
     if (!h.allFinite()) throw FormatError(file, 0, "the homography has non-finite elements");
     // Scale-free singularity test: |det H| against the product of the row norms.
