@@ -51,8 +51,7 @@ struct Statistic {
     std::function<double(double elapsed_s)> number;  // all kinds but text and histogram
     std::function<std::string()> text;
     std::function<std::vector<std::pair<std::string, uint64_t>>()> bins;
-    std::function<std::vector<double>()> series;  // per bin of `bin_s`
-    double bin_s = 0;
+    const TimeSeries* series = nullptr;  // read at the end: its bins widen as a long run goes on
 };
 
 class Statistics {
@@ -89,17 +88,16 @@ public:
             add(name, StatKind::value, unit, meaning, [v](double) { return v; });
         }
         void text(const std::string& name, std::function<std::string()> get, const std::string& meaning) const {
-            Statistic s{path(name), StatKind::text, "", meaning, {}, std::move(get), {}, {}, 0};
+            Statistic s{path(name), StatKind::text, "", meaning, {}, std::move(get), {}, nullptr};
             registry_.all_.push_back(std::move(s));
         }
         void histogram(const std::string& name, std::function<std::vector<std::pair<std::string, uint64_t>>()> get,
                        const std::string& unit, const std::string& meaning) const {
-            Statistic s{path(name), StatKind::histogram, unit, meaning, {}, {}, std::move(get), {}, 0};
+            Statistic s{path(name), StatKind::histogram, unit, meaning, {}, {}, std::move(get), nullptr};
             registry_.all_.push_back(std::move(s));
         }
         void series(const std::string& name, const TimeSeries& series, const std::string& unit, const std::string& meaning) const {
-            Statistic s{path(name), StatKind::series, unit, meaning, {}, {}, {}, [&series] { return series.values(); },
-                        double(series.bin_ps()) * 1e-12};
+            Statistic s{path(name), StatKind::series, unit, meaning, {}, {}, {}, &series};
             registry_.all_.push_back(std::move(s));
         }
 
@@ -107,7 +105,7 @@ public:
         std::string path(const std::string& name) const { return prefix_.empty() ? name : prefix_ + "." + name; }
         void add(const std::string& name, StatKind kind, const std::string& unit, const std::string& meaning,
                  std::function<double(double)> number) const {
-            registry_.all_.push_back({path(name), kind, unit, meaning, std::move(number), {}, {}, {}, 0});
+            registry_.all_.push_back({path(name), kind, unit, meaning, std::move(number), {}, {}, nullptr});
         }
         Statistics& registry_;
         std::string prefix_;

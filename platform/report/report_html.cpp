@@ -91,16 +91,22 @@ std::string gantt(const Json& r) {
         bar(2 * k + 1, i, start, determinants, "determinants");
         bar(rows.size() - 1, i, determinants, f["done_ms"], "descriptors");
     }
+    // PLB2's busier direction per bin. A long run's series have widened their bins, each at
+    // its own time: each is read at the finer one's bins.
     const Json& plb2 = r["buses"]["plb2"];
-    const auto& read = plb2["read"]["busy_series"]["values"];
-    const auto& write = plb2["write"]["busy_series"]["values"];
-    const double bin_ms = plb2["write"]["busy_series"]["bin_s"].get<double>() * 1e3;
+    const Json& read = plb2["read"]["busy_series"];
+    const Json& write = plb2["write"]["busy_series"];
+    auto share_at = [](const Json& series, double t_ms) {
+        const size_t b = size_t(t_ms / (series["bin_s"].get<double>() * 1e3));
+        return b < series["values"].size() ? series["values"][b].get<double>() : 0.0;
+    };
+    const double bin_ms = std::min(read["bin_s"].get<double>(), write["bin_s"].get<double>()) * 1e3;
     const double y = top + (rows.size() - 2) * row_h + 3;
     double peak = 0;
-    for (const auto* s : {&read, &write})
-        for (const auto& v : *s) peak = std::max(peak, v.get<double>());
-    for (size_t b = 0; b < std::max(read.size(), write.size()) && b * bin_ms < end_ms; ++b) {
-        const double share = std::max(b < read.size() ? read[b].get<double>() : 0.0, b < write.size() ? write[b].get<double>() : 0.0);
+    for (const Json* s : {&read, &write})
+        for (const auto& v : (*s)["values"]) peak = std::max(peak, v.get<double>());
+    for (size_t b = 0; b * bin_ms < end_ms; ++b) {
+        const double mid = (b + 0.5) * bin_ms, share = std::max(share_at(read, mid), share_at(write, mid));
         if (share <= 0) continue;
         const double x0 = at_x(b * bin_ms, end_ms), x1 = at_x(std::min(end_ms, (b + 1) * bin_ms), end_ms);
         svg += fmt::format("<rect x=\"{:.1f}\" y=\"{:.1f}\" width=\"{:.1f}\" height=\"{}\" fill=\"#1b3a5c\" opacity=\"{:.3f}\">"

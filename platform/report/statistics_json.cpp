@@ -24,7 +24,7 @@ nlohmann::ordered_json value_of(const Statistic& s, double elapsed_s) {
             for (const auto& [name, n] : s.bins()) bins[name] = n;
             return bins;
         }
-        case StatKind::series: return {{"bin_s", s.bin_s}, {"values", s.series()}};
+        case StatKind::series: return {{"bin_s", double(s.series->bin_ps()) * 1e-12}, {"values", s.series->values()}};
         case StatKind::count: case StatKind::bytes: case StatKind::high_water: return uint64_t(std::llround(s.number(elapsed_s)));
         case StatKind::value: {
             const double v = s.number(elapsed_s);
