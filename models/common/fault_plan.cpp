@@ -60,8 +60,8 @@ std::optional<unsigned> pair_of(std::string_view name) {
 
 void FaultPlan::frame_started(unsigned pair, uint32_t src) {
     if (current_.size() <= pair) current_.resize(pair + 1, -1);
-    const auto it = std::find(images_.begin(), images_.end(), src);
-    current_[pair] = it == images_.end() ? -1 : int64_t(it - images_.begin());
+    const auto it = images_.find(src);
+    current_[pair] = it == images_.end() ? -1 : it->second;
 }
 
 void FaultPlan::fire(Fault& fault, int64_t frame, uint64_t now_ps) {

@@ -2,9 +2,10 @@
 // Faults injected on purpose (a scenario's `faults:` section, docs/faults.md), so that the
 // driver's detection and recovery can be seen to work. Plain C++: each model asks the plan at
 // the point where its fault would strike, and the plan says whether one does; every fault
-// strikes once. Blocks know a frame by its image's address (the IIG's SRC at START), which
-// the workload maps to the frame's number.
+// strikes once. Blocks know a frame by its image's address (the IIG's SRC at START); the
+// workload says which frame each image buffer holds as frames arrive.
 #include <cstdint>
+#include <map>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -51,8 +52,8 @@ public:
     bool empty() const { return faults_.empty(); }
     const std::vector<Fault>& faults() const { return faults_; }
 
-    // Frame i's image is at images[i] (the workload's layout).
-    void set_frame_images(std::vector<uint32_t> images) { images_ = std::move(images); }
+    // Frame `frame` arrived in the image buffer at `image` (in place of the one before).
+    void frame_arrived(uint32_t image, int64_t frame) { images_[image] = frame; }
     // The IIG of accelerator pair `pair` started a frame from image `src`.
     void frame_started(unsigned pair, uint32_t src);
     // The frame pair `pair` works on, -1 before its first.
@@ -71,7 +72,7 @@ private:
     void fire(Fault& fault, int64_t frame, uint64_t now_ps);
 
     std::vector<Fault> faults_;
-    std::vector<uint32_t> images_;
+    std::map<uint32_t, int64_t> images_;  // image buffer -> the frame in it
     std::vector<int64_t> current_;
 };
 

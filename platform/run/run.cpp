@@ -136,7 +136,8 @@ void print_summary(const Config& config, const fs::path& dir, bool direct) {
 int run_direct(const Config& config, const fs::path& dir) {
     const auto workload = make_workload(config);
     DirectChip chip(config, unsigned(config.count("soc.accelerators")));
-    workload->preload([&chip](uint64_t address, uint64_t bytes) { return chip.backdoor(address, bytes); });
+    workload->attach_memory([&chip](uint64_t address, uint64_t bytes) { return chip.backdoor(address, bytes); });
+    workload->write_into(dir.string());
     std::string failure;
     try {
         workload->software()(chip);
@@ -151,7 +152,7 @@ int run_direct(const Config& config, const fs::path& dir) {
         passed = passed && c.passed;
     }
     std::vector<std::string> outputs{"report.json", "config.yaml"};
-    for (const std::string& f : workload->write_files(dir.string())) outputs.push_back(f);
+    for (const std::string& f : workload->files_written()) outputs.push_back(f);
     nlohmann::ordered_json r;
     r["surfvp_version"] = SURFVP_VERSION;
     r["mode"] = "direct";
@@ -196,7 +197,8 @@ nlohmann::ordered_json simulate_scenario(const Config& config, const std::string
     const Tracer::Options traces = trace_options(trace, out);
     Tracer tracer(traces);
     Soc soc(config, tracer);
-    soc.workload().preload([&soc](uint64_t address, uint64_t bytes) { return soc.memory().backdoor(address, bytes); });
+    soc.workload().attach_memory([&soc](uint64_t address, uint64_t bytes) { return soc.memory().backdoor(address, bytes); });
+    if (!out.empty()) soc.workload().write_into(out);
 
     const auto start = WallClock::now();
     Outcome outcome;
@@ -209,8 +211,7 @@ nlohmann::ordered_json simulate_scenario(const Config& config, const std::string
 
     std::vector<std::string> outputs{"report.json", "report.md", "config.yaml"};
     for (const std::string& f : tracer.finish()) outputs.push_back(fs::path(f).filename().string());
-    if (!out.empty())
-        for (const std::string& f : soc.workload().write_files(out)) outputs.push_back(f);
+    for (const std::string& f : soc.workload().files_written()) outputs.push_back(f);
     nlohmann::ordered_json report = build_report(config, soc, outcome, wall_s, outputs);
     if (!out.empty()) report["figures"]["first_frame_svg"] = soc.workload().first_frame_svg();  // for report.html only
     return report;

@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 #include <limits>
 
+#include "models/common/time_series.h"
 #include "models/common/units.h"
 #include "models/dma/dma.h"
 #include "models/fhg/fhg.h"
@@ -72,7 +73,8 @@ void add_surf(std::vector<ParamSpec>& t) {
                  "[A] embedded SURF of the time (OpenSURF) samples at whole pixels; exact costs 2.4 ms a keypoint "
                  "on this PPC440 model against 0.76 ms rounded (sw/cpu_cost/README.md)"});
     t.push_back({"surf.tasks_in_flight", ParamKind::count, "2", 1, 16, {},
-                 "Tasks between hardware start and descriptors done (buffer sets in memory)",
+                 "Tasks between hardware start and descriptors done (buffer sets in memory: a frame, its integral "
+                 "image, determinants and descriptors; a frame arrives in its set as its task starts)",
                  "[S] paper §III-D: tasks overlap; two let the CPU describe one while the hardware does the next"});
     t.push_back({"surf.fifo_irq_level", ParamKind::count, "256", 1, 1 << 20, {},
                  "Maxima FIFO level that interrupts the CPU to drain it", "[A] a quarter of the default FIFO"});
@@ -142,7 +144,9 @@ std::vector<ParamSpec> make_table() {
                  "[-] tool setting: a guard against a livelocked run, far above any shipped scenario (castle, exact Haar: 11 s)"});
 
     t.push_back({"run.series_bin", ParamKind::duration, "1 ms", 1 * us, 1 * s, {},
-                 "Width of the time bins of report.html's charts (bus utilisation and FIFO levels over time)",
+                 fmt::format("Width of the time bins of report.html's charts (bus utilisation and FIFO levels over time); a "
+                             "run longer than {} bins merges them by twos, so a series never holds more",
+                             TimeSeries::kMaxBins),
                  "[-] report setting: a 118 ms frame in about a hundred bins"});
     t.push_back({"run.dma_granularity", ParamKind::choice, "line", 0, 0, {"line", "burst"},
                  "IP blocks' DMA: one TLM transaction per line or per burst; the bus arbitrates every burst either "

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <map>
+#include <optional>
 #include <fmt/format.h>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
@@ -33,43 +34,58 @@ constexpr uint64_t kPage = 4096;
 constexpr uint32_t kOutsideMemory = 0xF000'0000;  // a dma_outside_memory fault's buffer: no DDR there
 uint64_t round_up(uint64_t v) { return (v + kPage - 1) / kPage * kPage; }
 
-// Where a run's buffers are in memory: the frames, then one set of integral image,
-// determinant and descriptor buffers per task in flight. Throws ConfigError when they do not
-// fit memory.size.
+// Where a run's buffers are in memory: one set of frame, integral image, determinant and
+// descriptor buffers per task in flight (frames arrive in their set's buffer as tasks start, so
+// memory does not grow with the number of frames). Throws ConfigError when they do not fit
+// memory.size.
 struct Layout {
-    uint64_t frame_bytes, integral_bytes, det_bytes, slot_bytes, frames_base, slots_base;
+    uint64_t image_bytes, integral_bytes, det_bytes, slot_bytes, slots_base;
 };
 
-Layout layout_for(const Config& c, size_t frames, int width, int height) {
+Layout layout_for(const Config& c, int width, int height) {
     Layout l{};
-    l.frame_bytes = round_up(uint64_t(width) * height);
+    l.image_bytes = round_up(uint64_t(width) * height);
     l.integral_bytes = round_up(uint64_t(width) * height * 4);
     l.det_bytes = round_up(uint64_t((width + 1) / 2) * ((height + 1) / 2) *
                            fhg_regs::record_bytes(fhg_regs::det_bytes_for(c.bits("fhg.det_bits"))));
-    l.slot_bytes = l.integral_bytes + l.det_bytes + round_up(uint64_t(sw::ssa2::kRecordRing) * sw::ssa2::kRecordSlot);
-    l.frames_base = 0x0010'0000;
-    l.slots_base = l.frames_base + frames * l.frame_bytes;
-    const uint64_t end = l.slots_base + c.count("surf.tasks_in_flight") * l.slot_bytes;
+    l.slot_bytes = l.image_bytes + l.integral_bytes + l.det_bytes +
+                   round_up(uint64_t(sw::ssa2::kRecordRing) * sw::ssa2::kRecordSlot);
+    l.slots_base = 0x0010'0000;
+    const uint64_t sets = c.count("surf.tasks_in_flight");
+    const uint64_t end = l.slots_base + sets * l.slot_bytes;
     if (end > c.bytes("memory.size").n)
-        throw ConfigError(fmt::format("{}: {} frames of {}x{} and {} buffer sets need {} of memory, memory.size is {}",
-                                      c.where("memory.size"), frames, width, height, c.count("surf.tasks_in_flight"),
+        throw ConfigError(fmt::format("{}: {} buffer sets (surf.tasks_in_flight, from {}) for frames of {}x{} need {} of "
+                                      "memory, memory.size is {}",
+                                      c.where("memory.size"), sets, c.source_of("surf.tasks_in_flight"), width, height,
                                       format_bytes(Bytes{end}), format_bytes(c.bytes("memory.size"))));
     return l;
 }
 
 // The frames surf.source names, as the chip takes them (grey, resized to surf.width x
-// surf.height when both are set), and each frame's file when it has one. Every problem is bad
-// input named at surf.source's origin, found before anything is built.
+// surf.height when both are set). Every frame is decoded and checked once before anything is
+// built, and none is kept but frame 0 (the threshold's calibration, the report's picture): a
+// run decodes each again as it arrives (FrameStream), so host memory does not grow with the
+// frames either.
 struct SourceFrames {
-    std::vector<cv::Mat> images;
-    std::vector<fs::path> files;  // empty for a video or one repeated image
+    size_t count = 0;
+    bool repeated = false;        // one image, every frame
+    cv::Mat first;                // frame 0 as the chip takes it
+    std::vector<fs::path> files;  // each frame's file; empty for a video or one repeated image
     cv::Size original;            // frame 0 before resizing
 };
+
+cv::Mat as_the_chip_takes(const Config& c, const cv::Mat& frame) {
+    const int w = int(c.count("surf.width")), h = int(c.count("surf.height"));
+    if (!w || !h || frame.size() == cv::Size(w, h)) return frame;
+    cv::Mat resized;
+    cv::resize(frame, resized, cv::Size(w, h), 0, 0, cv::INTER_AREA);
+    return resized;
+}
 
 // Frames the chip can take: at least the filters' minimum (the float reference that
 // calibrates the threshold runs on frame 0), at most what the IIG and FHG accept.
 void check_frame_size(const Config& c, const SourceFrames& f) {
-    const cv::Size size = f.images[0].size();
+    const cv::Size size = f.first.size();
     const bool resized = size != f.original;
     const std::string where = resized ? c.where("surf.width") : c.where("surf.source");
     const std::string what = resized ? fmt::format("frames resized to {}x{} (surf.width x surf.height)", size.width, size.height)
@@ -89,73 +105,93 @@ void check_frame_size(const Config& c, const SourceFrames& f) {
                                               c.count(key), c.source_of(key)));
 }
 
+// A sequence's frames (a folder, a list or a video), decoded in order.
+eval::SequenceReader open_frames(const Config& c) {
+    return eval::SequenceReader(eval::open_sequence(c.text("surf.source"), c.count("surf.frames")));
+}
+
+// Every frame of a sequence decoded once: its file, and its size against frame 0's.
+void read_sequence(const Config& c, SourceFrames& out) {
+    const std::string source = c.text("surf.source");
+    const bool resizing = c.count("surf.width") && c.count("surf.height");
+    eval::SequenceReader reader = open_frames(c);
+    const size_t has = reader.sequence().frames.size();
+    if (has < out.count) throw ConfigError(fmt::format("{}: surf.frames is {} (from {}), but {} has only {}",
+                                                       c.where("surf.source"), out.count, c.source_of("surf.frames"), source, has));
+    auto name = [&](size_t i) { return i < out.files.size() ? out.files[i].string() : fmt::format("{} frame {}", source, i); };
+    size_t n = 0;
+    for (cv::Mat frame; n < out.count && reader.next(frame); ++n) {
+        const fs::path& file = reader.sequence().frames[n].image;
+        if (!file.empty()) out.files.push_back(file);
+        if (n == 0) {
+            out.first = frame.clone();
+            out.original = frame.size();
+        } else if (!resizing && frame.size() != out.original) {
+            throw ConfigError(fmt::format("{}: frames differ in size: {} is {}x{}, {} is {}x{}; set surf.width and "
+                                          "surf.height to resize them alike",
+                                          c.where("surf.source"), name(0), out.original.width, out.original.height, name(n),
+                                          frame.cols, frame.rows));
+        }
+    }
+    if (n < out.count) throw ConfigError(fmt::format("{}: surf.frames is {} (from {}), but {} has only {}",
+                                                     c.where("surf.source"), out.count, c.source_of("surf.frames"), source, n));
+}
+
 SourceFrames read_frames(const Config& c) {
     const std::string source = c.text("surf.source");
     const std::string where = c.where("surf.source");
-    const size_t count = c.count("surf.frames");
     std::error_code ec;
     const fs::file_status status = fs::status(source, ec);
     if (!fs::exists(status)) throw ConfigError(fmt::format("{}: {}: no such file or folder", where, source));
     // A FIFO or a device would be read until it ends, which may be never.
     if (!fs::is_regular_file(status) && !fs::is_directory(status))
         throw ConfigError(fmt::format("{}: {}: not a regular file or a folder", where, source));
-    // More frames than the source has would be fewer frames than asked, silently.
-    auto too_few = [&](size_t has) {
-        return ConfigError(fmt::format("{}: surf.frames is {} (from {}), but {} has only {}", where, count,
-                                       c.source_of("surf.frames"), source, has));
-    };
     SourceFrames out;
+    out.count = c.count("surf.frames");
     try {
         surf::QuietDecoding quiet;
         if (fs::is_regular_file(status) && (eval::is_image_file(source) || !cv::imread(source, cv::IMREAD_GRAYSCALE).empty())) {
-            out.images.assign(count, surf::load_gray(source));  // one image, repeated
+            out.repeated = true;
+            out.first = surf::load_gray(source);
+            out.original = out.first.size();
         } else {
-            eval::Sequence sequence = eval::open_sequence(source, count);
-            if (sequence.frames.size() < count) throw too_few(sequence.frames.size());  // before decoding them all
-            eval::SequenceReader reader(std::move(sequence));
-            for (cv::Mat frame; out.images.size() < count && reader.next(frame);) {
-                // Host memory stays bounded: what the frames need in the chip's memory is
-                // checked on the first, before the others are decoded.
-                if (out.images.empty())
-                    layout_for(c, count, c.count("surf.width") && c.count("surf.height") ? int(c.count("surf.width")) : frame.cols,
-                               c.count("surf.width") && c.count("surf.height") ? int(c.count("surf.height")) : frame.rows);
-                out.images.push_back(frame.clone());
-                const fs::path& file = reader.sequence().frames[out.images.size() - 1].image;
-                if (!file.empty()) out.files.push_back(file);
-            }
+            read_sequence(c, out);
         }
     } catch (const ConfigError&) {
         throw;
     } catch (const std::exception& e) {
         throw ConfigError(fmt::format("{}: {}", where, e.what()));
     }
-    if (out.images.size() < count) throw too_few(out.images.size());
-    auto name = [&](size_t i) { return i < out.files.size() ? out.files[i].string() : fmt::format("{} frame {}", source, i); };
-    out.original = out.images[0].size();
-    const bool resizing = c.count("surf.width") && c.count("surf.height");
-    for (size_t i = 1; i < out.images.size(); ++i)
-        if (!resizing && out.images[i].size() != out.original)
-            throw ConfigError(fmt::format("{}: frames differ in size: {} is {}x{}, {} is {}x{}; set surf.width and surf.height "
-                                          "to resize them alike",
-                                          where, name(0), out.original.width, out.original.height, name(i),
-                                          out.images[i].cols, out.images[i].rows));
-    // Frames that share their pixels (one image, repeated) share the resized pixels too: one
-    // resize, not one copy per frame.
-    const int w = int(c.count("surf.width")), h = int(c.count("surf.height"));
-    const uchar* shared = nullptr;
-    cv::Mat resized;
-    for (cv::Mat& f : out.images)
-        if (w && h && f.size() != cv::Size(w, h)) {
-            if (f.data != shared) {
-                shared = f.data;
-                resized = cv::Mat();
-                cv::resize(f, resized, cv::Size(w, h), 0, 0, cv::INTER_AREA);
-            }
-            f = resized;
-        }
+    out.first = as_the_chip_takes(c, out.first);
     check_frame_size(c, out);
     return out;
 }
+
+// The frames of a run as they arrive, in order; one decoded at a time.
+class FrameStream {
+public:
+    FrameStream(const Config& c, const SourceFrames& source) : config_(c), source_(source) {}
+
+    // Frame i as the chip takes it: the next after the one before (a frame before it starts
+    // the sequence again).
+    const cv::Mat& frame(size_t i) {
+        if (source_.repeated || i == 0) return source_.first;
+        if (!reader_ || i < reader_->position()) reader_.emplace(open_frames(config_));
+        surf::QuietDecoding quiet;
+        cv::Mat decoded;
+        while (reader_->position() <= i)
+            if (!reader_->next(decoded))
+                throw std::runtime_error(fmt::format("{}: frame {} can no longer be read", config_.text("surf.source"), i));
+        current_ = as_the_chip_takes(config_, decoded);
+        return current_;
+    }
+
+private:
+    const Config& config_;
+    const SourceFrames& source_;
+    std::optional<eval::SequenceReader> reader_;
+    cv::Mat current_;
+};
 
 // Frames, and frame 0's ranked responses for the calibration, are read once per process and
 // source: the verdict's re-simulations are forked from one process and inherit them.
@@ -171,8 +207,6 @@ const SourceFrames& load_source(const Config& c) {
     return it->second;
 }
 
-const std::vector<cv::Mat>& load_frames(const Config& c) { return load_source(c).images; }
-
 // The evaluation's geometry, read before anything is built: a homography from frame 0 to
 // frame 1 at the frames' own size, and camera poses that belong to the very frames the source
 // gives, one each.
@@ -184,11 +218,11 @@ void check_eval_inputs(const Config& c, const SourceFrames& frames) {
         } catch (const std::exception& e) {
             throw ConfigError(fmt::format("{}: {}", c.where("eval.homography"), e.what()));
         }
-        if (frames.images[0].size() != frames.original)
+        if (frames.first.size() != frames.original)
             throw ConfigError(fmt::format("{}: the homography maps frame 0 to frame 1 at their own size ({}x{}), but "
                                           "surf.width x surf.height (from {}) resize them to {}x{}; set both to 0",
                                           c.where("eval.homography"), frames.original.width, frames.original.height,
-                                          c.source_of("surf.width"), frames.images[0].cols, frames.images[0].rows));
+                                          c.source_of("surf.width"), frames.first.cols, frames.first.rows));
     }
     const std::string poses = c.text("eval.poses");
     if (poses.empty()) return;
@@ -198,16 +232,16 @@ void check_eval_inputs(const Config& c, const SourceFrames& frames) {
     } catch (const std::exception& e) {
         throw ConfigError(fmt::format("{}: {}", c.where("eval.poses"), e.what()));
     }
-    if (frames.files.size() != frames.images.size())
+    if (frames.files.size() != frames.count)
         throw ConfigError(fmt::format("{}: poses belong to image files, but surf.source {} (from {}) is one image or a video",
                                       c.where("eval.poses"), c.text("surf.source"), c.source_of("surf.source")));
-    if (posed.size() < frames.images.size())
+    if (posed.size() < frames.count)
         throw ConfigError(fmt::format("{}: {} poses for {} frames (surf.frames from {})", c.where("eval.poses"), posed.size(),
-                                      frames.images.size(), c.source_of("surf.frames")));
+                                      frames.count, c.source_of("surf.frames")));
     // The evaluation's pairs (gaps 1 and 2, evaluation() below) need two distinct camera centres.
-    for (size_t i = 0; i < frames.images.size(); ++i)
+    for (size_t i = 0; i < frames.count; ++i)
         for (size_t j : {i + 1, i + 2})
-            if (j < frames.images.size()) try {
+            if (j < frames.count) try {
                     eval::fundamental_from_poses(eval::kCastleIntrinsics, posed[i].c_m_o, posed[j].c_m_o);
                 } catch (const std::invalid_argument& e) {
                     throw ConfigError(fmt::format("{}: frames {} and {} ({} and {}): {}", c.where("eval.poses"), i, j,
@@ -238,77 +272,69 @@ float calibrate(const Config& c, const cv::Mat& frame) {
     return surf::threshold_for_rank(it->second, int(c.count("surf.target_keypoints")));
 }
 
+// What is kept of a frame once it is reported: its task (times, outcome, counts) and, for the
+// frames the evaluation or the report's picture need, its keypoints; the others are in their
+// keypoint file.
 struct FrameResult {
-    surf::Keypoints keypoints;
     sw::ssa2::Task task;
+    size_t keypoint_count = 0;
+    surf::Keypoints keypoints;
     bool reported = false;
 };
 
 class SurfWorkload : public Workload {
 public:
     explicit SurfWorkload(const Config& c)
-        : config_(c), frames_(load_frames(c)), threshold_(calibrate(c, frames_[0])),
-          describer_(make_describer(c, threshold_)), results_(frames_.size()) {
-        width_ = frames_[0].cols;
-        height_ = frames_[0].rows;
-        layout_ = layout_for(c, frames_.size(), width_, height_);
+        : config_(c), source_(load_source(c)), threshold_(calibrate(c, source_.first)),
+          describer_(make_describer(c, threshold_)), results_(source_.count) {
+        width_ = source_.first.cols;
+        height_ = source_.first.rows;
+        layout_ = layout_for(c, width_, height_);
         const fhg::HessianCore core(fhg_params(c).precision);
         driver_.intc_base = map::intc.base;
         for (unsigned k = 0; k < c.count("soc.accelerators"); ++k)
             driver_.accelerators.push_back({map::iig_base(k), map::fhg_base(k), map::irq::iig(k), map::irq::fhg(k)});
         for (uint64_t set = 0, at = layout_.slots_base; set < c.count("surf.tasks_in_flight"); ++set, at += layout_.slot_bytes)
-            driver_.buffers.push_back({uint32_t(at), uint32_t(at + layout_.integral_bytes),
-                                       uint32_t(at + layout_.integral_bytes + layout_.det_bytes)});
+            driver_.buffers.push_back({uint32_t(at), uint32_t(at + layout_.image_bytes),
+                                       uint32_t(at + layout_.image_bytes + layout_.integral_bytes),
+                                       uint32_t(at + layout_.image_bytes + layout_.integral_bytes + layout_.det_bytes)});
         driver_.fifo_irq_level = uint32_t(c.count("surf.fifo_irq_level"));
         driver_.threshold = core.from_float(threshold_);
         driver_.watchdog_ps = c.duration("surf.watchdog").ps;
         driver_.spurious_irq_limit = unsigned(c.count("surf.spurious_irq_limit"));
         budget_fps_ = c.real("budget.fps");
         // A frame rate needs one whole round of the pairs after the first frame.
-        if (budget_fps_ > 0 && frames_.size() <= c.count("soc.accelerators"))
+        if (budget_fps_ > 0 && source_.count <= c.count("soc.accelerators"))
             throw ConfigError(fmt::format("surf.frames: {} frames cannot give a frame rate with {} accelerator pair(s): "
                                           "the steady-state rate needs {}; set more frames or budget.fps = 0",
-                                          frames_.size(), c.count("soc.accelerators"), c.count("soc.accelerators") + 1));
+                                          source_.count, c.count("soc.accelerators"), c.count("soc.accelerators") + 1));
         cpu_hz_ = c.frequency("cpu.clock").hz;
     }
 
-    void preload(const Backdoor& memory) override {
-        for (size_t i = 0; i < frames_.size(); ++i) {
-            uint8_t* at = memory(frame_address(i), uint64_t(width_) * height_);
-            for (int y = 0; y < height_; ++y) std::copy_n(frames_[i].ptr(y), width_, at + size_t(y) * width_);
-        }
-    }
-
-    void inject(FaultPlan& faults) override {
-        faults_ = &faults;
-        std::vector<uint32_t> images;
-        for (size_t i = 0; i < frames_.size(); ++i) images.push_back(frame_address(i));
-        faults.set_frame_images(std::move(images));
-    }
+    void attach_memory(const Backdoor& memory) override { memory_ = memory; }
+    void inject(FaultPlan& faults) override { faults_ = &faults; }
+    void write_into(const std::string& dir) override { out_ = dir; }
+    std::vector<std::string> files_written() override;
 
     Ppc440::Software software() override {
         return [this](sw::Hal& hal) {
-            std::vector<sw::ssa2::Task> tasks(frames_.size());
-            for (size_t i = 0; i < tasks.size(); ++i) {
-                tasks[i].image = frame_address(i);
-                tasks[i].width = width_;
-                tasks[i].height = height_;
+            std::vector<sw::ssa2::Task> tasks(source_.count);
+            for (sw::ssa2::Task& t : tasks) {
+                t.width = width_;
+                t.height = height_;
             }
             if (faults_) give_buffers_outside_memory(tasks, hal.time_ps());
             sw::ssa2::Driver driver(hal, driver_, *describer_);
-            driver.run(tasks, [this](const sw::ssa2::Task& task, surf::Keypoints&& keypoints) {
-                FrameResult& r = results_[size_t(task.id)];
-                r.task = task;
-                r.keypoints = std::move(keypoints);
-                r.reported = true;
-                ++done_;
-            });
+            FrameStream stream(config_, source_);
+            driver.run(
+                tasks, [&](const sw::ssa2::Task& task) { deliver(stream.frame(size_t(task.id)), task); },
+                [this](const sw::ssa2::Task& task, surf::Keypoints&& keypoints) { reported(task, std::move(keypoints)); });
             accelerator_time_ = driver.accelerator_time();
             recovery_ = driver.recovery();
         };
     }
 
-    Progress progress() const override { return {done_, frames_.size(), "frames"}; }
+    Progress progress() const override { return {done_, source_.count, "frames"}; }
 
     std::vector<Check> checks() const override {
         std::vector<Check> checks;
@@ -321,8 +347,8 @@ public:
             else failures.push_back(fmt::format("frame {}: {}", r.task.id, r.task.error));
         }
         const std::string lost = lost_to_faults ? fmt::format("; {} lost to injected faults", lost_to_faults) : "";
-        checks.push_back({"every frame processed", failures.empty() && done + lost_to_faults == frames_.size(),
-                          failures.empty() ? fmt::format("{} of {} frames{}", done, frames_.size(), lost)
+        checks.push_back({"every frame processed", failures.empty() && done + lost_to_faults == source_.count,
+                          failures.empty() ? fmt::format("{} of {} frames{}", done, source_.count, lost)
                                            : fmt::format("{}", fmt::join(failures, "; "))});
         if (faults_) checks.push_back(fault_check());
         if (budget_fps_ > 0) {
@@ -335,7 +361,6 @@ public:
 
     nlohmann::ordered_json summary() const override;
     nlohmann::ordered_json report() const override;
-    std::vector<std::string> write_files(const std::string& dir) const override;
     std::string first_frame_svg() const override;
 
     // Each frame's hardware phases on its accelerator's track and its descriptors on the
@@ -357,8 +382,10 @@ public:
     }
 
 private:
-    uint32_t frame_address(size_t i) const { return uint32_t(layout_.frames_base + i * layout_.frame_bytes); }
-
+    void deliver(const cv::Mat& frame, const sw::ssa2::Task& task);
+    void reported(const sw::ssa2::Task& task, surf::Keypoints&& keypoints);
+    void write_keypoints(const sw::ssa2::Task& task, const surf::Keypoints& keypoints);
+    bool kept(size_t frame) const;
 
     double throughput() const;
     nlohmann::ordered_json evaluation() const;
@@ -378,7 +405,7 @@ private:
     }
 
     const Config& config_;
-    std::vector<cv::Mat> frames_;
+    const SourceFrames& source_;
     float threshold_;
     std::unique_ptr<sw::ssa2::Describer> describer_;
     std::vector<FrameResult> results_;
@@ -387,6 +414,10 @@ private:
     Layout layout_{};
     uint64_t done_ = 0;
     FaultPlan* faults_ = nullptr;
+    Backdoor memory_;
+    std::string out_;                     // where keypoint files go as frames are reported ("" : nowhere)
+    std::vector<std::string> written_;    // their names, relative to out_
+    std::exception_ptr write_failure_;    // the first that failed; no more are written after it
     sw::ssa2::Driver::Recovery recovery_;
     double budget_fps_ = 0, cpu_hz_ = 0;
     std::vector<sw::ssa2::AcceleratorTime> accelerator_time_;
@@ -494,10 +525,10 @@ nlohmann::ordered_json SurfWorkload::summary() const {
         integral += double(t.t_integral - t.t_start);
         determinants += double(t.t_determinants - t.t_start);
         describe += double(t.t_done - t.t_determinants);
-        keypoints += double(r.keypoints.size());
+        keypoints += double(r.keypoint_count);
         cycles += double(t.descriptor_cycles);
-        min_kp = std::min(min_kp, r.keypoints.size());
-        max_kp = std::max(max_kp, r.keypoints.size());
+        min_kp = std::min(min_kp, r.keypoint_count);
+        max_kp = std::max(max_kp, r.keypoint_count);
         ++n;
     }
     const double per = n ? 1.0 / double(n) : 0;
@@ -509,7 +540,7 @@ nlohmann::ordered_json SurfWorkload::summary() const {
         pairs.push_back({{"working_s", a.working_ps * 1e-12}, {"waiting_for_buffers_s", a.waiting_for_buffers_ps * 1e-12},
                          {"idle_s", a.idle_ps * 1e-12}});
     nlohmann::ordered_json out = {{"image", {{"width", width_}, {"height", height_}}},
-            {"frames", frames_.size()},
+            {"frames", source_.count},
             {"frames_done", n},
             {"throughput_fps", fps},
             {"latency_ms", latency * per * 1e-9},
@@ -532,7 +563,7 @@ nlohmann::ordered_json SurfWorkload::report() const {
     nlohmann::ordered_json frames = nlohmann::ordered_json::array();
     for (const FrameResult& r : results_) {
         const auto& t = r.task;
-        nlohmann::ordered_json f = {{"frame", t.id}, {"candidates", t.candidates.size()}, {"keypoints", r.keypoints.size()},
+        nlohmann::ordered_json f = {{"frame", t.id}, {"candidates", t.candidate_count}, {"keypoints", r.keypoint_count},
                                     {"start_ms", t.t_start * 1e-9}, {"integral_done_ms", t.t_integral * 1e-9},
                                     {"determinants_done_ms", t.t_determinants * 1e-9}, {"done_ms", t.t_done * 1e-9},
                                     {"descriptor_cycles", t.descriptor_cycles}};
@@ -547,12 +578,12 @@ nlohmann::ordered_json SurfWorkload::report() const {
 // Feature quality on the chip's own keypoints, when the scenario gives the geometry.
 nlohmann::ordered_json SurfWorkload::evaluation() const {
     nlohmann::ordered_json out = nlohmann::ordered_json::object();
-    if (done_ != frames_.size()) return out;
+    if (done_ != source_.count) return out;
     const std::string homography = config_.text("eval.homography");
     if (!homography.empty() && results_.size() >= 2) {
         const Eigen::Matrix3d h = eval::read_homography_file(homography);
-        const auto rep = eval::repeatability(results_[0].keypoints, results_[1].keypoints, h, frames_[0].size(),
-                                             frames_[1].size());
+        const cv::Size size(width_, height_);
+        const auto rep = eval::repeatability(results_[0].keypoints, results_[1].keypoints, h, size, size);
         const auto prec = eval::matching_precision(results_[0].keypoints, results_[1].keypoints, h);
         out["homography"] = {{"repeatability", rep.repeatability}, {"correspondences", rep.correspondences},
                              {"precision", prec.precision}, {"candidates", prec.candidates}};
@@ -575,17 +606,50 @@ nlohmann::ordered_json SurfWorkload::evaluation() const {
     return out;
 }
 
-std::vector<std::string> SurfWorkload::write_files(const std::string& dir) const {
-    const fs::path folder = fs::path(dir) / "keypoints";
-    fs::create_directories(folder);
-    std::vector<std::string> written;
-    for (const FrameResult& r : results_) {
-        if (!r.reported || r.task.phase != sw::ssa2::Phase::done) continue;  // a failed frame has no keypoints
-        const fs::path file = folder / fmt::format("frame_{:04}.surf", r.task.id);
-        eval::write_keypoint_file(file, r.keypoints);
-        written.push_back(fs::relative(file, dir).string());
+// Frame i arrives in its task's image buffer; the fault plan learns which frame is there.
+void SurfWorkload::deliver(const cv::Mat& frame, const sw::ssa2::Task& task) {
+    uint8_t* at = memory_(task.image, uint64_t(width_) * height_);
+    for (int y = 0; y < height_; ++y) std::copy_n(frame.ptr(y), width_, at + size_t(y) * width_);
+    if (faults_) faults_->frame_arrived(task.image, task.id);
+}
+
+// The evaluation needs frames 0 and 1 (a homography) or every frame (camera poses); the
+// report's picture frame 0. Keypoints of the others live in their files only.
+bool SurfWorkload::kept(size_t frame) const {
+    return frame == 0 || (frame == 1 && !config_.text("eval.homography").empty()) || !config_.text("eval.poses").empty();
+}
+
+void SurfWorkload::reported(const sw::ssa2::Task& task, surf::Keypoints&& keypoints) {
+    FrameResult& r = results_[size_t(task.id)];
+    r.task = task;
+    r.task.candidates = std::vector<uint32_t>();  // released: a long run keeps their count
+    r.keypoint_count = keypoints.size();
+    r.reported = true;
+    ++done_;
+    if (task.phase == sw::ssa2::Phase::done) write_keypoints(task, keypoints);  // a failed frame has no keypoints
+    if (kept(size_t(task.id))) r.keypoints = std::move(keypoints);
+}
+
+// A frame's keypoint file, written as the frame is reported. A write that fails (a full disk)
+// is kept for files_written() to throw after the run, and no further file is tried.
+void SurfWorkload::write_keypoints(const sw::ssa2::Task& task, const surf::Keypoints& keypoints) {
+    if (out_.empty() || write_failure_) return;
+    try {
+        const fs::path folder = fs::path(out_) / "keypoints";
+        if (written_.empty()) fs::create_directories(folder);
+        const fs::path file = folder / fmt::format("frame_{:04}.surf", task.id);
+        eval::write_keypoint_file(file, keypoints);
+        written_.push_back(fs::relative(file, out_).string());
+    } catch (...) {
+        write_failure_ = std::current_exception();
     }
-    return written;
+}
+
+std::vector<std::string> SurfWorkload::files_written() {
+    if (write_failure_) std::rethrow_exception(write_failure_);
+    std::vector<std::string> names = written_;
+    std::sort(names.begin(), names.end());  // frames are reported in the order they finish
+    return names;
 }
 
 }  // namespace
@@ -601,7 +665,7 @@ void check_surf_inputs(const Config& config) {
 // stroke to its orientation (green: dark blob, Laplacian +1; red: bright blob).
 std::string SurfWorkload::first_frame_svg() const {
     if (results_.empty() || !results_[0].reported) return "";
-    const cv::Mat& frame = frames_[0];
+    const cv::Mat& frame = source_.first;
     const double f = std::min(1.0, 640.0 / frame.cols);
     cv::Mat shown;
     cv::resize(frame, shown, cv::Size(), f, f, cv::INTER_AREA);
@@ -619,7 +683,7 @@ std::string SurfWorkload::first_frame_svg() const {
                            x, y, r, c, x, y, x + r * std::cos(k.orientation), y - r * std::sin(k.orientation), c);
     }
     return svg + fmt::format("<text x=\"6\" y=\"{}\" fill=\"yellow\" font-family=\"sans-serif\">frame 0: {} keypoints</text></svg>",
-                             shown.rows - 8, results_[0].keypoints.size());
+                             shown.rows - 8, results_[0].keypoint_count);
 }
 
 }  // namespace surfvp

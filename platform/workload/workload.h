@@ -27,13 +27,15 @@ struct Progress {
     std::string unit;  // "copies", "frames"
 };
 
-// Untimed access to memory before the run (what a camera or loader put there).
+// Untimed access to memory: what a loader puts there before the run, or a camera as frames
+// arrive.
 using Backdoor = std::function<uint8_t*(uint64_t address, uint64_t bytes)>;
 
 class Workload {
 public:
     virtual ~Workload() = default;
-    virtual void preload(const Backdoor&) {}
+    // Memory, given before software() runs; a workload may keep it for the run.
+    virtual void attach_memory(const Backdoor&) {}
     // The faults the scenario injects (the platform hands them to the blocks as well): the
     // workload tells the plan its frames, and reports what became of each.
     virtual void inject(FaultPlan&) {}
@@ -45,8 +47,11 @@ public:
     virtual nlohmann::ordered_json summary() const { return nlohmann::ordered_json::object(); }
     // Its own timeline tracks, after the run (frames across the blocks).
     virtual void trace(Tracer&) const {}
-    // Files of its own under the output folder (keypoints): the names written.
-    virtual std::vector<std::string> write_files(const std::string& /*dir*/) const { return {}; }
+    // Files of its own (keypoints) go under `dir` as they are made; given before software()
+    // runs, or never (then none are written).
+    virtual void write_into(const std::string& /*dir*/) {}
+    // After the run: the names written under that folder. Throws the first write that failed.
+    virtual std::vector<std::string> files_written() { return {}; }
     // Its first frame with what it found drawn on it, as an <svg> element for report.html
     // (the image inline): "" when it has none.
     virtual std::string first_frame_svg() const { return ""; }

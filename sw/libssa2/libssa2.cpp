@@ -60,7 +60,7 @@ void Driver::enable_interrupts() {
     hal_.write32(config_.intc_base + intc::MER, intc::MER_ME | intc::MER_HIE);
 }
 
-void Driver::run(std::vector<Task>& tasks, const Callback& callback) {
+void Driver::run(std::vector<Task>& tasks, const Camera& camera, const Callback& callback) {
     keypoints_.assign(tasks.size(), {});
     spurious_.assign(32, 0);
     for (size_t i = 0; i < tasks.size(); ++i) tasks[i].id = int(i);
@@ -71,7 +71,7 @@ void Driver::run(std::vector<Task>& tasks, const Callback& callback) {
         return false;
     };
     while (unfinished()) {
-        start_hardware(tasks);
+        start_hardware(tasks, camera);
         for (size_t a = 0; a < running_.size(); ++a)
             if (running_[a] < 0) account(a, queued(tasks) ? time_[a].waiting_for_buffers_ps : time_[a].idle_ps);
         if (hal_.irq_pending()) {
@@ -102,7 +102,7 @@ bool Driver::queued(const std::vector<Task>& tasks) {
 // A queued task starts on a free pair when a buffer set is free: a set stays with its task
 // until the task is reported, so a failed task cannot let the next one overwrite buffers
 // the CPU is still reading.
-void Driver::start_hardware(std::vector<Task>& tasks) {
+void Driver::start_hardware(std::vector<Task>& tasks, const Camera& camera) {
     for (size_t a = 0; a < running_.size(); ++a) {
         if (running_[a] >= 0) continue;
         const auto set = std::find(set_busy_.begin(), set_busy_.end(), false);
@@ -111,6 +111,8 @@ void Driver::start_hardware(std::vector<Task>& tasks) {
             if (t.phase == Phase::queued) {
                 t.buffer_set = int(set - set_busy_.begin());
                 *set = true;
+                t.image = config_.buffers[size_t(t.buffer_set)].image;
+                camera(t);
                 start(t, int(a));
                 break;
             }
@@ -128,7 +130,6 @@ void Driver::start(Task& task, int accelerator) {
     hal_.mark(unsigned(accelerator), task.id);
     task.t_start = hal_.time_ps();
     const BufferSet& buffers = config_.buffers[size_t(task.buffer_set)];
-    task.integral = buffers.integral;
     task.watchdog_at = task.t_start + config_.watchdog_ps;
     task.records = buffers.records;
     // A preset buffer stays (fault injection: dma_outside_memory).
@@ -337,7 +338,11 @@ void Driver::finish(Task& task, const Callback& callback) {
     if (task.buffer_set >= 0) set_busy_[size_t(task.buffer_set)] = false;
     task.t_done = hal_.time_ps();
     if (task.t_done == 0) task.t_done = 1;  // direct mode has no time: mark it reported
+    task.candidate_count = task.candidates.size();
     callback(task, std::move(keypoints_[size_t(task.id)]));
+    // Released, not cleared (`= {}` would keep the capacity).
+    keypoints_[size_t(task.id)] = surf::Keypoints();
+    task.candidates = std::vector<uint32_t>();
 }
 
 }  // namespace surfvp::sw::ssa2

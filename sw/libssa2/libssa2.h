@@ -35,8 +35,11 @@ struct Accelerator {
     unsigned iig_irq, fhg_irq;    // INTC input numbers
 };
 
-// One set of result buffers in memory; a task holds one from its start until it is reported.
+// One set of buffers in memory; a task holds one from its start until it is reported. Its
+// frame arrives in `image` when it starts (the Camera below), so a run of any length needs
+// only as many frame buffers as tasks in flight.
 struct BufferSet {
+    uint32_t image;  // the frame, width x height bytes
     uint32_t integral, determinants;
     uint32_t records;  // the ring the descriptors are written to for the application (kRecordRing records)
 };
@@ -92,7 +95,7 @@ enum class Phase { queued, hardware, descriptors, done, failed };
 
 struct Task {
     int id = 0;
-    uint32_t image = 0;
+    uint32_t image = 0;  // its buffer set's image, from its start
     uint32_t integral = 0, determinants = 0;  // from a free buffer set at start (a preset determinants: fault injection)
     uint32_t records = 0;
     int width = 0, height = 0;
@@ -104,7 +107,8 @@ struct Task {
     std::string error;                 // why it failed
     std::vector<std::string> incidents;  // what went wrong and was recovered from (a lost interrupt)
     uint64_t watchdog_at = 0;          // when its hardware is checked next (ps)
-    std::vector<uint32_t> candidates;  // maxima FIFO words, in FIFO order
+    std::vector<uint32_t> candidates;  // maxima FIFO words, in FIFO order (released once reported)
+    size_t candidate_count = 0;        // how many the FIFO gave
     size_t described = 0;              // candidates handed to the describer so far
     uint64_t descriptor_cycles = 0;
     bool integral_done = false, determinants_done = false;
@@ -113,6 +117,9 @@ struct Task {
 };
 
 using Callback = std::function<void(const Task& task, surf::Keypoints&& keypoints)>;
+// The application's camera: puts the task's frame at task.image when the task starts (its
+// DMA into memory is not modelled: no time, no bus traffic).
+using Camera = std::function<void(const Task& task)>;
 
 // Where one accelerator pair's time went, by the driver's clock (Hal::time_ps): working on a
 // task, free while a task was queued but every buffer set was still held by a task not yet
@@ -125,9 +132,10 @@ class Driver {
 public:
     Driver(Hal& hal, DriverConfig config, Describer& describer);
 
-    // Runs every task to its end (done or failed), calling `callback` once per task in the
-    // order they finish.
-    void run(std::vector<Task>& tasks, const Callback& callback);
+    // Runs every task to its end (done or failed), calling `camera` as each starts and
+    // `callback` once per task in the order they finish (a finished task's candidates are
+    // released after its callback: a long run keeps only their count).
+    void run(std::vector<Task>& tasks, const Camera& camera, const Callback& callback);
 
     uint64_t interrupts_served() const { return interrupts_; }
     // What the driver's detection did: watchdog expiries, interrupts with nothing to serve,
@@ -140,7 +148,7 @@ public:
 
 private:
     void enable_interrupts();
-    void start_hardware(std::vector<Task>& tasks);
+    void start_hardware(std::vector<Task>& tasks, const Camera& camera);
     void start(Task& task, int accelerator);
     void service_interrupts(std::vector<Task>& tasks);
     void spurious(std::vector<Task>& tasks, size_t accelerator, bool fhg);

@@ -135,7 +135,9 @@ TEST(BadInput, InconsistentParametersAreReportedAtTheirOrigin) {
     expect_refused(surfvp("validate smoke --set soc.accelerators=4 --set intc.inputs=8"),
                    {"--set intc.inputs: 8 inputs are too few for 4 accelerator pairs", "they need 9"}, "INTC");
     expect_refused(surfvp("validate " + kBudget + " --set 'memory.size=1 MiB'"),
-                   {"--set memory.size: 20 frames of 1024x768", "memory.size is 1 MiB"}, "memory");
+                   {"--set memory.size: 2 buffer sets (surf.tasks_in_flight, from the default) for frames of 1024x768",
+                    "memory.size is 1 MiB"},
+                   "memory");
     // A model's own refusal (the FHG's fixed-point formats, its read sequence) names where each
     // parameter it names came from, and comes before a run makes its folder.
     expect_refused(surfvp("validate " + kBudget + " --set 'fhg.det_frac_bits=48 bit'"),

@@ -143,6 +143,28 @@ TEST(SurfRun, HardwareErrorFailsOnlyItsTask) {
     EXPECT_EQ(r["frames_done"], 3);
 }
 
+// Frames arrive in their task's buffer set as the task starts: memory holds two sets whatever
+// the frame count (8 Castle frames of 640x480 once needed 2.3 MiB more than this), each reused
+// frame buffer holds the right frame, and the VP, direct mode and a roomy memory agree.
+TEST(SurfRun, FramesArriveInReusedBuffers) {
+    const std::string sets = " --set surf.frames=8";
+    const auto tight = run("tight", sets + " --set 'memory.size=15080 KiB'", 0, kCastle);
+    const auto roomy = run("roomy", sets, 0, kCastle);
+    const std::string direct = fresh_dir("streamed_direct");
+    ASSERT_EQ(surfvp("run " + kCastle + " --direct --quiet --out " + direct + sets).exit_code, 0);
+    EXPECT_EQ(surfvp("validate " + kCastle + sets + " --set 'memory.size=15079 KiB'").exit_code, 2);
+    for (int i = 0; i < 8; ++i) {
+        const std::string f = fmt::format("/keypoints/frame_{:04}.surf", i);
+        const std::string kept = slurp(fresh_path("tight") + f);
+        EXPECT_GT(kept.size(), 1000u) << f;
+        EXPECT_EQ(kept, slurp(fresh_path("roomy") + f)) << f;
+        EXPECT_EQ(kept, slurp(direct + f)) << f;
+        if (i > 0) EXPECT_NE(kept, slurp(fresh_path("tight") + fmt::format("/keypoints/frame_{:04}.surf", i - 1))) << f;
+    }
+    EXPECT_EQ(tight["workload"]["evaluation"], roomy["workload"]["evaluation"]);
+    EXPECT_GT(tight["workload"]["evaluation"]["distinguishability_gap1"]["pairs"].get<int>(), 0);
+}
+
 }  // namespace
 }  // namespace surfvp
 
