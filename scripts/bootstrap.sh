@@ -15,6 +15,7 @@ readonly PACKAGES=(
   libsystemc-dev libyaml-cpp-dev libcli11-dev nlohmann-json3-dev libfmt-dev
   libopencv-dev libeigen3-dev libgtest-dev libbenchmark-dev
   libxml2-dev                   # tests read report.html as XML
+  libsqlite3-dev                # surfvp sweep: one row per point in the sweep folder's database
   opencv-doc visp-images-data   # real images for tests and scenarios
   g++-powerpc-linux-gnu qemu-user  # surfvp calibrate: the software stage built for the PPC440, run on an ISS
   clang libclang-rt-14-dev      # scripts/fuzz.sh: libFuzzer targets with ASan/UBSan (tests/fuzz)

@@ -15,6 +15,7 @@
 #include "platform/quality/quality_commands.h"
 #include "platform/run/run.h"
 #include "platform/scenario/scenario.h"
+#include "platform/sweep/sweep.h"
 #include "platform/tools/seqgen.h"
 #include "platform/soc.h"
 
@@ -81,6 +82,17 @@ int dispatch(int argc, char** argv) {
     calibrate->add_flag("!--no-probes", calibrate_options.probes,
                         "Time the stream at the defaults only (keeps the recorded sensitivities)");
     calibrate->add_flag("--quiet,-q", calibrate_options.quiet, "No progress lines on stderr");
+    SweepOptions sweep_options;
+    CLI::App* sweep = app.add_subcommand("sweep", "Run a sweep's points (docs/sweeps.md): results.csv/.json, plots, the Pareto front");
+    sweep->add_option("sweep", sweep_options.file, "Sweep file (YAML: scenario, set, axes, combine)")->required();
+    sweep->add_option("--out", sweep_options.out, "Sweep folder (default: traces/<sweep name>); a sweep run again there resumes");
+    sweep->add_option("--jobs,-j", sweep_options.jobs, "Points at once (default: one per core)");
+    sweep->add_option("--shard", sweep_options.shard, "Run only shard K of N (K/N), into shard-K-of-N.db; merge with sweep-merge")
+        ->type_name("K/N");
+    sweep->add_flag("--quiet,-q", sweep_options.quiet, "No progress or summary lines on stderr");
+    std::string merge_dir;
+    CLI::App* sweep_merge = app.add_subcommand("sweep-merge", "Merge a sweep folder's shard databases and write its results");
+    sweep_merge->add_option("folder", merge_dir, "The sweep folder")->required();
     QualityCommands quality(app);
 
     try {
@@ -105,6 +117,8 @@ int dispatch(int argc, char** argv) {
         if (*seqgen) return seqgen_command(seqgen_options);
         if (*bench) return bench_command(bench_options);
         if (*calibrate) return calibrate_command(calibrate_options);
+        if (*sweep) return sweep_command(sweep_options);
+        if (*sweep_merge) return sweep_merge_command(merge_dir);
         if (app.got_subcommand("list")) return list_scenarios();
         if (app.got_subcommand("registers")) {
             std::fputs(registers_markdown(chip_registers()).c_str(), stdout);

@@ -78,29 +78,6 @@ void apply_section(Config& config, const std::string& path, const std::string& s
     }
 }
 
-YAML::Node parse_file(const std::string& path) {
-    std::error_code error;
-    const fs::file_status status = fs::status(path, error);
-    if (!fs::exists(status)) throw ConfigError(fmt::format("{}: no such scenario file", path));
-    if (fs::is_directory(status)) throw ConfigError(fmt::format("{}: is a folder, not a scenario file", path));
-    // A FIFO or a device would be read until it ends, which may be never.
-    if (!fs::is_regular_file(status)) throw ConfigError(fmt::format("{}: is not a regular file", path));
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw ConfigError(fmt::format("{}: cannot be read", path));
-    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    std::vector<YAML::Node> documents;
-    try {
-        documents = load_all_yaml(text);
-    } catch (const YAML::ParserException& e) {
-        throw ConfigError(fmt::format("{}:{}: not valid YAML: {}", path, e.mark.line + 1, e.msg));
-    }
-    // Two scenarios pasted into one file: which one was meant is not ours to guess.
-    if (documents.size() > 1)
-        throw ConfigError(fmt::format("{}: holds {} YAML documents (the second starts near line {}); a scenario is one",
-                                      path, documents.size(), documents[1].Mark().line + 1));
-    return documents.empty() ? YAML::Node() : documents[0];
-}
-
 // The default output folder is traces/<name>: a name is one folder's name, so that no
 // scenario writes outside traces/.
 void check_name(const std::string& path, const YAML::Node& node, const std::string& name) {
@@ -114,11 +91,34 @@ void check_name(const std::string& path, const YAML::Node& node, const std::stri
 
 }  // namespace
 
+YAML::Node load_yaml_file(const std::string& path, const std::string& what) {
+    std::error_code error;
+    const fs::file_status status = fs::status(path, error);
+    if (!fs::exists(status)) throw ConfigError(fmt::format("{}: no such {} file", path, what));
+    if (fs::is_directory(status)) throw ConfigError(fmt::format("{}: is a folder, not a {} file", path, what));
+    // A FIFO or a device would be read until it ends, which may be never.
+    if (!fs::is_regular_file(status)) throw ConfigError(fmt::format("{}: is not a regular file", path));
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw ConfigError(fmt::format("{}: cannot be read", path));
+    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    std::vector<YAML::Node> documents;
+    try {
+        documents = load_all_yaml(text);
+    } catch (const YAML::ParserException& e) {
+        throw ConfigError(fmt::format("{}:{}: not valid YAML: {}", path, e.mark.line + 1, e.msg));
+    }
+    // Two files pasted into one: which one was meant is not ours to guess.
+    if (documents.size() > 1)
+        throw ConfigError(fmt::format("{}: holds {} YAML documents (the second starts near line {}); a {} is one",
+                                      path, documents.size(), documents[1].Mark().line + 1, what));
+    return documents.empty() ? YAML::Node() : documents[0];
+}
+
 Config load_scenario(const std::string& path, const std::vector<std::string>& overrides) {
     Config config;
     config.file = path;
     config.name = fs::path(path).stem().string();
-    const YAML::Node root = parse_file(path);
+    const YAML::Node root = load_yaml_file(path, "scenario");
     if (!root.IsNull() && !root.IsMap())
         throw ConfigError(fmt::format("{}: a scenario is a map of sections (name:, description:, cpu:, plb1:, ...)",
                                       at(path, root)));

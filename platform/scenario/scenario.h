@@ -5,6 +5,7 @@
 // (file, line, key, what is wrong) before anything runs or is written.
 #include <string>
 #include <vector>
+#include <yaml-cpp/yaml.h>
 
 #include "platform/scenario/config.h"
 
@@ -13,6 +14,9 @@ namespace surfvp {
 // Throws ConfigError: a file that is not one YAML map, a key given twice (name and
 // description too), an unknown key, a wrong unit, a value out of range.
 Config load_scenario(const std::string& path, const std::vector<std::string>& overrides);
+// One YAML document from a file (a `what`: "scenario", "sweep"); throws ConfigError for a
+// file that is missing, not regular, not YAML, or holds several documents.
+YAML::Node load_yaml_file(const std::string& path, const std::string& what);
 // `--set KEY=VALUE` overrides, applied in order (a key at most once); throws ConfigError.
 void apply_overrides(Config& config, const std::vector<std::string>& overrides);
 

@@ -13,7 +13,7 @@
 
 #include "platform/workload/describer.h"
 #include "models/common/atomic_file.h"
-#include "platform/verdict/resimulation.h"
+#include "platform/sweep/resimulation.h"
 #include "platform/run/run.h"
 #include "platform/scenario/scenario.h"
 #include "sw/cpu_cost/calibration.h"

@@ -12,7 +12,7 @@
 
 #include "platform/cli/progress_line.h"
 #include "platform/report/report.h"
-#include "platform/verdict/resimulation.h"
+#include "platform/sweep/resimulation.h"
 #include "platform/run/run.h"
 #include "platform/tools/seqgen.h"
 #include "platform/soc.h"

@@ -1,4 +1,4 @@
-#include "platform/verdict/resimulation.h"
+#include "platform/sweep/resimulation.h"
 
 #include <cerrno>
 #include <cstdlib>

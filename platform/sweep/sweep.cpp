@@ -1,0 +1,157 @@
+#include "platform/sweep/sweep.h"
+
+#include <algorithm>
+#include <filesystem>
+#include <fmt/format.h>
+#include <regex>
+#include <unistd.h>
+
+#include "models/common/atomic_file.h"
+#include "platform/cli/progress_line.h"
+#include "platform/run/run.h"
+#include "platform/sweep/resimulation.h"
+#include "platform/sweep/sweep_plan.h"
+#include "platform/sweep/sweep_results.h"
+#include "platform/sweep/sweep_store.h"
+
+namespace surfvp {
+namespace fs = std::filesystem;
+using Json = nlohmann::ordered_json;
+
+namespace {
+
+struct Shard {
+    size_t k = 1, n = 1;
+};
+
+Shard parse_shard(const std::string& text) {
+    if (text.empty()) return {};
+    static const std::regex form(R"(([0-9]{1,6})/([0-9]{1,6}))");
+    std::smatch m;
+    if (!std::regex_match(text, m, form) || std::stoul(m[2]) == 0 || std::stoul(m[1]) == 0 || std::stoul(m[1]) > std::stoul(m[2]))
+        throw ConfigError(fmt::format("--shard '{}': expected K/N with 1 <= K <= N, e.g. 2/8", text));
+    return {std::stoul(m[1]), std::stoul(m[2])};
+}
+
+std::string database_name(const Shard& s) {
+    return s.n == 1 ? "sweep.db" : fmt::format("shard-{}-of-{}.db", s.k, s.n);
+}
+
+std::string clock(double seconds) {
+    const auto s = long(seconds + 0.5);
+    return s >= 3600 ? fmt::format("{}:{:02}:{:02}", s / 3600, s / 60 % 60, s % 60) : fmt::format("{}:{:02}", s / 60, s % 60);
+}
+
+// "[#######.............] 12/40 points, 1 not run, 0:35 gone, 1:10 to go"
+std::string progress_text(size_t done, size_t total, size_t errors, double wall) {
+    constexpr size_t width = 24;
+    const size_t filled = total ? done * width / total : width;
+    const std::string bar = std::string(filled, '#') + std::string(width - filled, '.');
+    const std::string eta = done ? clock(wall / double(done) * double(total - done)) : "?";
+    return fmt::format("[{}] {}/{} points{}, {} gone, {} to go", bar, done, total,
+                       errors ? fmt::format(", {} not run", errors) : "", clock(wall), eta);
+}
+
+Json params_of(const SweepPoint& p) {
+    Json j = Json::object();
+    for (const auto& [key, value] : p.values) j[key] = value;
+    return j;
+}
+
+std::vector<std::string> axes_of(const SweepStore& store) {
+    const std::string text = store.meta("axes");
+    return text.empty() ? std::vector<std::string>{} : Json::parse(text).get<std::vector<std::string>>();
+}
+
+void write_results(const fs::path& dir, const SweepStore& store) {
+    write_sweep_results(dir.string(), store.meta("name"), axes_of(store), store.rows());
+}
+
+}  // namespace
+
+int sweep_command(const SweepOptions& options) {
+    const SweepPlan plan = load_sweep(options.file);
+    const Shard shard = parse_shard(options.shard);
+    const fs::path dir = options.out.empty() ? fs::path("traces") / plan.name : fs::path(options.out);
+    std::error_code ec;
+    fs::create_directories(dir, ec);
+    if (ec) throw EnvironmentError(fmt::format("{}: cannot make the sweep folder: {}", dir.string(), ec.message()));
+    SweepStore store((dir / database_name(shard)).string(), plan.fingerprint);
+    store.set_meta("name", plan.name);
+    Json axes = Json::array();
+    for (const SweepAxis& a : plan.axes) axes.push_back(a.key);
+    store.set_meta("axes", axes.dump());
+
+    std::vector<const SweepPoint*> todo;
+    size_t mine = 0;
+    for (const SweepPoint& p : plan.points)
+        if (p.index % shard.n == shard.k - 1) {
+            ++mine;
+            if (!store.has(p.id)) todo.push_back(&p);
+        }
+    if (!options.quiet && todo.size() < mine)
+        std::fprintf(stderr, "surfvp: %s: %zu of %zu points already done in %s\n", plan.name.c_str(), mine - todo.size(), mine,
+                     (dir / database_name(shard)).c_str());
+
+    // Each point is checked here, in this process (so a child inherits the frames, the
+    // threshold calibration and the FHG sequences it prepares), then simulated in a child.
+    Resimulation pool(options.jobs, dir / fmt::format(".scratch-{}", getpid()));
+    size_t done = 0, errors = 0;
+    ProgressLine progress(options.quiet, plan.name, 0.0, 0.2, 10.0);
+    auto show = [&] { progress.update([&](double wall) { return progress_text(done, todo.size(), errors, wall); }); };
+    auto record = [&](const SweepPoint& p, const Json& result) {
+        SweepRow row{p.index, p.id, params_of(p), 0, "", Json::object(), 0};
+        if (result.contains("error")) {
+            row.exit = result.value("exit", 3);
+            row.error = result["error"].get<std::string>();
+        } else {
+            row.figures = sweep_figures(result);
+            row.exit = result.value("passed", false) ? 0 : 1;
+            row.wall_s = result.value("wall_time_s", 0.0);
+            if (result.contains("failure")) row.error = result["failure"].get<std::string>();
+        }
+        errors += !row.error.empty();
+        store.record(row);
+        ++done;
+        show();
+    };
+    for (const SweepPoint* p : todo) {
+        try {
+            Config config = plan.config(*p);
+            check_scenario(config);
+            pool.submit(std::move(config), [p, &record](const Json& r) { record(*p, r); }, true);
+        } catch (const ConfigError& e) {
+            record(*p, Json{{"error", e.what()}, {"exit", 2}});
+        }
+    }
+    pool.run([&](size_t, size_t) {});
+    if (shard.n == 1) write_results(dir, store);
+    if (!options.quiet)
+        std::fprintf(stderr, "surfvp: %s: %zu points run (%zu not run); %s in %s\n", plan.name.c_str(), done, errors,
+                     shard.n == 1 ? "results.csv, results.json and plots" : "shard database", dir.c_str());
+    return errors ? kExitFailed : kExitOk;
+}
+
+int sweep_merge_command(const std::string& folder) {
+    const fs::path dir(folder);
+    std::vector<fs::path> shards;
+    std::error_code ec;
+    for (const auto& entry : fs::directory_iterator(dir, ec))
+        if (entry.path().filename().string().rfind("shard-", 0) == 0 && entry.path().extension() == ".db")
+            shards.push_back(entry.path());
+    if (ec) throw ConfigError(fmt::format("{}: cannot read the sweep folder: {}", folder, ec.message()));
+    std::sort(shards.begin(), shards.end());
+    if (shards.empty() && !fs::exists(dir / "sweep.db"))
+        throw ConfigError(fmt::format("{}: holds no sweep database (sweep.db or shard-K-of-N.db)", folder));
+    const std::string fingerprint =
+        SweepStore::fingerprint_of((shards.empty() ? dir / "sweep.db" : shards.front()).string());
+    SweepStore store((dir / "sweep.db").string(), fingerprint);
+    size_t added = 0;
+    for (const fs::path& s : shards) added += store.merge(s.string());
+    write_results(dir, store);
+    std::fprintf(stderr, "surfvp: %s: %zu shard databases, %zu new points, %zu in all; results in %s\n",
+                 store.meta("name").c_str(), shards.size(), added, store.rows().size(), folder.c_str());
+    return kExitOk;
+}
+
+}  // namespace surfvp

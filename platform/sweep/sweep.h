@@ -1,0 +1,26 @@
+#pragma once
+// `surfvp sweep` and `surfvp sweep-merge` (docs/sweeps.md): the points of a sweep file run as
+// re-simulations (platform/sweep/resimulation.h, the engine the verdict's analyses use too),
+// `jobs` at a time, each recorded in the folder's SQLite database as it ends; then
+// results.csv, results.json and a plot of frames/s against each axis, with the Pareto front
+// marked.
+#include <string>
+
+namespace surfvp {
+
+struct SweepOptions {
+    std::string file;
+    std::string out;    // default: traces/<sweep name>
+    unsigned jobs = 0;  // 0: one per core
+    std::string shard;  // "K/N": only the points whose index % N == K - 1, into shard-K-of-N.db
+    bool quiet = false;
+};
+
+// Runs the points not yet in the folder's database; returns 0 when every point ran (whatever
+// its verdict), 1 when some could not (their rows say why). Throws ConfigError for bad input.
+int sweep_command(const SweepOptions& options);
+
+// Merges DIR/shard-*.db into DIR/sweep.db and writes the results; returns 0.
+int sweep_merge_command(const std::string& dir);
+
+}  // namespace surfvp

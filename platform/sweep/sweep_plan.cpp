@@ -1,0 +1,208 @@
+#include "platform/sweep/sweep_plan.h"
+
+#include <cmath>
+#include <filesystem>
+#include <fmt/format.h>
+#include <fstream>
+#include <map>
+#include <regex>
+#include <sstream>
+
+#include "platform/scenario/scenario.h"
+
+namespace surfvp {
+namespace fs = std::filesystem;
+namespace {
+
+std::string at(const std::string& path, const YAML::Node& node) { return fmt::format("{}:{}", path, node.Mark().line + 1); }
+
+std::string scalar(const std::string& path, const YAML::Node& node, const std::string& what) {
+    if (!node.IsScalar())
+        throw ConfigError(fmt::format("{}: {}: expected a single value, found a {}", at(path, node), what,
+                                      node.IsMap() ? "map" : node.IsSequence() ? "list" : "null"));
+    return node.Scalar();
+}
+
+std::pair<double, std::string> quantity(const std::string& text, const std::string& where) {
+    const auto q = split_quantity(text);
+    if (!q) throw ConfigError(fmt::format("{}: '{}' is not a number with an optional unit", where, text));
+    return *q;
+}
+
+// Paths in a sweep file are relative to its own folder, as in a scenario.
+std::string relative_to(const std::string& file, const std::string& key, const std::string& value) {
+    const ParamSpec* spec = find_parameter(key);
+    if (spec && spec->kind == ParamKind::text && !value.empty() && fs::path(value).is_relative())
+        return (fs::path(file).parent_path() / value).lexically_normal().string();
+    return value;
+}
+
+SweepAxis parse_axis(const std::string& path, const YAML::Node& key, const YAML::Node& body) {
+    SweepAxis axis{scalar(path, key, "axis"), {}, at(path, key)};
+    if (!find_parameter(axis.key)) throw ConfigError(fmt::format("{}: axis {}: no such parameter (surfvp params lists them)",
+                                                                 axis.origin, axis.key));
+    if (body.IsSequence()) {
+        for (const auto& v : body) axis.values.push_back(relative_to(path, axis.key, scalar(path, v, axis.key)));
+    } else if (body.IsMap()) {
+        std::map<std::string, std::string> range;
+        for (const auto& item : body) {
+            const std::string k = scalar(path, item.first, axis.key);
+            if (k != "from" && k != "to" && k != "step")
+                throw ConfigError(fmt::format("{}: axis {}: '{}' is not from, to or step", at(path, item.first), axis.key, k));
+            range[k] = scalar(path, item.second, axis.key + "." + k);
+        }
+        for (const char* k : {"from", "to", "step"})
+            if (!range.count(k))
+                throw ConfigError(fmt::format("{}: axis {}: a range needs from, to and step ('{}' is missing)",
+                                              at(path, body), axis.key, k));
+        axis.values = expand_range(range["from"], range["to"], range["step"], at(path, body) + ": axis " + axis.key);
+    } else {
+        axis.values.push_back(relative_to(path, axis.key, scalar(path, body, axis.key)));
+    }
+    if (axis.values.empty()) throw ConfigError(fmt::format("{}: axis {} has no values", axis.origin, axis.key));
+    return axis;
+}
+
+// Every value on its parameter, at its line, before anything runs.
+void check_values(const SweepPlan& plan, const Config& base) {
+    for (const SweepAxis& axis : plan.axes)
+        for (const std::string& v : axis.values) {
+            Config c = base;
+            c.set(axis.key, v, axis.origin);
+        }
+}
+
+std::vector<SweepPoint> combine(const std::vector<SweepAxis>& axes, bool zip, const std::string& where) {
+    std::vector<SweepPoint> points;
+    if (axes.empty()) return {SweepPoint{0, {}, "(base)"}};
+    size_t n = 1;
+    if (zip) {
+        n = axes[0].values.size();
+        for (const SweepAxis& a : axes)
+            if (a.values.size() != n)
+                throw ConfigError(fmt::format("{}: combine: zip needs axes of one length: {} has {} values, {} has {}", where,
+                                              axes[0].key, n, a.key, a.values.size()));
+    } else {
+        for (const SweepAxis& a : axes) n *= a.values.size();
+    }
+    for (size_t i = 0; i < n; ++i) {
+        SweepPoint p{i, {}, ""};
+        size_t rest = i;
+        // Cartesian: the last axis varies fastest.
+        std::vector<size_t> pick(axes.size());
+        for (size_t a = axes.size(); a-- > 0;) {
+            pick[a] = zip ? i : rest % axes[a].values.size();
+            if (!zip) rest /= axes[a].values.size();
+        }
+        for (size_t a = 0; a < axes.size(); ++a) {
+            p.values.emplace_back(axes[a].key, axes[a].values[pick[a]]);
+            p.id += fmt::format("{}{}={}", a ? ", " : "", axes[a].key, axes[a].values[pick[a]]);
+        }
+        points.push_back(std::move(p));
+    }
+    return points;
+}
+
+}  // namespace
+
+std::optional<std::pair<double, std::string>> split_quantity(const std::string& text) {
+    static const std::regex form(R"(\s*([-+]?[0-9]*\.?[0-9]+(?:[eE][-+]?[0-9]+)?)\s*([A-Za-z]*)\s*)");
+    std::smatch m;
+    if (!std::regex_match(text, m, form)) return std::nullopt;
+    return std::make_pair(std::stod(m[1]), m[2].str());
+}
+
+std::vector<std::string> expand_range(const std::string& from, const std::string& to, const std::string& step,
+                                      const std::string& where, size_t limit) {
+    const auto [a, unit] = quantity(from, where);
+    const auto [b, to_unit] = quantity(to, where);
+    const auto [d, step_unit] = quantity(step, where);
+    if (to_unit != unit || (!step_unit.empty() && step_unit != unit))
+        throw ConfigError(fmt::format("{}: from, to and step must share one unit ('{}', '{}', '{}')", where, from, to, step));
+    if (!(d > 0)) throw ConfigError(fmt::format("{}: step {} must be above zero", where, step));
+    if (b < a) throw ConfigError(fmt::format("{}: to ({}) is below from ({})", where, to, from));
+    // A step that lands on `to` within rounding includes it.
+    const double steps = std::floor((b - a) / d * (1 + 1e-12) + 1e-9);
+    if (steps + 1 > double(limit))
+        throw ConfigError(fmt::format("{}: {} values, more than {} in one axis", where, steps + 1, limit));
+    std::vector<std::string> out;
+    for (size_t i = 0; i <= size_t(steps); ++i) {
+        const double v = a + double(i) * d;
+        out.push_back(unit.empty() ? fmt::format("{:.12g}", v) : fmt::format("{:.12g} {}", v, unit));
+    }
+    return out;
+}
+
+Config SweepPlan::config(const SweepPoint& point) const {
+    std::vector<std::string> all = sets;
+    for (const auto& [key, value] : point.values) all.push_back(key + "=" + value);
+    return load_scenario(scenario, all);
+}
+
+SweepPlan load_sweep(const std::string& path) {
+    const YAML::Node root = load_yaml_file(path, "sweep");
+    if (!root.IsMap())
+        throw ConfigError(fmt::format("{}: a sweep is a map (name:, scenario:, set:, axes:, combine:)", path));
+    SweepPlan plan;
+    plan.file = path;
+    plan.name = fs::path(path).stem().string();
+    std::map<std::string, std::string> seen;
+    YAML::Node axes;
+    std::string combine_where = path;
+    for (const auto& item : root) {
+        const std::string key = scalar(path, item.first, "key");
+        if (const auto [first, fresh] = seen.emplace(key, at(path, item.first)); !fresh)
+            throw ConfigError(fmt::format("{}: '{}' appears twice (first at {})", at(path, item.first), key, first->second));
+        if (key == "name") plan.name = scalar(path, item.second, key);
+        else if (key == "description") plan.description = scalar(path, item.second, key);
+        else if (key == "scenario") {
+            // A path is relative to the sweep file's folder; a bare name is a shipped scenario.
+            const std::string s = scalar(path, item.second, key);
+            const bool a_path = s.find('/') != std::string::npos || fs::path(s).extension() == ".yaml";
+            plan.scenario = a_path && fs::path(s).is_relative() ? (fs::path(path).parent_path() / s).lexically_normal().string()
+                                                               : resolve_scenario(s);
+        } else if (key == "set") {
+            if (!item.second.IsMap()) throw ConfigError(fmt::format("{}: set: a map of KEY: VALUE", at(path, item.second)));
+            for (const auto& s : item.second) {
+                const std::string k = scalar(path, s.first, "set");
+                plan.sets.push_back(k + "=" + relative_to(path, k, scalar(path, s.second, k)));
+            }
+        } else if (key == "axes") {
+            if (!item.second.IsMap()) throw ConfigError(fmt::format("{}: axes: a map of KEY: values", at(path, item.second)));
+            axes = item.second;
+        } else if (key == "combine") {
+            const std::string c = scalar(path, item.second, key);
+            if (c != "cartesian" && c != "zip")
+                throw ConfigError(fmt::format("{}: combine: '{}' is not cartesian or zip", at(path, item.second), c));
+            plan.zip = c == "zip";
+            combine_where = at(path, item.second);
+        } else {
+            throw ConfigError(fmt::format("{}: '{}' is not a sweep key (name, description, scenario, set, axes, combine)",
+                                          at(path, item.first), key));
+        }
+    }
+    if (plan.scenario.empty()) throw ConfigError(fmt::format("{}: a sweep names its base scenario (scenario: NAME_OR_PATH)", path));
+    std::map<std::string, std::string> axis_at;
+    for (const auto& item : axes) {
+        SweepAxis axis = parse_axis(path, item.first, item.second);
+        if (const auto [first, fresh] = axis_at.emplace(axis.key, axis.origin); !fresh)
+            throw ConfigError(fmt::format("{}: axis {} is given twice (first at {})", axis.origin, axis.key, first->second));
+        plan.axes.push_back(std::move(axis));
+    }
+    const Config base = load_scenario(plan.scenario, plan.sets);
+    for (const SweepAxis& axis : plan.axes)
+        for (const std::string& s : plan.sets)
+            if (s.rfind(axis.key + "=", 0) == 0)
+                throw ConfigError(fmt::format("{}: axis {} is also in set:", axis.origin, axis.key));
+    check_values(plan, base);
+    plan.points = combine(plan.axes, plan.zip, combine_where);
+    // The points' results rest on the base scenario as it is now and on the fixed sets.
+    std::ifstream in(plan.scenario, std::ios::binary);
+    std::stringstream text;
+    text << in.rdbuf();
+    plan.fingerprint = fmt::format("surfvp {}\nscenario {}\n{}\nset {}\n", SURFVP_VERSION, plan.scenario, text.str(),
+                                   fmt::join(plan.sets, "\nset "));
+    return plan;
+}
+
+}  // namespace surfvp

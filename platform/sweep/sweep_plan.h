@@ -1,0 +1,62 @@
+#pragma once
+// A sweep file (docs/sweeps.md): a base scenario, parameters fixed for every point, and axes
+// whose values are combined into points (cartesian, or zipped in step).
+//
+//   name: fhg_clock
+//   scenario: budget_1024x768          # a shipped name or a path (relative to this file)
+//   set: {surf.frames: 5}              # every point
+//   axes:
+//     fhg.clock: {from: 50 MHz, to: 150 MHz, step: 25 MHz}
+//     fhg.read_buses: [2, 4, 6]
+//   combine: cartesian                 # or zip
+//
+// Every value is checked against its parameter when the file is loaded, so a bad axis is
+// reported at its line before any point runs.
+#include <cstddef>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "platform/scenario/config.h"
+
+namespace surfvp {
+
+struct SweepAxis {
+    std::string key;
+    std::vector<std::string> values;  // as a parameter takes them ("75 MHz", "4")
+    std::string origin;               // FILE:LINE
+};
+
+struct SweepPoint {
+    size_t index = 0;                                       // in the plan's order, from 0
+    std::vector<std::pair<std::string, std::string>> values;  // one per axis
+    std::string id;                                          // "fhg.clock=75 MHz, fhg.read_buses=4"
+};
+
+struct SweepPlan {
+    std::string file, name, description;
+    std::string scenario;               // the base scenario's file
+    std::vector<std::string> sets;      // KEY=VALUE for every point
+    std::vector<SweepAxis> axes;
+    bool zip = false;
+    std::vector<SweepPoint> points;
+    std::string fingerprint;            // what the points' results rest on besides their values
+
+    // The point's configuration: the base scenario with the fixed sets and its values.
+    Config config(const SweepPoint& point) const;
+};
+
+// Throws ConfigError naming the file and line.
+SweepPlan load_sweep(const std::string& path);
+
+// A number and its unit: "25 MHz" -> {25, "MHz"}, "4" -> {4, ""}; nothing for a word.
+std::optional<std::pair<double, std::string>> split_quantity(const std::string& text);
+
+// "50 MHz", "150 MHz", "25 MHz" -> 50 MHz, 75 MHz, ..., 150 MHz (the unit of `from`; `to` is
+// included when the steps land on it). Throws ConfigError (with `where`) for a step that is
+// not positive, units that differ, or more than `limit` values.
+std::vector<std::string> expand_range(const std::string& from, const std::string& to, const std::string& step,
+                                      const std::string& where, size_t limit = 100000);
+
+}  // namespace surfvp

@@ -1,0 +1,32 @@
+#pragma once
+// What a sweep gives: each point's figures taken from its report, the Pareto front, and the
+// results as results.csv, results.json and SVG plots (frames/s against each axis).
+#include <string>
+#include <vector>
+#include <nlohmann/json.hpp>
+
+#include "platform/sweep/sweep_store.h"
+
+namespace surfvp {
+
+// A point's row figures from its report.json: frames/s, budget, latency, the bottleneck and
+// its cause, each resource's busy share, keypoints per frame, simulated time.
+nlohmann::ordered_json sweep_figures(const nlohmann::ordered_json& report);
+
+// The objectives the front is taken on: frames/s (higher is better), then every other figure
+// in `objectives` the rows have (lower is better).
+struct Objective {
+    std::string figure;
+    bool higher_is_better;
+};
+std::vector<Objective> pareto_objectives(const std::vector<SweepRow>& rows);
+// Per row: whether no other row that ran is at least as good on every objective and better
+// on one.
+std::vector<bool> pareto_front(const std::vector<SweepRow>& rows, const std::vector<Objective>& objectives);
+
+// results.csv, results.json and plot_<axis>.svg (one per axis) into `dir`; `axes` in the
+// sweep's order. Returns the files written.
+std::vector<std::string> write_sweep_results(const std::string& dir, const std::string& name,
+                                             const std::vector<std::string>& axes, const std::vector<SweepRow>& rows);
+
+}  // namespace surfvp

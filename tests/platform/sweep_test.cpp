@@ -1,0 +1,149 @@
+// Sweeps (docs/sweeps.md): the file's axes become points, each point runs as a re-simulation
+// and is recorded in SQLite as it ends; a sweep run again resumes, shards merge into the
+// results of one whole run, a point that cannot run is recorded and the others go on.
+#include <filesystem>
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "cli.h"
+#include "platform/scenario/config.h"
+#include "platform/sweep/sweep_plan.h"
+#include "platform/sweep/sweep_results.h"
+
+namespace surfvp::test {
+namespace {
+namespace fs = std::filesystem;
+using Json = nlohmann::json;
+
+// The budget scenario, small and short: 3 frames of 256x192.
+std::string small_sweep(const std::string& dir, const std::string& axes, const std::string& extra = "") {
+    return write_file(dir, "sweep.yaml",
+                      "name: small\n"
+                      "scenario: " + kBudget + "\n"
+                      "set:\n"
+                      "  surf.frames: 3\n  surf.width: 256\n  surf.height: 192\n  surf.target_keypoints: 20\n" + extra +
+                      "axes:\n" + axes);
+}
+
+const std::string kTwoByTwo = "  fhg.clock: {from: 25 MHz, to: 50 MHz, step: 25 MHz}\n  fhg.read_buses: [2, 4]\n";
+
+TEST(SweepPlan, RangesWithUnitsAndCartesianOrZippedPoints) {
+    EXPECT_EQ(expand_range("75 MHz", "150 MHz", "25 MHz", "here"),
+              (std::vector<std::string>{"75 MHz", "100 MHz", "125 MHz", "150 MHz"}));
+    EXPECT_EQ(expand_range("0.1", "0.3", "0.1", "here"), (std::vector<std::string>{"0.1", "0.2", "0.3"}));
+    EXPECT_EQ(expand_range("1 ms", "2.5 ms", "1 ms", "here"), (std::vector<std::string>{"1 ms", "2 ms"}));
+    const std::string dir = fresh_dir("plan");
+    const SweepPlan plan = load_sweep(small_sweep(dir, kTwoByTwo + "  fhg.fifo_lines: [56, 60, 64]\n"));
+    ASSERT_EQ(plan.points.size(), 12u);
+    EXPECT_EQ(plan.points[0].id, "fhg.clock=25 MHz, fhg.read_buses=2, fhg.fifo_lines=56");
+    EXPECT_EQ(plan.points[11].id, "fhg.clock=50 MHz, fhg.read_buses=4, fhg.fifo_lines=64");
+    EXPECT_EQ(plan.config(plan.points[5]).value("fhg.read_buses"), "4");
+    EXPECT_EQ(plan.config(plan.points[5]).value("surf.frames"), "3");
+    const SweepPlan zipped = load_sweep(small_sweep(dir, kTwoByTwo, "combine: zip\n"));
+    ASSERT_EQ(zipped.points.size(), 2u);
+    EXPECT_EQ(zipped.points[1].id, "fhg.clock=50 MHz, fhg.read_buses=4");
+}
+
+TEST(SweepPlan, BadAxesAreNamedAtTheirLine) {
+    const std::string dir = fresh_dir("bad_plan");
+    const std::vector<std::pair<std::string, std::string>> cases = {
+        {"  fhg.speed: [1, 2]\n", "sweep.yaml:9: axis fhg.speed: no such parameter"},
+        {"  fhg.read_buses: [2, 0]\n", "sweep.yaml:9: fhg.read_buses"},
+        {"  fhg.clock: {from: 50 MHz, to: 25 MHz, step: 5 MHz}\n", "to (25 MHz) is below from (50 MHz)"},
+        {"  fhg.clock: {from: 50 MHz, to: 60 MHz, step: 0 MHz}\n", "step 0 MHz must be above zero"},
+        {"  fhg.clock: {from: 50 MHz, to: 60 GHz, step: 5 MHz}\n", "must share one unit"},
+        {"  fhg.clock: {from: 50 MHz, to: 60 MHz}\n", "'step' is missing"},
+        {"  surf.frames: [2, 4]\n", "axis surf.frames is also in set:"},
+    };
+    for (const auto& [axes, message] : cases) {
+        try {
+            load_sweep(small_sweep(dir, axes));
+            ADD_FAILURE() << "accepted: " << axes;
+        } catch (const ConfigError& e) {
+            EXPECT_NE(std::string(e.what()).find(message), std::string::npos) << e.what();
+        }
+    }
+    try {
+        load_sweep(small_sweep(dir, "  fhg.clock: [25 MHz, 50 MHz]\n  fhg.read_buses: [2, 4, 6]\n", "combine: zip\n"));
+        ADD_FAILURE() << "zip of unequal axes accepted";
+    } catch (const ConfigError& e) {
+        EXPECT_NE(std::string(e.what()).find("zip needs axes of one length"), std::string::npos) << e.what();
+    }
+}
+
+TEST(SweepResults, TheParetoFrontIsThePointsNoOtherBeats) {
+    auto row = [](size_t i, double fps, double bram) {
+        return SweepRow{i, std::to_string(i), Json::object(), 0, "", {{"fps", fps}, {"bram36", bram}}, 0};
+    };
+    std::vector<SweepRow> rows = {row(0, 10, 60), row(1, 12, 60), row(2, 8, 40), row(3, 8, 50), row(4, 12, 60)};
+    rows.push_back(SweepRow{5, "5", Json::object(), 3, "crashed", Json::object(), 0});
+    const auto objectives = pareto_objectives(rows);
+    ASSERT_EQ(objectives.size(), 2u);
+    EXPECT_EQ(pareto_front(rows, objectives), (std::vector<bool>{false, true, true, false, true, false}));
+}
+
+Json results(const std::string& dir) { return Json::parse(slurp(dir + "/results.json")); }
+
+TEST(Sweep, PointsRunInParallelAndResultsComeOutAsCsvJsonAndPlots) {
+    const std::string dir = fresh_dir("sweep");
+    const auto r = surfvp("sweep " + small_sweep(dir, kTwoByTwo) + " --jobs 2 --out " + dir + "/out");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const Json j = results(dir + "/out");
+    ASSERT_EQ(j["points"].size(), 4u);
+    for (const auto& p : j["points"]) {
+        EXPECT_EQ(p["status"], "passed") << p;
+        EXPECT_GT(p["figures"]["fps"].get<double>(), 0.0) << p;
+        EXPECT_GT(p["figures"]["keypoints_per_frame"].get<double>(), 0.0) << p;
+        EXPECT_FALSE(p["figures"]["bottleneck"].get<std::string>().empty()) << p;
+    }
+    // At 25 MHz the FHG is the bottleneck: twice its clock, more frames/s.
+    EXPECT_EQ(j["points"][0]["figures"]["bottleneck"], "fhg");
+    EXPECT_GT(j["points"][2]["figures"]["fps"].get<double>(), 1.5 * j["points"][0]["figures"]["fps"].get<double>());
+    const std::string csv = slurp(dir + "/out/results.csv");
+    EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 5);
+    EXPECT_EQ(csv.rfind("point,fhg.clock,fhg.read_buses,status,exit,fps,", 0), 0u) << csv.substr(0, 200);
+    for (const char* plot : {"plot_fhg.clock.svg", "plot_fhg.read_buses.svg"})
+        EXPECT_NE(slurp(dir + "/out/" + plot).find("<circle"), std::string::npos) << plot;
+    // The same points again: nothing is rerun.
+    const auto again = surfvp("sweep " + dir + "/sweep.yaml --out " + dir + "/out");
+    EXPECT_EQ(again.exit_code, 0) << again.err;
+    EXPECT_NE(again.err.find("4 of 4 points already done"), std::string::npos) << again.err;
+    EXPECT_EQ(results(dir + "/out")["points"], j["points"]);
+}
+
+TEST(Sweep, ShardsMergeIntoTheResultsOfOneRun) {
+    const std::string dir = fresh_dir("shards");
+    const std::string file = small_sweep(dir, kTwoByTwo);
+    ASSERT_EQ(surfvp("sweep " + file + " --quiet --out " + dir + "/whole").exit_code, 0);
+    for (const char* shard : {"1/3", "2/3", "3/3"})
+        ASSERT_EQ(surfvp("sweep " + file + " --quiet --shard " + shard + " --out " + dir + "/sharded").exit_code, 0) << shard;
+    EXPECT_FALSE(fs::exists(dir + "/sharded/results.json"));
+    const auto merged = surfvp("sweep-merge " + dir + "/sharded");
+    ASSERT_EQ(merged.exit_code, 0) << merged.err;
+    EXPECT_NE(merged.err.find("3 shard databases, 4 new points"), std::string::npos) << merged.err;
+    Json whole = results(dir + "/whole"), sharded = results(dir + "/sharded");
+    for (Json* j : {&whole, &sharded})
+        for (auto& p : (*j)["points"]) p.erase("wall_s");
+    EXPECT_EQ(whole, sharded);
+}
+
+TEST(Sweep, APointThatCannotRunIsRecordedAndTheOthersGoOn) {
+    const std::string dir = fresh_dir("failing");
+    // 8 MiB holds two buffer sets of 256x192 frames, 1 MiB does not.
+    const auto r = surfvp("sweep " + small_sweep(dir, "  memory.size: [1 MiB, 8 MiB]\n") + " --quiet --out " + dir + "/out");
+    EXPECT_EQ(r.exit_code, 1) << r.err;
+    const Json j = results(dir + "/out");
+    ASSERT_EQ(j["points"].size(), 2u);
+    EXPECT_EQ(j["points"][0]["status"], "error");
+    EXPECT_EQ(j["points"][0]["exit"], 2);
+    EXPECT_NE(j["points"][0]["error"].get<std::string>().find("memory.size"), std::string::npos) << j["points"][0];
+    EXPECT_EQ(j["points"][1]["status"], "passed") << j["points"][1];
+    // Another sweep in the same folder would mix two sweeps' points: refused.
+    const std::string other = write_file(dir, "other.yaml", "scenario: smoke\naxes:\n  plb2.width: [32 bit, 64 bit]\n");
+    const auto mixed = surfvp("sweep " + other + " --out " + dir + "/out");
+    EXPECT_EQ(mixed.exit_code, 2);
+    EXPECT_NE(mixed.err.find("holds the points of another sweep"), std::string::npos) << mixed.err;
+}
+
+}  // namespace
+}  // namespace surfvp::test
