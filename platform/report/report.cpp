@@ -376,6 +376,26 @@ std::string faults_section(const nlohmann::ordered_json& f) {
     return md;
 }
 
+// What the configuration needs of the FPGA, per block, against the device.
+std::string resources_section(const nlohmann::ordered_json& f) {
+    const auto& cap = f["capacity"];
+    const auto& total = f["total"];
+    std::string md = fmt::format("\n## FPGA resources ({})\n\n", f["device"].get<std::string>());
+    md += f["fits"].get<bool>() ? std::string("The configuration fits the device.\n\n")
+                                : fmt::format("**The configuration does not fit the device**: {}.\n\n", fmt::join(f["over"].get<std::vector<std::string>>(), "; "));
+    md += "| block | RAMB36 | DSP48E | LUT | FF | basis |\n|---|---:|---:|---:|---:|---|\n";
+    for (const auto& [name, b] : f["blocks"].items())
+        md += fmt::format("| {} | {:g} | {:g} | {:g} | {:g} | {} |\n", name, b["ramb36"].get<double>(), b["dsp48e"].get<double>(),
+                          b["luts"].get<double>(), b["ffs"].get<double>(), b["basis"].get<std::string>());
+    auto of = [&](const char* k) {
+        return fmt::format("{:g} of {:g} ({:.0f} %)", total[k].get<double>(), cap[k].get<double>(),
+                           100 * total[k].get<double>() / cap[k].get<double>());
+    };
+    md += fmt::format("| **total** | {} | {} | {} | {} | estimates: docs/resources.md |\n", of("ramb36"), of("dsp48e"), of("luts"),
+                      of("ffs"));
+    return md;
+}
+
 std::string report_markdown(const nlohmann::ordered_json& r) {
     std::string md = fmt::format("# surfvp run: {}\n\n{}\n\n", r["scenario"]["name"].get<std::string>(),
                                  r["scenario"]["description"].get<std::string>());
@@ -391,6 +411,7 @@ std::string report_markdown(const nlohmann::ordered_json& r) {
     if (r.contains("throughput_fps")) md += frames_section(r);
     md += accelerators_section(r);
     if (r.contains("cpu")) md += cpu_section(r);
+    if (r.contains("fpga_resources")) md += resources_section(r["fpga_resources"]);
     const double seconds = r["sim_time_s"].get<double>();
     const double frames = std::max(1.0, r.value("frames_done", 1.0));
     md += fmt::format("\n## Buses and DDR (in total over {} and per frame)\n", ms(seconds));

@@ -1,5 +1,7 @@
 #include "platform/run/run.h"
 
+#include "platform/cost/fpga_resources.h"
+
 #include <cctype>
 #include <chrono>
 #include <cstdio>
@@ -111,6 +113,7 @@ nlohmann::ordered_json build_report(const Config& config, Soc& soc, const Outcom
     for (size_t k = 0; k < soc.fhgs().size(); ++k)
         (fhg.is_array() ? fhg[k] : fhg)["schedules"] = schedule_figures(soc.fhgs()[k]->params());
     if (summary.contains("frames_done") && summary["frames_done"].get<size_t>() > 1) add_limits(r, config);
+    r["fpga_resources"] = resources_json(fpga_resources(config));
     r["workload"] = soc.workload().report();
     r["outputs"] = outputs;
     return r;
@@ -189,6 +192,10 @@ std::string with_origins(const Config& config, const std::string& message) {
 
 void print_warnings(const Config& config) {
     for (const std::string& w : scenario_warnings(config)) std::fprintf(stderr, "surfvp: warning: %s\n", w.c_str());
+    const FpgaResources fpga = fpga_resources(config);
+    if (!fpga.fits())
+        std::fprintf(stderr, "surfvp: warning: the configuration does not fit the %s: %s (docs/resources.md)\n",
+                     fpga.device.c_str(), fmt::format("{}", fmt::join(fpga.over, "; ")).c_str());
 }
 
 }  // namespace

@@ -109,6 +109,32 @@ void add_surf(std::vector<ParamSpec>& t) {
     t.push_back({"verdict.jobs", ParamKind::count, "0", 0, 256, {},
                  "Re-simulations run at once (0: one per core); no figure depends on it",
                  "[-] simulation setting"});
+    // The FPGA's capacity and what the resource estimate cannot derive (platform/cost,
+    // docs/resources.md). None enters the simulation.
+    t.push_back({"fpga.device", ParamKind::text, "XC5VFX70T", 0, 0, {}, "The FPGA the resources are counted against (its name)",
+                 "[S] paper §III: XC5VFX70"});
+    t.push_back({"fpga.ramb36", ParamKind::count, "148", 1, 100000, {}, "Block RAMs (RAMB36) the device has",
+                 "[A] XC5VFX70T: 148 (recalled from DS100; PLATFORM_FACTS)"});
+    t.push_back({"fpga.dsp48e", ParamKind::count, "128", 0, 100000, {}, "DSP48E slices the device has",
+                 "[A] XC5VFX70T: 128 (recalled from DS100; PLATFORM_FACTS)"});
+    t.push_back({"fpga.slices", ParamKind::count, "11200", 1, 10000000, {}, "Logic slices the device has (4 LUT6 and 4 flip-flops each)",
+                 "[A] XC5VFX70T: 11,200 (recalled from DS100; PLATFORM_FACTS); 4 LUTs and 4 FFs a slice (UG190, recalled)"});
+    t.push_back({"fpga.fpu", ParamKind::choice, "double", 0, 0, {"double", "single"},
+                 "The APU FPU's precision, for its resources (its latencies are the cpu.* parameters)",
+                 "[A] PLATFORM_FACTS: double (the paper says only floating-point co-processor); DS693: 13 DSP48E and 4950 "
+                 "LUT-FF pairs double, 3 and 2620 single"});
+    t.push_back({"fpga.ip_interface_luts", ParamKind::count, "700", 0, 1000000, {},
+                 "LUTs of one IP block's PLB interfaces (a slave for its registers, a master for its DMA)",
+                 "[A] order of magnitude of Xilinx's PLBv46 slave and master-burst IPIF (not retrieved)"});
+    t.push_back({"fpga.ip_interface_ffs", ParamKind::count, "900", 0, 1000000, {},
+                 "Flip-flops of one IP block's PLB interfaces", "[A] as fpga.ip_interface_luts"});
+    t.push_back({"fpga.infrastructure_luts", ParamKind::count, "6000", 0, 10000000, {},
+                 "LUTs of the rest of the system: MPMC, two PLBs, INTC, UART, debug",
+                 "[A] an EDK system of the time around an MPMC (not retrieved)"});
+    t.push_back({"fpga.infrastructure_ffs", ParamKind::count, "7000", 0, 10000000, {},
+                 "Flip-flops of the rest of the system", "[A] as fpga.infrastructure_luts"});
+    t.push_back({"fpga.infrastructure_ramb36", ParamKind::count, "6", 0, 100000, {},
+                 "Block RAMs of the rest of the system (the MPMC's port FIFOs)", "[A] as fpga.infrastructure_luts"});
     t.push_back({"eval.homography", ParamKind::text, "", 0, 0, {},
                  "Homography from frame 0 to frame 1 (Oxford or OpenCV file): report repeatability and precision", "[-] evaluation"});
     t.push_back({"eval.poses", ParamKind::text, "", 0, 0, {},
@@ -131,6 +157,15 @@ constexpr BandEntry kBands[] = {
     {"surf.threshold", "400", "600", "used only when surf.target_keypoints is 0"},
     {"surf.haar", "exact", "rounded", "exact sub-pixel wavelets like the float reference"},
     {"surf.fifo_irq_level", "64", "512", "the driver drains the maxima FIFO earlier or later"},
+    {"fpga.ramb36", "148", "148", "the FX70T's count, recalled, not retrieved"},
+    {"fpga.dsp48e", "128", "128", "the FX70T's count, recalled, not retrieved"},
+    {"fpga.slices", "11200", "11200", "the FX70T's count, recalled, not retrieved"},
+    {"fpga.fpu", "single", "double", "a single-precision FPU if the software's floats allow it"},
+    {"fpga.ip_interface_luts", "400", "1200", "lighter or heavier IPIF options"},
+    {"fpga.ip_interface_ffs", "500", "1500", "lighter or heavier IPIF options"},
+    {"fpga.infrastructure_luts", "4000", "9000", "MPMC ports and options"},
+    {"fpga.infrastructure_ffs", "5000", "10000", "MPMC ports and options"},
+    {"fpga.infrastructure_ramb36", "4", "12", "MPMC port FIFO depths"},
 };
 
 void append(std::vector<ParamSpec>& t, const std::vector<ParamSpec>& block) { t.insert(t.end(), block.begin(), block.end()); }

@@ -143,6 +143,13 @@ Json sweep_figures(const Json& r) {
     if (r.contains("time_per_frame"))
         for (const auto& [resource, t] : r["time_per_frame"].items())
             f["busy." + resource] = t.value("busy_share", 0.0);
+    if (r.contains("fpga_resources")) {
+        const Json& fpga = r["fpga_resources"];
+        f["bram36"] = fpga["total"]["ramb36"];
+        f["dsp48e"] = fpga["total"]["dsp48e"];
+        f["luts"] = fpga["total"]["luts"];
+        f["fits"] = fpga["fits"];
+    }
     f["keypoints_per_frame"] = r.value("keypoints_per_frame", 0.0);
     f["sim_time_s"] = r.value("sim_time_s", 0.0);
     f["passed"] = r.value("passed", false);
@@ -159,6 +166,7 @@ std::vector<Objective> pareto_objectives(const std::vector<SweepRow>& rows) {
 }
 
 std::vector<bool> pareto_front(const std::vector<SweepRow>& rows, const std::vector<Objective>& objectives) {
+    constexpr double kTie = 1e-3;
     auto value = [&](const SweepRow& r, const Objective& o) {
         const double v = r.figures.value(o.figure, 0.0);
         return o.higher_is_better ? v : -v;
@@ -169,10 +177,13 @@ std::vector<bool> pareto_front(const std::vector<SweepRow>& rows, const std::vec
         bool beaten = false;
         for (size_t j = 0; j < rows.size() && !beaten; ++j) {
             if (j == i || !rows[j].error.empty()) continue;
+            // Figures within kTie of each other count as equal: a point 0.01 % faster at two
+            // more block RAMs is not a trade-off a review weighs.
             bool all = true, one = false;
             for (const Objective& o : objectives) {
-                all = all && value(rows[j], o) >= value(rows[i], o);
-                one = one || value(rows[j], o) > value(rows[i], o);
+                const double a = value(rows[j], o), b = value(rows[i], o), tie = kTie * std::max(std::abs(a), std::abs(b));
+                all = all && a >= b - tie;
+                one = one || a > b + tie;
             }
             beaten = all && one;
         }

@@ -21,7 +21,7 @@ struct Objective {
 };
 std::vector<Objective> pareto_objectives(const std::vector<SweepRow>& rows);
 // Per row: whether no other row that ran is at least as good on every objective and better
-// on one.
+// on one (figures within 0.1 % of each other count as equal).
 std::vector<bool> pareto_front(const std::vector<SweepRow>& rows, const std::vector<Objective>& objectives);
 
 // results.csv, results.json and plot_<axis>.svg (one per axis) into `dir`; `axes` in the

@@ -151,6 +151,9 @@ private:
 // Whether a banded parameter can change anything in this scenario.
 bool takes_effect(const ParamSpec& p, const Config& c) {
     if (p.key.rfind("smoke.", 0) == 0 || p.key.rfind("dma.", 0) == 0) return false;  // the test DMA: not in a SURF run
+    // The cost models' parameters (FPGA resources, power) move no simulated figure: their
+    // spread is the cost figures', not the frame rate's.
+    if (p.key.rfind("fpga.", 0) == 0 || p.key.rfind("power.", 0) == 0) return false;
     if (p.key == "surf.threshold") return c.count("surf.target_keypoints") == 0;
     if (p.key == "plb1.arbitration") return c.choice("cpu.memory_path") == "plb1";  // PLB1's only master otherwise
     return true;

@@ -1,0 +1,40 @@
+#pragma once
+// The FPGA resources a configuration needs, derived from its modelled structure (docs/resources.md):
+// block RAMs (RAMB36) for the FHG's line FIFO, maxima FIFO, sequence memory and determinant row
+// buffers and the IIG's line buffers; DSP48E slices for HessianCalc's multipliers at the
+// configured widths and the APU FPU; LUTs and flip-flops per block from stated per-bit
+// assumptions; against the device's capacity (fpga.*), so a configuration that does not fit
+// says so. Plain C++ on the configuration.
+#include <string>
+#include <vector>
+#include <nlohmann/json.hpp>
+
+#include "platform/scenario/config.h"
+
+namespace surfvp {
+
+struct BlockResources {
+    std::string block;     // "fhg (x2)": a pair's blocks count once per pair
+    double ramb36 = 0, dsp48e = 0, luts = 0, ffs = 0;
+    std::string basis;     // how the figures were reached, in words
+};
+
+struct FpgaResources {
+    std::string device;
+    double ramb36_capacity = 0, dsp48e_capacity = 0, lut_capacity = 0, ff_capacity = 0;
+    std::vector<BlockResources> blocks;
+    BlockResources total;
+    std::vector<std::string> over;  // the resources the configuration needs more of than the device has
+    bool fits() const { return over.empty(); }
+};
+
+// RAMB36 for `words` words of `bits` bits in the RAMB36's aspect ratios (32Kx1 .. 1Kx36, and
+// 512x72 simple dual-port): columns of the widest mode that holds the width, times rows.
+unsigned ramb36_for(unsigned long words, unsigned bits);
+// DSP48E for a signed `a` x `b`-bit product: 25x18 per slice, tiled.
+unsigned dsp48e_for(unsigned a, unsigned b);
+
+FpgaResources fpga_resources(const Config& config);
+nlohmann::ordered_json resources_json(const FpgaResources& resources);
+
+}  // namespace surfvp

@@ -1,0 +1,63 @@
+// The FPGA resource estimate (docs/resources.md): block RAMs in the RAMB36's aspect ratios,
+// DSP48E tiles for the multipliers, the totals of a configuration against the device.
+#include <gtest/gtest.h>
+
+#include "platform/cost/fpga_resources.h"
+#include "platform/scenario/scenario.h"
+
+namespace surfvp {
+namespace {
+
+TEST(FpgaResources, BlockRamsInTheRamb36AspectRatios) {
+    EXPECT_EQ(ramb36_for(1024, 32), 1u);   // a line-FIFO line (PLATFORM_FACTS §5.6)
+    EXPECT_EQ(ramb36_for(1025, 32), 2u);
+    EXPECT_EQ(ramb36_for(1024, 36), 1u);
+    EXPECT_EQ(ramb36_for(1024, 37), 2u);   // 512 x 72: two deep
+    EXPECT_EQ(ramb36_for(2048, 18), 1u);
+    EXPECT_EQ(ramb36_for(32768, 1), 1u);
+    EXPECT_EQ(ramb36_for(512, 72), 1u);
+    EXPECT_EQ(ramb36_for(60, 212), 3u);    // three 72-bit columns
+    EXPECT_EQ(ramb36_for(0, 32), 0u);
+}
+
+TEST(FpgaResources, DspSlicesTileTheProduct) {
+    EXPECT_EQ(dsp48e_for(18, 18), 1u);
+    EXPECT_EQ(dsp48e_for(25, 18), 1u);
+    EXPECT_EQ(dsp48e_for(18, 25), 1u);
+    EXPECT_EQ(dsp48e_for(24, 24), 2u);
+    EXPECT_EQ(dsp48e_for(32, 32), 4u);
+    EXPECT_EQ(dsp48e_for(13, 24), 1u);
+}
+
+Config config(const std::vector<std::string>& sets) {
+    return load_scenario(std::string(SURFVP_SOURCE_DIR) + "/scenarios/budget_1024x768.yaml", sets);
+}
+
+TEST(FpgaResources, TheDefaultChipFitsTheFx70t) {
+    const FpgaResources r = fpga_resources(config({}));
+    EXPECT_EQ(r.device, "XC5VFX70T");
+    ASSERT_EQ(r.blocks.size(), 4u);
+    EXPECT_EQ(r.blocks[1].block, "fhg");
+    EXPECT_EQ(r.blocks[1].ramb36, 56 + 1 + 3 + 2 * 8);  // line FIFO, maxima FIFO, sequence, row buffers
+    EXPECT_EQ(r.blocks[1].dsp48e, 3);
+    EXPECT_EQ(r.total.ramb36, 84);
+    EXPECT_EQ(r.total.dsp48e, 16);  // HessianCalc's 3 and the double FPU's 13
+    EXPECT_TRUE(r.fits());
+}
+
+TEST(FpgaResources, StructureMovesTheEstimate) {
+    const double base = fpga_resources(config({})).total.ramb36;
+    EXPECT_EQ(fpga_resources(config({"fhg.fifo_lines=64"})).total.ramb36, base + 8);
+    EXPECT_EQ(fpga_resources(config({"fhg.line_banks=2"})).total.ramb36, base + 56);
+    EXPECT_EQ(fpga_resources(config({"fhg.response_bits=24 bit"})).total.dsp48e, 2 + 1 + 2 + 13);
+    EXPECT_EQ(fpga_resources(config({"fpga.fpu=single"})).total.dsp48e, 3 + 3);
+    const FpgaResources two = fpga_resources(config({"soc.accelerators=2"}));
+    EXPECT_EQ(two.total.ramb36, 2 * 78 + 6);
+    EXPECT_FALSE(two.fits());
+    ASSERT_EQ(two.over.size(), 1u);
+    EXPECT_EQ(two.over[0], "RAMB36: 162 of 148");
+    EXPECT_TRUE(fpga_resources(config({"soc.accelerators=2", "fpga.ramb36=228"})).fits());  // an FX100T's block RAMs
+}
+
+}  // namespace
+}  // namespace surfvp
