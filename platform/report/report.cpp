@@ -396,6 +396,18 @@ std::string resources_section(const nlohmann::ordered_json& f) {
     return md;
 }
 
+// Watts per block over the run and joules per frame, against the power budget.
+std::string power_section(const nlohmann::ordered_json& p) {
+    std::string md = fmt::format("\n## Power and energy\n\n**{:.2f} W** over the run, **{:.3f} J per frame**; {} the {:g} W budget "
+                                 "(power.budget_w). Estimates from what the run did: docs/power.md.\n\n"
+                                 "| block | W | basis |\n|---|---:|---|\n",
+                                 p["watts"].get<double>(), p["joules_per_frame"].get<double>(),
+                                 p["within_budget"].get<bool>() ? "within" : "**over**", p["budget_w"].get<double>());
+    for (const auto& [name, b] : p["blocks"].items())
+        md += fmt::format("| {} | {:.3f} | {} |\n", name, b["watts"].get<double>(), b["basis"].get<std::string>());
+    return md;
+}
+
 std::string report_markdown(const nlohmann::ordered_json& r) {
     std::string md = fmt::format("# surfvp run: {}\n\n{}\n\n", r["scenario"]["name"].get<std::string>(),
                                  r["scenario"]["description"].get<std::string>());
@@ -412,6 +424,7 @@ std::string report_markdown(const nlohmann::ordered_json& r) {
     md += accelerators_section(r);
     if (r.contains("cpu")) md += cpu_section(r);
     if (r.contains("fpga_resources")) md += resources_section(r["fpga_resources"]);
+    if (r.contains("power")) md += power_section(r["power"]);
     const double seconds = r["sim_time_s"].get<double>();
     const double frames = std::max(1.0, r.value("frames_done", 1.0));
     md += fmt::format("\n## Buses and DDR (in total over {} and per frame)\n", ms(seconds));

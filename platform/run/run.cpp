@@ -1,6 +1,7 @@
 #include "platform/run/run.h"
 
 #include "platform/cost/fpga_resources.h"
+#include "platform/cost/power.h"
 
 #include <cctype>
 #include <chrono>
@@ -113,7 +114,9 @@ nlohmann::ordered_json build_report(const Config& config, Soc& soc, const Outcom
     for (size_t k = 0; k < soc.fhgs().size(); ++k)
         (fhg.is_array() ? fhg[k] : fhg)["schedules"] = schedule_figures(soc.fhgs()[k]->params());
     if (summary.contains("frames_done") && summary["frames_done"].get<size_t>() > 1) add_limits(r, config);
-    r["fpga_resources"] = resources_json(fpga_resources(config));
+    const FpgaResources resources = fpga_resources(config);
+    r["fpga_resources"] = resources_json(resources);
+    r["power"] = power_estimate(config, r, resources);
     r["workload"] = soc.workload().report();
     r["outputs"] = outputs;
     return r;

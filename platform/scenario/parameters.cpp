@@ -135,6 +135,32 @@ void add_surf(std::vector<ParamSpec>& t) {
                  "Flip-flops of the rest of the system", "[A] as fpga.infrastructure_luts"});
     t.push_back({"fpga.infrastructure_ramb36", ParamKind::count, "6", 0, 100000, {},
                  "Block RAMs of the rest of the system (the MPMC's port FIFOs)", "[A] as fpga.infrastructure_luts"});
+    // The power estimate's prices (platform/cost/power.cpp, docs/power.md). None enters the
+    // simulation.
+    t.push_back({"power.budget_w", ParamKind::real, "10", 0, 1e6, {}, "Power the system must stay within (W)",
+                 "[S] paper §I, §V: less than 10 W"});
+    t.push_back({"power.static_w", ParamKind::real, "1.2", 0, 1e3, {}, "FPGA static power at a typical junction temperature (W)",
+                 "[A] an FX70T-sized Virtex-5 at 50-85 C (XPower estimates of the time, not retrieved)"});
+    t.push_back({"power.ddr_background_w", ParamKind::real, "0.5", 0, 1e3, {},
+                 "DDR2 background power of the 256 MB memory, idle or refreshing (W)",
+                 "[A] four x16 DDR2 chips at 100-150 mW each (datasheets of the time, recalled)"});
+    t.push_back({"power.infrastructure_w", ParamKind::real, "0.6", 0, 1e3, {},
+                 "MPMC, PLBs, INTC, clock managers and I/O of the rest of the system (W)", "[A] not retrieved"});
+    t.push_back({"power.ppc440_mw_per_mhz", ParamKind::real, "0.5", 0, 100, {}, "PPC440 core while it computes (mW per MHz)",
+                 "[A] Xilinx quoted about 0.35-0.9 mW/MHz for the Virtex-5 FXT's PowerPC 440 (recalled)"});
+    t.push_back({"power.logic_pj_per_cell_cycle", ParamKind::real, "0.05", 0, 100, {},
+                 "Energy of one LUT or flip-flop per clock cycle while its block computes, at a typical toggle rate (pJ)",
+                 "[A] order of magnitude of Virtex-5 logic at 12.5 % toggle (XPower, recalled)"});
+    t.push_back({"power.bram_pj_per_access", ParamKind::real, "20", 0, 1e4, {}, "Energy of one RAMB36 port access (pJ)",
+                 "[A] order of magnitude (XPower, recalled)"});
+    t.push_back({"power.dsp_pj_per_product", ParamKind::real, "10", 0, 1e4, {}, "Energy of one DSP48E product (pJ)",
+                 "[A] order of magnitude (XPower, recalled)"});
+    t.push_back({"power.bus_pj_per_bit", ParamKind::real, "2", 0, 1e4, {}, "Energy of one bit moved on a PLB (pJ)",
+                 "[A] on-chip wiring of a 128-bit bus (order of magnitude)"});
+    t.push_back({"power.bus_pj_per_burst", ParamKind::real, "50", 0, 1e6, {}, "Energy of arbitrating and addressing one PLB burst (pJ)",
+                 "[A] order of magnitude"});
+    t.push_back({"power.ddr_pj_per_bit", ParamKind::real, "60", 0, 1e5, {}, "DDR2 energy per bit read or written, I/O included (pJ)",
+                 "[A] DDR2 of the time: 40-100 pJ/bit (recalled)"});
     t.push_back({"eval.homography", ParamKind::text, "", 0, 0, {},
                  "Homography from frame 0 to frame 1 (Oxford or OpenCV file): report repeatability and precision", "[-] evaluation"});
     t.push_back({"eval.poses", ParamKind::text, "", 0, 0, {},
@@ -166,6 +192,16 @@ constexpr BandEntry kBands[] = {
     {"fpga.infrastructure_luts", "4000", "9000", "MPMC ports and options"},
     {"fpga.infrastructure_ffs", "5000", "10000", "MPMC ports and options"},
     {"fpga.infrastructure_ramb36", "4", "12", "MPMC port FIFO depths"},
+    {"power.static_w", "0.8", "2", "junction temperature and process corner"},
+    {"power.ddr_background_w", "0.3", "0.8", "chip count and power-down use"},
+    {"power.infrastructure_w", "0.3", "1.2", "MPMC ports, clocking and I/O standards"},
+    {"power.ppc440_mw_per_mhz", "0.35", "0.9", "the range Xilinx quoted"},
+    {"power.logic_pj_per_cell_cycle", "0.02", "0.2", "toggle rate and routing"},
+    {"power.bram_pj_per_access", "10", "40", "width and enable pattern"},
+    {"power.dsp_pj_per_product", "5", "20", "pipelining and widths"},
+    {"power.bus_pj_per_bit", "1", "5", "bus length and toggle rate"},
+    {"power.bus_pj_per_burst", "20", "200", "arbiter and address decode"},
+    {"power.ddr_pj_per_bit", "40", "100", "DDR2 of the time"},
 };
 
 void append(std::vector<ParamSpec>& t, const std::vector<ParamSpec>& block) { t.insert(t.end(), block.begin(), block.end()); }

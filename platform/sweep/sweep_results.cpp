@@ -8,7 +8,7 @@
 #include <set>
 
 #include "models/common/atomic_file.h"
-#include "platform/sweep/sweep_plan.h"
+#include "platform/sweep/sweep_plots.h"
 
 namespace surfvp {
 namespace fs = std::filesystem;
@@ -41,95 +41,6 @@ std::string as_text(const Json& v) {
 
 const char* status_of(const SweepRow& r) { return r.error.empty() ? (r.exit == 0 ? "passed" : "failed") : "error"; }
 
-// A value's number for a plot: "75 MHz" -> 75; a word has none.
-std::optional<double> number_in(const std::string& value) {
-    const auto q = split_quantity(value);
-    return q ? std::optional<double>(q->first) : std::nullopt;
-}
-
-// Frames/s against one axis: a marker per point that ran (filled: on the Pareto front), a line
-// through the points that share every other axis's value, the budget dashed.
-std::string axis_plot(const std::string& name, const std::string& axis, const std::vector<std::string>& axes,
-                      const std::vector<SweepRow>& rows, const std::vector<bool>& front) {
-    constexpr double W = 640, H = 400, L = 64, R = 16, T = 36, B = 48;
-    std::vector<std::string> categories;  // the axis's values in first-seen order
-    bool numeric = true;
-    for (const SweepRow& r : rows) {
-        const std::string v = r.params.value(axis, "");
-        if (std::find(categories.begin(), categories.end(), v) == categories.end()) categories.push_back(v);
-        numeric = numeric && number_in(v).has_value();
-    }
-    auto x_of = [&](const std::string& v) { return numeric ? *number_in(v) : double(std::find(categories.begin(), categories.end(), v) - categories.begin()); };
-    double x0 = 1e300, x1 = -1e300, y1 = 0, budget = 0;
-    for (const SweepRow& r : rows) {
-        x0 = std::min(x0, x_of(r.params.value(axis, "")));
-        x1 = std::max(x1, x_of(r.params.value(axis, "")));
-        y1 = std::max(y1, r.figures.value("fps", 0.0));
-        budget = std::max(budget, r.figures.value("budget_fps", 0.0));
-    }
-    y1 = std::max(y1, budget) * 1.1 + 1e-9;
-    if (x1 <= x0) x1 = x0 + 1;
-    auto px = [&](double x) { return L + (x - x0) / (x1 - x0) * (W - L - R); };
-    auto py = [&](double y) { return H - B - y / y1 * (H - T - B); };
-    std::string svg = fmt::format("<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{}\" height=\"{}\" font-family=\"sans-serif\" "
-                                  "font-size=\"12\"><rect width=\"100%\" height=\"100%\" fill=\"white\"/>"
-                                  "<text x=\"{}\" y=\"20\" font-size=\"14\">{}: frames/s against {}</text>",
-                                  W, H, L, name, axis);
-    svg += fmt::format("<line x1=\"{0}\" y1=\"{1}\" x2=\"{2}\" y2=\"{1}\" stroke=\"black\"/><line x1=\"{0}\" y1=\"{3}\" x2=\"{0}\" "
-                       "y2=\"{1}\" stroke=\"black\"/>",
-                       L, H - B, W - R, T);
-    for (int i = 0; i <= 4; ++i) {
-        const double y = y1 * i / 4;
-        svg += fmt::format("<text x=\"{}\" y=\"{:.1f}\" text-anchor=\"end\">{:.3g}</text>", L - 6, py(y) + 4, y);
-    }
-    std::set<double> ticks;
-    for (const std::string& c : categories) ticks.insert(x_of(c));
-    for (double t : ticks) {
-        const std::string label = numeric ? fmt::format("{:.6g}", t) : categories[size_t(t)];
-        svg += fmt::format("<text x=\"{:.1f}\" y=\"{}\" text-anchor=\"middle\">{}</text>", px(t), H - B + 16, label);
-    }
-    const auto unit = rows.empty() ? std::nullopt : split_quantity(rows[0].params.value(axis, ""));
-    const std::string unit_text = unit && !unit->second.empty() ? " (" + unit->second + ")" : "";
-    svg += fmt::format("<text x=\"{}\" y=\"{}\" text-anchor=\"middle\">{}{}</text>", (L + W - R) / 2, H - 10, axis, unit_text);
-    svg += fmt::format("<text x=\"14\" y=\"{}\" transform=\"rotate(-90 14 {})\" text-anchor=\"middle\">frames/s</text>",
-                       (T + H - B) / 2, (T + H - B) / 2);
-    if (budget > 0)
-        svg += fmt::format("<line x1=\"{0}\" y1=\"{1:.1f}\" x2=\"{2}\" y2=\"{1:.1f}\" stroke=\"#c00\" stroke-dasharray=\"6 4\"/>"
-                           "<text x=\"{2}\" y=\"{3:.1f}\" text-anchor=\"end\" fill=\"#c00\">budget {4:g} frames/s</text>",
-                           L, py(budget), W - R, py(budget) - 4, budget);
-    // One line per combination of the other axes' values.
-    std::map<std::string, std::vector<std::pair<double, double>>> lines;
-    for (const SweepRow& r : rows) {
-        if (!r.error.empty()) continue;
-        std::string others;
-        for (const std::string& a : axes)
-            if (a != axis) others += a + "=" + r.params.value(a, "") + " ";
-        lines[others].push_back({x_of(r.params.value(axis, "")), r.figures.value("fps", 0.0)});
-    }
-    std::vector<double> labelled;  // the heights of the line labels so far: one that would overlap is left out
-    for (auto& [others, pts] : lines) {
-        std::sort(pts.begin(), pts.end());
-        std::string p;
-        for (const auto& [x, y] : pts) p += fmt::format("{:.1f},{:.1f} ", px(x), py(y));
-        svg += fmt::format("<polyline points=\"{}\" fill=\"none\" stroke=\"#8aa\"><title>{}</title></polyline>", p, others);
-        const double end_y = py(pts.back().second);
-        if (others.empty() || std::any_of(labelled.begin(), labelled.end(), [&](double y) { return std::abs(y - end_y) < 12; }))
-            continue;
-        labelled.push_back(end_y);
-        svg += fmt::format("<text x=\"{:.1f}\" y=\"{:.1f}\" text-anchor=\"end\" font-size=\"10\" fill=\"#466\">{}</text>",
-                           px(pts.back().first) - 8, end_y - 6, others);
-    }
-    for (size_t i = 0; i < rows.size(); ++i) {
-        const SweepRow& r = rows[i];
-        if (!r.error.empty()) continue;
-        svg += fmt::format("<circle cx=\"{:.1f}\" cy=\"{:.1f}\" r=\"4\" stroke=\"#1b3a5c\" fill=\"{}\"><title>{}: {:.3g} frames/s{}"
-                           "</title></circle>",
-                           px(x_of(r.params.value(axis, ""))), py(r.figures.value("fps", 0.0)), front[i] ? "#1b3a5c" : "white",
-                           r.id, r.figures.value("fps", 0.0), front[i] ? " (Pareto front)" : "");
-    }
-    return svg + fmt::format("<text x=\"{}\" y=\"{}\">filled: on the Pareto front</text></svg>", W - R - 150, T - 4);
-}
-
 }  // namespace
 
 Json sweep_figures(const Json& r) {
@@ -149,6 +60,10 @@ Json sweep_figures(const Json& r) {
         f["dsp48e"] = fpga["total"]["dsp48e"];
         f["luts"] = fpga["total"]["luts"];
         f["fits"] = fpga["fits"];
+    }
+    if (r.contains("power")) {
+        f["watts"] = r["power"]["watts"];
+        f["joules_per_frame"] = r["power"]["joules_per_frame"];
     }
     f["keypoints_per_frame"] = r.value("keypoints_per_frame", 0.0);
     f["sim_time_s"] = r.value("sim_time_s", 0.0);
@@ -228,6 +143,11 @@ std::vector<std::string> write_sweep_results(const std::string& dir, const std::
         std::replace(file.begin(), file.end(), '/', '_');
         write_file_atomically((fs::path(dir) / file).string(), axis_plot(name, axis, axes, rows, front));
         written.push_back(file);
+    }
+    if (objectives.size() > 1) {  // against watts when the rows have them: the cost that moves with every axis
+        const std::string cost = objectives.back().figure;
+        write_file_atomically((fs::path(dir) / "pareto.svg").string(), front_plot(name, cost, rows, front));
+        written.push_back("pareto.svg");
     }
     return written;
 }
