@@ -15,6 +15,7 @@
 #include "platform/quality/quality_commands.h"
 #include "platform/run/run.h"
 #include "platform/scenario/scenario.h"
+#include "platform/compare/compare.h"
 #include "platform/sweep/sweep.h"
 #include "platform/tools/seqgen.h"
 #include "platform/soc.h"
@@ -48,6 +49,8 @@ int dispatch(int argc, char** argv) {
         ->check(CLI::IsMember({"none", "vcd", "perfetto", "all"}))
         ->default_val("all");
     run->add_flag("--quiet,-q", options.quiet, "No progress or summary lines on stderr");
+    run->add_option("--compare-to", options.compare_to,
+                    "Also write compare.md and compare.json: this run against a run folder or a sweep point (SWEEP_DIR@N)");
     run->add_flag("--direct", options.direct,
                   "Run the driver and software on the cores without SystemC (no time): keypoints only");
 
@@ -93,6 +96,11 @@ int dispatch(int argc, char** argv) {
     std::string merge_dir;
     CLI::App* sweep_merge = app.add_subcommand("sweep-merge", "Merge a sweep folder's shard databases and write its results");
     sweep_merge->add_option("folder", merge_dir, "The sweep folder")->required();
+    CompareOptions compare_options;
+    CLI::App* compare = app.add_subcommand("compare", "Runs side by side: parameters that differ, every figure with its change, budgets");
+    compare->add_option("runs", compare_options.sides, "Run folders or sweep points (SWEEP_DIR@N); the first is the reference")
+        ->required();
+    compare->add_option("--json", compare_options.json, "Also write the comparison as JSON to this file");
     QualityCommands quality(app);
 
     try {
@@ -118,6 +126,7 @@ int dispatch(int argc, char** argv) {
         if (*bench) return bench_command(bench_options);
         if (*calibrate) return calibrate_command(calibrate_options);
         if (*sweep) return sweep_command(sweep_options);
+        if (*compare) return compare_command(compare_options);
         if (*sweep_merge) return sweep_merge_command(merge_dir);
         if (app.got_subcommand("list")) return list_scenarios();
         if (app.got_subcommand("registers")) {

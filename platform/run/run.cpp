@@ -1,5 +1,6 @@
 #include "platform/run/run.h"
 
+#include "platform/compare/compare.h"
 #include "platform/cost/fpga_resources.h"
 #include "platform/cost/power.h"
 
@@ -265,6 +266,7 @@ int run_scenario(const RunOptions& options) {
         throw ConfigError(fmt::format("{}: faults: --direct has no time, buses or interrupts to inject them into; "
                                       "run without --direct", config.faults.front().origin));
     check_scenario(config);
+    if (!options.compare_to.empty()) check_side(options.compare_to);
     print_warnings(config);
     OutputFolder out(output_path(options, config));
     const std::string staging = out.staging().string();
@@ -273,6 +275,7 @@ int run_scenario(const RunOptions& options) {
         if (options.direct) code = run_direct(config, staging);
         else if (verdict_requested(config)) code = run_with_verdict(config, staging, options.trace, options.quiet);
         else code = write_run(config, staging, simulate_scenario(config, staging, options.trace, options.quiet));
+        if (!options.compare_to.empty()) write_comparison(options.compare_to, staging, out.folder().string());
         out.publish();
     } catch (const EnvironmentError& e) {
         throw EnvironmentError(fmt::format("{}; what was in {} before this run is as it was", out.as_published(e.what()),

@@ -18,6 +18,7 @@ struct RunOptions {
     std::string trace = "all";  // none | vcd | perfetto | all
     bool quiet = false;
     bool direct = false;  // no SystemC: the driver and software on the untimed DirectChip
+    std::string compare_to;  // a run folder or SWEEP_DIR@N: compare.md and compare.json against it
 };
 
 // Both throw ConfigError for bad input; the caller turns it into kExitBadInput. Both print the

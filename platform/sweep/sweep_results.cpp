@@ -64,6 +64,7 @@ Json sweep_figures(const Json& r) {
     if (r.contains("power")) {
         f["watts"] = r["power"]["watts"];
         f["joules_per_frame"] = r["power"]["joules_per_frame"];
+        f["within_power_budget"] = r["power"]["within_budget"];
     }
     f["keypoints_per_frame"] = r.value("keypoints_per_frame", 0.0);
     f["sim_time_s"] = r.value("sim_time_s", 0.0);

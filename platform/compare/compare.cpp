@@ -1,0 +1,249 @@
+#include "platform/compare/compare.h"
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fmt/format.h>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include "models/common/atomic_file.h"
+#include "platform/run/run.h"
+#include "platform/scenario/parameters.h"
+#include "platform/scenario/scenario.h"
+#include "platform/sweep/sweep_results.h"
+
+namespace surfvp {
+namespace fs = std::filesystem;
+using Json = nlohmann::ordered_json;
+
+namespace {
+
+Json read_json(const fs::path& file, const std::string& side) {
+    std::ifstream in(file);
+    if (!in) throw ConfigError(fmt::format("{}: no {} (not a run folder?)", side, file.filename().string()));
+    std::stringstream text;
+    text << in.rdbuf();
+    Json j = Json::parse(text.str(), nullptr, false);
+    if (j.is_discarded() || !j.is_object()) throw ConfigError(fmt::format("{}: {} is not a JSON object", side, file.string()));
+    return j;
+}
+
+// config.yaml as section.key -> value, read as plain YAML (a run of another version may have
+// keys this one does not know).
+Json read_parameters(const fs::path& file) {
+    Json out = Json::object();
+    if (!fs::exists(file)) return out;
+    const YAML::Node root = load_yaml_file(file.string(), "configuration");
+    for (const auto& section : root)
+        if (section.second.IsMap())
+            for (const auto& item : section.second)
+                if (item.second.IsScalar()) out[section.first.Scalar() + "." + item.first.Scalar()] = item.second.Scalar();
+    return out;
+}
+
+// The report's numeric figures by path, leaving out what is not a figure of the chip (wall
+// clock, the legend, per-frame rows, time series, the workload's own section, the verdict's).
+void flatten(const Json& j, const std::string& path, const std::set<std::string>& skip, Json& out) {
+    if (j.is_object()) {
+        for (const auto& [key, value] : j.items())
+            if (!skip.count(key)) flatten(value, path.empty() ? key : path + "." + key, skip, out);
+    } else if (j.is_number()) {
+        out[path] = j;
+    }
+}
+
+Json figures_of_run(const Json& report) {
+    std::set<std::string> skip = {"statistics", "per_frame", "workload", "verdict", "checks", "outputs", "scenario",
+                                  "busy_series", "line_fifo_series", "maxima_fifo_series", "schedules"};
+    if (report.contains("wall_clock_fields"))
+        for (const auto& f : report["wall_clock_fields"]) skip.insert(f.get<std::string>());
+    if (report.contains("simulation_fields"))
+        for (const auto& f : report["simulation_fields"]) skip.insert(f.get<std::string>());
+    Json all = Json::object();
+    flatten(report, "", skip, all);
+    return all;
+}
+
+// One side: its name, parameters, main figures (as a sweep row has them) and, for a run, every
+// figure of its report.
+Json load_side(const std::string& side) {
+    const auto at = side.rfind('@');
+    if (at != std::string::npos && at + 1 < side.size() &&
+        side.find_first_not_of("0123456789", at + 1) == std::string::npos) {
+        const fs::path dir = side.substr(0, at);
+        const size_t point = std::stoul(side.substr(at + 1));
+        const Json results = read_json(dir / "results.json", side);
+        for (const auto& p : results["points"])
+            if (p["point"].get<size_t>() == point)
+                return {{"name", side}, {"kind", "sweep point"}, {"parameters", p["params"]}, {"main", p["figures"]},
+                        {"all", Json::object()}};
+        throw ConfigError(fmt::format("{}: the sweep in {} has no point {}", side, dir.string(), point));
+    }
+    const fs::path dir(side);
+    if (!fs::is_directory(dir)) throw ConfigError(fmt::format("{}: not a run folder nor SWEEP_DIR@POINT", side));
+    const Json report = read_json(dir / "report.json", side);
+    return {{"name", side}, {"kind", "run"}, {"parameters", read_parameters(dir / "config.yaml")},
+            {"main", sweep_figures(report)}, {"all", figures_of_run(report)}};
+}
+
+// "125MHz" and "125 MHz" are one value: compared as the parameter reads them.
+bool same_parameter(const std::string& key, const std::string& a, const std::string& b) {
+    if (a == b) return true;
+    const ParamSpec* spec = find_parameter(key);
+    if (!spec || spec->kind == ParamKind::choice || spec->kind == ParamKind::text) return false;
+    try {
+        return parse_value(*spec, a) == parse_value(*spec, b);
+    } catch (const std::exception&) {
+        return false;
+    }
+}
+
+Json delta(const Json& ref, const Json& value) {
+    if (!ref.is_number() || !value.is_number()) return {{"value", value}};
+    const double a = ref.get<double>(), b = value.get<double>();
+    Json d = {{"value", value}, {"delta", b - a}};
+    d["percent"] = a != 0 ? Json(100 * (b - a) / std::abs(a)) : Json();
+    return d;
+}
+
+// Figures of `kind` ("main" or "all") on every side; for "all" only those that differ.
+Json figure_table(const std::vector<Json>& sides, const char* kind, bool only_differing) {
+    std::vector<std::string> keys;
+    for (const Json& s : sides)
+        for (const auto& [key, v] : s[kind].items())
+            if (std::find(keys.begin(), keys.end(), key) == keys.end()) keys.push_back(key);
+    Json table = Json::object();
+    for (const std::string& key : keys) {
+        const Json& ref = sides[0][kind].contains(key) ? sides[0][kind][key] : Json();
+        bool differs = false;
+        Json row = Json::array();
+        for (const Json& s : sides) {
+            const Json v = s[kind].contains(key) ? s[kind][key] : Json();
+            differs = differs || v != ref;
+            row.push_back(delta(ref, v));
+        }
+        if (differs || !only_differing) table[key] = row;
+    }
+    return table;
+}
+
+std::string cell(const Json& v) {
+    if (v.is_null()) return "-";
+    if (v.is_number_float()) return fmt::format("{:.6g}", v.get<double>());
+    if (v.is_string()) return v.get<std::string>();
+    return v.dump();
+}
+
+std::string rows_markdown(const Json& table, size_t sides) {
+    std::string md;
+    for (const auto& [key, row] : table.items()) {
+        md += "| " + key;
+        for (size_t i = 0; i < sides; ++i) {
+            const Json& c = row[i];
+            md += " | " + cell(c["value"]);
+            if (i > 0 && c.contains("delta") && c["delta"].get<double>() != 0)
+                md += c["percent"].is_null() ? fmt::format(" ({:+.4g})", c["delta"].get<double>())
+                                             : fmt::format(" ({:+.4g}, {:+.2f} %)", c["delta"].get<double>(), c["percent"].get<double>());
+        }
+        md += " |\n";
+    }
+    return md;
+}
+
+std::string header(const Json& c) {
+    std::string md = "| |";
+    std::string rule = "|---|";
+    for (const auto& s : c["sides"]) {
+        md += " " + s["name"].get<std::string>() + " |";
+        rule += "---|";
+    }
+    return md + "\n" + rule + "\n";
+}
+
+}  // namespace
+
+Json compare_runs(const std::vector<std::string>& names) {
+    if (names.size() < 2) throw ConfigError("compare: give two or more run folders or sweep points (SWEEP_DIR@N)");
+    std::vector<Json> sides;
+    for (const std::string& n : names) sides.push_back(load_side(n));
+    // Parameters that differ between any two sides.
+    std::set<std::string> keys;
+    for (const Json& s : sides)
+        for (const auto& [k, v] : s["parameters"].items()) keys.insert(k);
+    Json parameters = Json::object();
+    for (const std::string& k : keys) {
+        Json row = Json::array();
+        std::vector<std::string> known;  // a sweep point knows only its axes: the rest is not a difference
+        for (const Json& s : sides) {
+            row.push_back(s["parameters"].contains(k) ? s["parameters"][k] : Json());
+            if (row.back().is_string()) known.push_back(row.back().get<std::string>());
+        }
+        for (const std::string& v : known)
+            if (!same_parameter(k, v, known.front())) {
+                parameters[k] = row;
+                break;
+            }
+    }
+    Json budgets = Json::array();
+    for (const Json& s : sides) {
+        const Json& m = s["main"];
+        budgets.push_back({{"frame_rate", m.contains("budget_met") ? m["budget_met"] : Json()},
+                           {"power", m.contains("within_power_budget") ? m["within_power_budget"] : Json()},
+                           {"fits_fpga", m.contains("fits") ? m["fits"] : Json()}});
+    }
+    Json side_list = Json::array();
+    for (const Json& s : sides) side_list.push_back({{"name", s["name"]}, {"kind", s["kind"]}});
+    return {{"reference", names[0]},
+            {"sides", side_list},
+            {"parameters", parameters},
+            {"figures", figure_table(sides, "main", false)},
+            {"other_figures", figure_table(sides, "all", true)},
+            {"budgets", budgets}};
+}
+
+std::string compare_markdown(const Json& c) {
+    const size_t n = c["sides"].size();
+    std::string md = fmt::format("# surfvp compare\n\nAgainst the first, `{}`: each figure with its change and %.\n\n",
+                                 c["reference"].get<std::string>());
+    md += "## Budgets\n\n" + header(c);
+    for (const char* b : {"frame_rate", "power", "fits_fpga"}) {
+        md += fmt::format("| {} |", b);
+        for (const auto& s : c["budgets"]) md += " " + (s[b].is_null() ? std::string("-") : s[b].get<bool>() ? "met" : "**missed**") + " |";
+        md += "\n";
+    }
+    md += "\n## Parameters that differ\n\n";
+    if (c["parameters"].empty()) md += "None.\n";
+    else {
+        md += header(c);
+        for (const auto& [k, row] : c["parameters"].items()) {
+            md += "| " + k;
+            for (const auto& v : row) md += " | " + cell(v);
+            md += " |\n";
+        }
+    }
+    md += "\n## Figures\n\n" + header(c) + rows_markdown(c["figures"], n);
+    if (!c["other_figures"].empty())
+        md += fmt::format("\n## Every other figure that differs ({})\n\n<details><summary>report.json paths</summary>\n\n{}{}\n</details>\n",
+                          c["other_figures"].size(), header(c), rows_markdown(c["other_figures"], n));
+    return md;
+}
+
+void check_side(const std::string& side) { load_side(side); }
+
+void write_comparison(const std::string& reference, const std::string& staging, const std::string& published) {
+    Json c = compare_runs({reference, staging});
+    c["sides"][1]["name"] = published;  // the folder the run is published as, not its staging name
+    write_file_atomically((fs::path(staging) / "compare.json").string(), c.dump(2) + "\n");
+    write_file_atomically((fs::path(staging) / "compare.md").string(), compare_markdown(c));
+}
+
+int compare_command(const CompareOptions& options) {
+    const Json c = compare_runs(options.sides);
+    if (!options.json.empty()) write_file_atomically(options.json, c.dump(2) + "\n");
+    std::fputs(compare_markdown(c).c_str(), stdout);
+    return kExitOk;
+}
+
+}  // namespace surfvp

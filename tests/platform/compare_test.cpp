@@ -1,0 +1,76 @@
+// surfvp compare and run --compare-to (docs/compare.md): the parameters that differ, each
+// figure with its change against the first side, the budgets each meets; run folders and sweep
+// points alike; a side that is neither is bad input.
+#include <cmath>
+#include <filesystem>
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "cli.h"
+
+namespace surfvp::test {
+namespace {
+using Json = nlohmann::json;
+
+const std::string kSmall = kOneRun + " --trace none --quiet --set surf.frames=3 --set surf.width=256 --set surf.height=192"
+                                     " --set surf.target_keypoints=20 --set budget.fps=40";
+
+TEST(Compare, ARunAgainstAnEarlierOneGivesEachFigureItsChange) {
+    const std::string a = fresh_dir("cmp_a"), b = fresh_dir("cmp_b");
+    ASSERT_EQ(surfvp("run " + kBudget + kSmall + " --set fhg.clock=25MHz --out " + a).exit_code, 1);  // misses 40 frames/s
+    const auto r = surfvp("run " + kBudget + kSmall + " --set 'fhg.clock=50 MHz' --out " + b + " --compare-to " + a);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const Json c = Json::parse(slurp(b + "/compare.json"));
+    EXPECT_EQ(c["sides"][1]["name"], b);
+    ASSERT_EQ(c["parameters"].size(), 1u) << c["parameters"];
+    EXPECT_EQ(c["parameters"]["fhg.clock"], (Json{"25MHz", "50 MHz"}));
+    const auto& fps = c["figures"]["fps"];
+    const double before = fps[0]["value"], after = fps[1]["value"];
+    EXPECT_DOUBLE_EQ(fps[1]["delta"].get<double>(), after - before);
+    EXPECT_DOUBLE_EQ(fps[1]["percent"].get<double>(), 100 * (after - before) / before);
+    EXPECT_GT(after, 1.5 * before);
+    EXPECT_EQ(c["budgets"][0]["frame_rate"], false);
+    EXPECT_EQ(c["budgets"][1]["frame_rate"], true);
+    EXPECT_EQ(c["budgets"][1]["fits_fpga"], true);
+    EXPECT_TRUE(c["other_figures"].contains("fhg.busy_s")) << c["other_figures"].size();
+    EXPECT_FALSE(c["other_figures"].contains("wall_time_s"));  // wall clock is not a figure of the chip
+    const std::string md = slurp(b + "/compare.md");
+    EXPECT_NE(md.find("| fhg.clock | 25MHz | 50 MHz |"), std::string::npos) << md.substr(0, 800);
+    EXPECT_NE(md.find("| frame_rate | **missed** | met |"), std::string::npos) << md.substr(0, 800);
+}
+
+TEST(Compare, SweepPointsSideBySide) {
+    const std::string dir = fresh_dir("cmp_sweep");
+    const std::string file = write_file(dir, "s.yaml",
+                                        "scenario: " + kBudget + "\nset: {surf.frames: 3, surf.width: 256, surf.height: 192}\n"
+                                        "axes:\n  fhg.read_buses: [2, 4]\n");
+    ASSERT_EQ(surfvp("sweep " + file + " --quiet --out " + dir + "/out").exit_code, 0);
+    const auto r = surfvp("compare " + dir + "/out@0 " + dir + "/out@1 --json " + dir + "/c.json");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const Json c = Json::parse(slurp(dir + "/c.json"));
+    EXPECT_EQ(c["parameters"], (Json{{"fhg.read_buses", {"2", "4"}}}));
+    EXPECT_GT(c["figures"]["fps"][1]["percent"].get<double>(), 0.0);
+    EXPECT_NE(r.out.find("## Figures"), std::string::npos) << r.out;
+}
+
+TEST(Compare, ASideThatIsNoRunIsBadInput) {
+    const std::string dir = fresh_dir("cmp_bad");
+    const std::vector<std::pair<std::string, std::string>> cases = {
+        {"compare " + dir, "give two or more"},
+        {"compare " + dir + "/none " + dir, "not a run folder nor SWEEP_DIR@POINT"},
+        {"compare " + dir + " " + dir, "no report.json"},
+        {"compare " + dir + "@3 " + dir, "no results.json"},
+    };
+    for (const auto& [args, message] : cases) {
+        const auto r = surfvp(args);
+        EXPECT_EQ(r.exit_code, 2) << args;
+        EXPECT_NE(r.err.find(message), std::string::npos) << args << ": " << r.err;
+    }
+    const std::string out = dir + "/never";
+    const auto run = surfvp("run " + kBudget + kSmall + " --out " + out + " --compare-to " + dir + "/none");
+    EXPECT_EQ(run.exit_code, 2);
+    EXPECT_FALSE(std::filesystem::exists(out));  // refused before anything is simulated or written
+}
+
+}  // namespace
+}  // namespace surfvp::test
