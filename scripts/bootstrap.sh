@@ -19,6 +19,7 @@ readonly PACKAGES=(
   opencv-doc visp-images-data   # real images for tests and scenarios
   g++-powerpc-linux-gnu qemu-user  # surfvp calibrate: the software stage built for the PPC440, run on an ISS
   clang libclang-rt-14-dev      # scripts/fuzz.sh: libFuzzer targets with ASan/UBSan (tests/fuzz)
+  slurm-wlm munge               # a one-node Slurm cluster in a test: surfvp sweep --slurm end to end
 )
 
 usage() { echo "usage: $0 run|test|calibrate" >&2; exit 2; }

@@ -92,6 +92,10 @@ int dispatch(int argc, char** argv) {
     sweep->add_option("--jobs,-j", sweep_options.jobs, "Points at once (default: one per core)");
     sweep->add_option("--shard", sweep_options.shard, "Run only shard K of N (K/N), into shard-K-of-N.db; merge with sweep-merge")
         ->type_name("K/N");
+    sweep->add_option("--slurm", sweep_options.slurm,
+                      "Submit a Slurm job array of N shard tasks (sbatch; SBATCH_* variables pass options) and a merge after it")
+        ->type_name("N")
+        ->check(CLI::Range(1u, 100000u));
     sweep->add_flag("--quiet,-q", sweep_options.quiet, "No progress or summary lines on stderr");
     std::string merge_dir;
     CLI::App* sweep_merge = app.add_subcommand("sweep-merge", "Merge a sweep folder's shard databases and write its results");

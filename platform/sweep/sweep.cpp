@@ -67,10 +67,60 @@ void write_results(const fs::path& dir, const SweepStore& store) {
     write_sweep_results(dir.string(), store.meta("name"), axes_of(store), store.rows());
 }
 
+// Runs `command` through the shell; its standard output, or throws EnvironmentError with what
+// it printed.
+std::string run_tool(const std::string& command) {
+    std::string out;
+    FILE* pipe = popen((command + " 2>&1").c_str(), "r");
+    if (!pipe) throw EnvironmentError(fmt::format("cannot run {}", command));
+    char buffer[512];
+    while (size_t n = std::fread(buffer, 1, sizeof buffer, pipe)) out.append(buffer, n);
+    const int status = pclose(pipe);
+    if (status != 0) throw EnvironmentError(fmt::format("{} failed: {}", command, out));
+    return out;
+}
+
+std::string quoted(const std::string& text) {
+    std::string out = "'";
+    for (char c : text) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+    return out + "'";
+}
+
+// The job array (one shard per task) and a merge that runs once every task has ended well;
+// the sweep folder must be on a file system every node sees.
+int submit_to_slurm(const SweepOptions& options, const SweepPlan& plan, const fs::path& dir) {
+    const fs::path self = fs::read_symlink("/proc/self/exe");
+    const fs::path file = fs::absolute(options.file), folder = fs::absolute(dir), logs = folder / "slurm";
+    fs::create_directories(logs);
+    const unsigned n = options.slurm, jobs = options.jobs ? options.jobs : 1;
+    const std::string script = fmt::format(
+        "#!/bin/sh\n"
+        "# surfvp sweep {name}: {n} shards, one per array task (docs/sweeps.md)\n"
+        "#SBATCH --job-name=surfvp-{name}\n"
+        "#SBATCH --array=1-{n}\n"
+        "#SBATCH --cpus-per-task={jobs}\n"
+        "#SBATCH --output={logs}/shard-%a.log\n"
+        "exec {self} sweep {file} --out {folder} --jobs {jobs} --quiet --shard \"$SLURM_ARRAY_TASK_ID/{n}\"\n",
+        fmt::arg("name", plan.name), fmt::arg("n", n), fmt::arg("jobs", jobs), fmt::arg("logs", quoted(logs.string())),
+        fmt::arg("self", quoted(self.string())), fmt::arg("file", quoted(file.string())), fmt::arg("folder", quoted(folder.string())));
+    const fs::path array = logs / "array.sh";
+    write_file_atomically(array.string(), script);
+    const std::string id = run_tool("sbatch --parsable " + quoted(array.string()));
+    const std::string array_id = id.substr(0, id.find_first_of(";\n"));
+    const std::string merge = run_tool(fmt::format("sbatch --parsable --job-name=surfvp-{}-merge --dependency=afterok:{} --output={} "
+                                                   "--wrap={}",
+                                                   plan.name, array_id, quoted((logs / "merge.log").string()),
+                                                   quoted(quoted(self.string()) + " sweep-merge " + quoted(folder.string()))));
+    std::fprintf(stderr, "surfvp: %s: job array %s (%u shards) and merge job %s submitted; results in %s when they end\n",
+                 plan.name.c_str(), array_id.c_str(), n, merge.substr(0, merge.find_first_of(";\n")).c_str(), folder.c_str());
+    return kExitOk;
+}
+
 }  // namespace
 
 int sweep_command(const SweepOptions& options) {
     const SweepPlan plan = load_sweep(options.file);
+    if (options.slurm && !options.shard.empty()) throw ConfigError("--slurm runs the shards itself: give --slurm or --shard, not both");
     const Shard shard = parse_shard(options.shard);
     const fs::path dir = options.out.empty() ? fs::path("traces") / plan.name : fs::path(options.out);
     std::error_code ec;
@@ -81,6 +131,7 @@ int sweep_command(const SweepOptions& options) {
     Json axes = Json::array();
     for (const SweepAxis& a : plan.axes) axes.push_back(a.key);
     store.set_meta("axes", axes.dump());
+    if (options.slurm) return submit_to_slurm(options, plan, dir);
 
     std::vector<const SweepPoint*> todo;
     size_t mine = 0;
