@@ -43,9 +43,9 @@ Json Resimulation::point_summary(const Json& r) {
     return s;
 }
 
-void Resimulation::submit(Config config, Done done, bool full, std::string out, std::string trace, bool urgent) {
+void Resimulation::submit(Config config, Done done, Summarise summarise, std::string out, std::string trace, bool urgent) {
     ++submitted_;
-    Job job{std::move(config), std::move(done), full, std::move(out), std::move(trace)};
+    Job job{std::move(config), std::move(done), std::move(summarise), std::move(out), std::move(trace)};
     if (urgent) queue_.push_front(std::move(job));
     else queue_.push_back(std::move(job));
 }
@@ -62,7 +62,7 @@ void Resimulation::start(Job job) {
         Json out;
         try {
             const Json report = simulate_scenario(job.config, job.out, job.trace, true);
-            out = job.full ? report : point_summary(report);
+            out = job.summarise(report);
             code = 0;
         } catch (const ConfigError& e) {
             out = {{"error", e.what()}, {"exit", 2}};

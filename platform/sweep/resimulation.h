@@ -19,9 +19,12 @@ namespace surfvp {
 
 class Resimulation {
 public:
-    // `result` is the child's report (whole when `full`, else a point summary: fps, passed,
-    // limit, keypoints per frame), or {"error": ..., "exit": code} when it failed.
+    // `result` is what the child's summarise made of its report, or {"error": ..., "exit":
+    // code} when it failed.
     using Done = std::function<void(const nlohmann::ordered_json& result)>;
+    // Run in the child on its report: the less it hands back, the less there is to write and
+    // read (point_summary: fps, passed, limit, keypoints per frame; whole: the report).
+    using Summarise = std::function<nlohmann::ordered_json(const nlohmann::ordered_json& report)>;
 
     Resimulation(unsigned jobs, std::filesystem::path scratch);
     ~Resimulation();
@@ -31,19 +34,20 @@ public:
     // One re-simulation of `config`; `out`/`trace` as simulate_scenario's (empty/none for a
     // point that writes nothing). An urgent one starts before those already waiting (a
     // search whose next step waits for it).
-    void submit(Config config, Done done, bool full = false, std::string out = "", std::string trace = "none",
-                bool urgent = false);
+    void submit(Config config, Done done, Summarise summarise = point_summary, std::string out = "",
+                std::string trace = "none", bool urgent = false);
     // Runs until every submitted re-simulation, and every one their callbacks submit, is done;
     // `progress(done, submitted)` after each.
     void run(const std::function<void(size_t, size_t)>& progress);
 
     static nlohmann::ordered_json point_summary(const nlohmann::ordered_json& report);
+    static nlohmann::ordered_json whole(const nlohmann::ordered_json& report) { return report; }
 
 private:
     struct Job {
         Config config;
         Done done;
-        bool full;
+        Summarise summarise;
         std::string out, trace;
     };
     void start(Job job);

@@ -52,6 +52,14 @@ std::string progress_text(size_t done, size_t total, size_t errors, double wall)
                        errors ? fmt::format(", {} not run", errors) : "", clock(wall), eta);
 }
 
+// What a point's child hands back: its row's figures, not its whole report.
+Json sweep_summary(const Json& report) {
+    Json s = {{"figures", sweep_figures(report)}, {"passed", report.value("passed", false)},
+              {"wall_time_s", report.value("wall_time_s", 0.0)}};
+    if (report.contains("failure")) s["failure"] = report["failure"];
+    return s;
+}
+
 Json params_of(const SweepPoint& p) {
     Json j = Json::object();
     for (const auto& [key, value] : p.values) j[key] = value;
@@ -156,9 +164,9 @@ int sweep_command(const SweepOptions& options) {
             row.exit = result.value("exit", 3);
             row.error = result["error"].get<std::string>();
         } else {
-            row.figures = sweep_figures(result);
-            row.exit = result.value("passed", false) ? 0 : 1;
-            row.wall_s = result.value("wall_time_s", 0.0);
+            row.figures = result["figures"];
+            row.exit = result["passed"].get<bool>() ? 0 : 1;
+            row.wall_s = result["wall_time_s"].get<double>();
             if (result.contains("failure")) row.error = result["failure"].get<std::string>();
         }
         errors += !row.error.empty();
@@ -170,7 +178,7 @@ int sweep_command(const SweepOptions& options) {
         try {
             Config config = plan.config(*p);
             check_scenario(config);
-            pool.submit(std::move(config), [p, &record](const Json& r) { record(*p, r); }, true);
+            pool.submit(std::move(config), [p, &record](const Json& r) { record(*p, r); }, sweep_summary);
         } catch (const ConfigError& e) {
             record(*p, Json{{"error", e.what()}, {"exit", 2}});
         }

@@ -314,7 +314,7 @@ int run_with_verdict(const Config& config, const std::string& out, const std::st
                     searches[i]->record(*v, r.contains("error") ? -1.0 : r["fps"].get<double>());
                     step(i);
                 },
-                false, "", "none", true);
+                Resimulation::point_summary, "", "none", true);
         } else if (const auto answer = s.answer()) {
             pool.submit(
                 with(config, {{s.axis().key, as_text(s.spec(), *answer)}}),
@@ -322,7 +322,7 @@ int run_with_verdict(const Config& config, const std::string& out, const std::st
                     checks[i] = r.contains("error") ? r : Json{{"frames", config.count("surf.frames")}, {"fps", r["fps"]},
                                                                 {"met", r["fps"].get<double>() >= budget}};
                 },
-                false, "", "none", true);
+                Resimulation::point_summary, "", "none", true);
         }
     };
     // The reference (the scenario at the re-simulations' frame count) first: it names the
@@ -340,7 +340,7 @@ int run_with_verdict(const Config& config, const std::string& out, const std::st
             step(searches.size() - 1);
         }
     });
-    pool.submit(config, [&](const Json& r) { base = r; }, true, out, trace);
+    pool.submit(config, [&](const Json& r) { base = r; }, Resimulation::whole, out, trace);
 
     std::vector<BandAxis> band;
     if (want_band)

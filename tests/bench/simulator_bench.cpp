@@ -5,6 +5,8 @@
 #include <benchmark/benchmark.h>
 #include <chrono>
 #include <fmt/format.h>
+#include <cstdio>
+#include <cstdlib>
 #include <string>
 #include <sys/resource.h>
 #include <sys/wait.h>
@@ -73,6 +75,38 @@ void BM_LongRunMemory(benchmark::State& state) {
     state.counters["peak_rss_mb"] = peak;
 }
 BENCHMARK(BM_LongRunMemory)->Arg(100)->Arg(1000)->Unit(benchmark::kSecond)->Iterations(1);
+
+// Sweep speed (docs/sweeps.md): points per minute of `surfvp sweep` on this machine, for
+// 5-frame points of the budget scenario (1024x768, traces off), two at a time; a fresh sweep
+// folder each iteration, so nothing is resumed.
+void BM_SweepPoints(benchmark::State& state) {
+    const std::string dir = fmt::format("/tmp/surfvp_sweepbench_{}", ::getpid());
+    const std::string file = dir + ".yaml";
+    {
+        std::FILE* f = std::fopen(file.c_str(), "w");
+        std::fprintf(f, "scenario: %s/scenarios/budget_1024x768.yaml\nset: {surf.frames: 5}\n"
+                        "axes:\n  fhg.clock: [100 MHz, 125 MHz, 150 MHz]\n  fhg.read_buses: [2, 4, 6, 8]\n",
+                     SURFVP_SOURCE_DIR);
+        std::fclose(f);
+    }
+    double per_minute = 0;
+    for (auto _ : state) {
+        std::system(("rm -rf " + dir).c_str());
+        const auto start = std::chrono::steady_clock::now();
+        const pid_t pid = fork();
+        if (pid == 0) {
+            execl(SURFVP_BINARY, SURFVP_BINARY, "sweep", file.c_str(), "--quiet", "--jobs", "2", "--out", dir.c_str(), nullptr);
+            _exit(127);
+        }
+        int status = 0;
+        waitpid(pid, &status, 0);
+        const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        per_minute = 12 / wall * 60;
+    }
+    state.counters["points_per_minute"] = per_minute;
+    std::system(("rm -rf " + dir + " " + file).c_str());
+}
+BENCHMARK(BM_SweepPoints)->Unit(benchmark::kSecond)->Iterations(2);
 
 // Iteration time = wall time per simulated frame.
 BENCHMARK(BM_FrameTracesOff)->Arg(10)->UseManualTime()->Unit(benchmark::kMillisecond)->Iterations(3);
