@@ -66,6 +66,15 @@ Json sweep_figures(const Json& r) {
         f["joules_per_frame"] = r["power"]["joules_per_frame"];
         f["within_power_budget"] = r["power"]["within_budget"];
     }
+    // Feature quality, when the scenario's eval.* asks for it (a homography or camera poses).
+    if (r.contains("workload") && r["workload"].contains("evaluation")) {
+        const Json& e = r["workload"]["evaluation"];
+        if (e.contains("homography")) {
+            f["repeatability"] = e["homography"]["repeatability"];
+            f["precision"] = e["homography"]["precision"];
+        }
+        if (e.contains("distinguishability_gap1")) f["distinguishability"] = e["distinguishability_gap1"]["ransac"];
+    }
     f["keypoints_per_frame"] = r.value("keypoints_per_frame", 0.0);
     f["sim_time_s"] = r.value("sim_time_s", 0.0);
     f["passed"] = r.value("passed", false);
@@ -74,6 +83,10 @@ Json sweep_figures(const Json& r) {
 
 std::vector<Objective> pareto_objectives(const std::vector<SweepRow>& rows) {
     std::vector<Objective> out{{"fps", true}};
+    // Feature quality, when measured: higher is better.
+    for (const char* quality : {"repeatability", "precision", "distinguishability"})
+        if (std::any_of(rows.begin(), rows.end(), [&](const SweepRow& r) { return r.figures.contains(quality); }))
+            out.push_back({quality, true});
     // Costs the rows carry (FPGA resources, power), when they do: lower is better.
     for (const char* cost : {"bram36", "dsp48e", "watts"})
         if (std::any_of(rows.begin(), rows.end(), [&](const SweepRow& r) { return r.figures.contains(cost); }))
@@ -145,7 +158,7 @@ std::vector<std::string> write_sweep_results(const std::string& dir, const std::
         write_file_atomically((fs::path(dir) / file).string(), axis_plot(name, axis, axes, rows, front));
         written.push_back(file);
     }
-    if (objectives.size() > 1) {  // against watts when the rows have them: the cost that moves with every axis
+    if (!objectives.back().higher_is_better) {  // against watts when the rows have them: the cost that moves with every axis
         const std::string cost = objectives.back().figure;
         write_file_atomically((fs::path(dir) / "pareto.svg").string(), front_plot(name, cost, rows, front));
         written.push_back("pareto.svg");

@@ -116,6 +116,28 @@ TEST(Sweep, PointsRunInParallelAndResultsComeOutAsCsvJsonAndPlots) {
     EXPECT_EQ(results(dir + "/out")["points"], j["points"]);
 }
 
+// A base scenario that evaluates its keypoints gives each row its quality, and the front weighs it.
+TEST(Sweep, QualityComesWithAScenarioThatEvaluates) {
+    const std::string dir = fresh_dir("quality");
+    const std::string file = write_file(dir, "q.yaml",
+                                        "scenario: " + std::string(SURFVP_SOURCE_DIR) + "/scenarios/graf.yaml\n"
+                                        "set: {surf.target_keypoints: 300}\naxes:\n  surf.haar: [rounded, exact]\n");
+    const auto r = surfvp("sweep " + file + " --quiet --out " + dir + "/out");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const Json j = results(dir + "/out");
+    bool weighed = false;
+    for (const auto& o : j["pareto_objectives"]) weighed = weighed || o["figure"] == "precision";
+    EXPECT_TRUE(weighed) << j["pareto_objectives"];
+    for (const auto& p : j["points"]) {
+        EXPECT_GT(p["figures"]["repeatability"].get<double>(), 0.3) << p;
+        EXPECT_LT(p["figures"]["repeatability"].get<double>(), 1.0) << p;
+        EXPECT_GT(p["figures"]["precision"].get<double>(), 0.3) << p;
+    }
+    // The Haar mode is the descriptor's: the detector's repeatability is the same, the precision not.
+    EXPECT_EQ(j["points"][0]["figures"]["repeatability"], j["points"][1]["figures"]["repeatability"]);
+    EXPECT_NE(j["points"][0]["figures"]["precision"], j["points"][1]["figures"]["precision"]);
+}
+
 TEST(Sweep, ShardsMergeIntoTheResultsOfOneRun) {
     const std::string dir = fresh_dir("shards");
     const std::string file = small_sweep(dir, kTwoByTwo);
@@ -148,6 +170,20 @@ TEST(Sweep, APointThatCannotRunIsRecordedAndTheOthersGoOn) {
     const auto mixed = surfvp("sweep " + other + " --out " + dir + "/out");
     EXPECT_EQ(mixed.exit_code, 2);
     EXPECT_NE(mixed.err.find("holds the points of another sweep"), std::string::npos) << mixed.err;
+}
+
+TEST(Sweep, BadShardOptionsAreBadInput) {
+    const std::string dir = fresh_dir("bad_shard");
+    const std::string file = small_sweep(dir, kTwoByTwo);
+    for (const auto& [args, message] : std::vector<std::pair<std::string, std::string>>{
+             {" --shard 3/2", "expected K/N with 1 <= K <= N"},
+             {" --shard 0/2", "expected K/N"},
+             {" --shard two", "expected K/N"},
+             {" --slurm 2 --shard 1/2", "give --slurm or --shard, not both"}}) {
+        const auto r = surfvp("sweep " + file + " --out " + dir + "/out" + args);
+        EXPECT_EQ(r.exit_code, 2) << args;
+        EXPECT_NE(r.err.find(message), std::string::npos) << args << ": " << r.err;
+    }
 }
 
 }  // namespace
