@@ -83,7 +83,7 @@ unsigned dsp48e_for(unsigned a, unsigned b) {
 
 FpgaResources fpga_resources(const Config& c) {
     FpgaResources r;
-    r.device = c.text("fpga.device");
+    r.device = c.choice("fpga.device");
     r.ramb36_capacity = double(c.count("fpga.ramb36"));
     r.dsp48e_capacity = double(c.count("fpga.dsp48e"));
     r.lut_capacity = 4.0 * double(c.count("fpga.slices"));  // a Virtex-5 slice: 4 LUT6, 4 flip-flops

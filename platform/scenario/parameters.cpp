@@ -111,7 +111,9 @@ void add_surf(std::vector<ParamSpec>& t) {
                  "[-] simulation setting"});
     // The FPGA's capacity and what the resource estimate cannot derive (platform/cost,
     // docs/resources.md). None enters the simulation.
-    t.push_back({"fpga.device", ParamKind::text, "XC5VFX70T", 0, 0, {}, "The FPGA the resources are counted against (its name)",
+    t.push_back({"fpga.device", ParamKind::choice, "XC5VFX70T", 0, 0, {"XC5VFX70T", "XC5VFX100T", "XC6SLX150T", "other"},
+                 "The FPGA the resources are counted against, by name (its capacities are fpga.ramb36, fpga.dsp48e and "
+                 "fpga.slices)",
                  "[S] paper §III: XC5VFX70"});
     t.push_back({"fpga.ramb36", ParamKind::count, "148", 1, 100000, {}, "Block RAMs (RAMB36) the device has",
                  "[A] XC5VFX70T: 148 (recalled from DS100; PLATFORM_FACTS)"});
