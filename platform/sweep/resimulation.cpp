@@ -5,12 +5,16 @@
 #include <cstring>
 #include <fmt/format.h>
 #include <fstream>
+#include <opencv2/core/utility.hpp>
 #include <sstream>
 #include <sys/wait.h>
 #include <thread>
 #include <unistd.h>
 
 #include "platform/run/run.h"
+#include "platform/soc.h"
+#include "platform/tools/seqgen.h"
+#include "platform/workload/workload.h"
 
 namespace surfvp {
 namespace fs = std::filesystem;
@@ -28,6 +32,12 @@ Resimulation::~Resimulation() {
     }
     std::error_code ignored;
     fs::remove_all(scratch_, ignored);
+}
+
+void Resimulation::prepare(const Config& config) {
+    cv::setNumThreads(0);
+    make_workload(config);
+    schedule_figures(fhg_params(config));
 }
 
 Json Resimulation::point_summary(const Json& r) {
@@ -79,13 +89,17 @@ void Resimulation::start(Job job) {
     running_.emplace(pid, std::make_pair(std::move(job), result));
 }
 
+void Resimulation::start_queued() {
+    while (running_.size() < jobs_ && !queue_.empty()) {
+        Job job = std::move(queue_.front());
+        queue_.pop_front();
+        start(std::move(job));
+    }
+}
+
 void Resimulation::run(const std::function<void(size_t, size_t)>& progress) {
     while (!queue_.empty() || !running_.empty()) {
-        while (running_.size() < jobs_ && !queue_.empty()) {
-            Job job = std::move(queue_.front());
-            queue_.pop_front();
-            start(std::move(job));
-        }
+        start_queued();
         int status = 0;
         const pid_t pid = waitpid(-1, &status, 0);
         if (pid < 0 && errno == EINTR) continue;
@@ -106,6 +120,7 @@ void Resimulation::run(const std::function<void(size_t, size_t)>& progress) {
         std::error_code ignored;
         fs::remove(path, ignored);
         ++finished_;
+        start_queued();  // the freed slot works while the callback does (it may prepare the next job)
         job.done(result);
         if (progress) progress(finished_, submitted_);
     }

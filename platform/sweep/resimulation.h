@@ -40,8 +40,16 @@ public:
     // `progress(done, submitted)` after each.
     void run(const std::function<void(size_t, size_t)>& progress);
 
+    // Prepares in this process what a child of `config` would otherwise compute itself: its
+    // frames and threshold calibration, and every FHG sequence its report names (the one it
+    // runs and the other schedule). Also stops OpenCV's worker threads, which a forked child
+    // would inherit half-alive.
+    static void prepare(const Config& config);
+
     static nlohmann::ordered_json point_summary(const nlohmann::ordered_json& report);
     static nlohmann::ordered_json whole(const nlohmann::ordered_json& report) { return report; }
+
+    unsigned jobs() const { return jobs_; }
 
 private:
     struct Job {
@@ -51,6 +59,7 @@ private:
         std::string out, trace;
     };
     void start(Job job);
+    void start_queued();
 
     unsigned jobs_;
     std::filesystem::path scratch_;

@@ -152,8 +152,8 @@ int sweep_command(const SweepOptions& options) {
         std::fprintf(stderr, "surfvp: %s: %zu of %zu points already done in %s\n", plan.name.c_str(), mine - todo.size(), mine,
                      (dir / database_name(shard)).c_str());
 
-    // Each point is checked here, in this process (so a child inherits the frames, the
-    // threshold calibration and the FHG sequences it prepares), then simulated in a child.
+    // Each point is checked and prepared here, in this process (so a child inherits the frames,
+    // the threshold calibration and the FHG sequences), then simulated in a child.
     Resimulation pool(options.jobs, dir / fmt::format(".scratch-{}", getpid()));
     size_t done = 0, errors = 0;
     ProgressLine progress(options.quiet, plan.name, 0.0, 0.2, 10.0);
@@ -174,15 +174,27 @@ int sweep_command(const SweepOptions& options) {
         ++done;
         show();
     };
-    for (const SweepPoint* p : todo) {
-        try {
-            Config config = plan.config(*p);
-            check_scenario(config);
-            pool.submit(std::move(config), [p, &record](const Json& r) { record(*p, r); }, sweep_summary);
-        } catch (const ConfigError& e) {
-            record(*p, Json{{"error", e.what()}, {"exit", 2}});
+    // Points are checked and prepared as the children go, one ahead of the free slots, so this
+    // process prepares the next while they simulate.
+    size_t next = 0;
+    std::function<void()> submit_next = [&] {
+        while (next < todo.size()) {
+            const SweepPoint* p = todo[next++];
+            try {
+                Config config = plan.config(*p);
+                check_scenario(config);
+                Resimulation::prepare(config);
+                pool.submit(std::move(config), [p, &record, &submit_next](const Json& r) {
+                    record(*p, r);
+                    submit_next();
+                }, sweep_summary);
+                return;
+            } catch (const ConfigError& e) {
+                record(*p, Json{{"error", e.what()}, {"exit", 2}});
+            }
         }
-    }
+    };
+    for (unsigned i = 0; i <= pool.jobs(); ++i) submit_next();
     pool.run([&](size_t, size_t) {});
     if (shard.n == 1) write_results(dir, store);
     if (!options.quiet)

@@ -6,7 +6,6 @@
 #include <filesystem>
 #include <fmt/format.h>
 #include <limits>
-#include <opencv2/core/utility.hpp>
 #include <optional>
 #include <unistd.h>
 
@@ -14,10 +13,8 @@
 #include "platform/report/report.h"
 #include "platform/sweep/resimulation.h"
 #include "platform/run/run.h"
-#include "platform/tools/seqgen.h"
 #include "platform/soc.h"
 #include "platform/verdict/tornado.h"
-#include "platform/workload/workload.h"
 
 namespace surfvp {
 namespace {
@@ -293,10 +290,8 @@ int run_with_verdict(const Config& config, const std::string& out, const std::st
     const Config reference = with(config, {{"surf.frames", std::to_string(frames)}});
 
     // Prepare once what every child needs: the frames, the calibration, the FHG's sequences.
-    cv::setNumThreads(0);  // no OpenCV worker threads for the children to inherit half-alive
-    make_workload(config);
-    make_workload(reference);
-    schedule_figures(fhg_params(config));
+    Resimulation::prepare(config);
+    Resimulation::prepare(reference);
 
     Resimulation pool(unsigned(config.count("verdict.jobs")),
                       fs::path(out) / fmt::format(".verdict.{}", ::getpid()));
