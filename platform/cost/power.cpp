@@ -4,6 +4,7 @@
 
 #include "models/fhg/fhg.h"
 #include "models/fhg/sequence_generator.h"
+#include "platform/scenario/parameters.h"
 #include "platform/soc.h"
 
 namespace surfvp {
@@ -88,6 +89,28 @@ Json power_estimate(const Config& c, const Json& r, const FpgaResources& res) {
             {"budget_w", budget},
             {"within_budget", watts <= budget},
             {"blocks", blocks}};
+}
+
+Json cost_band(const Config& config, const Json& report) {
+    const FpgaResources base = fpga_resources(config);
+    double low_w = power_estimate(config, report, base)["watts"].get<double>(), high_w = low_w;
+    Json parameters = Json::array();
+    for (const ParamSpec* p : band_parameters()) {
+        if (p->key.rfind("fpga.", 0) != 0 && p->key.rfind("power.", 0) != 0) continue;
+        Json entry = {{"parameter", p->key}, {"value", config.value(p->key)}};
+        for (const auto& [side, value] : {std::pair{"low", p->band.low}, std::pair{"high", p->band.high}}) {
+            Config c = config;
+            c.set(p->key, value, "band");
+            const FpgaResources res = fpga_resources(c);
+            const double watts = power_estimate(c, report, res)["watts"].get<double>();
+            low_w = std::min(low_w, watts);
+            high_w = std::max(high_w, watts);
+            entry[side] = {{"value", value}, {"watts", watts}, {"ramb36", res.total.ramb36}, {"luts", res.total.luts},
+                           {"fits", res.fits()}};
+        }
+        parameters.push_back(entry);
+    }
+    return {{"watts_range", {low_w, high_w}}, {"parameters", parameters}};
 }
 
 }  // namespace surfvp

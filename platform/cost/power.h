@@ -16,4 +16,9 @@ namespace surfvp {
 nlohmann::ordered_json power_estimate(const Config& config, const nlohmann::ordered_json& report,
                                       const FpgaResources& resources);
 
+// The cost figures' own assumption band: each banded fpga.* and power.* parameter at its low
+// and at its high, one at a time, re-evaluated on the same run (no re-simulation: they move no
+// simulated figure): watts, RAMB36 and LUTs at each end, and the whole range.
+nlohmann::ordered_json cost_band(const Config& config, const nlohmann::ordered_json& report);
+
 }  // namespace surfvp

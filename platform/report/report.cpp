@@ -405,6 +405,22 @@ std::string power_section(const nlohmann::ordered_json& p) {
                                  p["within_budget"].get<bool>() ? "within" : "**over**", p["budget_w"].get<double>());
     for (const auto& [name, b] : p["blocks"].items())
         md += fmt::format("| {} | {:.3f} | {} |\n", name, b["watts"].get<double>(), b["basis"].get<std::string>());
+    if (p.contains("band")) {
+        // The assumptions the cost figures rest on, widest first.
+        std::vector<std::pair<double, std::string>> spread;
+        for (const auto& e : p["band"]["parameters"]) {
+            const double lo = e["low"]["watts"], hi = e["high"]["watts"];
+            const double ram_lo = e["low"]["ramb36"], ram_hi = e["high"]["ramb36"];
+            spread.push_back({std::abs(hi - lo), fmt::format("`{}` {} .. {}: {:.2f} .. {:.2f} W{}", e["parameter"].get<std::string>(),
+                                                             e["low"]["value"].get<std::string>(),
+                                                             e["high"]["value"].get<std::string>(), lo, hi,
+                                                             ram_lo == ram_hi ? "" : fmt::format(", {:g} .. {:g} RAMB36", ram_lo, ram_hi))});
+        }
+        std::stable_sort(spread.begin(), spread.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
+        md += fmt::format("\nOver the assumption band of the cost parameters, one at a time: **{:.2f} to {:.2f} W**. Widest:\n\n",
+                          p["band"]["watts_range"][0].get<double>(), p["band"]["watts_range"][1].get<double>());
+        for (size_t i = 0; i < spread.size() && i < 5; ++i) md += "- " + spread[i].second + "\n";
+    }
     return md;
 }
 

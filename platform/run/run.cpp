@@ -118,6 +118,7 @@ nlohmann::ordered_json build_report(const Config& config, Soc& soc, const Outcom
     const FpgaResources resources = fpga_resources(config);
     r["fpga_resources"] = resources_json(resources);
     r["power"] = power_estimate(config, r, resources);
+    r["power"]["band"] = cost_band(config, r);
     r["workload"] = soc.workload().report();
     r["outputs"] = outputs;
     return r;

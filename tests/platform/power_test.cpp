@@ -57,6 +57,21 @@ TEST(Power, TheBudgetRunStaysWithinTenWattsAndAFasterFhgCostsMore) {
     EXPECT_GT(fast["watts"].get<double>(), base["watts"].get<double>());
     EXPECT_LT(fast["joules_per_frame"].get<double>(), base["joules_per_frame"].get<double>());  // static power over fewer seconds
     EXPECT_NE(test::slurp(test::fresh_path("power_base") + "/report.md").find("## Power and energy"), std::string::npos);
+    // The cost parameters' band, re-evaluated on the same run: static power 1.2 W -> 0.8 .. 2 W.
+    const auto& band = base["band"];
+    EXPECT_LT(band["watts_range"][0].get<double>(), base["watts"].get<double>());
+    EXPECT_GT(band["watts_range"][1].get<double>(), base["watts"].get<double>());
+    bool found = false;
+    for (const auto& e : band["parameters"])
+        if (e["parameter"] == "power.static_w") {
+            found = true;
+            EXPECT_NEAR(e["low"]["watts"].get<double>(), base["watts"].get<double>() - 0.4, 1e-9);
+            EXPECT_NEAR(e["high"]["watts"].get<double>(), base["watts"].get<double>() + 0.8, 1e-9);
+        } else if (e["parameter"] == "fpga.infrastructure_ramb36") {
+            EXPECT_EQ(e["low"]["ramb36"], 82);  // 84 with 6: 4 .. 12
+            EXPECT_EQ(e["high"]["ramb36"], 90);
+        }
+    EXPECT_TRUE(found);
 }
 
 }  // namespace
