@@ -69,11 +69,7 @@ void apply_section(Config& config, const std::string& path, const std::string& s
         // yaml-cpp keeps both of two equal keys: the second would silently win.
         const auto [first, fresh] = seen.emplace(key, at(path, item.first));
         if (!fresh) throw ConfigError(fmt::format("{}: {} is set twice (first at {})", at(path, item.first), key, first->second));
-        std::string value = scalar(path, key, item.second);
-        // Paths in a scenario are relative to the scenario's own folder.
-        const ParamSpec* spec = find_parameter(key);
-        if (spec && spec->kind == ParamKind::text && !value.empty() && fs::path(value).is_relative())
-            value = (fs::path(path).parent_path() / value).lexically_normal().string();
+        const std::string value = relative_to_file(path, key, scalar(path, key, item.second));
         config.set(key, value, at(path, item.second.IsNull() ? item.first : item.second));
     }
 }
@@ -90,6 +86,13 @@ void check_name(const std::string& path, const YAML::Node& node, const std::stri
 }
 
 }  // namespace
+
+std::string relative_to_file(const std::string& file, const std::string& key, const std::string& value) {
+    const ParamSpec* spec = find_parameter(key);
+    if (spec && spec->kind == ParamKind::text && !value.empty() && fs::path(value).is_relative())
+        return (fs::path(file).parent_path() / value).lexically_normal().string();
+    return value;
+}
 
 YAML::Node load_yaml_file(const std::string& path, const std::string& what) {
     std::error_code error;

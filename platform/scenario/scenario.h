@@ -17,6 +17,9 @@ Config load_scenario(const std::string& path, const std::vector<std::string>& ov
 // One YAML document from a file (a `what`: "scenario", "sweep"); throws ConfigError for a
 // file that is missing, not regular, not YAML, or holds several documents.
 YAML::Node load_yaml_file(const std::string& path, const std::string& what);
+// A path parameter's value (a text parameter: surf.source, eval.*) as given in `file`: relative
+// to that file's folder; any other value as it is.
+std::string relative_to_file(const std::string& file, const std::string& key, const std::string& value);
 // `--set KEY=VALUE` overrides, applied in order (a key at most once); throws ConfigError.
 void apply_overrides(Config& config, const std::vector<std::string>& overrides);
 

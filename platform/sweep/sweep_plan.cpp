@@ -29,20 +29,12 @@ std::pair<double, std::string> quantity(const std::string& text, const std::stri
     return *q;
 }
 
-// Paths in a sweep file are relative to its own folder, as in a scenario.
-std::string relative_to(const std::string& file, const std::string& key, const std::string& value) {
-    const ParamSpec* spec = find_parameter(key);
-    if (spec && spec->kind == ParamKind::text && !value.empty() && fs::path(value).is_relative())
-        return (fs::path(file).parent_path() / value).lexically_normal().string();
-    return value;
-}
-
 SweepAxis parse_axis(const std::string& path, const YAML::Node& key, const YAML::Node& body) {
     SweepAxis axis{scalar(path, key, "axis"), {}, at(path, key)};
     if (!find_parameter(axis.key)) throw ConfigError(fmt::format("{}: axis {}: no such parameter (surfvp params lists them)",
                                                                  axis.origin, axis.key));
     if (body.IsSequence()) {
-        for (const auto& v : body) axis.values.push_back(relative_to(path, axis.key, scalar(path, v, axis.key)));
+        for (const auto& v : body) axis.values.push_back(relative_to_file(path, axis.key, scalar(path, v, axis.key)));
     } else if (body.IsMap()) {
         std::map<std::string, std::string> range;
         for (const auto& item : body) {
@@ -57,7 +49,7 @@ SweepAxis parse_axis(const std::string& path, const YAML::Node& key, const YAML:
                                               at(path, body), axis.key, k));
         axis.values = expand_range(range["from"], range["to"], range["step"], at(path, body) + ": axis " + axis.key);
     } else {
-        axis.values.push_back(relative_to(path, axis.key, scalar(path, body, axis.key)));
+        axis.values.push_back(relative_to_file(path, axis.key, scalar(path, body, axis.key)));
     }
     if (axis.values.empty()) throw ConfigError(fmt::format("{}: axis {} has no values", axis.origin, axis.key));
     return axis;
@@ -165,7 +157,7 @@ SweepPlan load_sweep(const std::string& path) {
             if (!item.second.IsMap()) throw ConfigError(fmt::format("{}: set: a map of KEY: VALUE", at(path, item.second)));
             for (const auto& s : item.second) {
                 const std::string k = scalar(path, s.first, "set");
-                plan.sets.push_back(k + "=" + relative_to(path, k, scalar(path, s.second, k)));
+                plan.sets.push_back(k + "=" + relative_to_file(path, k, scalar(path, s.second, k)));
             }
         } else if (key == "axes") {
             if (!item.second.IsMap()) throw ConfigError(fmt::format("{}: axes: a map of KEY: values", at(path, item.second)));

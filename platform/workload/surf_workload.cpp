@@ -114,10 +114,12 @@ eval::SequenceReader open_frames(const Config& c) {
 void read_sequence(const Config& c, SourceFrames& out) {
     const std::string source = c.text("surf.source");
     const bool resizing = c.count("surf.width") && c.count("surf.height");
+    auto too_few = [&](size_t has) {
+        return ConfigError(fmt::format("{}: surf.frames is {} (from {}), but {} has only {}", c.where("surf.source"), out.count,
+                                       c.source_of("surf.frames"), source, has));
+    };
     eval::SequenceReader reader = open_frames(c);
-    const size_t has = reader.sequence().frames.size();
-    if (has < out.count) throw ConfigError(fmt::format("{}: surf.frames is {} (from {}), but {} has only {}",
-                                                       c.where("surf.source"), out.count, c.source_of("surf.frames"), source, has));
+    if (reader.sequence().frames.size() < out.count) throw too_few(reader.sequence().frames.size());  // before decoding
     auto name = [&](size_t i) { return i < out.files.size() ? out.files[i].string() : fmt::format("{} frame {}", source, i); };
     size_t n = 0;
     for (cv::Mat frame; n < out.count && reader.next(frame); ++n) {
@@ -133,8 +135,7 @@ void read_sequence(const Config& c, SourceFrames& out) {
                                           frame.cols, frame.rows));
         }
     }
-    if (n < out.count) throw ConfigError(fmt::format("{}: surf.frames is {} (from {}), but {} has only {}",
-                                                     c.where("surf.source"), out.count, c.source_of("surf.frames"), source, n));
+    if (n < out.count) throw too_few(n);
 }
 
 SourceFrames read_frames(const Config& c) {
