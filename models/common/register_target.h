@@ -8,6 +8,7 @@
 #include <tlm>
 
 #include "byte_order.h"
+#include "clock.h"
 #include "parameter.h"
 #include "units.h"
 
@@ -68,7 +69,7 @@ template <typename Access>
 void answer_register_access(tlm::tlm_generic_payload& tx, sc_core::sc_time& delay, const Duration& latency,
                             Access&& access) {
     answer_register_access(tx, std::forward<Access>(access));
-    delay += sc_core::sc_time(double(latency.ps), sc_core::SC_PS);
+    delay += picoseconds(double(latency.ps));
 }
 
 }  // namespace surfvp

@@ -1,37 +1,45 @@
 #include "busy_timeline.h"
 
 #include <algorithm>
-#include <iterator>
 
 namespace surfvp {
 
 uint64_t BusyTimeline::reserve(uint64_t request, uint64_t length) {
+    const auto live = busy_.begin() + std::ptrdiff_t(first_);
+    auto starts_after = [](uint64_t t, const Interval& i) { return t < i.start; };
+    // The first interval starting after the request; the one before it may cover the request.
+    auto next = std::upper_bound(live, busy_.end(), request, starts_after);
     uint64_t start = request;
-    auto next = busy_.upper_bound(start);
-    if (next != busy_.begin() && std::prev(next)->second > start) start = std::prev(next)->second;
-    while (next != busy_.end() && next->first < start + length) {
-        start = std::max(start, next->second);
+    if (next != live && std::prev(next)->end > start) start = std::prev(next)->end;
+    while (next != busy_.end() && next->start < start + length) {
+        start = std::max(start, next->end);
         ++next;
     }
     if (length == 0) return start;
-    // Insert [start, end), merged with the intervals it touches.
-    uint64_t begin = start, end = start + length;
-    auto after = busy_.lower_bound(start);
-    if (after != busy_.begin() && std::prev(after)->second == begin) {
-        --after;
-        begin = after->first;
-        after = busy_.erase(after);
+    // Insert [start, end) before `next`, merged with the intervals it touches (the one
+    // before can only touch its start, `next` only its end).
+    const uint64_t end = start + length;
+    const bool joins_before = next != live && std::prev(next)->end == start;
+    const bool joins_after = next != busy_.end() && next->start == end;
+    if (joins_before && joins_after) {
+        std::prev(next)->end = next->end;
+        busy_.erase(next);
+    } else if (joins_before) {
+        std::prev(next)->end = end;
+    } else if (joins_after) {
+        next->start = start;
+    } else {
+        busy_.insert(next, Interval{start, end});
     }
-    if (after != busy_.end() && after->first == end) {
-        end = after->second;
-        busy_.erase(after);
-    }
-    busy_[begin] = end;
     return start;
 }
 
 void BusyTimeline::forget_before(uint64_t time) {
-    while (!busy_.empty() && busy_.begin()->second <= time) busy_.erase(busy_.begin());
+    while (first_ < busy_.size() && busy_[first_].end <= time) ++first_;
+    if (first_ > 64 && first_ * 2 > busy_.size()) {
+        busy_.erase(busy_.begin(), busy_.begin() + std::ptrdiff_t(first_));
+        first_ = 0;
+    }
 }
 
 }  // namespace surfvp

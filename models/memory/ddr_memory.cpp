@@ -86,7 +86,7 @@ void DdrMemory::b_transport(int port, tlm::tlm_generic_payload& tx, sc_time& del
     const sc_time request = sc_core::sc_time_stamp() + delay;
     const sc_time transfer = transfer_time(bytes, bytes_per_second());
     dram_.forget_before(sc_core::sc_time_stamp().value());
-    const sc_time start(double(dram_.reserve(request.value(), transfer.value())), sc_core::SC_PS);
+    const sc_time start = sc_time::from_value(dram_.reserve(request.value(), transfer.value()));
     busy_ += transfer;
     series_.busy(start.value(), (start + transfer).value());
     s.wait += start - request;

@@ -1,6 +1,9 @@
 // Parsing quantities with units: the one place text becomes typed values.
 #include <gtest/gtest.h>
 
+#include <random>
+
+#include "models/common/clock.h"
 #include "models/common/units.h"
 
 namespace surfvp {
@@ -68,6 +71,22 @@ TEST(Units, FormatParsesBackToTheSameValue) {
     // written as that number, 208 ps lost; durations and sizes are integers, written exactly.
     const Duration d = parse_duration("10000000000208 ps");
     EXPECT_EQ(parse_duration(format_duration(d)).ps, d.ps) << format_duration(d);
+}
+
+// The fast conversions give what SystemC's own constructors give, to the picosecond,
+// including the halves that round up and clocks with fractional periods.
+TEST(Units, TimeConversionsRoundLikeSystemC) {
+    std::mt19937_64 random(3);
+    for (int i = 0; i < 20000; ++i) {
+        const double ps = (i < 100) ? i * 0.5 : double(random() % 100000000) / double(1 + random() % 1000);
+        ASSERT_EQ(picoseconds(ps), sc_core::sc_time(ps, sc_core::SC_PS)) << ps;
+    }
+    for (double mhz : {100.0, 125.0, 133.333, 266.0, 400.0})
+        for (double n : {0.0, 1.0, 3.0, 7.5, 1e3, 12345.0, 1e7})
+            ASSERT_EQ(cycles(Frequency{mhz * 1e6}, n), sc_core::sc_time(n * Frequency{mhz * 1e6}.period_ps(), sc_core::SC_PS)) << mhz << " " << n;
+    for (uint64_t bytes : {0u, 1u, 4u, 32u, 128u, 4096u, 786432u})
+        for (double rate : {400e6, 800e6, 1.6e9, 3.2e9 / 3})
+            ASSERT_EQ(transfer_time(bytes, rate), sc_core::sc_time(double(bytes) / rate, sc_core::SC_SEC)) << bytes << " " << rate;
 }
 
 }  // namespace
