@@ -143,15 +143,23 @@ void narrow(const uint32_t* in, int32_t* out, int n, unsigned drop) {
     for (int i = 0; i < n; ++i) out[i] = int32_t(in[i] << drop) >> drop;
 }
 
-// The TripleMAC sums of one filter along a row: one integral row per read, so each read is
-// a loop over x. 32-bit unsigned sums wrap, which is exact modulo 2^32 and so for any
-// accumulator width up to 32 bits.
+// The TripleMAC sums of one box of a filter along a row: its four corner reads (one integral
+// row each, so each read is a column offset) added into the box's response at once, so the
+// sums go through memory once per box, not once per read. 32-bit unsigned sums wrap, which is
+// exact modulo 2^32 in any order and so for any accumulator width up to 32 bits.
+struct BoxReads {
+    const uint32_t* src[4];
+    uint32_t coefficient[4];
+};
+
 __attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
-void accumulate(uint32_t* a, const uint32_t* src, uint32_t coefficient, int k, int n, int step) {
+void accumulate_box(uint32_t* a, const BoxReads& box, int k, int n, int step) {
+    const uint32_t *s0 = box.src[0], *s1 = box.src[1], *s2 = box.src[2], *s3 = box.src[3];
+    const uint32_t c0 = box.coefficient[0], c1 = box.coefficient[1], c2 = box.coefficient[2], c3 = box.coefficient[3];
     if (step == 1)
-        for (; k < n; ++k) a[k] += coefficient * src[k];
+        for (; k < n; ++k) a[k] += c0 * s0[k] + c1 * s1[k] + c2 * s2[k] + c3 * s3[k];
     else
-        for (; k < n; ++k) a[k] += coefficient * src[k * step];
+        for (; k < n; ++k) a[k] += c0 * s0[k * step] + c1 * s1[k * step] + c2 * s2[k * step] + c3 * s3[k * step];
 }
 
 }  // namespace
@@ -165,22 +173,36 @@ void HessianCore::row(const IntegralView& ii, int y, int size, int x0, int step,
     int first = 0, last = count;  // k range inside
     while (first < count && x0 + first * step < b) ++first;
     while (last > first && x0 + (last - 1) * step > ii.width - 1 - b) --last;
-    for (int k = 0; k < count; ++k)
-        if (k < first || k >= last || y < b || y > ii.height - 1 - b) out[k * out_stride] = 0;
-    if (first >= last || y < b || y > ii.height - 1 - b) return;
+    if (y < b || y > ii.height - 1 - b) first = last = count;
+    for (int k = 0; k < first; ++k) out[k * out_stride] = 0;
+    for (int k = last; k < count; ++k) out[k * out_stride] = 0;
+    if (first >= last) return;
 
     const int n = last - first;
     thread_local std::vector<uint32_t> acc;
     thread_local std::vector<int32_t> dets;
     acc.assign(size_t(3) * n, 0);
     dets.resize(size_t(n));
-    for (const Read& r : reads_[size]) {
-        const int ry = y + r.dy;
-        if (ry < 0) continue;  // row -1 of the integral image is zero
-        const int start = x0 + first * step + r.dx;
-        // Only the first sample can fall on column -1 (start >= -1), which is zero too.
-        accumulate(acc.data() + size_t(int(r.response)) * n, ii.row(ry) + start, uint32_t(r.coefficient),
-                   start < 0 ? 1 : 0, n, step);
+    int32_t* finished = out_stride == 1 ? out + first : dets.data();  // contiguous output takes them directly
+    const std::vector<Read>& reads = reads_[size];
+    const int x_first = x0 + first * step;
+    for (size_t i = 0; i < reads.size(); i += 4) {  // filter_reads gives each box's 4 corners together
+        BoxReads box{};
+        const uint32_t* any_row = nullptr;
+        uint32_t first_sample = 0;  // the box at k = 0, where a corner may fall on column -1
+        for (int c = 0; c < 4; ++c) {
+            const Read& r = reads[i + size_t(c)];
+            if (y + r.dy < 0) continue;  // row -1 of the integral image is zero: coefficient 0
+            box.src[c] = any_row = ii.row(y + r.dy) + x_first + r.dx;
+            box.coefficient[c] = uint32_t(r.coefficient);
+            if (x_first + r.dx >= 0) first_sample += box.coefficient[c] * box.src[c][0];  // column -1 is zero too
+        }
+        if (!any_row) continue;
+        for (auto& src : box.src)
+            if (!src) src = any_row;  // read, times 0
+        uint32_t* a = acc.data() + size_t(int(reads[i].response)) * n;
+        a[0] += first_sample;
+        accumulate_box(a, box, 1, n, step);
     }
     const Precision& p = precision_;
     if (double_exact_) {
@@ -193,25 +215,29 @@ void HessianCore::row(const IntegralView& ii, int y, int size, int x0, int step,
                                  std::ldexp(1.0, -int(p.recip_shift)), half(p.weight_frac_bits),
                                  std::ldexp(1.0, -int(p.weight_frac_bits)), half(det_shift), std::ldexp(1.0, -int(det_shift)),
                                  std::ldexp(1.0, int(p.response_bits) - 1) - 1, std::ldexp(1.0, int(p.det_bits) - 1) - 1};
-        finish_run_exact_double(sums.data(), sums.data() + n, sums.data() + 2 * n, n, c, dets.data());
+        finish_run_exact_double(sums.data(), sums.data() + n, sums.data() + 2 * n, n, c, finished);
     } else {
         finish_run(acc.data(), acc.data() + n, acc.data() + 2 * n, n, finish_constants(p, reciprocal_[size], weight_),
-                   dets.data());
+                   finished);
     }
-    for (int k = 0; k < n; ++k) out[(first + k) * out_stride] = dets[size_t(k)];
+    if (out_stride != 1)
+        for (int k = 0; k < n; ++k) out[(first + k) * out_stride] = dets[size_t(k)];
 }
 
 void HessianCore::block_row(const IntegralView& ii, int by, int32_t* out) const {
     const int blocks = (ii.width + 1) / 2;
     thread_local std::vector<int32_t> line;
-    line.assign(size_t(blocks) * 2, 0);  // one image row at one size (padded to even width)
+    line.assign(size_t(blocks) * 2, 0);  // one image row at one size (padded to even width: the pad stays 0)
     for (int py = 0; py < 2; ++py) {
         const int y = 2 * by + py;
         for (int i = 0; i < 4; ++i) {
             if (y < ii.height) row(ii, y, kSizes[i], 0, 1, ii.width, line.data(), 1);
             else std::fill(line.begin(), line.end(), 0);
-            for (int x = 0; x < 2 * blocks; ++x)
-                out[(x / 2) * kDeterminantsPerBlock + 4 * i + 2 * py + x % 2] = x < ii.width ? line[x] : 0;
+            int32_t* o = out + 4 * i + 2 * py;  // a pair of neighbours per block
+            for (int j = 0; j < blocks; ++j, o += kDeterminantsPerBlock) {
+                o[0] = line[size_t(2 * j)];
+                o[1] = line[size_t(2 * j + 1)];
+            }
         }
     }
     for (int j = 0; j < 2; ++j) row(ii, 2 * by, kSizes[4 + j], 0, 2, blocks, out + 16 + j, kDeterminantsPerBlock);

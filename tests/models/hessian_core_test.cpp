@@ -73,10 +73,18 @@ TEST(HessianCore, FiltersReadA52By52Window) {
     EXPECT_EQ(max_y, kReachAfter);
 }
 
+// The row path (a box's corners at once, finished in double where exact) against the
+// determinant of each block alone, at the default precision, at one too wide for double
+// (finished in int64) and at one whose accumulators wrap.
 TEST(HessianCore, BlockRowEqualsPerBlockDeterminantsIncludingBorders) {
+    Precision wide;
+    wide.accumulator_bits = 32, wide.response_bits = 32, wide.weight_frac_bits = 20;
+    Precision wrapping;
+    wrapping.accumulator_bits = 16, wrapping.response_bits = 12, wrapping.det_bits = 20;
+    for (const Precision& precision : {Precision{}, wide, wrapping})
     for (auto [w, h] : {std::pair{131, 97}, std::pair{64, 60}, std::pair{53, 52}}) {
         const Integral ii = integral_of(test::random_image(w, h, unsigned(w)));
-        const HessianCore core(Precision{});
+        const HessianCore core(precision);
         const int blocks = (w + 1) / 2;
         std::vector<int32_t> row(size_t(blocks) * kDeterminantsPerBlock);
         for (int by = 0; by < (h + 1) / 2; ++by) {
@@ -85,7 +93,8 @@ TEST(HessianCore, BlockRowEqualsPerBlockDeterminantsIncludingBorders) {
                 const auto expected = core.block(ii.view, bx, by);
                 for (int k = 0; k < kDeterminantsPerBlock; ++k)
                     ASSERT_EQ(row[size_t(bx) * kDeterminantsPerBlock + k], expected[k])
-                        << w << "x" << h << " block " << bx << "," << by << " k " << k;
+                        << w << "x" << h << " block " << bx << "," << by << " k " << k << " accumulator "
+                        << precision.accumulator_bits;
             }
         }
     }
