@@ -8,6 +8,7 @@
 #include "models/common/clock.h"
 #include "models/common/register_target.h"
 #include "models/dma/dma_engine.h"
+#include "sequence_cache.h"
 
 namespace surfvp {
 namespace r = fhg_regs;

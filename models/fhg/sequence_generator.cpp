@@ -406,18 +406,6 @@ Sequence generate_sequence(const SequenceParams& params) {
     return s;
 }
 
-const Sequence& cached_sequence(const SequenceParams& p) {
-    using Key = std::tuple<unsigned, unsigned, unsigned, unsigned, int, bool, unsigned, unsigned, int, unsigned>;
-    static std::map<Key, Sequence> cache;
-    static std::mutex mutex;
-    const Key key{p.read_buses, p.triple_macs, p.fifo_lines, p.x3_cycles, int(p.bus_word), p.reuse,
-                  p.line_ports, p.line_banks, int(p.scheduler), p.attempts};
-    std::lock_guard<std::mutex> lock(mutex);
-    auto it = cache.find(key);
-    if (it == cache.end()) it = cache.emplace(key, generate_sequence(p)).first;
-    return it->second;
-}
-
 std::string check_sequence(const Sequence& sequence, const SequenceParams& params) {
     // What each TripleMAC must receive: (point, coefficient, response), as a multiset.
     using Value = std::tuple<int, int, int, int>;

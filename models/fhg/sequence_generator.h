@@ -92,10 +92,6 @@ struct Sequence {
 // naming the parameter.
 Sequence generate_sequence(const SequenceParams& params);
 
-// The same, remembered per configuration for the life of the process (a platform with
-// several FHGs, and re-simulations forked from one process, generate each sequence once).
-const Sequence& cached_sequence(const SequenceParams& params);
-
 // Values of a bus word, as (dy, dx) offsets from its top-left point, in lane order.
 const std::vector<std::array<int, 2>>& word_shape(BusWord word);
 const char* bus_word_name(BusWord word);

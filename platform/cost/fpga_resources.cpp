@@ -6,7 +6,7 @@
 
 #include "models/fhg/fhg.h"
 #include "models/fhg/fhg_regs.h"
-#include "models/fhg/sequence_generator.h"
+#include "models/fhg/sequence_cache.h"
 #include "platform/soc.h"
 
 namespace surfvp {

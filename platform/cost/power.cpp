@@ -3,7 +3,7 @@
 #include <fmt/format.h>
 
 #include "models/fhg/fhg.h"
-#include "models/fhg/sequence_generator.h"
+#include "models/fhg/sequence_cache.h"
 #include "platform/scenario/parameters.h"
 #include "platform/soc.h"
 

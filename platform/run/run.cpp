@@ -12,7 +12,7 @@
 #include <fmt/format.h>
 
 #include "models/fhg/hessian_core.h"
-#include "models/fhg/sequence_generator.h"
+#include "models/fhg/sequence_cache.h"
 #include "platform/direct/direct_chip.h"
 #include "platform/workload/frame_limits.h"
 #include "platform/cli/progress_line.h"

@@ -3,7 +3,7 @@
 #include <cstdio>
 
 #include "platform/scenario/config.h"
-#include "models/fhg/sequence_generator.h"
+#include "models/fhg/sequence_cache.h"
 #include "platform/scenario/scenario.h"
 #include "platform/soc.h"
 

@@ -9,6 +9,7 @@
 #include <optional>
 #include <unistd.h>
 
+#include "models/fhg/sequence_cache.h"
 #include "platform/cli/progress_line.h"
 #include "platform/report/report.h"
 #include "platform/sweep/resimulation.h"

@@ -4,7 +4,7 @@
 #include <gtest/gtest.h>
 #include <map>
 
-#include "models/fhg/sequence_generator.h"
+#include "models/fhg/sequence_cache.h"
 
 namespace surfvp::fhg {
 namespace {
