@@ -16,6 +16,7 @@
 #include "platform/run/run.h"
 #include "platform/scenario/scenario.h"
 #include "platform/compare/compare.h"
+#include "platform/table2/table2.h"
 #include "platform/sweep/sweep.h"
 #include "platform/tools/seqgen.h"
 #include "platform/soc.h"
@@ -105,6 +106,15 @@ int dispatch(int argc, char** argv) {
     compare->add_option("runs", compare_options.sides, "Run folders or sweep points (SWEEP_DIR@N); the first is the reference")
         ->required();
     compare->add_option("--json", compare_options.json, "Also write the comparison as JSON to this file");
+    Table2Options table2_options;
+    CLI::App* table2 = app.add_subcommand("table2", "The paper's Table II: a sequence through the chip and the float reference, "
+                                                    "distinguishability in four rows (docs/table2.md)");
+    table2->add_option("scenario", table2_options.scenario, "Scenario file, or the name of a shipped one (see `surfvp list`)")
+        ->required();
+    table2->add_option("--set", table2_options.sets, "Override a parameter: --set surf.source=DIR (repeatable)")
+        ->type_name("KEY=VALUE ...");
+    table2->add_option("--out", table2_options.out, "Output folder (default: traces/<scenario name>)");
+    table2->add_flag("--quiet,-q", table2_options.quiet, "No summary lines on stderr");
     QualityCommands quality(app);
 
     try {
@@ -131,6 +141,7 @@ int dispatch(int argc, char** argv) {
         if (*calibrate) return calibrate_command(calibrate_options);
         if (*sweep) return sweep_command(sweep_options);
         if (*compare) return compare_command(compare_options);
+        if (*table2) return table2_command(table2_options);
         if (*sweep_merge) return sweep_merge_command(merge_dir);
         if (app.got_subcommand("list")) return list_scenarios();
         if (app.got_subcommand("registers")) {

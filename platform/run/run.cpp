@@ -140,42 +140,6 @@ void print_summary(const Config& config, const fs::path& dir, bool direct) {
                  r["sim_time_s"].get<double>() * 1e3, r["wall_time_s"].get<double>(), (dir / "report.md").c_str());
 }
 
-// The same driver and software without SystemC: keypoints, no time.
-int run_direct(const Config& config, const fs::path& dir) {
-    const auto workload = make_workload(config);
-    DirectChip chip(config, unsigned(config.count("soc.accelerators")));
-    workload->attach_memory([&chip](uint64_t address, uint64_t bytes) { return chip.backdoor(address, bytes); });
-    workload->write_into(dir.string());
-    std::string failure;
-    try {
-        workload->software()(chip);
-    } catch (const std::exception& e) {
-        failure = std::string("software error: ") + e.what();
-    }
-    nlohmann::ordered_json checks = nlohmann::ordered_json::array();
-    bool passed = failure.empty();
-    for (const Check& c : workload->checks()) {
-        if (c.name == "frame-rate budget") continue;  // no time here
-        checks.push_back({{"name", c.name}, {"passed", c.passed}, {"detail", c.detail}});
-        passed = passed && c.passed;
-    }
-    std::vector<std::string> outputs{"report.json", "config.yaml"};
-    for (const std::string& f : workload->files_written()) outputs.push_back(f);
-    nlohmann::ordered_json r;
-    r["surfvp_version"] = SURFVP_VERSION;
-    r["mode"] = "direct";
-    r["scenario"] = {{"name", config.name}, {"file", config.file}, {"description", config.description}};
-    r["passed"] = passed;
-    if (!failure.empty()) r["failure"] = failure;
-    r["checks"] = checks;
-    r["software_cycles"] = chip.cycles_consumed();
-    r["workload"] = workload->report();
-    r["outputs"] = outputs;
-    write_file_atomically((dir / "config.yaml").string(), config.to_yaml());
-    write_file_atomically((dir / "report.json").string(), r.dump(2) + "\n");
-    return passed ? kExitOk : kExitFailed;
-}
-
 // A model's own refusal names its fields ("fhg precision: det_frac_bits must not exceed 2 x
 // response_frac_bits"): add where each of those parameters came from.
 std::string with_origins(const Config& config, const std::string& message) {
@@ -204,6 +168,46 @@ void print_warnings(const Config& config) {
 }
 
 }  // namespace
+
+// The same driver and software without SystemC: keypoints, no time.
+int run_direct(const Config& config, const fs::path& dir) {
+    const auto workload = make_workload(config);
+    DirectChip chip(config, unsigned(config.count("soc.accelerators")));
+    workload->attach_memory([&chip](uint64_t address, uint64_t bytes) { return chip.backdoor(address, bytes); });
+    workload->write_into(dir.string());
+    std::string failure;
+    try {
+        workload->software()(chip);
+    } catch (const std::exception& e) {
+        failure = std::string("software error: ") + e.what();
+    }
+    nlohmann::ordered_json checks = nlohmann::ordered_json::array();
+    bool passed = failure.empty();
+    for (const Check& c : workload->checks()) {
+        if (c.name == "frame-rate budget") continue;  // no time here
+        checks.push_back({{"name", c.name}, {"passed", c.passed}, {"detail", c.detail}});
+        passed = passed && c.passed;
+    }
+    std::vector<std::string> outputs{"report.json", "config.yaml"};
+    for (const std::string& f : workload->files_written()) outputs.push_back(f);
+    nlohmann::ordered_json r;
+    r["surfvp_version"] = SURFVP_VERSION;
+    r["mode"] = "direct";
+    r["scenario"] = {{"name", config.name}, {"file", config.file}, {"description", config.description}};
+    r["passed"] = passed;
+    if (!failure.empty()) r["failure"] = failure;
+    r["checks"] = checks;
+    const nlohmann::ordered_json summary = workload->summary();  // what has a meaning without time
+    for (const char* key : {"image", "frames", "frames_done", "keypoints_per_frame", "keypoints_per_frame_range", "threshold",
+                            "threshold_rule"})
+        if (summary.contains(key)) r[key] = summary[key];
+    r["software_cycles"] = chip.cycles_consumed();
+    r["workload"] = workload->report();
+    r["outputs"] = outputs;
+    write_file_atomically((dir / "config.yaml").string(), config.to_yaml());
+    write_file_atomically((dir / "report.json").string(), r.dump(2) + "\n");
+    return passed ? kExitOk : kExitFailed;
+}
 
 nlohmann::ordered_json simulate_scenario(const Config& config, const std::string& out, const std::string& trace, bool quiet) {
     const Tracer::Options traces = trace_options(trace, out);

@@ -1,6 +1,7 @@
 #pragma once
 // `surfvp run` and `surfvp validate`: load a scenario, elaborate the SoC, simulate until the
 // software finishes, write the traces and reports. Exit codes are documented in README.md.
+#include <filesystem>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -35,6 +36,11 @@ void check_scenario(const Config& config);
 // (`trace`: none, vcd, perfetto, all) and the workload's files written into `out` (nothing
 // when `out` is empty). Throws ConfigError for bad input.
 nlohmann::ordered_json simulate_scenario(const Config& config, const std::string& out, const std::string& trace, bool quiet);
+
+// One run of `config` on the untimed DirectChip (no SystemC) into `dir`: report.json,
+// config.yaml and the workload's files (its keypoints byte for byte the VP's); returns the
+// run's exit code.
+int run_direct(const Config& config, const std::filesystem::path& dir);
 
 // Writes config.yaml, report.md, report.html, frames.csv and report.json of a run into `out`
 // and returns the run's exit code.

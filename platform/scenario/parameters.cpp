@@ -167,6 +167,8 @@ void add_surf(std::vector<ParamSpec>& t) {
                  "Homography from frame 0 to frame 1 (Oxford or OpenCV file): report repeatability and precision", "[-] evaluation"});
     t.push_back({"eval.poses", ParamKind::text, "", 0, 0, {},
                  "Folder of Camera_NNN.txt poses (ViSP castle): report distinguishability with the true F too", "[-] evaluation"});
+    t.push_back({"eval.gap", ParamKind::count, "2", 1, 1000, {},
+                 "Pairs (i, i + gap) evaluated besides consecutive frames (camera poses, surfvp table2)", "[-] evaluation"});
 }
 
 // The assumption band: for each assumed value the plausible low and high and why (the verdict

@@ -208,6 +208,13 @@ const SourceFrames& load_source(const Config& c) {
     return it->second;
 }
 
+// Pairs (i, i + gap) the evaluation measures: consecutive frames and eval.gap.
+std::vector<size_t> evaluated_gaps(const Config& c) {
+    std::vector<size_t> gaps{1};
+    if (c.count("eval.gap") > 1) gaps.push_back(c.count("eval.gap"));
+    return gaps;
+}
+
 // The evaluation's geometry, read before anything is built: a homography from frame 0 to
 // frame 1 at the frames' own size, and camera poses that belong to the very frames the source
 // gives, one each.
@@ -239,15 +246,17 @@ void check_eval_inputs(const Config& c, const SourceFrames& frames) {
     if (posed.size() < frames.count)
         throw ConfigError(fmt::format("{}: {} poses for {} frames (surf.frames from {})", c.where("eval.poses"), posed.size(),
                                       frames.count, c.source_of("surf.frames")));
-    // The evaluation's pairs (gaps 1 and 2, evaluation() below) need two distinct camera centres.
+    // The evaluation's pairs (evaluation() below) need two distinct camera centres.
     for (size_t i = 0; i < frames.count; ++i)
-        for (size_t j : {i + 1, i + 2})
+        for (size_t gap : evaluated_gaps(c)) {
+            const size_t j = i + gap;
             if (j < frames.count) try {
                     eval::fundamental_from_poses(eval::kCastleIntrinsics, posed[i].c_m_o, posed[j].c_m_o);
                 } catch (const std::invalid_argument& e) {
                     throw ConfigError(fmt::format("{}: frames {} and {} ({} and {}): {}", c.where("eval.poses"), i, j,
                                                   posed[i].pose_file.string(), posed[j].pose_file.string(), e.what()));
                 }
+        }
     for (size_t i = 0; i < frames.files.size(); ++i) {
         std::error_code ec;
         if (!fs::equivalent(frames.files[i], posed[i].image, ec))
@@ -595,7 +604,8 @@ nlohmann::ordered_json SurfWorkload::evaluation() const {
         for (const FrameResult& r : results_) all.push_back(r.keypoints);
         const auto posed = eval::list_posed_frames(poses);
         const eval::CameraIntrinsics k = eval::kCastleIntrinsics;
-        for (size_t gap : {size_t(1), size_t(2)}) {
+        for (size_t gap : evaluated_gaps(config_)) {
+            if (gap >= results_.size()) continue;
             const auto ransac = eval::sequence_distinguishability(all, gap);
             const auto truth = eval::sequence_distinguishability(all, gap, [&](size_t i, size_t j) {
                 return eval::fundamental_from_poses(k, posed.at(i).c_m_o, posed.at(j).c_m_o);
@@ -656,6 +666,12 @@ std::vector<std::string> SurfWorkload::files_written() {
 }  // namespace
 
 std::unique_ptr<Workload> make_surf_workload(const Config& config) { return std::make_unique<SurfWorkload>(config); }
+
+void for_each_chip_frame(const Config& config, const std::function<void(size_t, const cv::Mat&)>& take) {
+    const SourceFrames& source = load_source(config);
+    FrameStream stream(config, source);
+    for (size_t i = 0; i < source.count; ++i) take(i, stream.frame(i));
+}
 
 void check_surf_inputs(const Config& config) {
     if (config.choice("run.workload") != "surf") return;

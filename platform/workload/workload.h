@@ -5,6 +5,7 @@
 #include <functional>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <opencv2/core/mat.hpp>
 #include <string>
 #include <vector>
 
@@ -67,5 +68,9 @@ std::unique_ptr<Workload> make_surf_workload(const Config& config);
 // found after simulating; throws ConfigError naming the key's origin. Nothing for other
 // workloads.
 void check_surf_inputs(const Config& config);
+
+// Every frame of surf.source as the chip takes it (grey, resized as surf.width x surf.height
+// ask), in order, one decoded at a time: what a run gives the chip, for a reference beside it.
+void for_each_chip_frame(const Config& config, const std::function<void(size_t, const cv::Mat&)>& take);
 
 }  // namespace surfvp

@@ -8,6 +8,8 @@
 #include <string>
 #include <sys/wait.h>
 
+#include <gtest/gtest.h>
+
 namespace surfvp::test {
 
 struct Cli {
@@ -58,5 +60,17 @@ inline std::string write_file(const std::string& dir, const std::string& name, c
     std::ofstream(path) << text;
     return path;
 }
+
+// Test data of Debian packages: a missing file fails the test with the package's name.
+inline const std::string kOpencvData = OPENCV_DATA_DIR;
+inline const std::string kCastle = std::string(VISP_DATA_DIR) + "/mbt-depth/Castle-simu";
+
+inline ::testing::AssertionResult have_data(const std::string& path, const std::string& package) {
+    if (std::filesystem::exists(path)) return ::testing::AssertionSuccess();
+    return ::testing::AssertionFailure() << path << " is missing: install the Debian package " << package
+                                         << " (apt-get install " << package << ")";
+}
+#define REQUIRE_OPENCV_DATA(name) ASSERT_TRUE(test::have_data(test::kOpencvData + "/" + (name), "opencv-doc"))
+#define REQUIRE_CASTLE() ASSERT_TRUE(test::have_data(test::kCastle + "/Images/Image_0001.pgm", "visp-images-data"))
 
 }  // namespace surfvp::test

@@ -21,17 +21,8 @@ using test::slurp;
 using test::surfvp;
 using test::write_file;
 
-const std::string kOpencvData = OPENCV_DATA_DIR;
-const std::string kCastle = std::string(VISP_DATA_DIR) + "/mbt-depth/Castle-simu";
-
-// The file's path; a failure naming the Debian package that ships it when it is missing.
-::testing::AssertionResult have_data(const std::string& path, const std::string& package) {
-    if (fs::exists(path)) return ::testing::AssertionSuccess();
-    return ::testing::AssertionFailure() << path << " is missing: install the Debian package " << package
-                                         << " (apt-get install " << package << ")";
-}
-#define REQUIRE_OPENCV_DATA(name) ASSERT_TRUE(have_data(kOpencvData + "/" + (name), "opencv-doc"))
-#define REQUIRE_CASTLE() ASSERT_TRUE(have_data(kCastle + "/Images/Image_0001.pgm", "visp-images-data"))
+using test::kCastle;
+using test::kOpencvData;
 
 std::string graf(int n) { return kOpencvData + "/graf" + std::to_string(n) + ".png"; }
 

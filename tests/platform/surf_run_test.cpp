@@ -159,7 +159,9 @@ TEST(SurfRun, FramesArriveInReusedBuffers) {
         EXPECT_GT(kept.size(), 1000u) << f;
         EXPECT_EQ(kept, slurp(fresh_path("roomy") + f)) << f;
         EXPECT_EQ(kept, slurp(direct + f)) << f;
-        if (i > 0) EXPECT_NE(kept, slurp(fresh_path("tight") + fmt::format("/keypoints/frame_{:04}.surf", i - 1))) << f;
+        if (i > 0) {
+            EXPECT_NE(kept, slurp(fresh_path("tight") + fmt::format("/keypoints/frame_{:04}.surf", i - 1))) << f;
+        }
     }
     EXPECT_EQ(tight["workload"]["evaluation"], roomy["workload"]["evaluation"]);
     EXPECT_GT(tight["workload"]["evaluation"]["distinguishability_gap1"]["pairs"].get<int>(), 0);

@@ -1,0 +1,119 @@
+// `surfvp table2` end to end on the shipped scenarios: the castle (camera poses), vtest.avi (a
+// static camera) and the graf pair (a homography). Missing data fails with the package's name.
+#include <filesystem>
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "cli.h"
+
+namespace surfvp {
+namespace {
+namespace fs = std::filesystem;
+using nlohmann::json;
+using test::fresh_dir;
+using test::slurp;
+using test::surfvp;
+
+json table2(const std::string& scenario, const std::string& out, const std::string& sets = "") {
+    const auto r = surfvp("table2 " + scenario + " --quiet --out " + out + sets);
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    return json::parse(slurp(out + "/report.json"));
+}
+
+TEST(Table2, CastleGivesEveryRowForBothColumnsWithTheTruthAndThePaperBeside) {
+    REQUIRE_CASTLE();
+    const std::string out = fresh_dir("t2castle");
+    const json r = table2("castle_sequence", out, " --set surf.frames=8");
+    ASSERT_EQ(r["gaps"].size(), 2u);
+    const std::vector<std::pair<bool, bool>> order{{true, true}, {true, false}, {false, true}, {false, false}};
+    for (const json& gap : r["gaps"]) {
+        const size_t k = gap["gap"];
+        ASSERT_EQ(gap["rows"].size(), 4u);
+        for (size_t i = 0; i < 4; ++i) {
+            const json& row = gap["rows"][i];
+            EXPECT_EQ(std::pair(row["limited_search"].get<bool>(), row["laplacian"].get<bool>()), order[i]);
+            EXPECT_EQ(row.contains("paper"), k == 1);  // the paper measured consecutive frames only
+            for (const char* column : {"cpu", "fpga"})
+                for (const char* measure : {"ransac", "ground_truth"}) {
+                    const json& cell = row[column][measure];
+                    EXPECT_EQ(cell["pairs"], 8 - k) << column << " " << measure;
+                    EXPECT_GT(cell["mean"].get<double>(), 0.7) << column << " " << measure;
+                    EXPECT_LE(cell["mean"].get<double>(), 1.0);
+                    EXPECT_GT(cell["spread"].get<double>(), 0.0);  // eight frames do not all score the same
+                }
+            // The target on the castle: the chip within 0.03 of the float reference.
+            EXPECT_NEAR(row["fpga"]["ransac"]["mean"].get<double>(), row["cpu"]["ransac"]["mean"].get<double>(), 0.03)
+                << "gap " << k << " row " << i;
+        }
+    }
+    EXPECT_DOUBLE_EQ(r["gaps"][0]["rows"][0]["paper"]["cpu"].get<double>(), 0.62);
+    EXPECT_DOUBLE_EQ(r["gaps"][0]["rows"][3]["paper"]["fpga"].get<double>(), 0.26);
+    for (const char* column : {"cpu", "fpga"}) {
+        EXPECT_TRUE(fs::exists(out + "/" + column + "/keypoints/frame_0007.surf")) << column;
+        EXPECT_EQ(r["columns"][column]["failed_frames"].size(), 0u);
+        EXPECT_GT(r["columns"][column]["threshold"].get<double>(), 0.0);
+    }
+    const std::string md = slurp(out + "/report.md");
+    EXPECT_NE(md.find("| limited search | Laplacian | CPU | FPGA | FPGA − CPU | paper CPU | paper FPGA |"), std::string::npos);
+    EXPECT_NE(md.find("F from the camera poses"), std::string::npos);
+    EXPECT_NE(md.find("## What the columns differ in"), std::string::npos);
+}
+
+// The FPGA column is the chip: its keypoint files are those a timed run of the VP writes.
+TEST(Table2, TheChipColumnIsTheVirtualPlatformsKeypoints) {
+    REQUIRE_CASTLE();
+    const std::string out = fresh_dir("t2vp"), run = fresh_dir("t2vp_run");
+    table2("castle_sequence", out, " --set surf.frames=3");
+    const auto r = surfvp("run castle_sequence --quiet --trace none --set surf.frames=3 --out " + run);
+    ASSERT_LE(r.exit_code, 1) << r.err;
+    for (int i = 0; i < 3; ++i) {
+        const std::string name = "/keypoints/frame_000" + std::to_string(i) + ".surf";
+        ASSERT_TRUE(fs::exists(run + name));
+        EXPECT_EQ(slurp(out + "/fpga" + name), slurp(run + name)) << name;
+    }
+}
+
+TEST(Table2, AStaticCameraScoresNearlyOneWithoutGroundTruth) {
+    REQUIRE_OPENCV_DATA("vtest.avi");
+    const json r = table2("vtest_sequence", fresh_dir("t2vtest"), " --set surf.frames=6");
+    for (const json& row : r["gaps"][0]["rows"])
+        for (const char* column : {"cpu", "fpga"}) {
+            EXPECT_GT(row[column]["ransac"]["mean"].get<double>(), 0.9) << column;
+            EXPECT_FALSE(row[column].contains("ground_truth"));
+        }
+}
+
+TEST(Table2, TheGrafPairUnderItsHomography) {
+    REQUIRE_OPENCV_DATA("graf3.png");
+    const json r = table2("graf", fresh_dir("t2graf"));
+    ASSERT_TRUE(r.contains("homography"));
+    for (const char* column : {"cpu", "fpga"}) {
+        const json& h = r["homography"][column];
+        EXPECT_GT(h["repeatability"].get<double>(), 0.45) << column;  // measured 0.521 and 0.527
+        EXPECT_LT(h["repeatability"].get<double>(), 0.60) << column;
+        EXPECT_GT(h["precision"].get<double>(), 0.5) << column;  // measured 0.618 and 0.576
+        EXPECT_EQ(h["precision_correct"].get<double>() / h["precision_candidates"].get<double>(), h["precision"].get<double>());
+    }
+    EXPECT_EQ(r["gaps"].size(), 1u);  // two frames: one pair
+}
+
+// Bad input is refused before anything is written: another sequence under the castle's poses,
+// a scenario that is not SURF, a single frame.
+TEST(Table2, InputsThatCannotGiveTheTableAreRefused) {
+    REQUIRE_OPENCV_DATA("vtest.avi");
+    const std::string out = test::fresh_path("t2bad");
+    fs::remove_all(out);
+    const auto poses = surfvp("table2 castle_sequence --out " + out + " --set surf.source=" + test::kOpencvData + "/vtest.avi");
+    EXPECT_EQ(poses.exit_code, 2);
+    EXPECT_NE(poses.err.find("eval.poses"), std::string::npos) << poses.err;
+    const auto smoke = surfvp("table2 smoke --out " + out);
+    EXPECT_EQ(smoke.exit_code, 2);
+    EXPECT_NE(smoke.err.find("run.workload: surf"), std::string::npos) << smoke.err;
+    const auto single = surfvp("table2 vtest_sequence --set surf.frames=1 --out " + out);
+    EXPECT_EQ(single.exit_code, 2);
+    EXPECT_NE(single.err.find("surf.frames must be at least 2"), std::string::npos) << single.err;
+    EXPECT_FALSE(fs::exists(out));
+}
+
+}  // namespace
+}  // namespace surfvp
