@@ -29,6 +29,11 @@ void add_surf_options(CLI::App& command, SurfSettings& surf) {
     command.add_option("--init-step", surf.init_step, "Sampling step of octave 0: 1 (the chip) or 2 (OpenSURF)")
         ->check(CLI::Range(1, 2))
         ->capture_default_str();
+    command.add_option("--haar", surf.haar,
+                       "Haar wavelets of orientation and descriptor: exact (sub-pixel, the float reference) or rounded "
+                       "(whole pixels, the chip's software: surf.haar)")
+        ->check(CLI::IsMember({"exact", "rounded"}))
+        ->capture_default_str();
     command.add_option("--threads", surf.threads, "Threads for SURF, 0 = all cores")
         ->check(CLI::Range(0, 1024))
         ->capture_default_str();

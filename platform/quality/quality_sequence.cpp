@@ -244,6 +244,7 @@ ordered_json surf_json(const SurfSettings& s, const FrameKeypoints& detected) {
     j["upright"] = s.upright;
     j["octaves"] = s.octaves;
     j["init_step"] = s.init_step;
+    j["haar"] = s.haar;
     j["keypoints"] = {{"total", total},
                       {"mean", static_cast<double>(total) / static_cast<double>(detected.keypoints.size())},
                       {"min", least},

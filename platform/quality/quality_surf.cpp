@@ -17,6 +17,7 @@ surf::Params SurfSettings::params() const {
     p.upright = upright;
     p.octaves = octaves;
     p.init_step = init_step;
+    p.haar = haar == "rounded" ? surf::HaarMode::rounded : surf::HaarMode::exact;
     p.threads = threads;
     return p;
 }

@@ -24,6 +24,7 @@ struct SurfSettings {
     bool upright = false;
     int octaves = 4;
     int init_step = 1;
+    std::string haar = "exact";  // or "rounded", as the chip's software (surf.haar)
     int threads = 0;
 
     surf::Params params() const;  // without the threshold, which detect() decides

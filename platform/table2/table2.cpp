@@ -55,18 +55,28 @@ struct Column {
 
 fs::path keypoint_file(const fs::path& dir, size_t frame) { return dir / "keypoints" / fmt::format("frame_{:04}.surf", frame); }
 
-// The float reference at its defaults beside the chip, under the chip's threshold rule: the
-// response of rank surf.target_keypoints on frame 0, held for every frame (or surf.threshold).
-Column cpu_column(const Config& c, const fs::path& dir) {
+// The float reference beside the chip: at its defaults (4 octaves, exact Haar wavelets) or
+// with some of the chip's software settings, so that each difference is measured alone.
+struct Variant {
+    std::string name, label;
+    int octaves = 4;
+    surf::HaarMode haar = surf::HaarMode::exact;
+};
+
+// Under the chip's threshold rule: the response of rank surf.target_keypoints on frame 0, held
+// for every frame (or surf.threshold). Keypoint files only for the main CPU column (`dir`).
+Column cpu_column(const Config& c, const Variant& v, const fs::path& dir = {}) {
     Column col;
-    col.name = "cpu", col.label = "CPU (float reference, 4 octaves)";
+    col.name = v.name, col.label = v.label;
     const auto start = Clock::now();
     surf::Params p;
+    p.octaves = v.octaves;
+    p.haar = v.haar;
     p.upright = c.choice("surf.upright") == "on";
     const auto target = int(c.count("surf.target_keypoints"));
     p.threshold = float(c.real("surf.threshold"));
     col.threshold_rule = "surf.threshold";
-    fs::create_directories(dir / "keypoints");
+    if (!dir.empty()) fs::create_directories(dir / "keypoints");
     for_each_chip_frame(c, [&](size_t i, const cv::Mat& frame) {
         if (i == 0 && target > 0) {
             p.threshold = surf::threshold_for_rank(surf::ranked_responses(frame, p), target);
@@ -74,17 +84,33 @@ Column cpu_column(const Config& c, const fs::path& dir) {
                                              target);
         }
         surf::Keypoints k = surf::detect_and_describe(frame, p);
-        const fs::path file = keypoint_file(dir, i);
-        try {
-            eval::write_keypoint_file(file, k);
-        } catch (const std::exception& e) {
-            throw EnvironmentError(fmt::format("{}: {}", file.string(), e.what()));
+        if (!dir.empty()) {
+            const fs::path file = keypoint_file(dir, i);
+            try {
+                eval::write_keypoint_file(file, k);
+            } catch (const std::exception& e) {
+                throw EnvironmentError(fmt::format("{}: {}", file.string(), e.what()));
+            }
         }
         col.frames.push_back(std::move(k));
     });
     col.threshold = p.threshold;
     col.seconds = std::chrono::duration<double>(Clock::now() - start).count();
     return col;
+}
+
+// Each of the chip's software settings alone in the float reference, then both: the first is
+// the CPU column; the difference of the last from the chip is what the hardware's integer
+// determinants and block-wise suppression cost.
+std::vector<Variant> variants(const Config& c) {
+    const auto haar = c.choice("surf.haar") == "rounded" ? surf::HaarMode::rounded : surf::HaarMode::exact;
+    std::vector<Variant> v{{"cpu", "CPU (float reference, 4 octaves)", 4, surf::HaarMode::exact},
+                           {"cpu_2_octaves", "CPU with the chip's 2 octaves", 2, surf::HaarMode::exact}};
+    if (haar == surf::HaarMode::rounded) {
+        v.push_back({"cpu_rounded_haar", "CPU with rounded Haar wavelets (surf.haar)", 4, haar});
+        v.push_back({"cpu_chip_settings", "CPU with the chip's software settings (2 octaves, rounded Haar)", 2, haar});
+    }
+    return v;
 }
 
 // The chip: a direct-mode run into `dir` (a run folder of its own), then its keypoint files.
@@ -167,6 +193,33 @@ Json homography_figures(const Column& col, const Eigen::Matrix3d& h, const cv::S
             {"precision_correct", prec.correct}};
 }
 
+double mean_keypoints(const Column& col) {
+    size_t total = 0;
+    for (const auto& k : col.frames) total += k.size();
+    return double(total) / double(col.frames.size());
+}
+
+// One line of the contributions table: the four rows' means on consecutive frames (RANSAC,
+// and the ground truth with poses), precision under a homography.
+Json contribution(const Column& col, const Geometry& g) {
+    Json means = Json::array(), truth = Json::array();
+    for (const PaperRow& paper : kPaper) {
+        eval::RatioTestOptions matching;
+        if (paper.limited) matching.search_radius = kLimitedSearchPx;
+        matching.same_laplacian = paper.laplacian;
+        const Json row = column_row(col, 1, matching, g);
+        means.push_back(row["ransac"]["mean"]);
+        if (row.contains("ground_truth")) truth.push_back(row["ground_truth"]["mean"]);
+    }
+    Json j = {{"name", col.name}, {"label", col.label}, {"keypoints_per_frame", mean_keypoints(col)}, {"ransac", means}};
+    if (!truth.empty()) j["ground_truth"] = truth;
+    if (g.homography) {
+        const auto prec = eval::matching_precision(col.frames[0], col.frames[1], *g.homography);
+        j["precision"] = prec.precision;
+    }
+    return j;
+}
+
 Json column_summary(const Column& col) {
     size_t total = 0, least = SIZE_MAX, most = 0;
     for (const auto& k : col.frames) total += k.size(), least = std::min(least, k.size()), most = std::max(most, k.size());
@@ -221,6 +274,28 @@ void markdown_gap(std::string& md, const Json& gap, const char* measure, const c
     }
 }
 
+void markdown_contributions(std::string& md, const Json& lines) {
+    const bool truth = lines[0].contains("ground_truth"), precision = lines[0].contains("precision");
+    md += "\n## What each difference costs\n\nThe float reference with the chip's software settings, one at a time and then "
+          "together (the same threshold rule, each calibrated on its own frame 0); what remains between the last and the "
+          "chip is the hardware's: integer determinants and block-wise suppression. Frames (i, i + 1), distinguishability "
+          "with RANSAC F";
+    md += truth ? " (ground truth in brackets)" : "";
+    md += precision ? "; precision of frames 0 and 1 under the homography" : "";
+    md += ".\n\n| | keypoints per frame | Y Y | Y N | N Y | N N |";
+    md += precision ? " precision |\n|---|---|---|---|---|---|---|\n" : "\n|---|---|---|---|---|---|\n";
+    for (const Json& line : lines) {
+        md += fmt::format("| {} | {:.1f} |", line["label"].get<std::string>(), line["keypoints_per_frame"].get<double>());
+        for (size_t i = 0; i < 4; ++i) {
+            md += fmt::format(" {:.3f}", line["ransac"][i].get<double>());
+            if (truth) md += fmt::format(" ({:.3f})", line["ground_truth"][i].get<double>());
+            md += " |";
+        }
+        if (precision) md += fmt::format(" {:.3f} |", line["precision"].get<double>());
+        md += "\n";
+    }
+}
+
 std::string markdown(const Json& r) {
     std::string md = fmt::format("# Table II: {}\n\n{}\n\n", r["scenario"]["name"].get<std::string>(),
                                  r["scenario"]["description"].get<std::string>());
@@ -255,6 +330,7 @@ std::string markdown(const Json& r) {
                               h["precision_correct"].get<size_t>(), h["precision_candidates"].get<size_t>());
         }
     }
+    if (r.contains("contributions")) markdown_contributions(md, r["contributions"]);
     md += "\nThe paper's columns are its own figures on its own 1500-image data set (not available): a reference to "
           "read these against, not a result of this run.\n\n## What the columns differ in\n\n| | CPU | FPGA |\n|---|---|---|\n";
     for (const Json& d : r["differences"])
@@ -297,7 +373,9 @@ int table2_command(const Table2Options& o) {
     const fs::path staging = out.staging();
     Json r;
     try {
-        const std::vector<Column> columns{cpu_column(config, staging / "cpu"), fpga_column(config, staging / "fpga")};
+        const std::vector<Variant> float_variants = variants(config);
+        const std::vector<Column> columns{cpu_column(config, float_variants[0], staging / "cpu"),
+                                          fpga_column(config, staging / "fpga")};
         const Json fpga_report = Json::parse(std::ifstream(staging / "fpga" / "report.json"));
         r["surfvp_version"] = SURFVP_VERSION;
         r["scenario"] = {{"name", config.name}, {"file", config.file}, {"description", config.description}};
@@ -317,6 +395,10 @@ int table2_command(const Table2Options& o) {
             for (const Column& col : columns) r["homography"][col.name] = homography_figures(col, *geometry.homography, frame);
         }
         r["differences"] = differences(config);
+        r["contributions"] = Json::array({contribution(columns[0], geometry)});
+        for (size_t i = 1; i < float_variants.size(); ++i)
+            r["contributions"].push_back(contribution(cpu_column(config, float_variants[i]), geometry));
+        r["contributions"].push_back(contribution(columns[1], geometry));
         write_file_atomically(staging / "report.json", r.dump(2) + "\n");
         write_file_atomically(staging / "report.md", markdown(r));
         write_file_atomically(staging / "config.yaml", config.to_yaml());
