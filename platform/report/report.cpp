@@ -87,6 +87,18 @@ std::vector<double> sorted_keypoints(const nlohmann::ordered_json& per_frame) {
     return kp;
 }
 
+// The thresholds the frames ran with, when they were not all one (libSSA2's keypoint-count control).
+std::string threshold_range(const nlohmann::ordered_json& per_frame) {
+    double least = 0, most = 0;
+    bool any = false;
+    for (const auto& f : per_frame) {
+        if (!f.contains("threshold")) continue;
+        const double t = f["threshold"].get<double>();
+        least = any ? std::min(least, t) : t, most = any ? std::max(most, t) : t, any = true;
+    }
+    return any && least != most ? fmt::format("; threshold per frame {:.3f} to {:.3f}", least, most) : "";
+}
+
 std::string median_keypoints(const nlohmann::ordered_json& r) {
     if (!r.contains("workload") || !r["workload"].contains("per_frame")) return "-";
     const std::vector<double> kp = sorted_keypoints(r["workload"]["per_frame"]);
@@ -266,8 +278,8 @@ std::string workload_section(const nlohmann::ordered_json& w) {
         if (key == "per_frame") {
             const std::vector<double> kp = sorted_keypoints(value);
             if (!kp.empty())
-                md += fmt::format("| frames | {} in `frames.csv`; keypoints per frame min {:.0f}, median {:.0f}, max {:.0f} |\n",
-                                  kp.size(), kp.front(), kp[kp.size() / 2], kp.back());
+                md += fmt::format("| frames | {} in `frames.csv`; keypoints per frame min {:.0f}, median {:.0f}, max {:.0f}{} |\n",
+                                  kp.size(), kp.front(), kp[kp.size() / 2], kp.back(), threshold_range(value));
             continue;
         }
         md += fmt::format("| {} | {} |\n", key, value.is_string() ? value.get<std::string>() : value.dump());

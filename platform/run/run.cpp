@@ -140,6 +140,16 @@ void print_summary(const Config& config, const fs::path& dir, bool direct) {
                  r["sim_time_s"].get<double>() * 1e3, r["wall_time_s"].get<double>(), (dir / "report.md").c_str());
 }
 
+// config.yaml: the parameters as given, and what the run used in place of one (the threshold
+// surf.target_keypoints calibrated, or libSSA2's keypoint-count control chose per frame).
+Config config_as_run(const Config& config, const nlohmann::ordered_json& report) {
+    Config out = config;
+    if (report.contains("threshold_rule") && report["threshold_rule"] != "surf.threshold")
+        out.set_effect("surf.threshold", fmt::format("not used: {:.6g} instead, {}", report["threshold"].get<double>(),
+                                                     report["threshold_rule"].get<std::string>()));
+    return out;
+}
+
 // A model's own refusal names its fields ("fhg precision: det_frac_bits must not exceed 2 x
 // response_frac_bits"): add where each of those parameters came from.
 std::string with_origins(const Config& config, const std::string& message) {
@@ -204,7 +214,7 @@ int run_direct(const Config& config, const fs::path& dir) {
     r["software_cycles"] = chip.cycles_consumed();
     r["workload"] = workload->report();
     r["outputs"] = outputs;
-    write_file_atomically((dir / "config.yaml").string(), config.to_yaml());
+    write_file_atomically((dir / "config.yaml").string(), config_as_run(config, r).to_yaml());
     write_file_atomically((dir / "report.json").string(), r.dump(2) + "\n");
     return passed ? kExitOk : kExitFailed;
 }
@@ -244,7 +254,7 @@ int write_run(const Config& config, const std::string& out, const nlohmann::orde
     const std::string picture = report.contains("figures") ? report["figures"].value("first_frame_svg", "") : "";
     report.erase("figures");
     report["outputs"].push_back("report.html");
-    write_file_atomically((dir / "config.yaml").string(), config.to_yaml());
+    write_file_atomically((dir / "config.yaml").string(), config_as_run(config, report).to_yaml());
     write_file_atomically((dir / "report.html").string(), report_html(report, picture));
     write_file_atomically((dir / "report.md").string(), report_markdown(report));
     write_file_atomically((dir / "report.json").string(), report.dump(2) + "\n");

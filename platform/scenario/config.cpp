@@ -9,7 +9,7 @@
 namespace surfvp {
 
 Config::Config() {
-    for (const ParamSpec& spec : parameter_table()) entries_.push_back({&spec, spec.default_value, "default", ""});
+    for (const ParamSpec& spec : parameter_table()) entries_.push_back({&spec, spec.default_value, "default", "", ""});
 }
 
 void Config::set(const std::string& key, const std::string& value, const std::string& origin) {
@@ -55,6 +55,11 @@ std::string Config::where(const std::string& key) const {
 void Config::note(const std::string& key, const std::string& why) {
     for (Entry& e : entries_)
         if (e.spec->key == key) e.note = why;
+}
+
+void Config::set_effect(const std::string& key, const std::string& what) {
+    for (Entry& e : entries_)
+        if (e.spec->key == key) e.effect = what;
 }
 
 Frequency Config::frequency(const std::string& key) const { return parse_frequency(entry(key, ParamKind::frequency).value); }
@@ -107,7 +112,7 @@ std::string Config::to_yaml() const {
             if (e.spec->key.compare(0, dot, section) != 0 || dot != section.size()) continue;
             out << YAML::Key << e.spec->key.substr(dot + 1) << YAML::Value << e.value
                 << YAML::Comment((e.origin == "default" ? "default " + e.spec->source : e.origin) +
-                                 (e.note.empty() ? "" : "; no effect: " + e.note));
+                                 (e.note.empty() ? "" : "; no effect: " + e.note) + (e.effect.empty() ? "" : "; " + e.effect));
         }
         out << YAML::EndMap;
     }

@@ -26,6 +26,7 @@ public:
         std::string value;
         std::string origin;  // "default", "FILE:LINE" or "--set"
         std::string note;    // why a value given has no effect in this scenario, or ""
+        std::string effect;  // what a run used in its place (the calibrated threshold), or ""
     };
 
     Config();  // every parameter at its default
@@ -60,6 +61,7 @@ public:
 
     // Records that `key`'s value has no effect, and why: config.yaml says so beside it.
     void note(const std::string& key, const std::string& why);
+    void set_effect(const std::string& key, const std::string& what);
 
     std::string name;         // the scenario's name (its file's stem unless it says)
     std::string description;  // its one-line description

@@ -39,6 +39,10 @@ void check_consistency(const Config& c) {
                                       "or both to 0 to keep the frames as they are",
                                       c.where(other), c.count(other), zero, c.source_of(zero)));
     }
+    if (c.choice("surf.threshold_control") == "track" && c.count("surf.target_keypoints") == 0)
+        throw ConfigError(fmt::format("{}: track holds the keypoints per frame near surf.target_keypoints, which is 0 (from "
+                                      "{}): set a target, or surf.threshold_control = hold",
+                                      c.where("surf.threshold_control"), c.source_of("surf.target_keypoints")));
     const uint64_t frames = c.count("surf.frames");
     for (const char* key : {"eval.homography", "eval.poses"})
         if (!c.text(key).empty() && frames < 2)

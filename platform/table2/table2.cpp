@@ -20,6 +20,7 @@
 #include "sw/eval/keypoint_file.h"
 #include "sw/eval/pose_geometry.h"
 #include "sw/eval/repeatability.h"
+#include "sw/libssa2/libssa2.h"
 #include "sw/surf/surf.h"
 
 namespace surfvp {
@@ -76,14 +77,24 @@ Column cpu_column(const Config& c, const Variant& v, const fs::path& dir = {}) {
     const auto target = int(c.count("surf.target_keypoints"));
     p.threshold = float(c.real("surf.threshold"));
     col.threshold_rule = "surf.threshold";
+    // surf.threshold_control = track: libSSA2's keypoint-count control, the same step and delay.
+    const bool track = c.choice("surf.threshold_control") == "track";
+    const size_t delay = c.count("surf.tasks_in_flight");
+    std::vector<double> used;
+    std::vector<size_t> counts;
     if (!dir.empty()) fs::create_directories(dir / "keypoints");
     for_each_chip_frame(c, [&](size_t i, const cv::Mat& frame) {
         if (i == 0 && target > 0) {
             p.threshold = surf::threshold_for_rank(surf::ranked_responses(frame, p), target);
-            col.threshold_rule = fmt::format("the {}th strongest response on frame 0 (surf.target_keypoints), held for every frame",
-                                             target);
+            col.threshold_rule = track ? fmt::format("the {}th strongest response on frame 0 (surf.target_keypoints), then "
+                                                     "each frame's from the keypoint count of the frame {} before it (track)",
+                                                     target, delay)
+                                       : fmt::format("the {}th strongest response on frame 0 (surf.target_keypoints), held "
+                                                     "for every frame", target);
         }
+        if (track && i >= delay) p.threshold = float(sw::ssa2::keypoint_control_step(used[i - delay], counts[i - delay], target));
         surf::Keypoints k = surf::detect_and_describe(frame, p);
+        used.push_back(p.threshold), counts.push_back(k.size());
         if (!dir.empty()) {
             const fs::path file = keypoint_file(dir, i);
             try {
@@ -94,7 +105,7 @@ Column cpu_column(const Config& c, const Variant& v, const fs::path& dir = {}) {
         }
         col.frames.push_back(std::move(k));
     });
-    col.threshold = p.threshold;
+    col.threshold = used.front();  // frame 0's: the calibrated one
     col.seconds = std::chrono::duration<double>(Clock::now() - start).count();
     return col;
 }

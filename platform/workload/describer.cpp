@@ -106,6 +106,7 @@ public:
                                            sw::ssa2::Work& work) override {
         if (frame.task != task_) {  // new DMA'd buffers: the cached lines are stale
             stage_.begin_frame();
+            stage_.set_register_threshold(frame.threshold);  // the one the FHG compared with
             task_ = frame.task;
             records_ = 0;
         }

@@ -310,6 +310,8 @@ public:
                                        uint32_t(at + layout_.image_bytes + layout_.integral_bytes + layout_.det_bytes)});
         driver_.fifo_irq_level = uint32_t(c.count("surf.fifo_irq_level"));
         driver_.threshold = core.from_float(threshold_);
+        if (c.choice("surf.threshold_control") == "track") driver_.keypoint_target = uint32_t(c.count("surf.target_keypoints"));
+        to_float_ = [core](int32_t t) { return core.to_float(t); };
         driver_.watchdog_ps = c.duration("surf.watchdog").ps;
         driver_.spurious_irq_limit = unsigned(c.count("surf.spurious_irq_limit"));
         budget_fps_ = c.real("budget.fps");
@@ -405,14 +407,18 @@ private:
     bool recovered(const Fault& fault) const;
     Check fault_check() const;
     nlohmann::ordered_json fault_report() const;
-    // How the threshold was chosen (calibrate() above).
+    // How the threshold was chosen (calibrate() above, libSSA2's keypoint-count control).
     std::string threshold_rule() const {
         const int64_t target = config_.count("surf.target_keypoints");
         if (target == 0) return "surf.threshold";
-        return fmt::format("the {}th strongest response of the float reference on frame 0 (2 octaves, step 1; "
-                           "surf.target_keypoints = {}), held for every frame",
-                           target, target);
+        const std::string first = fmt::format("the {}th strongest response of the float reference on frame 0 (2 octaves, step 1; "
+                                              "surf.target_keypoints = {})", target, target);
+        if (!driver_.keypoint_target) return first + ", held for every frame";
+        return fmt::format("{} for the first {} frames, then each from the keypoint count of the frame {} before it "
+                           "(surf.threshold_control = track; each frame's in frames.csv)",
+                           first, driver_.buffers.size(), driver_.buffers.size());
     }
+    std::function<double(int32_t)> to_float_;  // the FHG's determinant units -> the float reference's
 
     const Config& config_;
     const SourceFrames& source_;
@@ -576,7 +582,7 @@ nlohmann::ordered_json SurfWorkload::report() const {
         nlohmann::ordered_json f = {{"frame", t.id}, {"candidates", t.candidate_count}, {"keypoints", r.keypoint_count},
                                     {"start_ms", t.t_start * 1e-9}, {"integral_done_ms", t.t_integral * 1e-9},
                                     {"determinants_done_ms", t.t_determinants * 1e-9}, {"done_ms", t.t_done * 1e-9},
-                                    {"descriptor_cycles", t.descriptor_cycles}};
+                                    {"descriptor_cycles", t.descriptor_cycles}, {"threshold", to_float_(t.threshold)}};
         if (t.phase == sw::ssa2::Phase::failed) f["error"] = t.error;
         if (!t.incidents.empty()) f["incidents"] = t.incidents;
         frames.push_back(f);

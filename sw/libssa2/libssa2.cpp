@@ -1,6 +1,7 @@
 #include "libssa2.h"
 
 #include <algorithm>
+#include <cmath>
 #include <fmt/format.h>
 #include <stdexcept>
 
@@ -62,6 +63,7 @@ void Driver::enable_interrupts() {
 
 void Driver::run(std::vector<Task>& tasks, const Camera& camera, const Callback& callback) {
     keypoints_.assign(tasks.size(), {});
+    learned_.assign(tasks.size(), std::nullopt);
     spurious_.assign(32, 0);
     for (size_t i = 0; i < tasks.size(); ++i) tasks[i].id = int(i);
     enable_interrupts();
@@ -112,6 +114,7 @@ void Driver::start_hardware(std::vector<Task>& tasks, const Camera& camera) {
                 t.buffer_set = int(set - set_busy_.begin());
                 *set = true;
                 t.image = config_.buffers[size_t(t.buffer_set)].image;
+                t.threshold = threshold_for(t.id);
                 camera(t);
                 start(t, int(a));
                 break;
@@ -139,7 +142,7 @@ void Driver::start(Task& task, int accelerator) {
     hal_.write32(a.fhg_base + f::DET_ADDR, task.determinants);
     hal_.write32(a.fhg_base + f::WIDTH, uint32_t(task.width));
     hal_.write32(a.fhg_base + f::HEIGHT, uint32_t(task.height));
-    hal_.write32(a.fhg_base + f::THRESHOLD, uint32_t(config_.threshold));
+    hal_.write32(a.fhg_base + f::THRESHOLD, uint32_t(task.threshold));
     hal_.write32(a.fhg_base + f::FIFO_THRESHOLD, config_.fifo_irq_level);
     hal_.write32(a.fhg_base + f::CTRL, f::CTRL_START | f::CTRL_IRQ_EN_DONE | f::CTRL_IRQ_EN_FIFO);
     hal_.write32(a.iig_base + iig::SRC, task.image);
@@ -314,8 +317,8 @@ void Driver::describe_one(Task& task, const Callback& callback) {
     if (task.described < task.candidates.size()) {
         Span span(hal_, "describe");
         const Format& format = formats_[size_t(task.described_on)];
-        const FrameInMemory frame{task.id,    task.integral,    task.determinants,       task.records,
-                                  task.width, task.height,      format.det_bytes,        format.det_frac_bits};
+        const FrameInMemory frame{task.id,    task.integral, task.determinants, task.records,  task.width,
+                                  task.height, format.det_bytes, format.det_frac_bits, task.threshold};
         Work work;
         auto keypoint = describer_.describe(hal_, task.candidates[task.described++], frame, work);
         task.descriptor_cycles += hal_.compute(work.cycles, work.lines);
@@ -334,8 +337,32 @@ void Driver::describe_one(Task& task, const Callback& callback) {
     }
 }
 
+// The keypoint-count control. Task n runs with the THRESHOLD that the count of task n - S
+// (S buffer sets) asked for: with one accelerator pair tasks are reported in order, and task
+// n starts only once a set is free, so task n - S has always been reported then, in the VP
+// and in direct mode alike; the result does not depend on timing. A task n - S that failed,
+// or (with several pairs, reported out of order) is not reported yet, leaves the THRESHOLD the
+// task before had.
+int32_t Driver::threshold_for(int task) {
+    if (config_.keypoint_target == 0) return config_.threshold;
+    if (task == 0) last_threshold_ = config_.threshold;
+    const int from = task - int(config_.buffers.size());
+    if (from >= 0 && learned_[size_t(from)]) last_threshold_ = *learned_[size_t(from)];
+    return last_threshold_;
+}
+
+double keypoint_control_step(double threshold, size_t count, uint32_t target) {
+    const double t = std::max(threshold, 1e-9);
+    return std::clamp(t * std::sqrt(double(count) / double(target)), t / 2, t * 2);
+}
+
 void Driver::finish(Task& task, const Callback& callback) {
     if (task.buffer_set >= 0) set_busy_[size_t(task.buffer_set)] = false;
+    if (config_.keypoint_target && task.phase == Phase::done)
+        learned_[size_t(task.id)] = int32_t(std::clamp<double>(
+            std::round(keypoint_control_step(std::max<int32_t>(task.threshold, 1), keypoints_[size_t(task.id)].size(),
+                                             config_.keypoint_target)),
+            1, INT32_MAX));  // never 0: a threshold of 0 would stay 0
     task.t_done = hal_.time_ps();
     if (task.t_done == 0) task.t_done = 1;  // direct mode has no time: mark it reported
     task.candidate_count = task.candidates.size();

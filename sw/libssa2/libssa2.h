@@ -57,7 +57,11 @@ struct DriverConfig {
     std::vector<Accelerator> accelerators;
     std::vector<BufferSet> buffers;  // as many tasks are in flight as there are sets
     uint32_t fifo_irq_level = 256;  // FHG FIFO_THRESHOLD
-    int32_t threshold = 0;          // FHG THRESHOLD (determinant fixed point)
+    int32_t threshold = 0;          // FHG THRESHOLD (determinant fixed point) of the first task, or of every task
+    // 0: every task runs with `threshold`. N: a keypoint-count control, as a camera pipeline
+    // holds its feature count: each task's THRESHOLD is the one the keypoint count of an earlier
+    // task asked for (Driver::threshold_for).
+    uint32_t keypoint_target = 0;
     uint64_t watchdog_ps = 0;       // a task's hardware longer than this is checked (0: never)
     unsigned spurious_irq_limit = 0;  // interrupts in a row with nothing to serve that make a line stuck (0: never)
     // HAL markers: accelerator k's task is marker k (-1 when idle); the task being described
@@ -71,6 +75,7 @@ struct FrameInMemory {
     uint32_t records;                 // the task's descriptor ring
     int width, height;
     uint32_t det_bytes, det_frac_bits;  // the FHG's determinant format (its DET_BYTES, DET_FRAC_BITS)
+    int32_t threshold;                  // the THRESHOLD the FHG ran with, in that format
 };
 
 // What describing one candidate cost: the CPU's work and the L1 traffic it caused (line
@@ -104,6 +109,7 @@ struct Task {
     int accelerator = -1;   // the pair working on it, -1 once it is done with it
     int described_on = -1;  // the pair whose results it holds (its determinant format)
     int buffer_set = -1;
+    int32_t threshold = 0;  // the FHG THRESHOLD it ran with
     std::string error;                 // why it failed
     std::vector<std::string> incidents;  // what went wrong and was recovered from (a lost interrupt)
     uint64_t watchdog_at = 0;          // when its hardware is checked next (ps)
@@ -115,6 +121,15 @@ struct Task {
     // Time base (ps): hardware start, IIG done, FHG done, descriptors done.
     uint64_t t_start = 0, t_integral = 0, t_determinants = 0, t_done = 0;
 };
+
+// The keypoint-count control's step: the threshold for later frames from one frame's
+// threshold and keypoint count. At the tail of the Hessian responses the count falls roughly
+// in inverse proportion to the threshold, so t x count / target would aim straight at the
+// target; the frame it acts on comes a few frames later (Driver::threshold_for), and a full
+// step through that delay oscillates, so half the step in proportion: t x sqrt(count /
+// target) (IEEE sqrt is exact to the last bit, so every platform gives the same register), at
+// most a factor of 2 either way, so one odd frame (a cut, a blur) does not throw it off.
+double keypoint_control_step(double threshold, size_t count, uint32_t target);
 
 using Callback = std::function<void(const Task& task, surf::Keypoints&& keypoints)>;
 // The application's camera: puts the task's frame at task.image when the task starts (its
@@ -176,6 +191,10 @@ private:
     std::vector<AcceleratorTime> time_;
     std::vector<uint64_t> since_;   // per accelerator: when it last started or stopped a task
     void account(size_t accelerator, uint64_t& bucket);
+    int32_t threshold_for(int task);
+    // Per task: the THRESHOLD its keypoint count asks of a later task (set once it is done).
+    std::vector<std::optional<int32_t>> learned_;
+    int32_t last_threshold_ = 0;  // the one the last task started with
     static bool queued(const std::vector<Task>& tasks);
     std::vector<surf::Keypoints> keypoints_;
     uint64_t interrupts_ = 0;

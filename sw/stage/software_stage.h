@@ -60,6 +60,12 @@ public:
     // not coherent with DMA; the cost of the invalidation itself is the driver's).
     void begin_frame();
 
+    // The FHG's THRESHOLD register for the frames from now on (fixed point, in the
+    // determinants' format): a candidate's own determinant must be above it, as the FHG
+    // compared it (the driver's keypoint-count control gives each frame its own). Until it is
+    // given, params.threshold in float units.
+    void set_register_threshold(int32_t threshold) { register_threshold_ = threshold; }
+
     Meter& cost() { return meter_; }  // the driver calls cost().take_cycles() and consume()s them
     const Meter& cost() const { return meter_; }
 
@@ -83,6 +89,7 @@ private:
     void describe(const Scan& scan, const FrameBuffers& frame, surf::Keypoint& kp);
 
     StageParams params_;
+    std::optional<int32_t> register_threshold_;
     Meter meter_;
     Stats stats_;
     surf::ResponseStack stack_;  // a 3x3x3 stack: how sw/surf's interpolation takes the values

@@ -142,9 +142,10 @@ bool BasicSoftwareStage<Meter>::is_maximum(const Scan& s, const FrameBuffers& f,
         meter_.count(Unit::compare, 1);
         return values[dl + 1][dy + 1][dx + 1] = fhg_regs::load_det(f.determinants + offset, f.det_bytes);
     };
-    // v > threshold <=> v > floor(threshold x 2^F) for an integer v.
+    // v > threshold <=> v > floor(threshold x 2^F) for an integer v; or the FHG's own register.
     meter_.count(Unit::scan, 1);
-    const double threshold = std::floor(std::ldexp(static_cast<double>(params_.threshold), int(f.det_frac_bits)));
+    const double threshold = register_threshold_ ? double(*register_threshold_)
+                                                 : std::floor(std::ldexp(static_cast<double>(params_.threshold), int(f.det_frac_bits)));
     const int32_t centre = load(0, 0, 0);
     if (!(centre > threshold)) {
         ++stats_.inconsistent;
