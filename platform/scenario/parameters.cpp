@@ -68,7 +68,7 @@ void add_surf(std::vector<ParamSpec>& t) {
     t.push_back({"surf.threshold_control", ParamKind::choice, "hold", 0, 0, {"hold", "track"},
                  "hold: the calibrated threshold for every frame; track: each frame's threshold from the keypoint count "
                  "of the frame surf.tasks_in_flight before it, aiming at surf.target_keypoints",
-                 "[A] hold is the paper's one THRESHOLD register; track is what a camera pipeline does"});
+                 "[-] a software setting: hold is the paper's one THRESHOLD register, track what a camera pipeline does"});
     t.push_back({"surf.upright", ParamKind::choice, "off", 0, 0, {"on", "off"}, "Skip the orientation (U-SURF)",
                  "[S] paper §II: orientation is optional"});
     t.push_back({"surf.haar", ParamKind::choice, "rounded", 0, 0, {"rounded", "exact"},

@@ -266,9 +266,15 @@ void check_eval_inputs(const Config& c, const SourceFrames& frames) {
     }
 }
 
-// The float reference on frame 0, limited to the chip's two octaves at step 1.
-float calibrate(const Config& c, const cv::Mat& frame) {
-    if (c.count("surf.target_keypoints") == 0) return float(c.real("surf.threshold"));
+// The float reference on frame 0, limited to the chip's two octaves at step 1: the threshold,
+// and how many maxima frame 0 has (fewer than the target: the threshold is 0, every maximum).
+struct Calibration {
+    float threshold = 0;
+    size_t maxima = 0;
+};
+
+Calibration calibrate(const Config& c, const cv::Mat& frame) {
+    if (c.count("surf.target_keypoints") == 0) return {float(c.real("surf.threshold")), 0};
     static std::map<std::string, std::vector<float>> ranked;
     const std::string key = fmt::format("{}|{}", source_key(c), c.choice("surf.upright"));
     auto it = ranked.find(key);
@@ -279,7 +285,7 @@ float calibrate(const Config& c, const cv::Mat& frame) {
         p.upright = c.choice("surf.upright") == "on";
         it = ranked.emplace(key, surf::ranked_responses(frame, p)).first;
     }
-    return surf::threshold_for_rank(it->second, int(c.count("surf.target_keypoints")));
+    return {surf::threshold_for_rank(it->second, int(c.count("surf.target_keypoints"))), it->second.size()};
 }
 
 // What is kept of a frame once it is reported: its task (times, outcome, counts) and, for the
@@ -295,7 +301,7 @@ struct FrameResult {
 class SurfWorkload : public Workload {
 public:
     explicit SurfWorkload(const Config& c)
-        : config_(c), source_(load_source(c)), threshold_(calibrate(c, source_.first)),
+        : config_(c), source_(load_source(c)), calibration_(calibrate(c, source_.first)), threshold_(calibration_.threshold),
           describer_(make_describer(c, threshold_)), results_(source_.count) {
         width_ = source_.first.cols;
         height_ = source_.first.rows;
@@ -363,6 +369,13 @@ public:
                           failures.empty() ? fmt::format("{} of {} frames{}", done, source_.count, lost)
                                            : fmt::format("{}", fmt::join(failures, "; "))});
         if (faults_) checks.push_back(fault_check());
+        if (const uint64_t target = config_.count("surf.target_keypoints"); target > 0)
+            checks.push_back({"keypoint target reachable", calibration_.maxima > target,
+                              calibration_.maxima > target
+                                  ? fmt::format("frame 0 has {} maxima for surf.target_keypoints = {}", calibration_.maxima, target)
+                                  : fmt::format("frame 0 has only {} maxima, not more than surf.target_keypoints = {}: the "
+                                                "threshold is 0 and every maximum is kept; lower the target",
+                                                calibration_.maxima, target)});
         if (budget_fps_ > 0) {
             const double fps = throughput();
             checks.push_back({"frame-rate budget", fps >= budget_fps_,
@@ -422,6 +435,7 @@ private:
 
     const Config& config_;
     const SourceFrames& source_;
+    Calibration calibration_;
     float threshold_;
     std::unique_ptr<sw::ssa2::Describer> describer_;
     std::vector<FrameResult> results_;

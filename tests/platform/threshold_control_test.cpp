@@ -68,5 +68,24 @@ TEST(ThresholdControl, TrackingNeedsATarget) {
         << r.err;
 }
 
+// A target the image cannot give is said, not passed over: the calibration's threshold is
+// then 0 (every maximum), and the run fails that check.
+TEST(ThresholdControl, AnUnreachableTargetIsAFailedCheck) {
+    REQUIRE_CASTLE();
+    const std::string out = fresh_dir("unreachable");
+    const auto r = surfvp("run castle_sequence --quiet --trace none --direct --set surf.frames=2 --set surf.target_keypoints=50000 --out " + out);
+    EXPECT_EQ(r.exit_code, 1) << r.err;
+    const json report = json::parse(slurp(out + "/report.json"));
+    bool found = false;
+    for (const json& c : report["checks"])
+        if (c["name"] == "keypoint target reachable") {
+            found = true;
+            EXPECT_FALSE(c["passed"].get<bool>());
+            EXPECT_NE(c["detail"].get<std::string>().find("not more than surf.target_keypoints = 50000"), std::string::npos);
+        }
+    EXPECT_TRUE(found);
+    EXPECT_EQ(report["threshold"].get<double>(), 0.0);
+}
+
 }  // namespace
 }  // namespace surfvp
