@@ -48,6 +48,7 @@ struct Column {
     std::string name, label;
     std::vector<surf::Keypoints> frames;
     std::vector<size_t> failed;  // frames the chip did not finish: no keypoints
+    std::vector<cv::Size> sizes;  // each frame's, as the chip takes it (the CPU column's)
     double threshold = 0;
     std::string threshold_rule;
     double seconds = 0;
@@ -94,7 +95,7 @@ Column cpu_column(const Config& c, const Variant& v, const fs::path& dir = {}) {
         }
         if (track && i >= delay) p.threshold = float(sw::ssa2::keypoint_control_step(used[i - delay], counts[i - delay], target));
         surf::Keypoints k = surf::detect_and_describe(frame, p);
-        used.push_back(p.threshold), counts.push_back(k.size());
+        used.push_back(p.threshold), counts.push_back(k.size()), col.sizes.push_back(frame.size());
         if (!dir.empty()) {
             const fs::path file = keypoint_file(dir, i);
             try {
@@ -192,8 +193,8 @@ Json gap_table(const std::vector<Column>& columns, size_t gap, const Geometry& g
 
 // Frames 0 and 1 under the scenario's homography: repeatability, and precision of the plain
 // ratio test.
-Json homography_figures(const Column& col, const Eigen::Matrix3d& h, const cv::Size& size) {
-    const auto rep = eval::repeatability(col.frames[0], col.frames[1], h, size, size);
+Json homography_figures(const Column& col, const Eigen::Matrix3d& h, const std::vector<cv::Size>& sizes) {
+    const auto rep = eval::repeatability(col.frames[0], col.frames[1], h, sizes[0], sizes[1]);
     const auto prec = eval::matching_precision(col.frames[0], col.frames[1], h);
     return {{"keypoints", {col.frames[0].size(), col.frames[1].size()}},
             {"repeatability", rep.repeatability},
@@ -402,8 +403,8 @@ int table2_command(const Table2Options& o) {
         for (size_t gap : gaps)
             if (gap < config.count("surf.frames")) r["gaps"].push_back(gap_table(columns, gap, geometry));
         if (geometry.homography) {
-            const cv::Size frame(r["image"]["width"].get<int>(), r["image"]["height"].get<int>());
-            for (const Column& col : columns) r["homography"][col.name] = homography_figures(col, *geometry.homography, frame);
+            for (const Column& col : columns)
+                r["homography"][col.name] = homography_figures(col, *geometry.homography, columns[0].sizes);
         }
         r["differences"] = differences(config);
         r["contributions"] = Json::array({contribution(columns[0], geometry)});

@@ -72,6 +72,12 @@ struct SourceFrames {
     cv::Mat first;                // frame 0 as the chip takes it
     std::vector<fs::path> files;  // each frame's file; empty for a video or one repeated image
     cv::Size original;            // frame 0 before resizing
+    std::vector<cv::Size> sizes;  // each frame's size as the chip takes it (images of a folder or list may differ)
+    cv::Size largest() const {
+        cv::Size most;
+        for (const cv::Size& s : sizes) most = cv::Size(std::max(most.width, s.width), std::max(most.height, s.height));
+        return most;
+    }
 };
 
 cv::Mat as_the_chip_takes(const Config& c, const cv::Mat& frame) {
@@ -85,24 +91,30 @@ cv::Mat as_the_chip_takes(const Config& c, const cv::Mat& frame) {
 // Frames the chip can take: at least the filters' minimum (the float reference that
 // calibrates the threshold runs on frame 0), at most what the IIG and FHG accept.
 void check_frame_size(const Config& c, const SourceFrames& f) {
-    const cv::Size size = f.first.size();
-    const bool resized = size != f.original;
-    const std::string where = resized ? c.where("surf.width") : c.where("surf.source");
-    const std::string what = resized ? fmt::format("frames resized to {}x{} (surf.width x surf.height)", size.width, size.height)
-                                     : fmt::format("frames of {}x{}", size.width, size.height);
     surf::Params reference;
     reference.octaves = 2;
     reference.init_step = 1;
     const int side = surf::minimum_image_side(reference);
-    if (size.width < side || size.height < side)
-        throw ConfigError(fmt::format("{}: {} are too small: the first octave's largest filter needs at least {}x{}", where,
-                                      what, side, side));
-    for (const char* block : {"iig", "fhg"})
-        for (const auto& [key, pixels] : {std::pair{fmt::format("{}.max_width", block), size.width},
-                                          std::pair{fmt::format("{}.max_height", block), size.height}})
-            if (uint64_t(pixels) > c.count(key))
-                throw ConfigError(fmt::format("{}: {} are larger than the chip takes: {} is {} (from {})", where, what, key,
-                                              c.count(key), c.source_of(key)));
+    const bool resized = f.first.size() != f.original;
+    const bool alike = std::all_of(f.sizes.begin(), f.sizes.end(), [&](const cv::Size& s) { return s == f.sizes[0]; });
+    const std::string where = resized ? c.where("surf.width") : c.where("surf.source");
+    for (size_t i = 0; i < f.sizes.size(); ++i) {
+        const cv::Size size = f.sizes[i];
+        if (i > 0 && size == f.sizes[i - 1]) continue;
+        const std::string what =
+            resized ? fmt::format("frames resized to {}x{} (surf.width x surf.height) are", size.width, size.height)
+            : alike ? fmt::format("frames of {}x{} are", size.width, size.height)
+                    : fmt::format("frame {} ({}) of {}x{} is", i, f.files[i].string(), size.width, size.height);
+        if (size.width < side || size.height < side)
+            throw ConfigError(fmt::format("{}: {} too small: the first octave's largest filter needs at least {}x{}", where,
+                                          what, side, side));
+        for (const char* block : {"iig", "fhg"})
+            for (const auto& [key, pixels] : {std::pair{fmt::format("{}.max_width", block), size.width},
+                                              std::pair{fmt::format("{}.max_height", block), size.height}})
+                if (uint64_t(pixels) > c.count(key))
+                    throw ConfigError(fmt::format("{}: {} larger than the chip takes: {} is {} (from {})", where, what, key,
+                                                  c.count(key), c.source_of(key)));
+    }
 }
 
 // A sequence's frames (a folder, a list or a video), decoded in order.
@@ -120,7 +132,6 @@ void read_sequence(const Config& c, SourceFrames& out) {
     };
     eval::SequenceReader reader = open_frames(c);
     if (reader.sequence().frames.size() < out.count) throw too_few(reader.sequence().frames.size());  // before decoding
-    auto name = [&](size_t i) { return i < out.files.size() ? out.files[i].string() : fmt::format("{} frame {}", source, i); };
     size_t n = 0;
     for (cv::Mat frame; n < out.count && reader.next(frame); ++n) {
         const fs::path& file = reader.sequence().frames[n].image;
@@ -128,12 +139,8 @@ void read_sequence(const Config& c, SourceFrames& out) {
         if (n == 0) {
             out.first = frame.clone();
             out.original = frame.size();
-        } else if (!resizing && frame.size() != out.original) {
-            throw ConfigError(fmt::format("{}: frames differ in size: {} is {}x{}, {} is {}x{}; set surf.width and "
-                                          "surf.height to resize them alike",
-                                          c.where("surf.source"), name(0), out.original.width, out.original.height, name(n),
-                                          frame.cols, frame.rows));
         }
+        out.sizes.push_back(resizing ? cv::Size(int(c.count("surf.width")), int(c.count("surf.height"))) : frame.size());
     }
     if (n < out.count) throw too_few(n);
 }
@@ -155,6 +162,7 @@ SourceFrames read_frames(const Config& c) {
             out.repeated = true;
             out.first = surf::load_gray(source);
             out.original = out.first.size();
+            out.sizes.assign(out.count, as_the_chip_takes(c, out.first).size());
         } else {
             read_sequence(c, out);
         }
@@ -305,7 +313,8 @@ public:
           describer_(make_describer(c, threshold_)), results_(source_.count) {
         width_ = source_.first.cols;
         height_ = source_.first.rows;
-        layout_ = layout_for(c, width_, height_);
+        const cv::Size largest = source_.largest();  // frames of a folder or list may differ: buffers fit the largest
+        layout_ = layout_for(c, largest.width, largest.height);
         const fhg::HessianCore core(fhg_params(c).precision);
         driver_.intc_base = map::intc.base;
         for (unsigned k = 0; k < c.count("soc.accelerators"); ++k)
@@ -337,9 +346,9 @@ public:
     Ppc440::Software software() override {
         return [this](sw::Hal& hal) {
             std::vector<sw::ssa2::Task> tasks(source_.count);
-            for (sw::ssa2::Task& t : tasks) {
-                t.width = width_;
-                t.height = height_;
+            for (size_t i = 0; i < tasks.size(); ++i) {
+                tasks[i].width = source_.sizes[i].width;
+                tasks[i].height = source_.sizes[i].height;
             }
             if (faults_) give_buffers_outside_memory(tasks, hal.time_ps());
             sw::ssa2::Driver driver(hal, driver_, *describer_);
@@ -569,6 +578,10 @@ nlohmann::ordered_json SurfWorkload::summary() const {
     for (const auto& a : accelerator_time_)
         pairs.push_back({{"working_s", a.working_ps * 1e-12}, {"waiting_for_buffers_s", a.waiting_for_buffers_ps * 1e-12},
                          {"idle_s", a.idle_ps * 1e-12}});
+    std::vector<std::string> sizes;  // frames of a folder or list may differ in size
+    for (const cv::Size& f : source_.sizes)
+        if (const std::string wxh = fmt::format("{}x{}", f.width, f.height); std::find(sizes.begin(), sizes.end(), wxh) == sizes.end())
+            sizes.push_back(wxh);
     nlohmann::ordered_json out = {{"image", {{"width", width_}, {"height", height_}}},
             {"frames", source_.count},
             {"frames_done", n},
@@ -585,6 +598,7 @@ nlohmann::ordered_json SurfWorkload::summary() const {
             {"software_time_per_keypoint_us", keypoints > 0 ? cycles / keypoints / cpu_hz_ * 1e6 : 0.0},
             {"software_cycles_per_keypoint", keypoints > 0 ? cycles / keypoints : 0.0},
             {"accelerator_pairs", pairs}};
+    if (sizes.size() > 1) out["frame_sizes"] = sizes;  // "image" is frame 0's
     if (faults_) out["faults"] = fault_report();
     return out;
 }
@@ -612,8 +626,8 @@ nlohmann::ordered_json SurfWorkload::evaluation() const {
     const std::string homography = config_.text("eval.homography");
     if (!homography.empty() && results_.size() >= 2) {
         const Eigen::Matrix3d h = eval::read_homography_file(homography);
-        const cv::Size size(width_, height_);
-        const auto rep = eval::repeatability(results_[0].keypoints, results_[1].keypoints, h, size, size);
+        const cv::Size size = source_.sizes[0], size_b = source_.sizes[1];
+        const auto rep = eval::repeatability(results_[0].keypoints, results_[1].keypoints, h, size, size_b);
         const auto prec = eval::matching_precision(results_[0].keypoints, results_[1].keypoints, h);
         out["homography"] = {{"repeatability", rep.repeatability}, {"correspondences", rep.correspondences},
                              {"precision", prec.precision}, {"candidates", prec.candidates}};
@@ -639,8 +653,8 @@ nlohmann::ordered_json SurfWorkload::evaluation() const {
 
 // Frame i arrives in its task's image buffer; the fault plan learns which frame is there.
 void SurfWorkload::deliver(const cv::Mat& frame, const sw::ssa2::Task& task) {
-    uint8_t* at = memory_(task.image, uint64_t(width_) * height_);
-    for (int y = 0; y < height_; ++y) std::copy_n(frame.ptr(y), width_, at + size_t(y) * width_);
+    uint8_t* at = memory_(task.image, uint64_t(frame.cols) * frame.rows);
+    for (int y = 0; y < frame.rows; ++y) std::copy_n(frame.ptr(y), frame.cols, at + size_t(y) * frame.cols);
     if (faults_) faults_->frame_arrived(task.image, task.id);
 }
 
