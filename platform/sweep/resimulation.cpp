@@ -55,9 +55,14 @@ Json Resimulation::point_summary(const Json& r) {
 
 void Resimulation::submit(Config config, Done done, Summarise summarise, std::string out, std::string trace, bool urgent) {
     ++submitted_;
-    Job job{std::move(config), std::move(done), std::move(summarise), std::move(out), std::move(trace)};
+    Job job{std::move(config), std::move(done), std::move(summarise), std::move(out), std::move(trace), {}};
     if (urgent) queue_.push_front(std::move(job));
     else queue_.push_back(std::move(job));
+}
+
+void Resimulation::submit_work(Config config, Done done, Work work) {
+    ++submitted_;
+    queue_.push_back(Job{std::move(config), std::move(done), {}, "", "none", std::move(work)});
 }
 
 // The child simulates, writes its result as JSON and leaves at once (no destructors of the
@@ -71,8 +76,7 @@ void Resimulation::start(Job job) {
         int code = 3;
         Json out;
         try {
-            const Json report = simulate_scenario(job.config, job.out, job.trace, true);
-            out = job.summarise(report);
+            out = job.work ? job.work(job.config) : job.summarise(simulate_scenario(job.config, job.out, job.trace, true));
             code = 0;
         } catch (const ConfigError& e) {
             out = {{"error", e.what()}, {"exit", 2}};

@@ -36,6 +36,10 @@ public:
     // search whose next step waits for it).
     void submit(Config config, Done done, Summarise summarise = point_summary, std::string out = "",
                 std::string trace = "none", bool urgent = false);
+    // Other work on `config` in a child instead of a simulation (a study that runs the chip
+    // in direct mode and measures its keypoints); `work`'s result goes to `done`.
+    using Work = std::function<nlohmann::ordered_json(const Config& config)>;
+    void submit_work(Config config, Done done, Work work);
     // Runs until every submitted re-simulation, and every one their callbacks submit, is done;
     // `progress(done, submitted)` after each.
     void run(const std::function<void(size_t, size_t)>& progress);
@@ -57,6 +61,7 @@ private:
         Done done;
         Summarise summarise;
         std::string out, trace;
+        Work work;  // set: run instead of the simulation
     };
     void start(Job job);
     void start_queued();

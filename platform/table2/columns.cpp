@@ -1,0 +1,172 @@
+#include "platform/table2/columns.h"
+
+#include <chrono>
+#include <cmath>
+#include <fmt/format.h>
+#include <fstream>
+
+#include "models/common/atomic_file.h"
+#include "platform/workload/workload.h"
+#include "sw/eval/distinguishability.h"
+#include "sw/eval/homography.h"
+#include "sw/eval/keypoint_file.h"
+#include "sw/eval/repeatability.h"
+#include "sw/libssa2/libssa2.h"
+#include "sw/surf/surf.h"
+
+namespace surfvp::table2 {
+namespace fs = std::filesystem;
+using Json = nlohmann::ordered_json;
+using Clock = std::chrono::steady_clock;
+
+namespace {
+
+fs::path keypoint_file(const fs::path& dir, size_t frame) { return dir / "keypoints" / fmt::format("frame_{:04}.surf", frame); }
+
+// Mean (the paper's: a pair without a ratio counts 0), spread (standard deviation over the
+// pairs) and counts of one cell.
+Json cell(const eval::SequenceDistinguishability& s) {
+    double spread = 0;
+    for (const auto& p : s.pairs) spread += (p.distinguishability - s.mean) * (p.distinguishability - s.mean);
+    spread = s.pairs.empty() ? 0 : std::sqrt(spread / double(s.pairs.size()));
+    return {{"mean", s.mean}, {"spread", spread}, {"pairs", s.pairs.size()}, {"measured_pairs", s.measured_pairs},
+            {"candidates", s.candidates}, {"valid", s.valid}};
+}
+
+double mean_keypoints(const Column& col) {
+    size_t total = 0;
+    for (const auto& k : col.frames) total += k.size();
+    return double(total) / double(col.frames.size());
+}
+
+}  // namespace
+
+// Under the chip's threshold rule: the response of rank surf.target_keypoints on frame 0, held
+// for every frame (or surf.threshold). Keypoint files only for the main CPU column (`dir`).
+Column cpu_column(const Config& c, const Variant& v, const fs::path& dir) {
+    Column col;
+    col.name = v.name, col.label = v.label;
+    const auto start = Clock::now();
+    surf::Params p;
+    p.octaves = v.octaves;
+    p.haar = v.haar;
+    p.upright = c.choice("surf.upright") == "on";
+    const auto target = int(c.count("surf.target_keypoints"));
+    p.threshold = float(c.real("surf.threshold"));
+    col.threshold_rule = "surf.threshold";
+    // surf.threshold_control = track: libSSA2's keypoint-count control, the same step and delay.
+    const bool track = c.choice("surf.threshold_control") == "track";
+    const size_t delay = c.count("surf.tasks_in_flight");
+    std::vector<double> used;
+    std::vector<size_t> counts;
+    if (!dir.empty()) fs::create_directories(dir / "keypoints");
+    for_each_chip_frame(c, [&](size_t i, const cv::Mat& frame) {
+        if (i == 0 && target > 0) {
+            p.threshold = surf::threshold_for_rank(surf::ranked_responses(frame, p), target);
+            col.threshold_rule = track ? fmt::format("the {}th strongest response on frame 0 (surf.target_keypoints), then "
+                                                     "each frame's from the keypoint count of the frame {} before it (track)",
+                                                     target, delay)
+                                       : fmt::format("the {}th strongest response on frame 0 (surf.target_keypoints), held "
+                                                     "for every frame", target);
+        }
+        if (track && i >= delay) p.threshold = float(sw::ssa2::keypoint_control_step(used[i - delay], counts[i - delay], target));
+        surf::Keypoints k = surf::detect_and_describe(frame, p);
+        used.push_back(p.threshold), counts.push_back(k.size()), col.sizes.push_back(frame.size());
+        if (!dir.empty()) {
+            const fs::path file = keypoint_file(dir, i);
+            try {
+                eval::write_keypoint_file(file, k);
+            } catch (const std::exception& e) {
+                throw EnvironmentError(fmt::format("{}: {}", file.string(), e.what()));
+            }
+        }
+        col.frames.push_back(std::move(k));
+    });
+    col.threshold = used.front();  // frame 0's: the calibrated one
+    col.seconds = std::chrono::duration<double>(Clock::now() - start).count();
+    return col;
+}
+
+// Each of the chip's software settings alone in the float reference, then both: the first is
+// the CPU column; the difference of the last from the chip is what the hardware's integer
+// determinants and block-wise suppression cost.
+std::vector<Variant> variants(const Config& c) {
+    const auto haar = c.choice("surf.haar") == "rounded" ? surf::HaarMode::rounded : surf::HaarMode::exact;
+    std::vector<Variant> v{{"cpu", "CPU (float reference, 4 octaves)", 4, surf::HaarMode::exact},
+                           {"cpu_2_octaves", "CPU with the chip's 2 octaves", 2, surf::HaarMode::exact}};
+    if (haar == surf::HaarMode::rounded) {
+        v.push_back({"cpu_rounded_haar", "CPU with rounded Haar wavelets (surf.haar)", 4, haar});
+        v.push_back({"cpu_chip_settings", "CPU with the chip's software settings (2 octaves, rounded Haar)", 2, haar});
+    }
+    return v;
+}
+
+// The chip: a direct-mode run into `dir` (a run folder of its own), then its keypoint files.
+Column fpga_column(const Config& c, const fs::path& dir, const std::vector<cv::Size>& sizes) {
+    Column col;
+    col.name = "fpga", col.label = "FPGA (the modelled chip)";
+    col.sizes = sizes;
+    const auto start = Clock::now();
+    fs::create_directories(dir);
+    col.exit_code = run_direct(c, dir);
+    const Json report = Json::parse(std::ifstream(dir / "report.json"));
+    col.threshold = report.value("threshold", 0.0);
+    col.threshold_rule = report.value("threshold_rule", "");
+    for (size_t i = 0; i < c.count("surf.frames"); ++i) {
+        const fs::path file = keypoint_file(dir, i);
+        if (!fs::exists(file)) {  // a failed frame writes none
+            col.failed.push_back(i);
+            col.frames.emplace_back();
+            continue;
+        }
+        col.frames.push_back(eval::load_keypoints(file));
+    }
+    col.seconds = std::chrono::duration<double>(Clock::now() - start).count();
+    return col;
+}
+
+eval::RatioTestOptions paper_matching(const PaperRow& row) {
+    eval::RatioTestOptions matching;
+    if (row.limited) matching.search_radius = kLimitedSearchPx;
+    matching.same_laplacian = row.laplacian;
+    return matching;
+}
+
+Json column_row(const Column& col, size_t gap, const eval::RatioTestOptions& matching, const Geometry& g) {
+    eval::DistinguishabilityOptions options;
+    options.matching = matching;
+    Json j = {{"ransac", cell(eval::sequence_distinguishability(col.frames, gap, options))}};
+    if (!g.poses.empty())
+        j["ground_truth"] = cell(eval::sequence_distinguishability(
+            col.frames, gap,
+            [&](size_t a, size_t b) { return eval::fundamental_from_poses(eval::kCastleIntrinsics, g.poses[a].c_m_o, g.poses[b].c_m_o); },
+            options));
+    return j;
+}
+
+// One line of the contributions table: the four rows' means on consecutive frames (RANSAC,
+// and the ground truth with poses), precision under a homography.
+Json quality_line(const Column& col, const Geometry& g) {
+    Json means = Json::array(), truth = Json::array();
+    for (const PaperRow& paper : kPaper) {
+        const Json row = column_row(col, 1, paper_matching(paper), g);
+        means.push_back(row["ransac"]["mean"]);
+        if (row.contains("ground_truth")) truth.push_back(row["ground_truth"]["mean"]);
+    }
+    Json j = {{"name", col.name}, {"label", col.label}, {"keypoints_per_frame", mean_keypoints(col)}, {"ransac", means}};
+    if (!truth.empty()) j["ground_truth"] = truth;
+    if (g.homography) {
+        j["precision"] = eval::matching_precision(col.frames[0], col.frames[1], *g.homography).precision;
+        j["repeatability"] = eval::repeatability(col.frames[0], col.frames[1], *g.homography, col.sizes[0], col.sizes[1]).repeatability;
+    }
+    return j;
+}
+
+Geometry read_geometry(const Config& c) {
+    Geometry g;  // check_scenario has read and checked both files
+    if (!c.text("eval.poses").empty()) g.poses = eval::list_posed_frames(c.text("eval.poses"));
+    if (!c.text("eval.homography").empty()) g.homography = eval::read_homography_file(c.text("eval.homography"));
+    return g;
+}
+
+}  // namespace surfvp::table2

@@ -1,0 +1,83 @@
+#pragma once
+// The two columns of Table II and what they are measured with, for `surfvp table2` and the
+// precision study: the float reference's keypoints (with some of the chip's software settings,
+// or none), the chip's (a direct-mode run), and distinguishability, repeatability and
+// precision of a column.
+#include <array>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <opencv2/core/types.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "platform/run/run.h"
+#include "platform/scenario/config.h"
+#include "sw/eval/matching.h"
+#include "sw/eval/pose_geometry.h"
+#include "sw/surf/keypoint.h"
+#include "sw/surf/params.h"
+
+namespace surfvp::table2 {
+
+constexpr double kLimitedSearchPx = 200;  // paper §IV-A: "limit the correspondence search radius to 200 pixels"
+
+// The paper's Table II, in its row order, on its own 1500-image data set (not available): a
+// reference to read the results against, never a result.
+struct PaperRow {
+    bool limited, laplacian;
+    double cpu, fpga;
+    std::optional<double> gpu;
+};
+constexpr std::array<PaperRow, 4> kPaper{{{true, true, 0.62, 0.53, std::nullopt},
+                                          {true, false, 0.61, 0.53, 0.54},
+                                          {false, true, 0.43, 0.27, std::nullopt},
+                                          {false, false, 0.43, 0.26, 0.27}}};
+
+// One platform's keypoints of every frame, and how it got them.
+struct Column {
+    std::string name, label;
+    std::vector<surf::Keypoints> frames;
+    std::vector<size_t> failed;  // frames the chip did not finish: no keypoints
+    std::vector<cv::Size> sizes;  // each frame's, as the chip takes it (the CPU column's)
+    double threshold = 0;
+    std::string threshold_rule;
+    double seconds = 0;
+    int exit_code = kExitOk;
+};
+
+// The float reference beside the chip: at its defaults (4 octaves, exact Haar wavelets) or
+// with some of the chip's software settings, so that each difference is measured alone.
+struct Variant {
+    std::string name, label;
+    int octaves = 4;
+    surf::HaarMode haar = surf::HaarMode::exact;
+};
+
+struct Geometry {
+    std::vector<eval::PosedFrame> poses;  // empty: RANSAC only
+    std::optional<Eigen::Matrix3d> homography;
+};
+
+
+// Under the chip's threshold rule (surf.target_keypoints on frame 0, held or tracked like
+// libSSA2); keypoint files into `dir`/keypoints when `dir` is given.
+Column cpu_column(const Config& c, const Variant& v, const std::filesystem::path& dir = {});
+// The chip: a direct-mode run into `dir` (a run folder of its own), then its keypoint files;
+// `sizes`: its frames' (a CPU column's), which the chip's keypoint files do not hold.
+Column fpga_column(const Config& c, const std::filesystem::path& dir, const std::vector<cv::Size>& sizes);
+// The CPU column, then each of the chip's software settings alone in float, then both.
+std::vector<Variant> variants(const Config& c);
+Geometry read_geometry(const Config& c);  // the scenario's poses and homography (already checked)
+
+// The measures of one cell: all pairs (i, i + gap) of a column under `matching`, F from
+// RANSAC and, with poses, from the ground truth; each {mean, spread, pairs, ...}.
+nlohmann::ordered_json column_row(const Column& col, size_t gap, const eval::RatioTestOptions& matching, const Geometry& g);
+eval::RatioTestOptions paper_matching(const PaperRow& row);
+// One column in one line: keypoints per frame, the four rows' means on consecutive frames
+// (RANSAC, and the ground truth with poses), precision and repeatability under a homography.
+nlohmann::ordered_json quality_line(const Column& col, const Geometry& g);
+
+}  // namespace surfvp::table2
