@@ -16,6 +16,7 @@
 #include "platform/run/run.h"
 #include "platform/scenario/scenario.h"
 #include "platform/compare/compare.h"
+#include "platform/table2/precision_study.h"
 #include "platform/table2/table2.h"
 #include "platform/sweep/sweep.h"
 #include "platform/tools/seqgen.h"
@@ -115,6 +116,19 @@ int dispatch(int argc, char** argv) {
         ->type_name("KEY=VALUE ...");
     table2->add_option("--out", table2_options.out, "Output folder (default: traces/<scenario name>)");
     table2->add_flag("--quiet,-q", table2_options.quiet, "No summary lines on stderr");
+    PrecisionOptions precision_options;
+    CLI::App* precision = app.add_subcommand("precision", "How many bits the FHG needs: each width narrowed alone, Table II rows, "
+                                                          "repeatability, precision and cost per point (docs/precision.md)");
+    precision->add_option("scenario", precision_options.scenario, "A sequence scenario (castle_sequence): the Table II rows")
+        ->required();
+    precision->add_option("--pair", precision_options.pair, "A pair under a homography (graf): repeatability and precision too");
+    precision->add_option("--axis", precision_options.axes, "A width and its values: --axis 'fhg.det_bits=24 bit,20 bit' "
+                                                            "(repeatable; default: the built-in widths)")
+        ->type_name("KEY=V1,V2,...");
+    precision->add_option("--set", precision_options.sets, "Override a parameter of the sequence scenario (repeatable; the pair takes only each point's widths)")->type_name("KEY=VALUE ...");
+    precision->add_option("--out", precision_options.out, "Output folder (default: traces/precision_<scenario name>)");
+    precision->add_option("--jobs", precision_options.jobs, "Points at once (default: one per core)")->check(CLI::Range(0u, 256u));
+    precision->add_flag("--quiet,-q", precision_options.quiet, "No progress or summary lines on stderr");
     QualityCommands quality(app);
 
     try {
@@ -142,6 +156,7 @@ int dispatch(int argc, char** argv) {
         if (*sweep) return sweep_command(sweep_options);
         if (*compare) return compare_command(compare_options);
         if (*table2) return table2_command(table2_options);
+        if (*precision) return precision_command(precision_options);
         if (*sweep_merge) return sweep_merge_command(merge_dir);
         if (app.got_subcommand("list")) return list_scenarios();
         if (app.got_subcommand("registers")) {

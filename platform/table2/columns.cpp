@@ -147,13 +147,17 @@ Json column_row(const Column& col, size_t gap, const eval::RatioTestOptions& mat
 // One line of the contributions table: the four rows' means on consecutive frames (RANSAC,
 // and the ground truth with poses), precision under a homography.
 Json quality_line(const Column& col, const Geometry& g) {
-    Json means = Json::array(), truth = Json::array();
+    Json means = Json::array(), spreads = Json::array(), truth = Json::array();
+    size_t pairs = 0;
     for (const PaperRow& paper : kPaper) {
         const Json row = column_row(col, 1, paper_matching(paper), g);
         means.push_back(row["ransac"]["mean"]);
+        spreads.push_back(row["ransac"]["spread"]);
+        pairs = row["ransac"]["pairs"].get<size_t>();
         if (row.contains("ground_truth")) truth.push_back(row["ground_truth"]["mean"]);
     }
-    Json j = {{"name", col.name}, {"label", col.label}, {"keypoints_per_frame", mean_keypoints(col)}, {"ransac", means}};
+    Json j = {{"name", col.name}, {"label", col.label}, {"keypoints_per_frame", mean_keypoints(col)}, {"ransac", means},
+              {"ransac_spread", spreads}, {"pairs", pairs}};
     if (!truth.empty()) j["ground_truth"] = truth;
     if (g.homography) {
         j["precision"] = eval::matching_precision(col.frames[0], col.frames[1], *g.homography).precision;

@@ -1,0 +1,70 @@
+// `surfvp precision`: a width narrowed too far drops the Table II rows measurably, one that
+// still holds every sum gives the very same keypoints, and the report names the fewest bits.
+#include <algorithm>
+#include <filesystem>
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "cli.h"
+
+namespace surfvp {
+namespace {
+using nlohmann::json;
+using test::fresh_dir;
+using test::slurp;
+using test::surfvp;
+
+TEST(PrecisionStudy, TooFewBitsDropTheRowsAndTheReportNamesTheFewest) {
+    REQUIRE_CASTLE();
+    REQUIRE_OPENCV_DATA("graf3.png");
+    const std::string out = fresh_dir("precision");
+    const auto r = surfvp("precision castle_sequence --pair graf --quiet --set surf.frames=8 --axis 'fhg.response_bits=8 bit' "
+                          "--axis 'fhg.accumulator_bits=22 bit' --out " + out);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const json report = json::parse(slurp(out + "/report.json"));
+    ASSERT_TRUE(report["full_precision"].contains("rounded"));
+    const json& points = report["points"];
+    ASSERT_EQ(points.size(), 4u);  // the scenario's widths, two narrowed, and the fewest together
+    const json &base = points[0]["result"], &response8 = points[1]["result"], &accumulator22 = points[2]["result"];
+    EXPECT_TRUE(base["within"].get<bool>());
+    // 8-bit responses saturate: every row drops (measured -0.019 to -0.032 on 8 frames).
+    EXPECT_FALSE(response8["within"].get<bool>());
+    EXPECT_LT(response8["worst_change"].get<double>(), -0.015);
+    // A 22-bit accumulator still holds every sum of these frames: the same keypoints, fewer LUTs.
+    EXPECT_EQ(accumulator22["ransac"], base["ransac"]);
+    EXPECT_EQ(accumulator22["pair"], base["pair"]);
+    EXPECT_LT(accumulator22["luts"].get<double>(), base["luts"].get<double>());
+    EXPECT_EQ(accumulator22["det_bytes_per_frame"], base["det_bytes_per_frame"]);
+    // The fewest bits: the narrowed accumulator holds, the 8-bit responses do not.
+    ASSERT_EQ(report["fewest_bits"].size(), 2u);
+    EXPECT_EQ(report["fewest_bits"][0]["key"], "fhg.response_bits");
+    EXPECT_EQ(report["fewest_bits"][0]["fewest"], "18 bit");
+    EXPECT_EQ(report["fewest_bits"][1]["fewest"], "22 bit");
+    EXPECT_TRUE(report["all_fewest_together"]["result"]["within"].get<bool>());
+    EXPECT_NE(slurp(out + "/report.md").find("| fhg.accumulator_bits | 22 bit | 24 bit |"), std::string::npos);
+    EXPECT_NE(slurp(out + "/precision.svg").find("fhg.response_bits"), std::string::npos);
+    const std::string csv = slurp(out + "/results.csv");
+    EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 5);  // a header and the four points
+}
+
+TEST(PrecisionStudy, BadAxesAndPairsAreRefusedBeforeAnyPointRuns) {
+    REQUIRE_CASTLE();
+    const std::string out = test::fresh_path("precision_bad");
+    std::filesystem::remove_all(out);
+    const auto unknown = surfvp("precision castle_sequence --axis 'fhg.nope=3 bit' --out " + out);
+    EXPECT_EQ(unknown.exit_code, 2);
+    EXPECT_NE(unknown.err.find("fhg.nope"), std::string::npos) << unknown.err;
+    const auto shapeless = surfvp("precision castle_sequence --axis fhg.det_bits --out " + out);
+    EXPECT_EQ(shapeless.exit_code, 2);
+    EXPECT_NE(shapeless.err.find("give KEY=VALUE,VALUE"), std::string::npos) << shapeless.err;
+    const auto range = surfvp("precision castle_sequence --axis 'fhg.det_bits=40 bit' --out " + out);
+    EXPECT_EQ(range.exit_code, 2);
+    EXPECT_NE(range.err.find("--axis fhg.det_bits=40 bit"), std::string::npos) << range.err;
+    const auto pair = surfvp("precision castle_sequence --pair castle_sequence --out " + out);
+    EXPECT_EQ(pair.exit_code, 2);
+    EXPECT_NE(pair.err.find("it has none"), std::string::npos) << pair.err;
+    EXPECT_FALSE(std::filesystem::exists(out));
+}
+
+}  // namespace
+}  // namespace surfvp
