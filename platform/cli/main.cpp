@@ -26,11 +26,9 @@ namespace {
 
 using namespace surfvp;
 
-void add_scenario_options(CLI::App& command, RunOptions& options) {
-    command.add_option("scenario", options.scenario, "Scenario file, or the name of a shipped one (see `surfvp list`)")
-        ->required();
-    command.add_option("--set", options.sets, "Override a parameter: --set plb2.width='64 bit' (repeatable)")
-        ->type_name("KEY=VALUE");
+void add_scenario_options(CLI::App& command, std::string& scenario, std::vector<std::string>& sets) {
+    command.add_option("scenario", scenario, "Scenario file, or the name of a shipped one (see `surfvp list`)")->required();
+    command.add_option("--set", sets, "Override a parameter: --set plb2.width='64 bit' (repeatable)")->type_name("KEY=VALUE");
 }
 
 int list_scenarios() {
@@ -45,7 +43,7 @@ int dispatch(int argc, char** argv) {
     RunOptions options;
 
     CLI::App* run = app.add_subcommand("run", "Simulate a scenario; write report.json/.md, config.yaml and traces");
-    add_scenario_options(*run, options);
+    add_scenario_options(*run, options.scenario, options.sets);
     run->add_option("--out", options.out, "Output folder (default: traces/<scenario name>)");
     run->add_option("--trace", options.trace, "Which traces to write")
         ->check(CLI::IsMember({"none", "vcd", "perfetto", "all"}))
@@ -57,7 +55,7 @@ int dispatch(int argc, char** argv) {
                   "Run the driver and software on the cores without SystemC (no time): keypoints only");
 
     CLI::App* validate = app.add_subcommand("validate", "Check a scenario (and --set overrides) without running it");
-    add_scenario_options(*validate, options);
+    add_scenario_options(*validate, options.scenario, options.sets);
     app.add_subcommand("list", "List the shipped scenarios with their descriptions");
     app.add_subcommand("params", "Print every parameter with its default, range and source (Markdown)");
     app.add_subcommand("registers", "Print every block's registers with their access, reset value and fields (Markdown)");
@@ -110,10 +108,7 @@ int dispatch(int argc, char** argv) {
     Table2Options table2_options;
     CLI::App* table2 = app.add_subcommand("table2", "The paper's Table II: a sequence through the chip and the float reference, "
                                                     "distinguishability in four rows (docs/table2.md)");
-    table2->add_option("scenario", table2_options.scenario, "Scenario file, or the name of a shipped one (see `surfvp list`)")
-        ->required();
-    table2->add_option("--set", table2_options.sets, "Override a parameter: --set surf.source=DIR (repeatable)")
-        ->type_name("KEY=VALUE ...");
+    add_scenario_options(*table2, table2_options.scenario, table2_options.sets);
     table2->add_option("--out", table2_options.out, "Output folder (default: traces/<scenario name>)");
     table2->add_flag("--quiet,-q", table2_options.quiet, "No summary lines on stderr");
     PrecisionOptions precision_options;

@@ -110,8 +110,15 @@ CLI::App* add_eval_seq_command(CLI::App& app, EvalSeqCommand& c) {
                       "Laplacian Y/N")
         ->excludes("--laplacian");
     command->add_flag("--per-pair", c.per_pair, "Also list every pair's figures in the JSON");
-    command->add_option("--keypoints", c.keypoints_dir, "Also write each frame's keypoint file into this folder")
-        ->type_name("DIR");
+    CLI::Option* write = command->add_option("--keypoints", c.keypoints_dir, "Also write each frame's keypoint file into this folder")
+                             ->type_name("DIR");
+    command->add_option("--keypoints-from", c.keypoints_from,
+                        "Evaluate the keypoint files in DIR instead of running SURF (sorted by name, one per frame: a run's "
+                        "keypoints/ folder, or another detector's)")
+        ->type_name("DIR")
+        ->excludes(write)
+        ->excludes("--threshold")
+        ->excludes("--target-count");
     command->add_flag("--quiet,-q", c.quiet, "No summary on stderr");
     command->footer(
         std::string("Prints one JSON object on stdout, a summary on stderr. Example (ViSP castle):\n"

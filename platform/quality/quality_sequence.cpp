@@ -161,6 +161,26 @@ FrameKeypoints detect_frames(const Frames& frames, const EvalSeqCommand& c) {
     return out;
 }
 
+// Keypoints computed elsewhere (the chip's keypoints/ folder): the folder's keypoint files in
+// name order, one per frame.
+FrameKeypoints read_frame_keypoints(const Frames& frames, const EvalSeqCommand& c) {
+    std::vector<fs::path> files;
+    read_input("--keypoints-from", [&] {
+        for (const auto& entry : fs::directory_iterator(c.keypoints_from))
+            if (entry.is_regular_file() && entry.path().extension() != ".meta") files.push_back(entry.path());
+    });
+    std::sort(files.begin(), files.end());
+    if (files.size() != frames.sequence.frames.size())
+        throw ConfigError(fmt::format("--keypoints-from {}: {} keypoint files for {} frames of {}", c.keypoints_from, files.size(),
+                                      frames.sequence.frames.size(), c.source));
+    FrameKeypoints out;
+    for (const fs::path& file : files) {
+        out.keypoints.push_back(read_input("--keypoints-from", [&] { return eval::load_keypoints(file); }));
+        out.thresholds.push_back(0);  // not known here
+    }
+    return out;
+}
+
 // One row of the table: how candidates are found.
 std::vector<eval::RatioTestOptions> rows(const EvalSeqCommand& c) {
     auto row = [](std::optional<double> radius, bool laplacian) {
@@ -256,9 +276,10 @@ ordered_json surf_json(const SurfSettings& s, const FrameKeypoints& detected) {
 
 void print_summary(const ordered_json& out) {
     const auto& k = out["surf"]["keypoints"];
-    std::fprintf(stderr, "%zu frames, %.1f keypoints per frame (%zu..%zu), SURF %.1f s\n",
-                 out["frames"].get<std::size_t>(), k["mean"].get<double>(), k["min"].get<std::size_t>(),
-                 k["max"].get<std::size_t>(), out["surf"]["seconds"].get<double>());
+    std::fprintf(stderr, "%zu frames, %.1f keypoints per frame (%zu..%zu), %s\n", out["frames"].get<std::size_t>(),
+                 k["mean"].get<double>(), k["min"].get<std::size_t>(), k["max"].get<std::size_t>(),
+                 out["surf"].contains("seconds") ? fmt::format("SURF {:.1f} s", out["surf"]["seconds"].get<double>()).c_str()
+                                                 : ("from " + out["surf"]["keypoints_from"].get<std::string>()).c_str());
     for (const auto& gap : out["gaps"]) {
         for (const auto& row : gap["rows"]) {
             const auto& radius = row["search_radius"];
@@ -281,7 +302,7 @@ int run_eval_seq(const EvalSeqCommand& command) {
     EvalSeqCommand c = command;
     if (c.gaps.empty()) c.gaps = {1};
     const Frames frames = open_frames(c);
-    const FrameKeypoints detected = detect_frames(frames, c);
+    const FrameKeypoints detected = c.keypoints_from.empty() ? detect_frames(frames, c) : read_frame_keypoints(frames, c);
 
     ordered_json out;
     out["source"] = c.source;
@@ -292,6 +313,7 @@ int run_eval_seq(const EvalSeqCommand& command) {
     out["poses"] = c.poses.empty() ? ordered_json(nullptr) : ordered_json(c.poses);
     out["intrinsics"] = c.poses.empty() ? ordered_json(nullptr) : ordered_json(c.intrinsics);
     out["surf"] = surf_json(c.surf, detected);
+    if (!c.keypoints_from.empty()) out["surf"] = {{"keypoints_from", c.keypoints_from}, {"keypoints", out["surf"]["keypoints"]}};
     out["gaps"] = ordered_json::array();
     for (const std::size_t gap : c.gaps) {
         ordered_json table = ordered_json::array();

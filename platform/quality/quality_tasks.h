@@ -66,6 +66,7 @@ struct EvalSeqCommand {
     bool table = false;                // the four rows of Table II
     bool per_pair = false;             // each pair's figures in the JSON as well
     std::string keypoints_dir;         // empty: keypoints are not written
+    std::string keypoints_from;        // set: each frame's keypoints from this folder's files, no SURF
     bool quiet = false;
 };
 

@@ -51,18 +51,15 @@ TEST(PrecisionStudy, BadAxesAndPairsAreRefusedBeforeAnyPointRuns) {
     REQUIRE_CASTLE();
     const std::string out = test::fresh_path("precision_bad");
     std::filesystem::remove_all(out);
-    const auto unknown = surfvp("precision castle_sequence --axis 'fhg.nope=3 bit' --out " + out);
-    EXPECT_EQ(unknown.exit_code, 2);
-    EXPECT_NE(unknown.err.find("fhg.nope"), std::string::npos) << unknown.err;
-    const auto shapeless = surfvp("precision castle_sequence --axis fhg.det_bits --out " + out);
-    EXPECT_EQ(shapeless.exit_code, 2);
-    EXPECT_NE(shapeless.err.find("give KEY=VALUE,VALUE"), std::string::npos) << shapeless.err;
-    const auto range = surfvp("precision castle_sequence --axis 'fhg.det_bits=40 bit' --out " + out);
-    EXPECT_EQ(range.exit_code, 2);
-    EXPECT_NE(range.err.find("--axis fhg.det_bits=40 bit"), std::string::npos) << range.err;
-    const auto pair = surfvp("precision castle_sequence --pair castle_sequence --out " + out);
-    EXPECT_EQ(pair.exit_code, 2);
-    EXPECT_NE(pair.err.find("it has none"), std::string::npos) << pair.err;
+    for (const auto& [args, says] : std::vector<std::pair<std::string, std::string>>{
+             {"--axis 'fhg.nope=3 bit'", "fhg.nope"},
+             {"--axis fhg.det_bits", "give KEY=VALUE,VALUE"},
+             {"--axis 'fhg.det_bits=40 bit'", "--axis fhg.det_bits=40 bit"},
+             {"--pair castle_sequence", "it has none"}}) {
+        const auto r = surfvp("precision castle_sequence " + args + " --out " + out);
+        EXPECT_EQ(r.exit_code, 2) << args;
+        EXPECT_NE(r.err.find(says), std::string::npos) << args << ": " << r.err;
+    }
     EXPECT_FALSE(std::filesystem::exists(out));
 }
 

@@ -190,6 +190,26 @@ const json* find_row(const json& gap, bool limited, bool laplacian) {
     return nullptr;
 }
 
+// Keypoints computed elsewhere: the chip's own keypoint files give, through eval-seq, the
+// distinguishability its run reported; a folder with a file too few is refused.
+TEST(QualityCli, EvalSeqTakesTheChipsKeypointFiles) {
+    REQUIRE_CASTLE();
+    const std::string run = fresh_dir("chip_keypoints");
+    ASSERT_EQ(surfvp("run castle_sequence --direct --quiet --set surf.frames=6 --out " + run).exit_code, 0);
+    const json report = json::parse(slurp(run + "/report.json"));
+    const std::string common = "eval-seq " + kCastle + " --poses " + kCastle + "/CameraPose --intrinsics 700,700,320,240 --frames 6";
+    const auto r = surfvp(common + " --quiet --keypoints-from " + run + "/keypoints");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const json row = json::parse(r.out)["gaps"][0]["rows"][0];
+    const json& chip = report["workload"]["evaluation"]["distinguishability_gap1"];
+    EXPECT_DOUBLE_EQ(row["mean"].get<double>(), chip["ransac"].get<double>());
+    EXPECT_DOUBLE_EQ(row["ground_truth"]["mean"].get<double>(), chip["ground_truth"].get<double>());
+    std::filesystem::remove(run + "/keypoints/frame_0005.surf");
+    const auto short_of_one = surfvp(common + " --keypoints-from " + run + "/keypoints");
+    EXPECT_EQ(short_of_one.exit_code, 2);
+    EXPECT_NE(short_of_one.err.find("5 keypoint files for 6 frames"), std::string::npos) << short_of_one.err;
+}
+
 TEST(QualityCli, EvalSeqCastleRansacAgreesWithGroundTruth) {
     REQUIRE_CASTLE();
     const auto r = surfvp("eval-seq " + kCastle + " --poses " + kCastle +
