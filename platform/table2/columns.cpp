@@ -4,6 +4,7 @@
 #include <cmath>
 #include <fmt/format.h>
 #include <fstream>
+#include <opencv2/core/mat.hpp>
 
 #include "models/common/atomic_file.h"
 #include "platform/workload/workload.h"

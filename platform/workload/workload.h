@@ -5,7 +5,6 @@
 #include <functional>
 #include <memory>
 #include <nlohmann/json.hpp>
-#include <opencv2/core/mat.hpp>
 #include <string>
 #include <vector>
 
@@ -13,6 +12,10 @@
 #include "models/common/fault_plan.h"
 #include "models/common/tracer.h"
 #include "models/ppc440/ppc440.h"
+
+namespace cv {
+class Mat;  // for_each_chip_frame (this header is also built without OpenCV's include path: tests/fuzz)
+}
 
 namespace surfvp {
 
