@@ -34,6 +34,25 @@ void add_surf_options(CLI::App& command, SurfSettings& surf) {
                        "(whole pixels, the chip's software: surf.haar)")
         ->check(CLI::IsMember({"exact", "rounded"}))
         ->capture_default_str();
+    command.add_flag("--paper", surf.paper,
+                     "The paper's SURF: 4 filter sizes per octave, --max-offset 0.5, --descriptor surf (with --octaves 2 "
+                     "--haar rounded: the chip's software in float); options given beside it win");
+    command
+        .add_option_function<int>(
+            "--intervals", [&surf](const int& n) { surf.intervals = n; },
+            "Filter sizes per octave, 3..8 (default 5, OpenCV's; the paper and the chip: 4)")
+        ->check(CLI::Range(3, 8));
+    command
+        .add_option_function<std::string>(
+            "--descriptor", [&surf](const std::string& d) { surf.descriptor = d; },
+            "Descriptor sampling: msurf (default; OpenSURF's overlapping sub-regions) or surf (Bay's; the chip's software)")
+        ->check(CLI::IsMember({"surf", "msurf"}));
+    command
+        .add_option_function<float>(
+            "--max-offset", [&surf](const float& m) { surf.max_offset = m; },
+            "The interpolation drops a maximum whose fitted offset exceeds this many samples (default 1, OpenCV's; "
+            "the paper: 0.5)")
+        ->check(CLI::Range(0.01f, 2.0f));
     command.add_option("--threads", surf.threads, "Threads for SURF, 0 = all cores")
         ->check(CLI::Range(0, 1024))
         ->capture_default_str();

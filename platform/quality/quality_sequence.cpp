@@ -262,9 +262,13 @@ ordered_json surf_json(const SurfSettings& s, const FrameKeypoints& detected) {
     j["threshold"] = s.threshold ? ordered_json(*s.threshold) : nullptr;
     j["target_count"] = s.target_count ? ordered_json(*s.target_count) : nullptr;
     j["upright"] = s.upright;
+    const surf::Params p = s.params();
     j["octaves"] = s.octaves;
+    j["intervals"] = p.intervals;
     j["init_step"] = s.init_step;
     j["haar"] = s.haar;
+    j["descriptor"] = p.descriptor == surf::DescriptorKind::msurf ? "msurf" : "surf";
+    j["max_offset"] = p.max_offset;
     j["keypoints"] = {{"total", total},
                       {"mean", static_cast<double>(total) / static_cast<double>(detected.keypoints.size())},
                       {"min", least},

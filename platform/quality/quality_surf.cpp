@@ -12,7 +12,10 @@
 namespace surfvp::quality {
 
 surf::Params SurfSettings::params() const {
-    surf::Params p;
+    surf::Params p = paper ? surf::paper_surf() : surf::Params{};
+    if (intervals) p.intervals = *intervals;
+    if (descriptor) p.descriptor = *descriptor == "surf" ? surf::DescriptorKind::surf : surf::DescriptorKind::msurf;
+    if (max_offset) p.max_offset = *max_offset;
     if (threshold) p.threshold = *threshold;
     p.upright = upright;
     p.octaves = octaves;

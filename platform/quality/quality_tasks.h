@@ -25,6 +25,11 @@ struct SurfSettings {
     int octaves = 4;
     int init_step = 1;
     std::string haar = "exact";  // or "rounded", as the chip's software (surf.haar)
+    bool paper = false;          // start from surf::paper_surf() instead of surf::Params{}
+    // Given only when set on the command line; otherwise from the defaults chosen above.
+    std::optional<int> intervals;
+    std::optional<std::string> descriptor;  // "surf" or "msurf"
+    std::optional<float> max_offset;
     int threads = 0;
 
     surf::Params params() const;  // without the threshold, which detect() decides

@@ -76,6 +76,10 @@ void add_surf(std::vector<ParamSpec>& t) {
                  "positions like the float reference",
                  "[A] embedded SURF of the time (OpenSURF) samples at whole pixels; exact costs 2.4 ms a keypoint "
                  "on this PPC440 model against 0.76 ms rounded (sw/cpu_cost/README.md)"});
+    t.push_back({"surf.max_offset", ParamKind::real, "0.5", 0.5, 2, {},
+                 "The CPU's interpolation drops a local maximum whose fitted offset exceeds this, in samples, in x, y "
+                 "or scale (1 keeps the maxima that lie between two samples)",
+                 "[S] paper §II: 0.5; OpenCV's SURF keeps up to 1, which the float reference uses (docs/quality.md)"});
     t.push_back({"surf.tasks_in_flight", ParamKind::count, "2", 1, 16, {},
                  "Tasks between hardware start and descriptors done (buffer sets in memory: a frame, its integral "
                  "image, determinants and descriptors; a frame arrives in its set as its task starts)",

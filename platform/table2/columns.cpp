@@ -48,9 +48,7 @@ Column cpu_column(const Config& c, const Variant& v, const fs::path& dir) {
     Column col;
     col.name = v.name, col.label = v.label;
     const auto start = Clock::now();
-    surf::Params p;
-    p.octaves = v.octaves;
-    p.haar = v.haar;
+    surf::Params p = v.params;
     p.upright = c.choice("surf.upright") == "on";
     const auto target = int(c.count("surf.target_keypoints"));
     p.threshold = float(c.real("surf.threshold"));
@@ -88,17 +86,32 @@ Column cpu_column(const Config& c, const Variant& v, const fs::path& dir) {
     return col;
 }
 
-// Each of the chip's software settings alone in the float reference, then both: the first is
-// the CPU column; the difference of the last from the chip is what the hardware's integer
-// determinants and block-wise suppression cost.
+// Each of the chip's software settings alone in the float reference, then the paper's SURF at
+// 4 octaves, then all of them: the first is the CPU column; the difference of the last from the
+// chip is what the hardware's integer determinants and block-wise suppression cost.
 std::vector<Variant> variants(const Config& c) {
-    const auto haar = c.choice("surf.haar") == "rounded" ? surf::HaarMode::rounded : surf::HaarMode::exact;
-    std::vector<Variant> v{{"cpu", "CPU (float reference, 4 octaves)", 4, surf::HaarMode::exact},
-                           {"cpu_2_octaves", "CPU with the chip's 2 octaves", 2, surf::HaarMode::exact}};
-    if (haar == surf::HaarMode::rounded) {
-        v.push_back({"cpu_rounded_haar", "CPU with rounded Haar wavelets (surf.haar)", 4, haar});
-        v.push_back({"cpu_chip_settings", "CPU with the chip's software settings (2 octaves, rounded Haar)", 2, haar});
-    }
+    const surf::Params chip = chip_surf_params(c);
+    auto with = [](auto change) {
+        surf::Params p;
+        change(p);
+        return p;
+    };
+    std::vector<Variant> v{
+        {"cpu", "CPU (float reference: 4 octaves of 5 intervals, offsets to 1, M-SURF, exact Haar)", surf::Params{}},
+        {"cpu_2_octaves", "CPU with the chip's 2 octaves", with([](surf::Params& p) { p.octaves = 2; })},
+        {"cpu_4_intervals", "CPU with the chip's 4 intervals", with([](surf::Params& p) { p.intervals = 4; })}};
+    if (chip.max_offset != surf::Params{}.max_offset)
+        v.push_back({"cpu_max_offset", fmt::format("CPU with the chip's offset limit {} (surf.max_offset)", chip.max_offset),
+                     with([&](surf::Params& p) { p.max_offset = chip.max_offset; })});
+    v.push_back({"cpu_surf_descriptor", "CPU with the chip's descriptor (Bay's SURF)",
+                 with([](surf::Params& p) { p.descriptor = surf::DescriptorKind::surf; })});
+    if (chip.haar != surf::Params{}.haar)
+        v.push_back({"cpu_rounded_haar", "CPU with rounded Haar wavelets (surf.haar)",
+                     with([&](surf::Params& p) { p.haar = chip.haar; })});
+    v.push_back({"cpu_paper", "CPU as the paper's SURF (4 octaves of 4 intervals, offsets to 0.5, SURF, exact Haar)",
+                 surf::paper_surf()});
+    v.push_back({"cpu_chip_settings", "CPU with all the chip's software settings (the paper's SURF on 2 octaves, surf.haar)",
+                 chip});
     return v;
 }
 

@@ -48,12 +48,12 @@ struct Column {
     int exit_code = kExitOk;
 };
 
-// The float reference beside the chip: at its defaults (4 octaves, exact Haar wavelets) or
-// with some of the chip's software settings, so that each difference is measured alone.
+// The float reference beside the chip: at its defaults (surf::Params, the best CPU SURF) or
+// with some of the chip's software settings, so that each difference is measured alone. The
+// threshold and upright setting come from the scenario.
 struct Variant {
     std::string name, label;
-    int octaves = 4;
-    surf::HaarMode haar = surf::HaarMode::exact;
+    surf::Params params;
 };
 
 struct Geometry {
@@ -68,7 +68,8 @@ Column cpu_column(const Config& c, const Variant& v, const std::filesystem::path
 // The chip: a direct-mode run into `dir` (a run folder of its own), then its keypoint files;
 // `sizes`: its frames' (a CPU column's), which the chip's keypoint files do not hold.
 Column fpga_column(const Config& c, const std::filesystem::path& dir, const std::vector<cv::Size>& sizes);
-// The CPU column, then each of the chip's software settings alone in float, then both.
+// The CPU column, then each of the chip's software settings alone in float, then the paper's
+// SURF, then all of them (the chip's software in float).
 std::vector<Variant> variants(const Config& c);
 Geometry read_geometry(const Config& c);  // the scenario's poses and homography (already checked)
 

@@ -17,6 +17,7 @@
 #include "platform/sweep/resimulation.h"
 #include "platform/sweep/sweep_plan.h"
 #include "platform/table2/columns.h"
+#include "platform/workload/workload.h"
 
 namespace surfvp {
 namespace {
@@ -122,11 +123,11 @@ Json measure(const Config& seq, const std::optional<Config>& pair, const std::ve
     return j;
 }
 
-// Full precision: the chip's algorithm in float (the float reference with 2 octaves and the
-// point's Haar mode), per Haar mode asked for.
+// Full precision: the chip's algorithm in float (chip_surf_params with the point's Haar mode),
+// per Haar mode asked for.
 Json full_precision(const Config& seq, const std::optional<Config>& pair, const std::string& haar) {
-    const Variant v{"float", "full precision: the float reference with the chip's settings", 2,
-                    haar == "rounded" ? surf::HaarMode::rounded : surf::HaarMode::exact};
+    Variant v{"float", "full precision: the float reference with the chip's settings", chip_surf_params(seq)};
+    v.params.haar = haar == "rounded" ? surf::HaarMode::rounded : surf::HaarMode::exact;
     Json j = quality_line(cpu_column(seq, v), read_geometry(seq));
     if (pair) {
         const Json q = quality_line(cpu_column(*pair, v), read_geometry(*pair));

@@ -63,6 +63,13 @@ Json column_summary(const Column& col) {
 Json differences(const Config& c) {
     return Json::array(
         {{{"what", "octaves"}, {"cpu", "4"}, {"fpga", "2 (the FHG's 2 octaves x 4 intervals)"}},
+         {{"what", "filter sizes per octave"}, {"cpu", "5 (OpenCV's)"}, {"fpga", "4 (the paper's, in the FHG)"}},
+         {{"what", "interpolation: the largest fitted offset kept"},
+          {"cpu", "1 sample (OpenCV's)"},
+          {"fpga", fmt::format("{} (surf.max_offset; the paper: 0.5)", c.real("surf.max_offset"))}},
+         {{"what", "descriptor"},
+          {"cpu", "M-SURF (OpenSURF's: overlapping sub-regions, two Gaussians)"},
+          {"fpga", "SURF (Bay's: 4 x 4 sub-regions of 5 x 5 samples, one Gaussian)"}},
          {{"what", "Haar wavelets of orientation and descriptor"},
           {"cpu", "exact (sub-pixel sample positions)"},
           {"fpga", fmt::format("{} (surf.haar)", c.choice("surf.haar"))}},
@@ -73,7 +80,7 @@ Json differences(const Config& c) {
           {"cpu", "3x3x3 in float"},
           {"fpga", "partial, in each 2x2 determinant block (LocalMaxFinder), re-checked in software over the integer determinants"}},
          {{"what", "threshold"},
-          {"cpu", "calibrated on frame 0 with 4 octaves"},
+          {"cpu", "calibrated on frame 0 with the CPU's settings"},
           {"fpga", "calibrated on frame 0 with 2 octaves (the float reference limited to the chip's octaves), in the FHG's units"}}});
 }
 

@@ -216,6 +216,7 @@ std::unique_ptr<sw::ssa2::Describer> make_describer(const Config& config, float 
     params.upright = config.choice("surf.upright") == "on";
     params.haar = config.choice("surf.haar") == "exact" ? surf::HaarMode::exact : surf::HaarMode::rounded;
     params.threshold = threshold;
+    params.max_offset = float(config.real("surf.max_offset"));
     try {
         return std::make_unique<StageDescriber>(params, cost_params(config, params.haar),
                                                 unsigned(config.bytes("cpu.cache_line").n));

@@ -91,10 +91,7 @@ cv::Mat as_the_chip_takes(const Config& c, const cv::Mat& frame) {
 // Frames the chip can take: at least the filters' minimum (the float reference that
 // calibrates the threshold runs on frame 0), at most what the IIG and FHG accept.
 void check_frame_size(const Config& c, const SourceFrames& f) {
-    surf::Params reference;
-    reference.octaves = 2;
-    reference.init_step = 1;
-    const int side = surf::minimum_image_side(reference);
+    const int side = surf::minimum_image_side(chip_surf_params(c));
     const bool resized = f.first.size() != f.original;
     const bool alike = std::all_of(f.sizes.begin(), f.sizes.end(), [&](const cv::Size& s) { return s == f.sizes[0]; });
     const std::string where = resized ? c.where("surf.width") : c.where("surf.source");
@@ -160,7 +157,7 @@ SourceFrames read_frames(const Config& c) {
         surf::QuietDecoding quiet;
         if (fs::is_regular_file(status) && (eval::is_image_file(source) || !cv::imread(source, cv::IMREAD_GRAYSCALE).empty())) {
             out.repeated = true;
-            out.first = surf::load_gray(source);
+            out.first = surf::load_gray(source, chip_surf_params(c));
             out.original = out.first.size();
             out.sizes.assign(out.count, as_the_chip_takes(c, out.first).size());
         } else {
@@ -284,15 +281,10 @@ struct Calibration {
 Calibration calibrate(const Config& c, const cv::Mat& frame) {
     if (c.count("surf.target_keypoints") == 0) return {float(c.real("surf.threshold")), 0};
     static std::map<std::string, std::vector<float>> ranked;
-    const std::string key = fmt::format("{}|{}", source_key(c), c.choice("surf.upright"));
+    const surf::Params p = chip_surf_params(c);
+    const std::string key = fmt::format("{}|{}|{}", source_key(c), p.upright, p.max_offset);
     auto it = ranked.find(key);
-    if (it == ranked.end()) {
-        surf::Params p;
-        p.octaves = 2;
-        p.init_step = 1;
-        p.upright = c.choice("surf.upright") == "on";
-        it = ranked.emplace(key, surf::ranked_responses(frame, p)).first;
-    }
+    if (it == ranked.end()) it = ranked.emplace(key, surf::ranked_responses(frame, p)).first;
     return {surf::threshold_for_rank(it->second, int(c.count("surf.target_keypoints"))), it->second.size()};
 }
 
@@ -735,6 +727,16 @@ std::string SurfWorkload::first_frame_svg() const {
     }
     return svg + fmt::format("<text x=\"6\" y=\"{}\" fill=\"yellow\" font-family=\"sans-serif\">frame 0: {} keypoints</text></svg>",
                              shown.rows - 8, results_[0].keypoint_count);
+}
+
+surf::Params chip_surf_params(const Config& c) {
+    surf::Params p = surf::paper_surf();
+    p.octaves = 2;
+    p.init_step = 1;
+    p.upright = c.choice("surf.upright") == "on";
+    p.haar = c.choice("surf.haar") == "exact" ? surf::HaarMode::exact : surf::HaarMode::rounded;
+    p.max_offset = float(c.real("surf.max_offset"));
+    return p;
 }
 
 }  // namespace surfvp

@@ -12,6 +12,7 @@
 #include "models/common/fault_plan.h"
 #include "models/common/tracer.h"
 #include "models/ppc440/ppc440.h"
+#include "sw/surf/params.h"
 
 namespace cv {
 class Mat;  // for_each_chip_frame (this header is also built without OpenCV's include path: tests/fuzz)
@@ -75,5 +76,11 @@ void check_surf_inputs(const Config& config);
 // Every frame of surf.source as the chip takes it (grey, resized as surf.width x surf.height
 // ask), in order, one decoded at a time: what a run gives the chip, for a reference beside it.
 void for_each_chip_frame(const Config& config, const std::function<void(size_t, const cv::Mat&)>& take);
+
+// The chip's software in float (sw/surf): the paper's SURF on the FHG's 2 octaves of 4
+// intervals, with the scenario's Haar wavelets (surf.haar), interpolation limit
+// (surf.max_offset) and upright setting. The threshold calibration runs it on frame 0; table2
+// gives its column beside the chip's.
+surf::Params chip_surf_params(const Config& config);
 
 }  // namespace surfvp

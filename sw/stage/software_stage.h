@@ -39,6 +39,9 @@ struct StageParams {
     // integer sums). Charged by the mode in use (sw/cpu_cost/surf_op_counts.h).
     surf::HaarMode haar = surf::HaarMode::exact;
     float threshold = 0;   // determinant threshold in float units (sw/surf/README.md)
+    // The interpolation drops a maximum whose |offset| exceeds this (samples): 0.5 is the
+    // paper's rule (§II), 1 OpenCV's (sw/surf/params.h).
+    float max_offset = 0.5f;
 };
 
 // Meter: void enter(Step), void leave() (the candidate is done), void count(Unit, uint64_t),

@@ -179,7 +179,7 @@ std::optional<surf::Keypoint> BasicSoftwareStage<Meter>::interpolate(const Scan&
     m.layer = 1;
     m.kx = m.ky = 1;
     m.response = oct.at(1, 1, 1);
-    std::optional<surf::Keypoint> kp = surf::interpolate_maximum(stack_, m);
+    std::optional<surf::Keypoint> kp = surf::interpolate_maximum(stack_, m, params_.max_offset);
     if (!kp) return std::nullopt;
     meter_.count(Unit::keypoint, 1);
     kp->x += static_cast<float>(s.x - s.step);

@@ -161,4 +161,16 @@ HaarResponse haar_response_rounded(const View& ii, float x, float y, int half) {
     return inside ? haar_from_corners<true>(ii, gx, gy) : haar_from_corners<false>(ii, gx, gy);
 }
 
+// The Haar pair evaluator for `mode` and wavelet side `size` (pixels), passed to `use` as a
+// callable (x, y) -> HaarResponse: exact wavelets of side `size`, or rounded ones of side
+// 2 round(size / 2).
+template <class View, class Use>
+[[gnu::always_inline]] inline auto with_haar(const View& ii, HaarMode mode, float size, Use&& use) {
+    if (mode == HaarMode::rounded) {
+        const int half = haar_detail::rounded_half(size / 2);
+        return use([&](float x, float y) { return haar_response_rounded(ii, x, y, half); });
+    }
+    return use([&](float x, float y) { return haar_response(ii, x, y, size); });
+}
+
 }  // namespace surfvp::surf

@@ -6,7 +6,7 @@
 
 namespace surfvp::surf {
 
-std::optional<Keypoint> interpolate_maximum(const ResponseStack& stack, const LocalMaximum& m) {
+std::optional<Keypoint> interpolate_maximum(const ResponseStack& stack, const LocalMaximum& m, float max_offset) {
     const ResponseOctave& oct = stack.octaves[static_cast<size_t>(m.octave)];
     // r(dx, dy, ds): determinant at a neighbour, in double for the finite differences.
     auto r = [&](int dx, int dy, int ds) { return static_cast<double>(oct.at(m.layer + ds, m.kx + dx, m.ky + dy)); };
@@ -27,7 +27,7 @@ std::optional<Keypoint> interpolate_maximum(const ResponseStack& stack, const Lo
     h.computeInverseWithCheck(h_inv, invertible);
     if (!invertible) return std::nullopt;
     const Eigen::Vector3d offset = -h_inv * g;  // eq. 5
-    if (!offset.allFinite() || offset.cwiseAbs().maxCoeff() > 0.5) return std::nullopt;
+    if (!offset.allFinite() || offset.cwiseAbs().maxCoeff() > max_offset) return std::nullopt;
 
     const int layer_size = oct.layers[static_cast<size_t>(m.layer)].filter_size;
     const double size = layer_size + offset.z() * filter_spacing(m.octave);

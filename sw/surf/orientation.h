@@ -86,13 +86,8 @@ template <class Haar>
 template <class View>
 float orientation(const View& ii, float x, float y, float scale, HaarMode mode = HaarMode::exact, int* angles = nullptr) {
     using namespace orientation_detail;
-    if (mode == HaarMode::rounded) {
-        const int half = haar_detail::rounded_half(kWaveletSize / 2 * scale);
-        return dominant_direction(x, y, scale,
-                                  [&](float px, float py) { return haar_response_rounded(ii, px, py, half); }, angles);
-    }
-    const float size = kWaveletSize * scale;
-    return dominant_direction(x, y, scale, [&](float px, float py) { return haar_response(ii, px, py, size); }, angles);
+    return with_haar(ii, mode, kWaveletSize * scale,
+                     [&](const auto& haar) { return dominant_direction(x, y, scale, haar, angles); });
 }
 
 }  // namespace surfvp::surf

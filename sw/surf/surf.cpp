@@ -25,7 +25,7 @@ Keypoints refined_maxima(const IntegralView& ii, const Params& params, float thr
     compute_responses(ii, params, threads, stack);
     Keypoints keypoints;
     for (const LocalMaximum& m : find_local_maxima(stack, threshold, threads)) {
-        std::optional<Keypoint> kp = interpolate_maximum(stack, m);
+        std::optional<Keypoint> kp = interpolate_maximum(stack, m, params.max_offset);
         if (!kp) continue;
         const ResponseOctave& oct = stack.octaves[static_cast<size_t>(m.octave)];
         kp->laplacian =
@@ -57,6 +57,11 @@ void validate(const Params& params) {
         throw std::invalid_argument(fmt::format("SURF threads must be >= 0, got {}", params.threads));
     if (params.haar != HaarMode::exact && params.haar != HaarMode::rounded)
         throw std::invalid_argument(fmt::format("SURF haar mode must be exact or rounded, got {}", int(params.haar)));
+    if (params.descriptor != DescriptorKind::surf && params.descriptor != DescriptorKind::msurf)
+        throw std::invalid_argument(
+            fmt::format("SURF descriptor must be surf or msurf, got {}", int(params.descriptor)));
+    if (!(params.max_offset > 0 && params.max_offset <= 2))
+        throw std::invalid_argument(fmt::format("SURF max_offset must be in (0, 2], got {}", params.max_offset));
 }
 
 Keypoints detect(const IntegralView& ii, const Params& params) {
@@ -81,7 +86,7 @@ void describe(const IntegralView& ii, Keypoints& keypoints, const Params& params
         for (int i = begin; i < end; ++i) {
             Keypoint& kp = keypoints[static_cast<size_t>(i)];
             kp.orientation = params.upright ? 0.0f : orientation(ii, kp.x, kp.y, kp.scale, params.haar);
-            kp.descriptor = descriptor(ii, kp, params.haar);
+            kp.descriptor = descriptor(ii, kp, params.haar, params.descriptor);
         }
     });
 }

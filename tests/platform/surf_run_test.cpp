@@ -191,7 +191,7 @@ TEST(SurfRun, ChipKeypointsMatchTheFloatReference) {
     ASSERT_FALSE(frame.empty()) << "install the Debian package opencv-doc";
     cv::resize(frame, resized, cv::Size(1024, 768), 0, 0, cv::INTER_AREA);
     cv::imwrite(out + "/frame.png", resized);
-    ASSERT_EQ(surfvp(fmt::format("surf {}/frame.png --out {}/reference.surf --threshold {:.9g} --octaves 2 --init-step 1 -q",
+    ASSERT_EQ(surfvp(fmt::format("surf {}/frame.png --out {}/reference.surf --threshold {:.9g} --paper --octaves 2 --init-step 1 -q",
                                  out, out, threshold))
                   .exit_code,
               0);

@@ -29,7 +29,7 @@ SoftwareStage make_stage(const sw::StageParams& params) {
 }
 
 surf::Params reference_params(bool upright, surf::HaarMode haar = surf::HaarMode::exact) {
-    surf::Params p;
+    surf::Params p = surf::paper_surf();  // the chip computes the paper's SURF
     p.haar = haar;
     p.octaves = 2;  // the chip's 2 octaves x 4 intervals (paper §III)
     p.init_step = 1;

@@ -67,15 +67,19 @@ TEST_F(ImageIo, NotAnImage) {
 }
 
 TEST_F(ImageIo, TooSmallForTheFirstOctave) {
-    // Default parameters: largest filter of octave 1 is 27, so the minimum side is 27+1+2 = 30.
-    EXPECT_EQ(minimum_image_side(Params{}), 30);
+    // The paper's 4 intervals: the largest filter of octave 0 is 27, so the minimum side is
+    // 27+1+2 = 30; the default 5 intervals: 33+1+2 = 36.
+    EXPECT_EQ(minimum_image_side(paper_surf()), 30);
+    EXPECT_EQ(minimum_image_side(Params{}), 36);
     const std::string p = path("small.png");
     ASSERT_TRUE(cv::imwrite(p, cv::Mat(100, 29, CV_8UC1, cv::Scalar(7))));
-    expect_image_error([&] { load_gray(p); }, {p, "too small", "100", "29", "27", "30x30"});
+    expect_image_error([&] { load_gray(p, paper_surf()); }, {p, "too small", "100", "29", "27", "30x30"});
+    ASSERT_TRUE(cv::imwrite(p, cv::Mat(100, 35, CV_8UC1, cv::Scalar(7))));
+    expect_image_error([&] { load_gray(p); }, {p, "too small", "100", "35", "33", "36x36"});
 
     const std::string ok = path("ok.png");
     ASSERT_TRUE(cv::imwrite(ok, cv::Mat(30, 30, CV_8UC1, cv::Scalar(7))));
-    EXPECT_EQ(load_gray(ok).size(), cv::Size(30, 30));
+    EXPECT_EQ(load_gray(ok, paper_surf()).size(), cv::Size(30, 30));
 }
 
 TEST_F(ImageIo, ColourFilesAreConvertedToGrey) {
@@ -93,7 +97,7 @@ TEST_F(ImageIo, LoadsTheOpenCvExample) {
 }
 
 TEST(ImageChecks, InMemoryImagesAreCheckedByEveryEntryPoint) {
-    Params params;
+    Params params = paper_surf();
     expect_image_error([&] { detect(cv::Mat(), params); }, {"image", "empty"});
     expect_image_error([&] { detect(cv::Mat(64, 64, CV_8UC3), params); }, {"image", "8-bit single-channel"});
     expect_image_error([&] { detect(cv::Mat(64, 64, CV_16UC1), params); }, {"image", "8-bit single-channel"});

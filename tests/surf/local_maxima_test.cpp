@@ -81,7 +81,7 @@ TEST(Interpolation, RecoversTheVertexOfAQuadratic) {
     const ResponseStack stack = make_stack(peak(8.2, 6.9, 1.3));
     const std::vector<LocalMaximum> maxima = find_local_maxima(stack, 0, 1);
     ASSERT_EQ(maxima.size(), 1u);
-    const std::optional<Keypoint> kp = interpolate_maximum(stack, maxima[0]);
+    const std::optional<Keypoint> kp = interpolate_maximum(stack, maxima[0], 0.5f);
     ASSERT_TRUE(kp.has_value());
     // Octave 1: step 2, filter spacing 12, interval 1 has L = 27.
     EXPECT_NEAR(kp->x, 8.2 * 2, 1e-3);
@@ -90,15 +90,27 @@ TEST(Interpolation, RecoversTheVertexOfAQuadratic) {
     EXPECT_EQ(kp->response, stack.octaves[1].at(1, 8, 7));
 }
 
-TEST(Interpolation, RejectsOffsetsAboveHalfASample) {
+TEST(Interpolation, RejectsOffsetsAboveTheLimit) {
     // The sampled maximum is at kx = 8 but the quadratic's vertex is 0.55 samples away: the
-    // 3x3x3 fit lands outside +-0.5.
+    // 3x3x3 fit lands outside +-0.5 (the paper's rule), inside +-1 (OpenCV's).
     ResponseStack stack = make_stack(peak(8.45, 7, 1));
     LocalMaximum m{1, 1, 8, 7, stack.octaves[1].at(1, 8, 7)};
-    ASSERT_TRUE(interpolate_maximum(stack, m).has_value());
+    ASSERT_TRUE(interpolate_maximum(stack, m, 0.5f).has_value());
     stack = make_stack(peak(8.55, 7, 1));
     m.response = stack.octaves[1].at(1, 8, 7);
-    EXPECT_FALSE(interpolate_maximum(stack, m).has_value());
+    EXPECT_FALSE(interpolate_maximum(stack, m, 0.5f).has_value());
+    const std::optional<Keypoint> kp = interpolate_maximum(stack, m, 1.0f);
+    ASSERT_TRUE(kp.has_value());
+    EXPECT_NEAR(kp->x, 8.55 * 2, 1e-3);
+    // The scale axis too: a vertex 0.7 intervals above the sampled layer.
+    stack = make_stack(peak(8, 7, 1.7));
+    m = {1, 1, 8, 7, stack.octaves[1].at(1, 8, 7)};
+    EXPECT_FALSE(interpolate_maximum(stack, m, 0.5f).has_value());
+    ASSERT_TRUE(interpolate_maximum(stack, m, 1.0f).has_value());
+    EXPECT_NEAR(interpolate_maximum(stack, m, 1.0f)->scale, 1.2 * (27 + 0.7 * 12) / 9, 1e-4);
+    stack = make_stack(peak(9.2, 7, 1));
+    m = {1, 1, 8, 7, stack.octaves[1].at(1, 8, 7)};
+    EXPECT_FALSE(interpolate_maximum(stack, m, 1.0f).has_value());
 }
 
 }  // namespace

@@ -132,7 +132,10 @@ TEST(Orientation, PointsAlongTheGradientOfARamp) {
     }
 }
 
-TEST(Descriptor, RampGivesOnlyTheAlongComponentWhenAligned) {
+// Both descriptor kinds (params.h): Bay's SURF and M-SURF.
+class DescriptorKinds : public ::testing::TestWithParam<DescriptorKind> {};
+
+TEST_P(DescriptorKinds, RampGivesOnlyTheAlongComponentWhenAligned) {
     // Rotated to the gradient, every dd is positive and every dp is ~0 (up to the 8-bit
     // staircase of a slanted ramp): each sub-region is ~(a, 0, a, 0), and the vector is unit
     // length.
@@ -143,7 +146,7 @@ TEST(Descriptor, RampGivesOnlyTheAlongComponentWhenAligned) {
     kp.y = 99.7f;
     kp.scale = 1.6f;
     kp.orientation = static_cast<float>(phi);
-    const std::array<float, 64> d = descriptor(ii.view(), kp);
+    const std::array<float, 64> d = descriptor(ii.view(), kp, HaarMode::exact, GetParam());
     double norm2 = 0;
     for (float v : d) norm2 += v * v;
     EXPECT_NEAR(norm2, 1.0, 1e-5);
@@ -158,12 +161,44 @@ TEST(Descriptor, RampGivesOnlyTheAlongComponentWhenAligned) {
     // degrees counter-clockwise of dd, in image axes). The sub-region weights are symmetric
     // under the quarter turn, so the sums agree up to the staircase (measured <= 3.1 %).
     kp.orientation = static_cast<float>(phi - kPi / 2);
-    const std::array<float, 64> q = descriptor(ii.view(), kp);
+    const std::array<float, 64> q = descriptor(ii.view(), kp, HaarMode::exact, GetParam());
     for (size_t k = 0; k < 64; k += 4) {
         EXPECT_NEAR(q[k + 1], d[k], 0.05f * d[k]);
         EXPECT_NEAR(q[k + 3], d[k], 0.05f * d[k]);
         EXPECT_LT(std::fabs(q[k]), 0.03f * d[k]);
     }
+}
+
+INSTANTIATE_TEST_SUITE_P(Descriptor, DescriptorKinds, ::testing::Values(DescriptorKind::surf, DescriptorKind::msurf),
+                         [](const auto& info) { return info.param == DescriptorKind::surf ? "Surf" : "Msurf"; });
+
+// M-SURF's sub-regions overlap: a detail seen by one sub-region alone in SURF reaches its
+// neighbours too, with a smaller weight. A bright square on a flat image, placed inside
+// sub-region (row 1, column 1) of an upright window: SURF's other sub-regions see nothing of
+// it beyond their own 5 samples, M-SURF's neighbours do.
+TEST(Descriptor, MsurfSubRegionsOverlapTheirNeighbours) {
+    cv::Mat img(200, 200, CV_8UC1, cv::Scalar(50));
+    Keypoint kp;
+    kp.x = 100, kp.y = 100, kp.scale = 2;
+    // Sub-region (1, 1) spans samples 5..9 of 20, i.e. offsets -4.5s..-0.5s: x, y in 91..99.
+    img(cv::Rect(93, 93, 4, 4)).setTo(250);
+    const IntegralImage ii(img);
+    const std::array<float, 64> surf = descriptor(ii.view(), kp, HaarMode::exact, DescriptorKind::surf);
+    const std::array<float, 64> msurf = descriptor(ii.view(), kp, HaarMode::exact, DescriptorKind::msurf);
+    auto energy = [](const std::array<float, 64>& d, int row, int column) {
+        const size_t r = static_cast<size_t>(4 * (row * 4 + column));
+        return d[r + 2] + d[r + 3];  // sum |dd| + sum |dp|
+    };
+    EXPECT_GT(energy(surf, 1, 1), 0.5f);
+    EXPECT_GT(energy(msurf, 1, 1), 0.3f);
+    // Sub-region (2, 2) starts at +0.5s = 101: SURF's wavelets of size 2s = 4 px at x >= 101
+    // reach 99 at the least, the square ends at 96.5: nothing. M-SURF's 9 x 9 samples of
+    // (2, 2) start 2 samples earlier, at 97: their wavelets reach 95 and see the square's edge.
+    EXPECT_LT(energy(surf, 2, 2), 1e-6f);
+    EXPECT_GT(energy(msurf, 2, 2), 0.001f);  // measured 0.0087: the far corner of a 2.5s Gaussian
+    // Far corners see it in neither.
+    EXPECT_LT(energy(surf, 3, 3), 1e-6f);
+    EXPECT_LT(energy(msurf, 3, 3), 1e-6f);
 }
 
 // cv::rotate(ROTATE_90_CLOCKWISE) maps pixel (x, y) to (H-1-y, x): a rotation by +90 degrees in

@@ -39,6 +39,9 @@ TEST(Params, OutOfRangeValuesAreRejected) {
     EXPECT_THROW(detect(img, with([](Params& p) { p.intervals = 2; })), std::invalid_argument);
     EXPECT_THROW(detect(img, with([](Params& p) { p.init_step = 3; })), std::invalid_argument);
     EXPECT_THROW(detect(img, with([](Params& p) { p.threads = -1; })), std::invalid_argument);
+    EXPECT_THROW(detect(img, with([](Params& p) { p.max_offset = 0; })), std::invalid_argument);
+    EXPECT_THROW(detect(img, with([](Params& p) { p.max_offset = 2.5f; })), std::invalid_argument);
+    EXPECT_THROW(detect(img, with([](Params& p) { p.descriptor = DescriptorKind(7); })), std::invalid_argument);
     EXPECT_NO_THROW(detect(img, with([](Params& p) { p.octaves = 1; })));
 }
 
@@ -67,7 +70,7 @@ TEST(ThresholdForCount, ReturnsZeroWhenTheImageHasFewerMaxima) {
     EXPECT_EQ(threshold_for_count(flat, 100, Params{}), 0.0f);
     const cv::Mat img = test::opencv_gray("graf1.png");
     ASSERT_FALSE(img.empty());
-    Params params;
+    Params params = paper_surf();
     params.init_step = 2;
     params.threshold = threshold_for_count(img, 3000, params);
     EXPECT_EQ(params.threshold, 0.0f);  // fewer than 3000 maxima (2932): take them all
@@ -120,10 +123,10 @@ TEST(Pipeline, StepsComposeAndUprightGivesZeroOrientation) {
         EXPECT_EQ(kp.descriptor, (std::array<float, 64>{}));
         EXPECT_TRUE(kp.laplacian == 1 || kp.laplacian == -1);
         EXPECT_GT(kp.response, params.threshold);
-        // Interpolated scales lie half a filter spacing around the middle intervals:
-        // L = 15 - 3 (octave 0) .. 147 + 24 (octave 3).
-        EXPECT_GE(kp.scale, 1.2f * 12 / 9);
-        EXPECT_LE(kp.scale, 1.2f * 171 / 9);
+        // Interpolated scales lie max_offset (1) filter spacings around the middle intervals:
+        // L = 15 - 6 (octave 0) .. 195 + 48 (octave 3).
+        EXPECT_GE(kp.scale, 1.2f * 9 / 9);
+        EXPECT_LE(kp.scale, 1.2f * 243 / 9);
     }
     const IntegralImage ii(img);
     describe(ii.view(), kps, params);
