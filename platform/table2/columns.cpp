@@ -110,7 +110,9 @@ std::vector<Variant> variants(const Config& c) {
                      with([&](surf::Params& p) { p.haar = chip.haar; })});
     v.push_back({"cpu_paper", "CPU as the paper's SURF (4 octaves of 4 intervals, offsets to 0.5, SURF, exact Haar)",
                  surf::paper_surf()});
-    v.push_back({"cpu_chip_settings", "CPU with all the chip's software settings (the paper's SURF on 2 octaves, surf.haar)",
+    v.push_back({"cpu_chip_settings",
+                 fmt::format("CPU with all the chip's software settings (2 octaves of 4 intervals, offsets to {}, SURF, "
+                             "surf.haar)", chip.max_offset),
                  chip});
     return v;
 }

@@ -33,7 +33,7 @@ const cv::Mat& frame() {
 
 void detect_and_describe(benchmark::State& state) {
     const int target = static_cast<int>(state.range(0));
-    surfvp::surf::Params params;
+    surfvp::surf::Params params = state.range(2) ? surfvp::surf::paper_surf() : surfvp::surf::Params{};
     params.threads = static_cast<int>(state.range(1));
     params.threshold = surfvp::surf::threshold_for_count(frame(), target, params);
     size_t keypoints = 0;
@@ -63,10 +63,11 @@ void detect_and_describe_stream(benchmark::State& state) {
 
 }  // namespace
 
-// Args: {target keypoints, threads}.
+// Args: {target keypoints, threads, the paper's SURF (1) or the defaults (0)}.
 BENCHMARK(detect_and_describe)
-    ->ArgNames({"keypoints", "threads"})
-    ->Args({100, 1})->Args({100, 2})->Args({3000, 1})->Args({3000, 2})
+    ->ArgNames({"keypoints", "threads", "paper"})
+    ->Args({100, 1, 0})->Args({100, 2, 0})->Args({3000, 1, 0})->Args({3000, 2, 0})
+    ->Args({100, 1, 1})->Args({3000, 1, 1})
     ->Unit(benchmark::kMillisecond)->UseRealTime()->Repetitions(7)->ReportAggregatesOnly(true);
 BENCHMARK(detect_and_describe_stream)
     ->ArgNames({"keypoints", "threads"})

@@ -269,8 +269,9 @@ TEST(QualityCli, EvalSeqCastleRansacAgreesWithGroundTruth) {
             ASSERT_TRUE(row.contains(key)) << key;
         EXPECT_EQ(row["pairs"].get<int>(), 5);
         EXPECT_EQ(row["measured_pairs"].get<int>(), 5);
-        // Measured on frames 1-6: RANSAC 0.931-0.943, ground truth 0.904-0.916, differences
-        // 0.021-0.033; over all 40 frames <= 0.011 (docs/quality.md). The bound: 0.05.
+        // Measured on frames 1-6: RANSAC 0.993, ground truth 0.984 on every row (the paper's
+        // SURF: 0.931-0.943 and 0.904-0.916); over all 40 frames <= 0.004 apart
+        // (docs/quality.md). The bound: 0.05.
         const double ransac = row["mean"].get<double>(), truth = row["ground_truth"]["mean"].get<double>();
         EXPECT_NEAR(ransac, truth, 0.05);
         EXPECT_DOUBLE_EQ(row["ransac_minus_ground_truth"].get<double>(), ransac - truth);
@@ -319,7 +320,7 @@ TEST(QualityCli, EvalSeqOnAStaticCameraVideoIsNearlyPerfect) {
     ASSERT_EQ(j["gaps"].size(), 2u);
     EXPECT_EQ(j["gaps"][1]["gap"].get<int>(), 2);
     EXPECT_EQ(j["gaps"][1]["rows"][0]["pairs"].get<int>(), 4);
-    // Only the walking people move; measured 0.971 here (0.980 over 20 frames).
+    // Only the walking people move; measured 0.979 here (0.979 over 20 frames).
     EXPECT_GT(j["gaps"][0]["rows"][0]["mean"].get<double>(), 0.95);
     EXPECT_FALSE(j["gaps"][0]["rows"][0].contains("ground_truth"));
 }
