@@ -22,8 +22,6 @@ using Clock = std::chrono::steady_clock;
 
 namespace {
 
-fs::path keypoint_file(const fs::path& dir, size_t frame) { return dir / "keypoints" / fmt::format("frame_{:04}.surf", frame); }
-
 // Mean (the paper's: a pair without a ratio counts 0), spread (standard deviation over the
 // pairs) and counts of one cell.
 Json cell(const eval::SequenceDistinguishability& s) {
@@ -52,7 +50,7 @@ Column cpu_column(const Config& c, const Variant& v, const fs::path& dir) {
     p.upright = c.choice("surf.upright") == "on";
     const auto target = int(c.count("surf.target_keypoints"));
     p.threshold = float(c.real("surf.threshold"));
-    col.threshold_rule = "surf.threshold";
+    col.threshold_rule = threshold_rule_text(c, "of this column");
     // surf.threshold_control = track: libSSA2's keypoint-count control, the same step and delay.
     const bool track = c.choice("surf.threshold_control") == "track";
     const size_t delay = c.count("surf.tasks_in_flight");
@@ -60,14 +58,7 @@ Column cpu_column(const Config& c, const Variant& v, const fs::path& dir) {
     std::vector<size_t> counts;
     if (!dir.empty()) fs::create_directories(dir / "keypoints");
     for_each_chip_frame(c, [&](size_t i, const cv::Mat& frame) {
-        if (i == 0 && target > 0) {
-            p.threshold = surf::threshold_for_rank(surf::ranked_responses(frame, p), target);
-            col.threshold_rule = track ? fmt::format("the {}th strongest response on frame 0 (surf.target_keypoints), then "
-                                                     "each frame's from the keypoint count of the frame {} before it (track)",
-                                                     target, delay)
-                                       : fmt::format("the {}th strongest response on frame 0 (surf.target_keypoints), held "
-                                                     "for every frame", target);
-        }
+        if (i == 0 && target > 0) p.threshold = surf::threshold_for_rank(surf::ranked_responses(frame, p), target);
         if (track && i >= delay) p.threshold = float(sw::ssa2::keypoint_control_step(used[i - delay], counts[i - delay], target));
         surf::Keypoints k = surf::detect_and_describe(frame, p);
         used.push_back(p.threshold), counts.push_back(k.size()), col.sizes.push_back(frame.size());
@@ -160,13 +151,38 @@ Json column_row(const Column& col, size_t gap, const eval::RatioTestOptions& mat
     return j;
 }
 
-// One line of the contributions table: the four rows' means on consecutive frames (RANSAC,
-// and the ground truth with poses), precision under a homography.
-Json quality_line(const Column& col, const Geometry& g) {
+const std::vector<Json>& Measures::rows(size_t gap) const {
+    for (const auto& [k, rows] : gaps)
+        if (k == gap) return rows;
+    throw std::out_of_range(fmt::format("table2: gap {} was not measured", gap));
+}
+
+Measures measure(const Column& col, const std::vector<size_t>& gaps, const Geometry& g) {
+    Measures m;
+    for (size_t gap : gaps) {
+        std::vector<Json> rows;
+        for (const PaperRow& paper : kPaper) rows.push_back(column_row(col, gap, paper_matching(paper), g));
+        m.gaps.emplace_back(gap, std::move(rows));
+    }
+    if (g.homography) {
+        const auto& f = col.frames;
+        const auto rep = eval::repeatability(f[0], f[1], *g.homography, col.sizes[0], col.sizes[1]);
+        const auto prec = eval::matching_precision(f[0], f[1], *g.homography);
+        m.homography = Json{{"keypoints", {f[0].size(), f[1].size()}},
+                            {"repeatability", rep.repeatability},
+                            {"correspondences", rep.correspondences},
+                            {"matches", rep.matches.size()},
+                            {"precision", prec.precision},
+                            {"precision_candidates", prec.candidates},
+                            {"precision_correct", prec.correct}};
+    }
+    return m;
+}
+
+Json quality_line(const Column& col, const Measures& m) {
     Json means = Json::array(), spreads = Json::array(), truth = Json::array();
     size_t pairs = 0;
-    for (const PaperRow& paper : kPaper) {
-        const Json row = column_row(col, 1, paper_matching(paper), g);
+    for (const Json& row : m.rows(1)) {
         means.push_back(row["ransac"]["mean"]);
         spreads.push_back(row["ransac"]["spread"]);
         pairs = row["ransac"]["pairs"].get<size_t>();
@@ -175,12 +191,14 @@ Json quality_line(const Column& col, const Geometry& g) {
     Json j = {{"name", col.name}, {"label", col.label}, {"keypoints_per_frame", mean_keypoints(col)}, {"ransac", means},
               {"ransac_spread", spreads}, {"pairs", pairs}};
     if (!truth.empty()) j["ground_truth"] = truth;
-    if (g.homography) {
-        j["precision"] = eval::matching_precision(col.frames[0], col.frames[1], *g.homography).precision;
-        j["repeatability"] = eval::repeatability(col.frames[0], col.frames[1], *g.homography, col.sizes[0], col.sizes[1]).repeatability;
+    if (m.homography) {
+        j["precision"] = (*m.homography)["precision"];
+        j["repeatability"] = (*m.homography)["repeatability"];
     }
     return j;
 }
+
+Json quality_line(const Column& col, const Geometry& g) { return quality_line(col, measure(col, {1}, g)); }
 
 Geometry read_geometry(const Config& c) {
     Geometry g;  // check_scenario has read and checked both files

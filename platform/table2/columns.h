@@ -77,8 +77,19 @@ Geometry read_geometry(const Config& c);  // the scenario's poses and homography
 // RANSAC and, with poses, from the ground truth; each {mean, spread, pairs, ...}.
 nlohmann::ordered_json column_row(const Column& col, size_t gap, const eval::RatioTestOptions& matching, const Geometry& g);
 eval::RatioTestOptions paper_matching(const PaperRow& row);
+// Every measure of one column, each computed once: per gap, the four rows in kPaper order
+// (column_row), and frames 0 and 1 under the homography when the scenario has one
+// (repeatability, precision of the plain ratio test, their counts).
+struct Measures {
+    std::vector<std::pair<size_t, std::vector<nlohmann::ordered_json>>> gaps;
+    std::optional<nlohmann::ordered_json> homography;
+    const std::vector<nlohmann::ordered_json>& rows(size_t gap) const;  // throws std::out_of_range
+};
+Measures measure(const Column& col, const std::vector<size_t>& gaps, const Geometry& g);
 // One column in one line: keypoints per frame, the four rows' means on consecutive frames
-// (RANSAC, and the ground truth with poses), precision and repeatability under a homography.
+// (RANSAC, and the ground truth with poses), precision and repeatability under a homography;
+// from measures that include gap 1, or measured here.
+nlohmann::ordered_json quality_line(const Column& col, const Measures& m);
 nlohmann::ordered_json quality_line(const Column& col, const Geometry& g);
 
 }  // namespace surfvp::table2

@@ -11,7 +11,6 @@
 #include "platform/run/output_folder.h"
 #include "platform/scenario/scenario.h"
 #include "platform/table2/columns.h"
-#include "sw/eval/repeatability.h"
 
 namespace surfvp {
 namespace {
@@ -20,31 +19,18 @@ namespace fs = std::filesystem;
 using Json = nlohmann::ordered_json;
 using Clock = std::chrono::steady_clock;
 
-Json gap_table(const std::vector<Column>& columns, size_t gap, const Geometry& g) {
+Json gap_table(const std::vector<Column>& columns, const std::vector<Measures>& measures, size_t gap) {
     Json rows = Json::array();
-    for (const PaperRow& paper : kPaper) {
+    for (size_t r = 0; r < kPaper.size(); ++r) {
+        const PaperRow& paper = kPaper[r];
         Json row = {{"limited_search", paper.limited}, {"laplacian", paper.laplacian},
                     {"search_radius_px", paper.limited ? Json(kLimitedSearchPx) : Json(nullptr)}};
-        for (const Column& col : columns) row[col.name] = column_row(col, gap, paper_matching(paper), g);
+        for (size_t c = 0; c < columns.size(); ++c) row[columns[c].name] = measures[c].rows(gap)[r];
         if (gap == 1)
             row["paper"] = {{"cpu", paper.cpu}, {"fpga", paper.fpga}, {"gpu", paper.gpu ? Json(*paper.gpu) : Json(nullptr)}};
         rows.push_back(std::move(row));
     }
     return {{"gap", gap}, {"rows", std::move(rows)}};
-}
-
-// Frames 0 and 1 under the scenario's homography: repeatability, and precision of the plain
-// ratio test.
-Json homography_figures(const Column& col, const Eigen::Matrix3d& h, const std::vector<cv::Size>& sizes) {
-    const auto rep = eval::repeatability(col.frames[0], col.frames[1], h, sizes[0], sizes[1]);
-    const auto prec = eval::matching_precision(col.frames[0], col.frames[1], h);
-    return {{"keypoints", {col.frames[0].size(), col.frames[1].size()}},
-            {"repeatability", rep.repeatability},
-            {"correspondences", rep.correspondences},
-            {"matches", rep.matches.size()},
-            {"precision", prec.precision},
-            {"precision_candidates", prec.candidates},
-            {"precision_correct", prec.correct}};
 }
 
 Json column_summary(const Column& col) {
@@ -213,20 +199,19 @@ int table2_command(const Table2Options& o) {
         r["chip_run_passed"] = fpga_report["passed"];
         r["columns"] = Json::object();
         for (const Column& col : columns) r["columns"][col.name] = column_summary(col);
-        r["gaps"] = Json::array();
         std::vector<size_t> gaps{1};
-        if (config.count("eval.gap") > 1) gaps.push_back(config.count("eval.gap"));
-        for (size_t gap : gaps)
-            if (gap < config.count("surf.frames")) r["gaps"].push_back(gap_table(columns, gap, geometry));
-        if (geometry.homography) {
-            for (const Column& col : columns)
-                r["homography"][col.name] = homography_figures(col, *geometry.homography, columns[0].sizes);
-        }
+        if (config.count("eval.gap") > 1 && config.count("eval.gap") < config.count("surf.frames"))
+            gaps.push_back(config.count("eval.gap"));
+        const std::vector<Measures> measures{measure(columns[0], gaps, geometry), measure(columns[1], gaps, geometry)};
+        r["gaps"] = Json::array();
+        for (size_t gap : gaps) r["gaps"].push_back(gap_table(columns, measures, gap));
+        for (size_t c = 0; c < columns.size() && geometry.homography; ++c)
+            r["homography"][columns[c].name] = *measures[c].homography;
         r["differences"] = differences(config);
-        r["contributions"] = Json::array({quality_line(columns[0], geometry)});
+        r["contributions"] = Json::array({quality_line(columns[0], measures[0])});
         for (size_t i = 1; i < float_variants.size(); ++i)
             r["contributions"].push_back(quality_line(cpu_column(config, float_variants[i]), geometry));
-        r["contributions"].push_back(quality_line(columns[1], geometry));
+        r["contributions"].push_back(quality_line(columns[1], measures[1]));
         write_file_atomically(staging / "report.json", r.dump(2) + "\n");
         write_file_atomically(staging / "report.md", markdown(r));
         write_file_atomically(staging / "config.yaml", config.to_yaml());

@@ -423,14 +423,9 @@ private:
     nlohmann::ordered_json fault_report() const;
     // How the threshold was chosen (calibrate() above, libSSA2's keypoint-count control).
     std::string threshold_rule() const {
-        const int64_t target = config_.count("surf.target_keypoints");
-        if (target == 0) return "surf.threshold";
-        const std::string first = fmt::format("the {}th strongest response of the float reference on frame 0 (2 octaves, step 1; "
-                                              "surf.target_keypoints = {})", target, target);
-        if (!driver_.keypoint_target) return first + ", held for every frame";
-        return fmt::format("{} for the first {} frames, then each from the keypoint count of the frame {} before it "
-                           "(surf.threshold_control = track; each frame's in frames.csv)",
-                           first, driver_.buffers.size(), driver_.buffers.size());
+        const std::string rule =
+            threshold_rule_text(config_, "of the float reference with the chip's settings (2 octaves of 4 intervals)");
+        return driver_.keypoint_target ? rule + "; each frame's is in frames.csv" : rule;
     }
     std::function<double(int32_t)> to_float_;  // the FHG's determinant units -> the float reference's
 
@@ -674,7 +669,7 @@ void SurfWorkload::write_keypoints(const sw::ssa2::Task& task, const surf::Keypo
     try {
         const fs::path folder = fs::path(out_) / "keypoints";
         if (written_.empty()) fs::create_directories(folder);
-        const fs::path file = folder / fmt::format("frame_{:04}.surf", task.id);
+        const fs::path file = keypoint_file(out_, task.id);
         eval::write_keypoint_file(file, keypoints);
         written_.push_back(fs::relative(file, out_).string());
     } catch (...) {
@@ -737,6 +732,21 @@ surf::Params chip_surf_params(const Config& c) {
     p.haar = c.choice("surf.haar") == "exact" ? surf::HaarMode::exact : surf::HaarMode::rounded;
     p.max_offset = float(c.real("surf.max_offset"));
     return p;
+}
+
+std::string threshold_rule_text(const Config& c, const std::string& whose) {
+    const int64_t target = c.count("surf.target_keypoints");
+    if (target == 0) return "surf.threshold";
+    const std::string first = fmt::format("the {}th strongest response {} on frame 0 (surf.target_keypoints)", target, whose);
+    if (c.choice("surf.threshold_control") != "track") return first + ", held for every frame";
+    const int64_t delay = c.count("surf.tasks_in_flight");
+    return fmt::format("{} for the first {} frames, then each from the keypoint count of the frame {} before it "
+                       "(surf.threshold_control = track)",
+                       first, delay, delay);
+}
+
+fs::path keypoint_file(const fs::path& folder, size_t frame) {
+    return folder / "keypoints" / fmt::format("frame_{:04}.surf", frame);
 }
 
 }  // namespace surfvp

@@ -2,6 +2,7 @@
 // What the CPU runs in a scenario, and what the run is judged on. Each workload builds its
 // software (against the HAL only), says how far it has come, and lists its checks.
 #include <cstdint>
+#include <filesystem>
 #include <functional>
 #include <memory>
 #include <nlohmann/json.hpp>
@@ -82,5 +83,12 @@ void for_each_chip_frame(const Config& config, const std::function<void(size_t, 
 // (surf.max_offset) and upright setting. The threshold calibration runs it on frame 0; table2
 // gives its column beside the chip's.
 surf::Params chip_surf_params(const Config& config);
+
+// How a column's threshold is chosen under the scenario's rule (surf.target_keypoints,
+// surf.threshold_control), in words; `whose` names the responses ranked on frame 0.
+std::string threshold_rule_text(const Config& config, const std::string& whose);
+
+// A frame's keypoint file in a run folder: keypoints/frame_NNNN.surf.
+std::filesystem::path keypoint_file(const std::filesystem::path& folder, size_t frame);
 
 }  // namespace surfvp
