@@ -6,7 +6,6 @@
 #include <string>
 #include <vector>
 
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include "platform/quality/quality_tasks.h"
@@ -14,6 +13,7 @@
 #include "sw/eval/keypoint_file.h"
 #include "sw/eval/region.h"
 #include "sw/eval/text_io.h"
+#include "sw/media/media.h"
 #include "sw/surf/image_io.h"
 
 namespace surfvp::quality {
@@ -58,13 +58,7 @@ std::size_t outside(const surf::Keypoints& keypoints, const cv::Size& size) {
 void write_image(const std::string& file, const cv::Mat& image) {
     const std::string extension = std::filesystem::path(file).extension().string();
     std::vector<uchar> bytes;
-    bool encoded = false;
-    try {
-        encoded = !extension.empty() && cv::imencode(extension, image, bytes);
-    } catch (const cv::Exception&) {
-        encoded = false;
-    }
-    if (!encoded)
+    if (extension.empty() || !media::encode_image(extension, image, bytes))
         throw ConfigError("--out " + file + ": OpenCV cannot write images of type '" + extension + "' (use .png)");
     read_input("--out", [&] { eval::write_file_atomically(file, std::string(bytes.begin(), bytes.end())); });
 }

@@ -5,7 +5,7 @@
 #include <map>
 #include <optional>
 #include <fmt/format.h>
-#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgcodecs.hpp>  // cv::IMREAD_GRAYSCALE
 #include <opencv2/imgproc.hpp>
 #include <yaml-cpp/binary.h>
 
@@ -21,6 +21,7 @@
 #include "sw/eval/repeatability.h"
 #include "sw/eval/sequence.h"
 #include "sw/libssa2/libssa2.h"
+#include "sw/media/media.h"
 #include "sw/surf/image_io.h"
 #include "sw/surf/surf.h"
 #include "platform/report/report_html.h"
@@ -155,7 +156,7 @@ SourceFrames read_frames(const Config& c) {
     out.count = c.count("surf.frames");
     try {
         surf::QuietDecoding quiet;
-        if (fs::is_regular_file(status) && (eval::is_image_file(source) || !cv::imread(source, cv::IMREAD_GRAYSCALE).empty())) {
+        if (fs::is_regular_file(status) && (eval::is_image_file(source) || !media::read_image(source, cv::IMREAD_GRAYSCALE).empty())) {
             out.repeated = true;
             out.first = surf::load_gray(source, chip_surf_params(c));
             out.original = out.first.size();
@@ -708,7 +709,7 @@ std::string SurfWorkload::first_frame_svg() const {
     cv::Mat shown;
     cv::resize(frame, shown, cv::Size(), f, f, cv::INTER_AREA);
     std::vector<uchar> png;
-    cv::imencode(".png", shown, png);
+    media::encode_image(".png", shown, png);
     std::string svg = fmt::format(
         "<svg xmlns=\"http://www.w3.org/2000/svg\" id=\"keypoints\" width=\"{0}\" height=\"{1}\" viewBox=\"0 0 {0} {1}\">"
         "<image width=\"{0}\" height=\"{1}\" href=\"data:image/png;base64,{2}\"/>",

@@ -42,8 +42,8 @@ Sequence image_sequence(SequenceKind kind, const std::filesystem::path& source,
 }
 
 Sequence video_sequence(const std::filesystem::path& source, std::size_t max_frames) {
-    cv::VideoCapture video(source.string());
-    if (!video.isOpened()) {
+    media::Video video(source.string());
+    if (!video.opened()) {
         throw std::runtime_error(source.string() +
                                  ": not a folder, an image list (.txt, .lst) or a video that "
                                  "OpenCV can open");
@@ -130,14 +130,13 @@ bool SequenceReader::next(cv::Mat& image) {
         std::error_code ec;
         if (std::filesystem::file_size(frame.image, ec) == 0 && !ec)
             throw std::runtime_error(frame.image.string() + ": the image file is empty (0 bytes)");
-        image = cv::imread(frame.image.string(), flags_);
+        image = media::read_image(frame.image.string(), flags_);
         if (image.empty()) throw std::runtime_error(frame.image.string() + ": cannot decode the image");
     } else {
-        if (!video_.isOpened() && !video_.open(sequence_.source.string())) {
-            throw std::runtime_error(sequence_.source.string() + ": cannot reopen the video");
-        }
+        if (!video_) video_ = std::make_unique<media::Video>(sequence_.source.string());
+        if (!video_->opened()) throw std::runtime_error(sequence_.source.string() + ": cannot reopen the video");
         cv::Mat decoded;
-        if (!video_.read(decoded) || decoded.empty()) {
+        if (!video_->read(decoded) || decoded.empty()) {
             throw std::runtime_error(sequence_.source.string() + ": cannot decode frame " +
                                      std::to_string(next_));
         }

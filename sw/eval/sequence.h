@@ -7,11 +7,13 @@
 #include <string>
 #include <vector>
 
+#include <memory>
+
 #include <opencv2/core/mat.hpp>
-#include <opencv2/imgcodecs.hpp>
-#include <opencv2/videoio.hpp>
+#include <opencv2/imgcodecs.hpp>  // cv::IMREAD_*
 
 #include "sw/eval/format_error.h"
+#include "sw/media/media.h"
 
 namespace surfvp::eval {
 
@@ -42,7 +44,8 @@ std::vector<std::filesystem::path> list_image_folder(const std::filesystem::path
 // naming the list file and line of a path that does not exist.
 std::vector<std::filesystem::path> read_image_list(const std::filesystem::path& list_file);
 
-// A folder, a list file (extension .txt or .lst) or any other file that cv::VideoCapture opens.
+// A folder, a list file (extension .txt or .lst) or any other file that cv::VideoCapture opens
+// (media::Video).
 // `max_frames` 0 takes every frame. Video frames are counted by decoding them. Throws
 // std::runtime_error naming the source when it is none of these or holds no frame.
 Sequence open_sequence(const std::filesystem::path& source, std::size_t max_frames = 0);
@@ -64,7 +67,7 @@ private:
     Sequence sequence_;
     int flags_;
     std::size_t next_ = 0;
-    cv::VideoCapture video_;
+    std::unique_ptr<media::Video> video_;  // opened on the first video frame
 };
 
 }  // namespace surfvp::eval

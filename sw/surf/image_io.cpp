@@ -7,7 +7,9 @@
 #include <fstream>
 
 #include <fmt/format.h>
-#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgcodecs.hpp>  // cv::IMREAD_GRAYSCALE
+
+#include "sw/media/media.h"
 
 #include "sw/surf/fast_hessian.h"
 
@@ -55,7 +57,7 @@ cv::Mat load_gray(const std::string& path, const Params& params) {
     cv::Mat gray;
     {
         QuietDecoding quiet;
-        gray = cv::imread(path, cv::IMREAD_GRAYSCALE);
+        gray = media::read_image(path, cv::IMREAD_GRAYSCALE);
     }
     if (gray.empty()) throw ImageError(fmt::format("{}: file is not an image OpenCV can decode", path));
     check_image(gray, params, path);
