@@ -10,6 +10,8 @@
 #include <sstream>
 
 #include "models/common/atomic_file.h"
+#include "models/common/disk_cache.h"
+#include "models/common/disk_cache.h"
 
 #ifndef SURFVP_SEQUENCE_FINGERPRINT
 #error "the build defines SURFVP_SEQUENCE_FINGERPRINT (models/CMakeLists.txt)"
@@ -18,15 +20,7 @@
 namespace surfvp::fhg {
 namespace fs = std::filesystem;
 
-std::optional<fs::path> sequence_cache_folder() {
-    if (const char* dir = std::getenv("SURFVP_CACHE"); dir && *dir) {
-        if (std::string(dir) == "off") return std::nullopt;
-        return fs::path(dir);
-    }
-    if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg && *xdg) return fs::path(xdg) / "surfvp";
-    if (const char* home = std::getenv("HOME"); home && *home) return fs::path(home) / ".cache" / "surfvp";
-    return std::nullopt;
-}
+std::optional<fs::path> sequence_cache_folder() { return cache_folder(); }
 
 std::string sequence_key(const SequenceParams& p) {
     return fmt::format("generator {} read_buses {} triple_macs {} fifo_lines {} x3_cycles {} bus_word {} reuse {} "

@@ -68,8 +68,11 @@ int dispatch(int argc, char** argv) {
     seqgen->add_option("--height", seqgen_options.height, "Image height for the implied frame rate")->capture_default_str();
     BenchOptions bench_options;
     bench_options.self = "/proc/self/exe";
-    CLI::App* bench = app.add_subcommand("bench", "Measure the simulator: wall time per frame (traces off and on), peak memory");
+    CLI::App* bench = app.add_subcommand(
+        "bench", "Measure the simulator: wall time per frame (traces off and on), start-up, peak memory, real-time factor, "
+                 "the float reference's time on the same frame, against their targets");
     bench->add_option("scenario", bench_options.scenario, "Scenario to run")->capture_default_str();
+    bench->add_flag("--scaling", bench_options.scaling, "Also 640x480 and 1024x1024 frames, and ten times as many frames");
     bench->add_option("--frames", bench_options.frames, "Frames of the shorter run (the longer has twice as many)")
         ->capture_default_str();
     CalibrateOptions calibrate_options;

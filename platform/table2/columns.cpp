@@ -58,7 +58,7 @@ Column cpu_column(const Config& c, const Variant& v, const fs::path& dir) {
     std::vector<size_t> counts;
     if (!dir.empty()) fs::create_directories(dir / "keypoints");
     for_each_chip_frame(c, [&](size_t i, const cv::Mat& frame) {
-        if (i == 0 && target > 0) p.threshold = surf::threshold_for_rank(surf::ranked_responses(frame, p), target);
+        if (i == 0 && target > 0) p.threshold = surf::threshold_for_rank(surf::stored_ranked_responses(frame, p), target);
         if (track && i >= delay) p.threshold = float(sw::ssa2::keypoint_control_step(used[i - delay], counts[i - delay], target));
         surf::Keypoints k = surf::detect_and_describe(frame, p);
         used.push_back(p.threshold), counts.push_back(k.size()), col.sizes.push_back(frame.size());

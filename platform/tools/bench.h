@@ -1,8 +1,10 @@
 #pragma once
-// `surfvp bench`: how fast the simulator runs a scenario, with traces off and all on.
-// SystemC simulates once per process, so each measurement is a child `surfvp run`; the
-// wall time per frame is the difference between runs of N and 2N frames, divided by N
-// (start-up, i.e. loading, calibration and the sequence generator, cancels out).
+// `surfvp bench`: how fast the simulator runs a scenario, against the chip it models and the
+// float reference SURF. SystemC simulates once per process, so each measurement is a child
+// `surfvp run` (the verdict's re-simulations off), the fastest of three; the wall time per
+// frame is the difference between runs of N and 2N frames, divided by N, and start-up is what
+// remains of the shorter run (loading, calibration, the sequence, elaboration, the report). Printed as JSON with the
+// targets beside the figures (docs/architecture.md, "Simulation speed").
 #include <string>
 
 namespace surfvp {
@@ -10,7 +12,8 @@ namespace surfvp {
 struct BenchOptions {
     std::string scenario = "budget_1024x768";
     unsigned frames = 10;
-    std::string self;  // this executable
+    bool scaling = false;  // also 640x480 and 1024x1024 frames, and 10x as many frames
+    std::string self;      // this executable
 };
 
 int bench_command(const BenchOptions& options);

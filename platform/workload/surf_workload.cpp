@@ -285,7 +285,7 @@ Calibration calibrate(const Config& c, const cv::Mat& frame) {
     const surf::Params p = chip_surf_params(c);
     const std::string key = fmt::format("{}|{}|{}", source_key(c), p.upright, p.max_offset);
     auto it = ranked.find(key);
-    if (it == ranked.end()) it = ranked.emplace(key, surf::ranked_responses(frame, p)).first;
+    if (it == ranked.end()) it = ranked.emplace(key, surf::stored_ranked_responses(frame, p)).first;
     return {surf::threshold_for_rank(it->second, int(c.count("surf.target_keypoints"))), it->second.size()};
 }
 

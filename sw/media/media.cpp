@@ -1,10 +1,15 @@
 #include "sw/media/media.h"
 
+#include <algorithm>
+#include <cstdint>
+#include <cstdio>
 #include <cstdlib>
 #include <dlfcn.h>
 #include <filesystem>
 #include <fmt/format.h>
+#include <string_view>
 
+#include "models/common/disk_cache.h"
 #include "sw/media/plugin_abi.h"
 
 namespace surfvp::media {
@@ -58,16 +63,70 @@ const Plugin& plugin() {
     return p;
 }
 
+// A decoded image's cache key: the file by its real path, size and modification time, and the
+// flags; empty when the file cannot be stat'ed (then it is decoded, not cached).
+std::string image_key(const std::string& path, int flags) {
+    std::error_code ec;
+    const fs::path real = fs::canonical(path, ec);
+    if (ec) return "";
+    const auto size = fs::file_size(real, ec);
+    if (ec) return "";
+    const auto time = fs::last_write_time(real, ec);
+    if (ec) return "";
+    return fmt::format("image v1 {} size {} mtime {} flags {}", real.string(), size,
+                       time.time_since_epoch().count(), flags);
+}
+
+// A matrix as "rows cols type\n" and its bytes, and back (nothing for text that is not one).
+std::string mat_text(const cv::Mat& m) {
+    const cv::Mat c = m.isContinuous() ? m : m.clone();
+    return fmt::format("{} {} {}\n", c.rows, c.cols, c.type()) +
+           std::string(reinterpret_cast<const char*>(c.data), c.total() * c.elemSize());
+}
+
+cv::Mat read_mat_text(const std::string& text) {
+    int rows = 0, cols = 0, type = 0;
+    const size_t eol = text.find('\n');
+    if (eol == std::string::npos || std::sscanf(text.c_str(), "%d %d %d", &rows, &cols, &type) != 3 || rows <= 0 ||
+        cols <= 0 || type < 0)
+        return {};
+    cv::Mat m(rows, cols, type);
+    if (text.size() - eol - 1 != m.total() * m.elemSize()) return {};
+    std::copy(text.begin() + long(eol) + 1, text.end(), m.data);
+    return m;
+}
+
 }  // namespace
 
+std::string content_key(const cv::Mat& image) {
+    const cv::Mat c = image.isContinuous() ? image : image.clone();
+    const std::string_view bytes(reinterpret_cast<const char*>(c.data), c.total() * c.elemSize());
+    uint64_t fnv = 1469598103934665603ull;
+    for (unsigned char b : bytes) fnv = (fnv ^ b) * 1099511628211ull;
+    return fmt::format("{}x{} type {} hash {:016x} {:016x}", c.cols, c.rows, c.type(), std::hash<std::string_view>{}(bytes),
+                       fnv);
+}
+
 cv::Mat read_image(const std::string& path, int flags) {
+    const std::string key = image_key(path, flags);
+    if (!key.empty())
+        if (auto text = read_cached("image", key))
+            if (cv::Mat m = read_mat_text(*text); !m.empty()) return m;
     cv::Mat image;
     plugin().read_image(&path, flags, &image);
+    if (!key.empty() && !image.empty()) write_cached("image", key, mat_text(image));
     return image;
 }
 
 bool encode_image(const std::string& extension, const cv::Mat& image, std::vector<unsigned char>& bytes) {
-    return plugin().encode_image(&extension, &image, &bytes);
+    const std::string key = fmt::format("encoded v1 {} {}", extension, content_key(image));
+    if (auto text = read_cached("encoded", key); text && !text->empty()) {
+        bytes.assign(text->begin(), text->end());
+        return true;
+    }
+    if (!plugin().encode_image(&extension, &image, &bytes)) return false;
+    write_cached("encoded", key, std::string(bytes.begin(), bytes.end()));
+    return true;
 }
 
 Video::Video(const std::string& path) : handle_(plugin().video_open(&path)) {}

@@ -1,6 +1,7 @@
 #include "sw/surf/surf.h"
 
 #include <algorithm>
+#include <cstring>
 #include <functional>
 #include <optional>
 #include <stdexcept>
@@ -8,6 +9,8 @@
 
 #include <fmt/format.h>
 
+#include "models/common/disk_cache.h"
+#include "sw/media/media.h"
 #include "sw/surf/descriptor.h"
 #include "sw/surf/fast_hessian.h"
 #include "sw/surf/image_io.h"
@@ -114,6 +117,20 @@ std::vector<float> ranked_responses(const cv::Mat& gray8, Params params) {
     std::vector<float> responses;
     for (const Keypoint& kp : refined_maxima(ii, params, 0.0f, workspace.responses)) responses.push_back(kp.response);
     std::sort(responses.begin(), responses.end(), std::greater<>());
+    return responses;
+}
+
+std::vector<float> stored_ranked_responses(const cv::Mat& gray8, const Params& p) {
+    const std::string key =
+        fmt::format("ranked v1 {} {} octaves {} intervals {} init_step {} max_offset {:a}", SURFVP_SURF_FINGERPRINT,
+                    media::content_key(gray8), p.octaves, p.intervals, p.init_step, double(p.max_offset));
+    if (const auto text = read_cached("ranked", key); text && text->size() % sizeof(float) == 0) {
+        std::vector<float> responses(text->size() / sizeof(float));
+        std::memcpy(responses.data(), text->data(), text->size());
+        return responses;
+    }
+    std::vector<float> responses = ranked_responses(gray8, p);
+    write_cached("ranked", key, std::string(reinterpret_cast<const char*>(responses.data()), responses.size() * sizeof(float)));
     return responses;
 }
 

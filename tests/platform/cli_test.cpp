@@ -17,6 +17,21 @@ using test::surfvp;
 
 const std::string kSmoke = std::string(SURFVP_SOURCE_DIR) + "/scenarios/smoke.yaml";
 
+// surfvp starts without OpenCV's codec libraries (~240 shared libraries, ~0.2 s to load): only
+// its image and video plugin, beside it, links them (sw/media/media.h).
+TEST(Cli, StartsWithoutTheCodecLibraries) {
+    const std::string listing = fresh_dir("needed") + "/needed.txt";
+    ASSERT_EQ(std::system(("readelf -d " + std::string(SURFVP_BINARY) + " > " + listing).c_str()), 0);
+    const std::string needed = slurp(listing);
+    EXPECT_NE(needed.find("libopencv_core"), std::string::npos);
+    EXPECT_EQ(needed.find("libopencv_imgcodecs"), std::string::npos);
+    EXPECT_EQ(needed.find("libopencv_videoio"), std::string::npos);
+    const fs::path plugin = fs::path(SURFVP_BINARY).parent_path() / "libsurfvp_media.so";
+    ASSERT_TRUE(fs::exists(plugin));
+    ASSERT_EQ(std::system(("readelf -d " + plugin.string() + " > " + listing).c_str()), 0);
+    EXPECT_NE(slurp(listing).find("libopencv_imgcodecs"), std::string::npos);
+}
+
 TEST(Cli, SmokeRunWritesReportsAndTraces) {
     const std::string out = fresh_dir("smoke");
     const auto r = surfvp("run " + kSmoke + " --out " + out + " --quiet");
