@@ -77,6 +77,7 @@ Iig::Params iig_params(const Config& c) {
 Fhg::Params fhg_params(const Config& c) {
     Fhg::Params p = on_plb1(Fhg::parameter_table().make(c), c);
     p.bus_width_bits = c.bits("plb2.width");
+    p.parallel = c.choice("run.parallel") == "on";
     p.series_bin = c.duration("run.series_bin");
     p.dma_transaction_bytes = dma_transaction_bytes(c, p.burst_beats);
     return p;

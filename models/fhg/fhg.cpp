@@ -31,7 +31,8 @@ Fhg::Fhg(const sc_core::sc_module_name& name, const Params& params, Tracer& trac
       slots_(params.det_row_buffers + 1),
       det_rows_("det_rows", int(params.det_row_buffers)),
       line_series_(params.series_bin.ps),
-      maxima_series_(params.series_bin.ps) {
+      maxima_series_(params.series_bin.ps),
+      worker_(params.parallel ? std::make_unique<Worker>() : nullptr) {
     if (params.det_row_buffers == 0)
         throw std::invalid_argument(fmt::format("{}: determinant row buffers must be above zero", basename()));
     pixels.bind(*this);
@@ -94,10 +95,16 @@ void Fhg::fail(uint32_t code) {
 
 // START accepted (FhgRegisters checked it and emptied the FIFO): listen for the frame.
 void Fhg::start(const FhgRegisters::Frame& f) {
+    if (worker_) worker_->drain();  // (nothing runs: the last frame's thread drained it)
     frame_ = {f.det_addr, f.width, f.height, (f.width + 1) / 2, (f.height + 1) / 2, f.threshold, true, false, 0, 0, 0,
-              0, 0, sc_core::sc_time_stamp()};
+              0, 0, 0, sc_core::sc_time_stamp()};
     lines_.assign(size_t(f.width) * f.height, 0);
-    for (auto& slot : slots_) slot.assign(size_t(frame_.blocks_x) * fhg::kDeterminantsPerBlock, 0);
+    const size_t row_records = size_t(frame_.blocks_x) * fhg::kDeterminantsPerBlock;
+    for (auto& slot : slots_) slot.assign(row_records, 0);
+    if (worker_) {
+        ahead_records_.assign(row_records * frame_.blocks_y, 0);
+        ahead_found_.assign(frame_.blocks_y, {});
+    }
     busy_.write(true);
     faults_.irq_lost = false;
     corruption_.row = -1;
@@ -168,16 +175,46 @@ void Fhg::send_line(int y, const uint32_t* data, int width, const sc_time& trans
     sc_core::wait(transfer);
     std::copy(data, data + width, lines_.begin() + size_t(y) * frame_.width);
     frame_.received = y + 1;
+    queue_ready_rows();
     stats_.lines_high_water = std::max(stats_.lines_high_water, unsigned(frame_.received - frame_.oldest));
     trace_levels();
     line_arrived_.notify(sc_core::SC_ZERO_TIME);
 }
 
-void Fhg::compute_block_row(int by, int32_t* records) {
+// The row's determinants and marked maxima: reads only lines_ up to the row's reach (received
+// before the row began) and writes only `records`, so it may run beside the kernel.
+std::vector<fhg::Candidate> Fhg::compute_block_row(int by, int32_t* records) {
     const IntegralView view{lines_.data(), int(frame_.width), int(frame_.height), frame_.width};
     core_.block_row(view, by, records);
     std::vector<fhg::Candidate> found;
     fhg::LocalMaxFinder(frame_.threshold).block_row(records, int(frame_.blocks_x), by, found);
+    return found;
+}
+
+int Fhg::needed_line(uint32_t by) const { return std::min(int(frame_.height) - 1, int(2 * by) + fhg::kReachAfter); }
+
+void Fhg::queue_ready_rows() {
+    if (!worker_) return;
+    const size_t row_records = size_t(frame_.blocks_x) * fhg::kDeterminantsPerBlock;
+    while (frame_.rows_queued < frame_.blocks_y && frame_.received > needed_line(frame_.rows_queued)) {
+        const uint32_t by = frame_.rows_queued++;
+        int32_t* records = ahead_records_.data() + row_records * by;
+        const size_t job = worker_->submit([this, by, records] { ahead_found_[by] = compute_block_row(int(by), records); });
+        if (by == 0) first_job_ = job;
+    }
+}
+
+// Row `by`'s records into `records` and its marked maxima: the worker's, once it has done
+// them, or computed here.
+std::vector<fhg::Candidate> Fhg::block_row_results(uint32_t by, int32_t* records) {
+    if (!worker_ || by >= frame_.rows_queued) return compute_block_row(int(by), records);
+    worker_->wait(first_job_ + by);
+    const size_t row_records = size_t(frame_.blocks_x) * fhg::kDeterminantsPerBlock;
+    std::copy_n(ahead_records_.data() + row_records * by, row_records, records);
+    return std::move(ahead_found_[by]);
+}
+
+void Fhg::finish_block_row(int by, const std::vector<fhg::Candidate>& found) {
     if (faults_.attached() && corruption_.row < 0) corrupt_first_checked(found, by);
     push_candidates(found);
 }
@@ -186,7 +223,7 @@ void Fhg::frame_thread() {
     for (;;) {
         sc_core::wait(start_);
         for (uint32_t by = 0; by < frame_.blocks_y && !frame_.failed; ++by) {
-            const int needed = std::min(int(frame_.height) - 1, int(2 * by) + fhg::kReachAfter);
+            const int needed = needed_line(by);
             const sc_time waiting = sc_core::sc_time_stamp();
             while (frame_.received <= needed && !frame_.failed) sc_core::wait(line_arrived_);
             stats_.waiting_for_lines += sc_core::sc_time_stamp() - waiting;
@@ -194,7 +231,7 @@ void Fhg::frame_thread() {
             const sc_time began = sc_core::sc_time_stamp();
             int32_t* records = slots_[by % slots_.size()].data();
             sc_core::wait(cycles(params_.clock, double(frame_.blocks_x) * block_cycles_));
-            compute_block_row(int(by), records);  // the results exist once the row's cycles are spent
+            finish_block_row(int(by), block_row_results(by, records));  // the results exist once the row's cycles are spent
             stats_.computing += sc_core::sc_time_stamp() - began;
             if (tracer_.perfetto_on()) tracer_.slice(row_track_, fmt::format("block row {}", by), began, sc_core::sc_time_stamp());
             frame_.oldest = std::max(frame_.oldest, int(2 * (by + 1)) - fhg::kReachBefore);
@@ -208,6 +245,7 @@ void Fhg::frame_thread() {
         // Failed or not, the writer finishes the rows it was given before the frame ends, so
         // that nothing of this frame reaches the next one.
         while (frame_.rows_written < frame_.rows_sent) sc_core::wait(rows_written_);
+        if (worker_) worker_->drain();  // rows queued past a failure: done before lines_ is reused
         const int tail = std::max(0, sequence_.span - sequence_.interval);  // the last block's x3 still adding
         sc_core::wait(cycles(params_.clock, double(tail + int(params_.pipeline_latency_cycles))));
         stats_.busy += sc_core::sc_time_stamp() - frame_.began;

@@ -14,6 +14,7 @@
 // determinants are written plus the last block's tail (x3 additions still running after its
 // last word) and the HessianCalc/LocMaxFinder pipeline latency.
 #include <cstdint>
+#include <memory>
 #include <systemc>
 #include <tlm>
 #include <tlm_utils/simple_initiator_socket.h>
@@ -28,6 +29,7 @@
 #include "models/common/parameter.h"
 #include "models/common/register_target.h"
 #include "models/common/tracer.h"
+#include "models/common/worker.h"
 #include "models/common/units.h"
 #include "models/pixelbus/pixel_bus.h"
 #include "sequence_generator.h"
@@ -51,6 +53,10 @@ public:
         uint64_t dma_transaction_bytes = 0;  // bytes per TLM transaction: 0 = a whole line (DmaEngine)
         Duration series_bin{1'000'000'000};  // report.html's time bins (the wiring's run.series_bin)
         RegisterTiming registers;  // a register access: its cycles (block.register_latency) of PLB1's clock
+        // Block rows' determinants and maxima computed on a second thread as soon as their
+        // lines have arrived, while the kernel simulates the rest (the wiring's run.parallel;
+        // the results are the same).
+        bool parallel = true;
     };
     // Its scenario parameters with the Params field each sets (fhg_params.cpp).
     static const ParamTable<Params>& parameter_table();
@@ -103,7 +109,11 @@ private:
     void fail(uint32_t code);
     void frame_thread();
     void writer_thread();
-    void compute_block_row(int by, int32_t* records);
+    std::vector<fhg::Candidate> compute_block_row(int by, int32_t* records);  // plain C++: any thread
+    void finish_block_row(int by, const std::vector<fhg::Candidate>& found);
+    int needed_line(uint32_t by) const;  // the last integral line block row `by` reads
+    void queue_ready_rows();             // hands the worker the rows whose lines have all arrived
+    std::vector<fhg::Candidate> block_row_results(uint32_t by, int32_t* records);
     void push_candidates(const std::vector<fhg::Candidate>& candidates);
     void update_irq();
     void trace_levels();
@@ -126,6 +136,7 @@ private:
         int oldest;           // first line still held in the FIFO
         unsigned rows_sent;     // block rows handed to the writer
         unsigned rows_written;
+        uint32_t rows_queued;   // block rows handed to the worker (Params::parallel)
         sc_core::sc_time began;
     } frame_{};
     std::vector<uint32_t> lines_;              // received integral rows (the FIFO's contents live here)
@@ -138,6 +149,12 @@ private:
     Stats stats_;
     TimeSeries line_series_, maxima_series_;  // FIFO levels per time bin
     int frame_track_ = -1, row_track_ = -1, level_track_ = -1;
+    // The worker's results, every block row of the frame: records and marked maxima. Row r is
+    // the worker's job first_job_ + r.
+    std::vector<int32_t> ahead_records_;
+    std::vector<std::vector<fhg::Candidate>> ahead_found_;
+    size_t first_job_ = 0;
+    std::unique_ptr<Worker> worker_;  // with Params::parallel; last, so it stops before the rest goes
     BlockFaults faults_{"fhg"};
     struct Corruption {  // a determinant to invert as its row is written
         int row = -1;        // block row

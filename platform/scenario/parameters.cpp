@@ -231,6 +231,10 @@ std::vector<ParamSpec> make_table() {
                              "run longer than {} bins merges them by twos, so a series never holds more",
                              TimeSeries::kMaxBins),
                  "[-] report setting: a 118 ms frame in about a hundred bins"});
+    t.push_back({"run.parallel", ParamKind::choice, "on", 0, 0, {"on", "off"},
+                 "Compute each FHG block row's determinants and maxima on a second thread while the kernel simulates "
+                 "the row's cycles; off: in the simulation's own thread. The results are the same either way",
+                 "[-] simulation setting (no figure depends on it)"});
     t.push_back({"run.dma_granularity", ParamKind::choice, "line", 0, 0, {"line", "burst"},
                  "IP blocks' DMA: one TLM transaction per line or per burst; the bus arbitrates every burst either "
                  "way, so the figures are the same",

@@ -110,5 +110,45 @@ TEST(SpeedSettings, DirectModeGivesTheSoftwareCyclesWithinContention) {
     }
 }
 
+// A run folder's file as text to compare: the folder's own path (in the GTKWave save file)
+// replaced, SystemC's $date header of the VCD left out.
+std::string comparable(const std::string& file, const std::string& folder) {
+    std::string text = slurp(file);
+    for (size_t at; (at = text.find(folder)) != std::string::npos;) text.replace(at, folder.size(), "FOLDER");
+    if (const size_t date = text.find("$date"); date != std::string::npos)
+        text.erase(date, text.find("$end", date) - date);
+    return text;
+}
+
+// run.parallel: the FHG's block rows computed on a second thread give the same run byte for
+// byte: report figures, keypoint files and (budget) traces; with one and with two accelerator
+// pairs, and with the faults scenario (corrupted lines and determinants, lost interrupts,
+// resets).
+TEST(SpeedSettings, TheSecondThreadMovesNoFigureAndNoByte) {
+    namespace fs = std::filesystem;
+    for (const std::string& scenario : {kBudget + kOneRun + " --trace all", kBudget + kOneRun + kContention + " --trace none",
+                                        std::string("faults --trace none")}) {
+        std::string outs[2];
+        for (int on = 0; on < 2; ++on) {
+            outs[on] = fresh_dir(on ? "parallel_on" : "parallel_off");
+            const auto r = surfvp("run " + scenario + " --quiet --out " + outs[on] +
+                                  (on ? " --set run.parallel=on" : " --set run.parallel=off"));
+            ASSERT_LE(r.exit_code, 1) << scenario << ": " << r.err;
+        }
+        expect_same_figures(nlohmann::json::parse(slurp(outs[0] + "/report.json")),
+                            nlohmann::json::parse(slurp(outs[1] + "/report.json")), scenario);
+        size_t files = 0;
+        for (const auto& e : fs::recursive_directory_iterator(outs[0])) {
+            const std::string name = e.path().filename().string();
+            if (!e.is_regular_file() || name.rfind("report", 0) == 0 || name == "config.yaml" || name == ".surfvp.lock")
+                continue;
+            const fs::path other = fs::path(outs[1]) / fs::relative(e.path(), outs[0]);
+            EXPECT_EQ(comparable(e.path().string(), outs[0]), comparable(other.string(), outs[1])) << scenario << ": " << other;
+            ++files;
+        }
+        EXPECT_GT(files, 3u) << scenario;  // the keypoint files at least
+    }
+}
+
 }  // namespace
 }  // namespace surfvp
