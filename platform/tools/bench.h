@@ -2,8 +2,10 @@
 // `surfvp bench`: how fast the simulator runs a scenario, against the chip it models and the
 // float reference SURF. SystemC simulates once per process, so each measurement is a child
 // `surfvp run` (the verdict's re-simulations off), the fastest of three; the wall time per
-// frame is the difference between runs of N and 2N frames, divided by N, and start-up is what
-// remains of the shorter run (loading, calibration, the sequence, elaboration, the report). Printed as JSON with the
+// frame is the difference between the simulations of N and 2N frames (report.json
+// wall_time_s), divided by N, and start-up is the run's own startup_s: from the process's start
+// (the dynamic loader included) to the simulation's (loading, calibration, the sequence,
+// elaboration). Printed as JSON with the
 // targets beside the figures (docs/architecture.md, "Simulation speed").
 #include <string>
 

@@ -246,3 +246,28 @@ TEST(Cli, RegisterDocMatchesTheTables) {
 
 }  // namespace
 }  // namespace surfvp
+
+namespace surfvp {
+namespace {
+
+// `surfvp bench` on the smoke scenario (quick): every figure and target is there; the
+// start-up is the runs' own (report.json startup_s); a scenario that does not exist is bad
+// input. The figures themselves are for the notes (tests/bench), not for a test.
+TEST(Cli, BenchGivesTheFiguresAndTheTargets) {
+    const auto r = test::surfvp("bench smoke --frames 1");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const auto j = nlohmann::json::parse(r.out);
+    for (const char* traces : {"traces_none", "traces_all"})
+        for (const char* key : {"wall_per_frame_ms", "startup_ms", "peak_rss_mb", "real_time_factor"})
+            EXPECT_TRUE(j[traces].contains(key)) << traces << " " << key;
+    EXPECT_GT(j["traces_none"]["startup_ms"].get<double>(), 0.0);
+    EXPECT_LT(j["traces_none"]["startup_ms"].get<double>(), 10000.0);
+    EXPECT_GT(j["traces_none"]["peak_rss_mb"].get<double>(), 1.0);
+    for (const char* target : {"wall_per_frame_ms", "traces_all_over_none", "startup_ms", "peak_rss_mb", "real_time_factor"})
+        EXPECT_TRUE(j["targets"][target].contains("met")) << target;
+    EXPECT_FALSE(j.contains("float_reference"));  // the smoke scenario runs no SURF
+    EXPECT_EQ(test::surfvp("bench no_such_scenario").exit_code, 2);
+}
+
+}  // namespace
+}  // namespace surfvp
