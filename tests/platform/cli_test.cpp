@@ -244,12 +244,6 @@ TEST(Cli, RegisterDocMatchesTheTables) {
         << "docs/registers.md is stale: regenerate it with `build/surfvp registers > docs/registers.md`";
 }
 
-}  // namespace
-}  // namespace surfvp
-
-namespace surfvp {
-namespace {
-
 // `surfvp bench` on the smoke scenario (quick): every figure and target is there; the
 // start-up is the runs' own (report.json startup_s); a scenario that does not exist is bad
 // input. The figures themselves are for the notes (tests/bench), not for a test.

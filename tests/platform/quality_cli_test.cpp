@@ -175,34 +175,27 @@ TEST(QualityCli, EvalGrafPairUnderItsHomography) {
 // castle-simu (i, i + 1) at 100 keypoints per frame, no radius, no Laplacian (OpenCV's SURF:
 // 0.921), and graf1 -> graf3 precision at ~2900 keypoints (OpenSURF: 0.643) without losing the
 // repeatability of the paper's SURF (0.521). Measured: 0.950; 0.684 and 0.573. With --paper
-// (the paper's SURF): 0.899; 0.601 and 0.521 (docs/quality.md).
+// (the paper's SURF): 0.899; 0.601 and 0.521 (docs/quality.md; sw/surf's GrafMatching tests
+// hold the paper's SURF below the bar).
 TEST(QualityCli, TheFloatReferenceIsAtLeastAsGoodAsTheBestCpuSurf) {
     REQUIRE_CASTLE();
     REQUIRE_OPENCV_DATA("graf1.png");
     REQUIRE_OPENCV_DATA("graf3.png");
     REQUIRE_OPENCV_DATA("H1to3p.xml");
-    auto castle = [](const std::string& options) {
-        const auto r = surfvp("eval-seq " + kCastle + " --target-count 100 -q" + options);
-        EXPECT_EQ(r.exit_code, 0) << r.err;
-        return json::parse(r.out)["gaps"][0]["rows"][0]["mean"].get<double>();
-    };
-    EXPECT_GE(castle(""), 0.921);
-    EXPECT_LT(castle(" --paper"), 0.91);
+    const auto castle = surfvp("eval-seq " + kCastle + " --target-count 100 -q");
+    ASSERT_EQ(castle.exit_code, 0) << castle.err;
+    EXPECT_GE(json::parse(castle.out)["gaps"][0]["rows"][0]["mean"].get<double>(), 0.921);
     const std::string dir = fresh_dir("best_cpu_surf");
-    auto graf_pair = [&](const std::string& options) {
-        const auto s1 = surfvp("surf " + graf(1) + " --target-count 2900 --out " + dir + "/g1.key" + options);
-        EXPECT_EQ(s1.exit_code, 0) << s1.err;
-        const std::string threshold = surf_summary(s1.err).threshold;
-        EXPECT_EQ(surfvp("surf " + graf(3) + " --threshold " + threshold + " -q --out " + dir + "/g3.key" + options).exit_code, 0);
-        const auto r = surfvp("eval " + dir + "/g1.key " + dir + "/g3.key -H " + kOpencvData + "/H1to3p.xml --images " +
-                              graf(1) + " " + graf(3));
-        EXPECT_EQ(r.exit_code, 0) << r.err;
-        return json::parse(r.out);
-    };
-    const json best = graf_pair(""), paper = graf_pair(" --paper");
+    const auto s1 = surfvp("surf " + graf(1) + " --target-count 2900 --out " + dir + "/g1.key");
+    ASSERT_EQ(s1.exit_code, 0) << s1.err;
+    const std::string threshold = surf_summary(s1.err).threshold;
+    ASSERT_EQ(surfvp("surf " + graf(3) + " --threshold " + threshold + " -q --out " + dir + "/g3.key").exit_code, 0);
+    const auto r = surfvp("eval " + dir + "/g1.key " + dir + "/g3.key -H " + kOpencvData + "/H1to3p.xml --images " + graf(1) +
+                          " " + graf(3));
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const json best = json::parse(r.out);
     EXPECT_GE(best["precision"].get<double>(), 0.643);
-    EXPECT_GE(best["repeatability"].get<double>(), paper["repeatability"].get<double>());
-    EXPECT_LT(paper["precision"].get<double>(), 0.643);
+    EXPECT_GE(best["repeatability"].get<double>(), 0.521);
 }
 
 TEST(QualityCli, EvalWithAHomographyNeedsTheImages) {
