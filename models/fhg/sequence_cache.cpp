@@ -1,6 +1,5 @@
 #include "sequence_cache.h"
 
-#include <cstdlib>
 #include <fmt/format.h>
 #include <fstream>
 #include <functional>
@@ -10,7 +9,6 @@
 #include <sstream>
 
 #include "models/common/atomic_file.h"
-#include "models/common/disk_cache.h"
 #include "models/common/disk_cache.h"
 
 #ifndef SURFVP_SEQUENCE_FINGERPRINT

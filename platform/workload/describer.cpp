@@ -10,6 +10,7 @@
 #include "models/fhg/fhg_regs.h"
 #include "models/fhg/local_max_finder.h"
 #include "platform/soc.h"
+#include "platform/workload/workload.h"
 #include "models/common/byte_order.h"
 #include "sw/cpu_cost/calibration.h"
 #include "sw/cpu_cost/calibration_dump.h"
@@ -212,11 +213,12 @@ nlohmann::ordered_json describer_report(const sw::ssa2::Describer& describer) {
 }
 
 std::unique_ptr<sw::ssa2::Describer> make_describer(const Config& config, float threshold) {
+    const surf::Params chip = chip_surf_params(config);  // the chip's software settings, read in one place
     sw::StageParams params;
-    params.upright = config.choice("surf.upright") == "on";
-    params.haar = config.choice("surf.haar") == "exact" ? surf::HaarMode::exact : surf::HaarMode::rounded;
+    params.upright = chip.upright;
+    params.haar = chip.haar;
     params.threshold = threshold;
-    params.max_offset = float(config.real("surf.max_offset"));
+    params.max_offset = chip.max_offset;
     try {
         return std::make_unique<StageDescriber>(params, cost_params(config, params.haar),
                                                 unsigned(config.bytes("cpu.cache_line").n));
