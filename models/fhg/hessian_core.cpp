@@ -49,6 +49,36 @@ FinishConstants finish_constants(const Precision& p, int64_t k, int64_t weight) 
             (int64_t(1) << (p.det_bits - 1)) - 1};
 }
 
+// Reads grouped by column offset: each group combines the same rows with the same weights up
+// to a factor (the box filters' corners share their rows), which gives the response as taps
+// of one combined row.
+HessianCore::Factors factor(const std::vector<Read>& reads, Response response, int size) {
+    std::vector<Read> own;
+    for (const Read& r : reads)
+        if (r.response == response) own.push_back(r);
+    HessianCore::Factors f;
+    for (const Read& r : own)
+        if (r.dx == own[0].dx) f.dy[size_t(f.rows)] = r.dy, f.weight[size_t(f.rows++)] = r.coefficient;
+    auto weight_of = [&](int dy) {
+        for (int i = 0; i < f.rows; ++i)
+            if (f.dy[size_t(i)] == dy) return f.weight[size_t(i)];
+        return 0;
+    };
+    for (const Read& r : own) {
+        if (std::find(f.dx.begin(), f.dx.begin() + f.taps, r.dx) != f.dx.begin() + f.taps) continue;
+        const int tap = r.coefficient / weight_of(r.dy);
+        int group = 0;
+        for (const Read& g : own)
+            if (g.dx == r.dx) {
+                ++group;
+                if (g.coefficient != tap * weight_of(g.dy)) throw std::logic_error("filter " + std::to_string(size) + " does not factor");
+            }
+        if (group != f.rows || f.taps == 4) throw std::logic_error("filter " + std::to_string(size) + " does not factor");
+        f.dx[size_t(f.taps)] = r.dx, f.tap[size_t(f.taps++)] = tap;
+    }
+    return f;
+}
+
 }  // namespace
 
 HessianCore::HessianCore(const Precision& p) : precision_(p) {
@@ -63,6 +93,8 @@ HessianCore::HessianCore(const Precision& p) : precision_(p) {
     for (int size : kSizes) {
         reciprocal_[size] = std::llround(std::ldexp(1.0, int(p.response_frac_bits + p.recip_shift)) / (size * size));
         reads_[size] = filter_reads(size);
+        for (Response r : {Response::xx, Response::yy, Response::xy})
+            factors_[size_t(size)][size_t(r)] = factor(reads_[size], r, size);
     }
     // Largest magnitudes (as powers of two) of the finishing steps: sum x K, the squared
     // responses times W, the determinant. Below 2^52 every step is exact in double.
@@ -114,8 +146,10 @@ namespace {
 
 // The same steps in double precision: every intermediate is an integer below 2^53 (the
 // constructor checks the bounds), so each product, sum and power-of-two scaling is exact and
-// floor() gives the arithmetic shift; the loop vectorises where int64 multiplies do not.
+// floor() gives the arithmetic shift; the loop vectorises where int64 multiplies do not. The
+// sums come as the low 32 bits of the TripleMAC's; `drop` narrows them to its width.
 struct FinishConstantsF {
+    unsigned drop;
     double k, weight;
     double recip_half, recip_inverse, weight_half, weight_inverse, det_half, det_inverse;
     double response_max, det_max;
@@ -125,47 +159,57 @@ struct FinishConstantsF {
 
 [[gnu::always_inline]] inline double clamp_f(double v, double max) { return std::min(std::max(v, -max - 1), max); }
 
+[[gnu::always_inline]] inline double narrow_f(uint32_t sum, unsigned drop) { return double(int32_t(sum << drop) >> drop); }
+
 __attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
-void finish_run_exact_double(const int32_t* xx, const int32_t* yy, const int32_t* xy, int n, const FinishConstantsF& c,
-                             int32_t* out) {
+void finish_run_exact_double(const uint32_t* xx, const uint32_t* yy, const uint32_t* xy, int n,
+                             const FinishConstantsF& c, int32_t* out) {
     for (int i = 0; i < n; ++i) {
-        const double rxx = clamp_f(shift_f(double(xx[i]) * c.k, c.recip_half, c.recip_inverse), c.response_max);
-        const double ryy = clamp_f(shift_f(double(yy[i]) * c.k, c.recip_half, c.recip_inverse), c.response_max);
-        const double rxy = clamp_f(shift_f(double(xy[i]) * c.k, c.recip_half, c.recip_inverse), c.response_max);
+        const double rxx = clamp_f(shift_f(narrow_f(xx[i], c.drop) * c.k, c.recip_half, c.recip_inverse), c.response_max);
+        const double ryy = clamp_f(shift_f(narrow_f(yy[i], c.drop) * c.k, c.recip_half, c.recip_inverse), c.response_max);
+        const double rxy = clamp_f(shift_f(narrow_f(xy[i], c.drop) * c.k, c.recip_half, c.recip_inverse), c.response_max);
         const double det = rxx * ryy - shift_f(c.weight * rxy * rxy, c.weight_half, c.weight_inverse);
         out[i] = int32_t(clamp_f(shift_f(det, c.det_half, c.det_inverse), c.det_max));
     }
 }
 
-// Sums narrowed to the accumulator's width, sign-extended: what the TripleMAC holds.
-__attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
-void narrow(const uint32_t* in, int32_t* out, int n, unsigned drop) {
-    for (int i = 0; i < n; ++i) out[i] = int32_t(in[i] << drop) >> drop;
-}
-
-// The TripleMAC sums of one box of a filter along a row: its four corner reads (one integral
-// row each, so each read is a column offset) added into the box's response at once, so the
-// sums go through memory once per box, not once per read. 32-bit unsigned sums wrap, which is
-// exact modulo 2^32 in any order and so for any accumulator width up to 32 bits.
-struct BoxReads {
+// P(x) = sum of weight_i x row_i(x): one response's integral rows combined (a row above the
+// image is zero: weight 0). 32-bit unsigned sums wrap, which is exact modulo 2^32 in any order
+// and so for any accumulator width up to 32 bits.
+struct Terms {
     const uint32_t* src[4];
-    uint32_t coefficient[4];
+    uint32_t weight[4];
 };
 
 __attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
-void accumulate_box(uint32_t* a, const BoxReads& box, int k, int n, int step) {
-    const uint32_t *s0 = box.src[0], *s1 = box.src[1], *s2 = box.src[2], *s3 = box.src[3];
-    const uint32_t c0 = box.coefficient[0], c1 = box.coefficient[1], c2 = box.coefficient[2], c3 = box.coefficient[3];
+void weigh(uint32_t* out, const Terms& t, int n, int step) {
+    const uint32_t *s0 = t.src[0], *s1 = t.src[1], *s2 = t.src[2], *s3 = t.src[3];
+    const uint32_t w0 = t.weight[0], w1 = t.weight[1], w2 = t.weight[2], w3 = t.weight[3];
     if (step == 1)
-        for (; k < n; ++k) a[k] += c0 * s0[k] + c1 * s1[k] + c2 * s2[k] + c3 * s3[k];
+        for (int k = 0; k < n; ++k) out[k] = w0 * s0[k] + w1 * s1[k] + w2 * s2[k] + w3 * s3[k];
     else
-        for (; k < n; ++k) a[k] += c0 * s0[k * step] + c1 * s1[k * step] + c2 * s2[k * step] + c3 * s3[k * step];
+        for (int k = 0; k < n; ++k)
+            out[k] = w0 * s0[k * step] + w1 * s1[k * step] + w2 * s2[k * step] + w3 * s3[k * step];
+}
+
+// `count` terms (up to 4) of `what`'s rows or taps; the missing ones read the first, times 0.
+template <class Source>
+Terms terms(int count, const std::array<int, 4>& weight, Source source) {
+    Terms t{};
+    const uint32_t* any = nullptr;
+    for (int i = 0; i < count; ++i) {
+        t.src[i] = source(i);
+        if (t.src[i]) any = t.src[i], t.weight[i] = uint32_t(weight[i]);
+    }
+    for (auto& src : t.src)
+        if (!src) src = any;
+    return t;
 }
 
 }  // namespace
 
-// The fast path: for one filter and one image row, every read is a column offset into one
-// integral row, so the sums are loops over x.
+// The fast path: for one filter and one image row, each response is a few taps of one
+// combined integral row, so the sums are loops over x.
 void HessianCore::row(const IntegralView& ii, int y, int size, int x0, int step, int count, int32_t* out,
                       int out_stride) const {
     const int b = (size - 1) / 2;
@@ -179,45 +223,33 @@ void HessianCore::row(const IntegralView& ii, int y, int size, int x0, int step,
     if (first >= last) return;
 
     const int n = last - first;
-    thread_local std::vector<uint32_t> acc;
+    thread_local std::vector<uint32_t> combined, sums;
     thread_local std::vector<int32_t> dets;
-    acc.assign(size_t(3) * n, 0);
+    combined.resize(size_t(ii.width) + 1);
+    sums.resize(size_t(3) * n);
     dets.resize(size_t(n));
     int32_t* finished = out_stride == 1 ? out + first : dets.data();  // contiguous output takes them directly
-    const std::vector<Read>& reads = reads_[size];
     const int x_first = x0 + first * step;
-    for (size_t i = 0; i < reads.size(); i += 4) {  // filter_reads gives each box's 4 corners together
-        BoxReads box{};
-        const uint32_t* any_row = nullptr;
-        uint32_t first_sample = 0;  // the box at k = 0, where a corner may fall on column -1
-        for (int c = 0; c < 4; ++c) {
-            const Read& r = reads[i + size_t(c)];
-            if (y + r.dy < 0) continue;  // row -1 of the integral image is zero: coefficient 0
-            box.src[c] = any_row = ii.row(y + r.dy) + x_first + r.dx;
-            box.coefficient[c] = uint32_t(r.coefficient);
-            if (x_first + r.dx >= 0) first_sample += box.coefficient[c] * box.src[c][0];  // column -1 is zero too
-        }
-        if (!any_row) continue;
-        for (auto& src : box.src)
-            if (!src) src = any_row;  // read, times 0
-        uint32_t* a = acc.data() + size_t(int(reads[i].response)) * n;
-        a[0] += first_sample;
-        accumulate_box(a, box, 1, n, step);
+    uint32_t* p = combined.data() + 1;  // p[-1] = 0: column -1 of the integral image
+    combined[0] = 0;
+    for (int r = 0; r < 3; ++r) {
+        const Factors& f = factors_[size_t(size)][size_t(r)];
+        // Inside the image every row read is in [-1, height - 1]; row -1 is zero.
+        weigh(p, terms(f.rows, f.weight, [&](int i) { return y + f.dy[size_t(i)] < 0 ? nullptr : ii.row(y + f.dy[size_t(i)]); }),
+              ii.width, 1);
+        weigh(sums.data() + size_t(r) * n, terms(f.taps, f.tap, [&](int i) { return p + x_first + f.dx[size_t(i)]; }), n, step);
     }
-    const Precision& p = precision_;
+    const Precision& pr = precision_;
     if (double_exact_) {
-        thread_local std::vector<int32_t> sums;
-        sums.resize(size_t(3) * n);
-        narrow(acc.data(), sums.data(), 3 * n, 32 - p.accumulator_bits);
         auto half = [](unsigned s) { return s ? std::ldexp(1.0, int(s) - 1) : 0.0; };
-        const unsigned det_shift = 2 * p.response_frac_bits - p.det_frac_bits;
-        const FinishConstantsF c{double(reciprocal_[size]), double(weight_), half(p.recip_shift),
-                                 std::ldexp(1.0, -int(p.recip_shift)), half(p.weight_frac_bits),
-                                 std::ldexp(1.0, -int(p.weight_frac_bits)), half(det_shift), std::ldexp(1.0, -int(det_shift)),
-                                 std::ldexp(1.0, int(p.response_bits) - 1) - 1, std::ldexp(1.0, int(p.det_bits) - 1) - 1};
+        const unsigned det_shift = 2 * pr.response_frac_bits - pr.det_frac_bits;
+        const FinishConstantsF c{32 - pr.accumulator_bits, double(reciprocal_[size]), double(weight_),
+                                 half(pr.recip_shift), std::ldexp(1.0, -int(pr.recip_shift)), half(pr.weight_frac_bits),
+                                 std::ldexp(1.0, -int(pr.weight_frac_bits)), half(det_shift), std::ldexp(1.0, -int(det_shift)),
+                                 std::ldexp(1.0, int(pr.response_bits) - 1) - 1, std::ldexp(1.0, int(pr.det_bits) - 1) - 1};
         finish_run_exact_double(sums.data(), sums.data() + n, sums.data() + 2 * n, n, c, finished);
     } else {
-        finish_run(acc.data(), acc.data() + n, acc.data() + 2 * n, n, finish_constants(p, reciprocal_[size], weight_),
+        finish_run(sums.data(), sums.data() + n, sums.data() + 2 * n, n, finish_constants(pr, reciprocal_[size], weight_),
                    finished);
     }
     if (out_stride != 1)

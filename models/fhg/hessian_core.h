@@ -54,6 +54,13 @@ public:
     }
     const Precision& precision() const { return precision_; }
 
+    // One response along an image row: sum(x) = sum of tap_j x P(x + dx_j), where
+    // P(x) = sum of weight_i x I(x, y + dy_i) (the row path's form of filter_reads).
+    struct Factors {
+        int rows = 0, taps = 0;
+        std::array<int, 4> dy{}, weight{}, dx{}, tap{};
+    };
+
 private:
     int32_t finish(int64_t xx, int64_t yy, int64_t xy, int size) const;  // steps 2 and 3
     int64_t wrap(int64_t sum) const;
@@ -64,6 +71,7 @@ private:
     int64_t weight_;
     std::array<int64_t, 64> reciprocal_{};  // K_L indexed by L
     std::array<std::vector<Read>, 64> reads_;  // filter_reads(L) indexed by L
+    std::array<std::array<Factors, 3>, 64> factors_{};  // the reads as a row's Factors, by L and Response
     bool double_exact_ = false;                // the row path may finish in double precision
 };
 
