@@ -99,11 +99,13 @@ void Fhg::start(const FhgRegisters::Frame& f) {
     frame_ = {f.det_addr, f.width, f.height, (f.width + 1) / 2, (f.height + 1) / 2, f.threshold, true, false, 0, 0, 0,
               0, 0, 0, sc_core::sc_time_stamp()};
     lines_.assign(size_t(f.width) * f.height, 0);
-    const size_t row_records = size_t(frame_.blocks_x) * fhg::kDeterminantsPerBlock;
-    for (auto& slot : slots_) slot.assign(row_records, 0);
+    // Every row is written whole before the writer sends it: no need to clear.
+    const size_t row_bytes = size_t(frame_.blocks_x) * r::record_bytes(det_bytes());
     if (worker_) {
-        ahead_records_.assign(row_records * frame_.blocks_y, 0);
+        ahead_rows_.resize(row_bytes * frame_.blocks_y);
         ahead_found_.assign(frame_.blocks_y, {});
+    } else {
+        for (auto& slot : slots_) slot.resize(row_bytes);
     }
     busy_.write(true);
     faults_.irq_lost = false;
@@ -183,11 +185,14 @@ void Fhg::send_line(int y, const uint32_t* data, int width, const sc_time& trans
 
 // The row's determinants and marked maxima: reads only lines_ up to the row's reach (received
 // before the row began) and writes only `records`, so it may run beside the kernel.
-std::vector<fhg::Candidate> Fhg::compute_block_row(int by, int32_t* records) {
+std::vector<fhg::Candidate> Fhg::compute_block_row(int by, uint8_t* row) {
     const IntegralView view{lines_.data(), int(frame_.width), int(frame_.height), frame_.width};
-    core_.block_row(view, by, records);
+    thread_local std::vector<int32_t> records;
+    records.resize(size_t(frame_.blocks_x) * fhg::kDeterminantsPerBlock);
+    core_.block_row(view, by, records.data());
+    r::store_dets(row, records.data(), records.size(), det_bytes());
     std::vector<fhg::Candidate> found;
-    fhg::LocalMaxFinder(frame_.threshold).block_row(records, int(frame_.blocks_x), by, found);
+    fhg::LocalMaxFinder(frame_.threshold).block_row(records.data(), int(frame_.blocks_x), by, found);
     return found;
 }
 
@@ -195,22 +200,24 @@ int Fhg::needed_line(uint32_t by) const { return std::min(int(frame_.height) - 1
 
 void Fhg::queue_ready_rows() {
     if (!worker_) return;
-    const size_t row_records = size_t(frame_.blocks_x) * fhg::kDeterminantsPerBlock;
     while (frame_.rows_queued < frame_.blocks_y && frame_.received > needed_line(frame_.rows_queued)) {
         const uint32_t by = frame_.rows_queued++;
-        int32_t* records = ahead_records_.data() + row_records * by;
-        const size_t job = worker_->submit([this, by, records] { ahead_found_[by] = compute_block_row(int(by), records); });
+        uint8_t* row = row_bytes(by);
+        const size_t job = worker_->submit([this, by, row] { ahead_found_[by] = compute_block_row(int(by), row); });
         if (by == 0) first_job_ = job;
     }
 }
 
-// Row `by`'s records into `records` and its marked maxima: the worker's, once it has done
+uint8_t* Fhg::row_bytes(uint32_t by) {
+    if (!worker_) return slots_[by % slots_.size()].data();
+    return ahead_rows_.data() + size_t(by) * frame_.blocks_x * r::record_bytes(det_bytes());
+}
+
+// Row `by`'s marked maxima, its determinants at row_bytes(by): the worker's, once it has done
 // them, or computed here.
-std::vector<fhg::Candidate> Fhg::block_row_results(uint32_t by, int32_t* records) {
-    if (!worker_ || by >= frame_.rows_queued) return compute_block_row(int(by), records);
+std::vector<fhg::Candidate> Fhg::block_row_results(uint32_t by) {
+    if (!worker_ || by >= frame_.rows_queued) return compute_block_row(int(by), row_bytes(by));
     worker_->wait(first_job_ + by);
-    const size_t row_records = size_t(frame_.blocks_x) * fhg::kDeterminantsPerBlock;
-    std::copy_n(ahead_records_.data() + row_records * by, row_records, records);
     return std::move(ahead_found_[by]);
 }
 
@@ -229,9 +236,8 @@ void Fhg::frame_thread() {
             stats_.waiting_for_lines += sc_core::sc_time_stamp() - waiting;
             if (frame_.failed) break;
             const sc_time began = sc_core::sc_time_stamp();
-            int32_t* records = slots_[by % slots_.size()].data();
             sc_core::wait(cycles(params_.clock, double(frame_.blocks_x) * block_cycles_));
-            finish_block_row(int(by), block_row_results(by, records));  // the results exist once the row's cycles are spent
+            finish_block_row(int(by), block_row_results(by));  // the results exist once the row's cycles are spent
             stats_.computing += sc_core::sc_time_stamp() - began;
             if (tracer_.perfetto_on()) tracer_.slice(row_track_, fmt::format("block row {}", by), began, sc_core::sc_time_stamp());
             frame_.oldest = std::max(frame_.oldest, int(2 * (by + 1)) - fhg::kReachBefore);
@@ -268,21 +274,18 @@ void Fhg::frame_thread() {
 
 void Fhg::writer_thread() {
     DmaEngine dma(mplb, params_.burst_beats * params_.bus_width_bits / 8, params_.dma_transaction_bytes);
-    std::vector<uint8_t> bytes;
     for (;;) {
         int by = 0;
         det_rows_.read(by);  // read(T&): the returning read() trips -Wmaybe-uninitialized in sc_fifo.h
         if (!frame_.failed) {
-            const std::vector<int32_t>& records = slots_[size_t(by) % slots_.size()];
-            const uint32_t n = det_bytes();
-            bytes.resize(records.size() * n);
-            for (size_t i = 0; i < records.size(); ++i) r::store_det(bytes.data() + n * i, records[i], n);
+            const uint32_t n = det_bytes(), bytes = frame_.blocks_x * r::record_bytes(n);
+            uint8_t* row = row_bytes(uint32_t(by));  // nothing reads it after this write
             if (corruption_.row == by) {
-                r::store_det(bytes.data() + n * corruption_.index, ~records[corruption_.index], n);
+                uint8_t* det = row + n * corruption_.index;
+                r::store_det(det, ~r::load_det(det, n), n);
                 corruption_.row = -1;
             }
-            const uint64_t at = frame_.det_addr + uint64_t(by) * frame_.blocks_x * r::record_bytes(n);
-            if (!dma.write(at, bytes.data(), bytes.size()).ok) fail(r::ERR_WRITE);
+            if (!dma.write(frame_.det_addr + uint64_t(by) * bytes, row, bytes).ok) fail(r::ERR_WRITE);
         }
         ++frame_.rows_written;
         rows_written_.notify(sc_core::SC_ZERO_TIME);

@@ -109,11 +109,13 @@ private:
     void fail(uint32_t code);
     void frame_thread();
     void writer_thread();
-    std::vector<fhg::Candidate> compute_block_row(int by, int32_t* records);  // plain C++: any thread
+    // Row `by`'s determinants stored into `row` as the writer sends them, and its marked maxima.
+    std::vector<fhg::Candidate> compute_block_row(int by, uint8_t* row);  // plain C++: any thread
     void finish_block_row(int by, const std::vector<fhg::Candidate>& found);
     int needed_line(uint32_t by) const;  // the last integral line block row `by` reads
     void queue_ready_rows();             // hands the worker the rows whose lines have all arrived
-    std::vector<fhg::Candidate> block_row_results(uint32_t by, int32_t* records);
+    uint8_t* row_bytes(uint32_t by);  // where block row `by`'s stored determinants are kept
+    std::vector<fhg::Candidate> block_row_results(uint32_t by);
     void push_candidates(const std::vector<fhg::Candidate>& candidates);
     void update_irq();
     void trace_levels();
@@ -140,7 +142,7 @@ private:
         sc_core::sc_time began;
     } frame_{};
     std::vector<uint32_t> lines_;              // received integral rows (the FIFO's contents live here)
-    std::vector<std::vector<int32_t>> slots_;  // block rows of records for the writer
+    std::vector<std::vector<uint8_t>> slots_;  // block rows for the writer (without Params::parallel)
     sc_core::sc_fifo<int> det_rows_;  // block rows ready for the writer
     sc_core::sc_event start_, line_arrived_, room_, rows_written_, irq_changed_;
     sc_core::sc_signal<bool, sc_core::SC_UNCHECKED_WRITERS> busy_{"busy"};
@@ -149,9 +151,9 @@ private:
     Stats stats_;
     TimeSeries line_series_, maxima_series_;  // FIFO levels per time bin
     int frame_track_ = -1, row_track_ = -1, level_track_ = -1;
-    // The worker's results, every block row of the frame: records and marked maxima. Row r is
-    // the worker's job first_job_ + r.
-    std::vector<int32_t> ahead_records_;
+    // The worker's results, every block row of the frame: stored determinants (the writer
+    // sends them from here) and marked maxima. Row r is the worker's job first_job_ + r.
+    std::vector<uint8_t> ahead_rows_;
     std::vector<std::vector<fhg::Candidate>> ahead_found_;
     size_t first_job_ = 0;
     std::unique_ptr<Worker> worker_;  // with Params::parallel; last, so it stops before the rest goes

@@ -100,6 +100,15 @@ inline void store_det(uint8_t* p, int32_t value, uint32_t det_bytes) {
     else p[0] = uint8_t(value);
 }
 
+// A run of determinants as the writer stores them (4-byte words in a loop of its own, which
+// the compiler turns into vector byte swaps).
+inline void store_dets(uint8_t* p, const int32_t* values, size_t count, uint32_t det_bytes) {
+    if (det_bytes == 4)
+        for (size_t k = 0; k < count; ++k) store_be32(p + 4 * k, uint32_t(values[k]));
+    else
+        for (size_t k = 0; k < count; ++k) store_det(p + det_bytes * k, values[k], det_bytes);
+}
+
 inline int32_t load_det(const uint8_t* p, uint32_t det_bytes) {
     if (det_bytes == 4) return int32_t(load_be32(p));
     if (det_bytes == 2) return int16_t(load_be16(p));

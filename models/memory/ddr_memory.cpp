@@ -1,7 +1,6 @@
 #include "ddr_memory.h"
 
 #include <algorithm>
-#include <cstdlib>
 #include <cstring>
 #include <fmt/format.h>
 #include <stdexcept>
@@ -11,15 +10,12 @@
 namespace surfvp {
 using sc_core::sc_time;
 
-void DdrMemory::FreeDeleter::operator()(uint8_t* p) const { std::free(p); }
-
 DdrMemory::DdrMemory(const sc_core::sc_module_name& name, const Params& params)
     : sc_module(name), ports("ports"), params_(params), series_(params.series_bin.ps) {
     if (params.size.n == 0) throw std::invalid_argument(fmt::format("{}: memory size must be above zero", basename()));
     if (params.efficiency <= 0 || params.efficiency > 1)
         throw std::invalid_argument(fmt::format("{}: efficiency must be in (0, 1], not {}", basename(), params.efficiency));
-    storage_.reset(static_cast<uint8_t*>(std::calloc(params.size.n, 1)));
-    if (!storage_) throw std::runtime_error(fmt::format("{}: cannot allocate {}", basename(), format_bytes(params.size)));
+    storage_ = zeroed_memory(params.size.n, basename());
     ports.register_b_transport(this, &DdrMemory::b_transport);
     ports.register_get_direct_mem_ptr(this, &DdrMemory::get_direct_mem_ptr);
     ports.register_transport_dbg(this, &DdrMemory::transport_dbg);

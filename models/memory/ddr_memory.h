@@ -23,6 +23,7 @@
 #include "busy_timeline.h"
 #include "models/common/statistics.h"
 #include "models/common/parameter.h"
+#include "models/common/zeroed_memory.h"
 #include "models/common/units.h"
 
 namespace surfvp {
@@ -81,12 +82,8 @@ private:
     bool check(tlm::tlm_generic_payload& tx) const;
     PortStats& stats(int port);
 
-    struct FreeDeleter {
-        void operator()(uint8_t* p) const;
-    };
-
     Params params_;
-    std::unique_ptr<uint8_t[], FreeDeleter> storage_;  // zero pages from calloc: untouched memory costs nothing
+    ZeroedMemory storage_;
     std::vector<PortStats> port_stats_;
     BusyTimeline dram_;
     sc_core::sc_time busy_;

@@ -37,12 +37,11 @@ DirectChip::Pair::Pair(DirectChip& chip, const IigRegisters::Limits& iig_limits,
 
 DirectChip::DirectChip(const Config& config, unsigned accelerators)
     : memory_size_(config.bytes("memory.size").n),
-      memory_(static_cast<uint8_t*>(std::calloc(memory_size_, 1)), std::free),
+      memory_(zeroed_memory(memory_size_, "direct mode's memory")),
       intc_(unsigned(config.count("intc.inputs")), [this] { return levels(); }),
       sum_bits_(config.bits("iig.sum_bits")),
       core_(fhg_params(config).precision),
       fill_cycles_(uncontended_fill(config).to_seconds() * config.frequency("cpu.clock").hz) {
-    if (!memory_) throw std::runtime_error("direct mode: cannot allocate the memory");
     const Iig::Params iig = iig_params(config);
     const FhgRegisters::Limits fhg = Fhg::register_limits(fhg_params(config));
     for (unsigned k = 0; k < accelerators; ++k)
@@ -173,7 +172,7 @@ uint32_t DirectChip::block_row(Pair& p) {
     core_.block_row(view, int(by), records_.data());
     const uint64_t at = h.det_addr + uint64_t(by) * blocks_x * f::record_bytes(n);
     if (!in_memory(at, records_.size() * n)) return f::ERR_WRITE;
-    for (size_t k = 0; k < records_.size(); ++k) f::store_det(memory_.get() + at + n * k, records_[k], n);
+    f::store_dets(memory_.get() + at, records_.data(), records_.size(), n);
     std::vector<fhg::Candidate> found;
     fhg::LocalMaxFinder(h.threshold).block_row(records_.data(), int(blocks_x), int(by), found);
     p.fhg.push(found);

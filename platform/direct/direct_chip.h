@@ -14,6 +14,7 @@
 
 #include "platform/scenario/config.h"
 #include "models/common/hal.h"
+#include "models/common/zeroed_memory.h"
 #include "models/fhg/fhg_registers.h"
 #include "models/fhg/hessian_core.h"
 #include "models/iig/iig_registers.h"
@@ -64,7 +65,7 @@ private:
     uint32_t levels() const;
 
     uint64_t memory_size_;
-    std::unique_ptr<uint8_t[], void (*)(void*)> memory_;
+    ZeroedMemory memory_;
     std::vector<std::unique_ptr<Pair>> pairs_;
     IntcRegisters intc_;
     unsigned sum_bits_;
