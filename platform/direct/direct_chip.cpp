@@ -19,7 +19,8 @@ namespace surfvp {
 namespace f = fhg_regs;
 
 DirectChip::Pair::Pair(DirectChip& chip, const IigRegisters::Limits& iig_limits, const FhgRegisters::Limits& fhg_limits)
-    : iig(iig_limits, {[this, &chip](const IigRegisters::Frame& f) {
+    : chip(chip),
+      iig(iig_limits, {[this, &chip](const IigRegisters::Frame& f) {
                            integral = f;
                            chip.run_integral(*this);
                        },
@@ -27,13 +28,20 @@ DirectChip::Pair::Pair(DirectChip& chip, const IigRegisters::Limits& iig_limits,
       fhg(fhg_limits, {[this](const FhgRegisters::Frame& f) {
                            determinants = f;
                            next_row = 0;
-                           lines.clear();
+                           stop_listening();
                        },
                        [this] { fhg.status().end(true, f::ERR_ABORTED); }, {},
                        [this] {  // RESET: a frame still listening is aborted at once (no time here)
                            if (fhg.status().busy()) fhg.status().end(true, f::ERR_ABORTED);
-                           lines.clear();
+                           stop_listening();
                        }}) {}
+
+// The rows computed ahead read `lines`: they are done before it goes.
+void DirectChip::Pair::stop_listening() {
+    if (ahead) chip.worker_->drain();
+    ahead = false;
+    lines.clear();
+}
 
 DirectChip::DirectChip(const Config& config, unsigned accelerators)
     : memory_size_(config.bytes("memory.size").n),
@@ -41,7 +49,8 @@ DirectChip::DirectChip(const Config& config, unsigned accelerators)
       intc_(unsigned(config.count("intc.inputs")), [this] { return levels(); }),
       sum_bits_(config.bits("iig.sum_bits")),
       core_(fhg_params(config).precision),
-      fill_cycles_(uncontended_fill(config).to_seconds() * config.frequency("cpu.clock").hz) {
+      fill_cycles_(uncontended_fill(config).to_seconds() * config.frequency("cpu.clock").hz),
+      worker_(config.choice("run.parallel") == "on" ? std::make_unique<Worker>() : nullptr) {
     const Iig::Params iig = iig_params(config);
     const FhgRegisters::Limits fhg = Fhg::register_limits(fhg_params(config));
     for (unsigned k = 0; k < accelerators; ++k)
@@ -114,7 +123,7 @@ bool DirectChip::step() {
         const uint32_t code = block_row(p);
         if (code != f::ERR_NONE || p.next_row == (p.determinants.height + 1) / 2) {
             p.fhg.status().end(code != f::ERR_NONE, code);
-            p.lines.clear();
+            p.stop_listening();
         }
     }
     return worked;
@@ -156,25 +165,60 @@ void DirectChip::run_integral(Pair& p) {
     }
     if (i.stream && p.fhg.status().busy()) {
         if (p.determinants.width != i.width || p.determinants.height != i.height) p.fhg.status().end(true, f::ERR_PIXELBUS);
-        else p.lines = std::move(integral);
+        else p.lines = std::move(integral), compute_ahead(p);
     }
     p.iig.end(false, iig::ERR_NONE, 0);  // no time, so no back-pressure: STALL_CYCLES 0
+}
+
+uint32_t DirectChip::row_bytes(const Pair& p) const {
+    return (p.determinants.width + 1) / 2 * f::record_bytes(f::det_bytes_for(core_.precision().det_bits));
+}
+
+// Block row `by`'s determinants stored into `out` as the FHG writes them, and its marked maxima.
+std::vector<fhg::Candidate> DirectChip::compute_row(const Pair& p, uint32_t by, uint8_t* out) const {
+    const FhgRegisters::Frame& h = p.determinants;
+    const IntegralView view{p.lines.data(), int(h.width), int(h.height), h.width};
+    const uint32_t blocks_x = (h.width + 1) / 2;
+    thread_local std::vector<int32_t> records;
+    records.resize(size_t(blocks_x) * fhg::kDeterminantsPerBlock);
+    core_.block_row(view, int(by), records.data());
+    f::store_dets(out, records.data(), records.size(), f::det_bytes_for(core_.precision().det_bits));
+    std::vector<fhg::Candidate> found;
+    fhg::LocalMaxFinder(h.threshold).block_row(records.data(), int(blocks_x), int(by), found);
+    return found;
+}
+
+// With run.parallel every block row of the frame goes to the worker as soon as the integral
+// image is known, while the software goes on with the frame before; block_row() takes them
+// in turn (the same bytes, computed earlier).
+void DirectChip::compute_ahead(Pair& p) {
+    if (!worker_) return;
+    const uint32_t blocks_y = (p.determinants.height + 1) / 2;
+    const size_t bytes = row_bytes(p);
+    p.rows.resize(bytes * blocks_y);
+    p.found.assign(blocks_y, {});
+    for (uint32_t by = 0; by < blocks_y; ++by) {
+        const size_t job = worker_->submit([this, &p, by, bytes] { p.found[by] = compute_row(p, by, p.rows.data() + by * bytes); });
+        if (by == 0) p.first_job = job;
+    }
+    p.ahead = true;
 }
 
 // The FHG's next block row: determinants to memory, candidates into the maxima FIFO.
 // Returns the FHG's ErrorCode (ERR_NONE when the row went well).
 uint32_t DirectChip::block_row(Pair& p) {
-    const FhgRegisters::Frame& h = p.determinants;
-    const IntegralView view{p.lines.data(), int(h.width), int(h.height), h.width};
-    const uint32_t blocks_x = (h.width + 1) / 2, by = p.next_row++;
-    const uint32_t n = f::det_bytes_for(core_.precision().det_bits);
-    records_.resize(size_t(blocks_x) * fhg::kDeterminantsPerBlock);
-    core_.block_row(view, int(by), records_.data());
-    const uint64_t at = h.det_addr + uint64_t(by) * blocks_x * f::record_bytes(n);
-    if (!in_memory(at, records_.size() * n)) return f::ERR_WRITE;
-    f::store_dets(memory_.get() + at, records_.data(), records_.size(), n);
+    const uint32_t by = p.next_row++;
+    const size_t bytes = row_bytes(p);
+    const uint64_t at = p.determinants.det_addr + uint64_t(by) * bytes;
+    if (!in_memory(at, bytes)) return f::ERR_WRITE;
     std::vector<fhg::Candidate> found;
-    fhg::LocalMaxFinder(h.threshold).block_row(records_.data(), int(blocks_x), int(by), found);
+    if (p.ahead) {
+        worker_->wait(p.first_job + by);
+        std::memcpy(memory_.get() + at, p.rows.data() + by * bytes, bytes);
+        found = std::move(p.found[by]);
+    } else {
+        found = compute_row(p, by, memory_.get() + at);
+    }
     p.fhg.push(found);
     return f::ERR_NONE;
 }

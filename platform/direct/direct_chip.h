@@ -14,7 +14,9 @@
 
 #include "platform/scenario/config.h"
 #include "models/common/hal.h"
+#include "models/common/worker.h"
 #include "models/common/zeroed_memory.h"
+#include "models/fhg/local_max_finder.h"
 #include "models/fhg/fhg_registers.h"
 #include "models/fhg/hessian_core.h"
 #include "models/iig/iig_registers.h"
@@ -49,17 +51,28 @@ private:
     // One IIG + FHG pair: their registers, and the frame each has taken.
     struct Pair {
         Pair(DirectChip& chip, const IigRegisters::Limits& iig, const FhgRegisters::Limits& fhg);
+        void stop_listening();  // the FHG's frame is over: its integral lines go
+        DirectChip& chip;
         IigRegisters iig;
         FhgRegisters fhg;
         IigRegisters::Frame integral{};
         FhgRegisters::Frame determinants{};
         std::vector<uint32_t> lines;  // the integral image streamed to the FHG
         uint32_t next_row = 0;        // the FHG's next block row; its frame has work while BUSY
+        // Rows computed ahead on the worker (run.parallel): stored determinants and maxima;
+        // row r is job first_job + r.
+        bool ahead = false;
+        std::vector<uint8_t> rows;
+        std::vector<std::vector<fhg::Candidate>> found;
+        size_t first_job = 0;
     };
 
     bool access(uint32_t address, uint32_t& value, bool write);
     void run_integral(Pair& p);
     uint32_t block_row(Pair& p);
+    uint32_t row_bytes(const Pair& p) const;  // one block row of stored determinants
+    std::vector<fhg::Candidate> compute_row(const Pair& p, uint32_t by, uint8_t* out) const;  // any thread
+    void compute_ahead(Pair& p);
     bool step();
     bool in_memory(uint64_t address, uint64_t bytes) const;
     uint32_t levels() const;
@@ -70,9 +83,9 @@ private:
     IntcRegisters intc_;
     unsigned sum_bits_;
     fhg::HessianCore core_;
-    std::vector<int32_t> records_;  // one block row's determinant records
     double fill_cycles_;  // an uncontended line fill, in CPU cycles
     uint64_t cycles_ = 0;
+    std::unique_ptr<Worker> worker_;  // with run.parallel; last, so it stops before the rest goes
 };
 
 }  // namespace surfvp
