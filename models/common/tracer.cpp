@@ -2,6 +2,7 @@
 
 #include "atomic_file.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fmt/format.h>
@@ -100,7 +101,7 @@ int Tracer::track(const std::string& group, const std::string& name) {
     if (!perfetto_on()) return -1;
     const int pid = group_id(group);
     const int tid = static_cast<int>(tracks_.size()) + 1;
-    tracks_.push_back({pid, tid});
+    tracks_.push_back({pid, tid, {}});
     event_separator();
     perfetto_ << fmt::format(R"({{"ph":"M","name":"thread_name","pid":{},"tid":{},"args":{{"name":{}}}}})", pid, tid,
                              json_string(name));
@@ -122,6 +123,11 @@ void Tracer::slice(int track, std::string_view name, const sc_core::sc_time& sta
 
 void Tracer::counter(int track, std::string_view name, const sc_core::sc_time& at, double value) {
     if (!perfetto_on() || track < 0) return;
+    auto& counters = tracks_[track].counters;
+    auto last = std::find_if(counters.begin(), counters.end(), [&](const auto& c) { return c.first == name; });
+    if (last == counters.end()) counters.emplace_back(std::string(name), value);
+    else if (last->second == value) return;
+    else last->second = value;
     event_separator();
     perfetto_ << fmt::format(R"({{"ph":"C","name":{},"pid":{},"ts":{},"args":{{"value":{}}}}})", json_string(name),
                              tracks_[track].pid, micros(at), value);

@@ -49,6 +49,8 @@ public:
     // trace-event format). Returns the track's id for slice() and counter().
     int track(const std::string& group, const std::string& name);
     void slice(int track, std::string_view name, const sc_core::sc_time& start, const sc_core::sc_time& end);
+    // A counter holds its value until the next sample, so a sample that repeats it is not
+    // written (the models sample their levels at every event, most of them unchanged).
     void counter(int track, std::string_view name, const sc_core::sc_time& at, double value);
 
     // Closes the files and gives them their final names, with the VCD's GTKWave save file
@@ -59,6 +61,7 @@ private:
     struct Track {
         int pid;
         int tid;
+        std::vector<std::pair<std::string, double>> counters;  // each counter's last value written
     };
     void event_separator();
     int group_id(const std::string& group);
