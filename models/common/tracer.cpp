@@ -19,23 +19,28 @@ namespace {
 std::string vcd_temp() { return fmt::format("trace.vcd.{}.partial", ::getpid()); }
 std::string perfetto_temp() { return fmt::format("trace.perfetto.json.{}.partial", ::getpid()); }
 
+// Perfetto's events are formatted into a buffer (no string per event: the timeline writer is
+// on every transaction's path when tracing is on) and written to the file in large pieces.
+constexpr size_t kFlushBytes = 1 << 20;
+
 // Trace-event timestamps are microseconds; the simulator resolves picoseconds.
-std::string micros(const sc_core::sc_time& t) {
+void put_micros(fmt::memory_buffer& out, const sc_core::sc_time& t) {
     const auto ps = t.value();
-    return fmt::format("{}.{:06}", ps / 1000000, ps % 1000000);
+    fmt::format_to(std::back_inserter(out), "{}.{:06}", ps / 1000000, ps % 1000000);
 }
 
-// Event names are short and mostly plain: escape them here rather than build a JSON value
-// per event (the timeline writer is on every transaction's path when tracing is on).
-std::string json_string(std::string_view text) {
-    std::string out = "\"";
+// Event names are short and mostly plain: escaped here rather than through a JSON value.
+void put_json_string(fmt::memory_buffer& out, std::string_view text) {
+    out.push_back('"');
     for (char c : text) {
-        if (c == '"' || c == '\\') out += '\\';
-        if (static_cast<unsigned char>(c) < 0x20) out += fmt::format("\\u{:04x}", unsigned(c));
-        else out += c;
+        if (c == '"' || c == '\\') out.push_back('\\');
+        if (static_cast<unsigned char>(c) < 0x20) fmt::format_to(std::back_inserter(out), "\\u{:04x}", unsigned(c));
+        else out.push_back(c);
     }
-    return out + "\"";
+    out.push_back('"');
 }
+
+void put(fmt::memory_buffer& out, std::string_view text) { out.append(text.data(), text.data() + text.size()); }
 
 // SystemC's VCD writer does not report failed writes; a complete file ends with the run's
 // end time ("#<ps>"), which a file cut short by a full disk lacks.
@@ -79,8 +84,15 @@ Tracer::~Tracer() {
 }
 
 void Tracer::event_separator() {
-    perfetto_ << (first_event_ ? "\n" : ",\n");
+    if (events_.size() >= kFlushBytes) flush_events();
+    put(events_, first_event_ ? "\n" : ",\n");
     first_event_ = false;
+}
+
+// Through the stream, so that a failed stream (a full disk) only stops taking data.
+void Tracer::flush_events() {
+    perfetto_.write(events_.data(), std::streamsize(events_.size()));
+    events_.clear();
 }
 
 int Tracer::group_id(const std::string& group) {
@@ -88,12 +100,13 @@ int Tracer::group_id(const std::string& group) {
         if (groups_[i] == group) return static_cast<int>(i) + 1;
     groups_.push_back(group);
     const int pid = static_cast<int>(groups_.size());
+    auto out = std::back_inserter(events_);
     event_separator();
-    perfetto_ << fmt::format(R"({{"ph":"M","name":"process_name","pid":{},"tid":0,"args":{{"name":{}}}}})", pid,
-                             json_string(group));
+    fmt::format_to(out, R"({{"ph":"M","name":"process_name","pid":{},"tid":0,"args":{{"name":)", pid);
+    put_json_string(events_, group);
+    put(events_, "}}");
     event_separator();
-    perfetto_ << fmt::format(R"({{"ph":"M","name":"process_sort_index","pid":{},"tid":0,"args":{{"sort_index":{}}}}})",
-                             pid, pid);
+    fmt::format_to(out, R"({{"ph":"M","name":"process_sort_index","pid":{},"tid":0,"args":{{"sort_index":{}}}}})", pid, pid);
     return pid;
 }
 
@@ -102,12 +115,14 @@ int Tracer::track(const std::string& group, const std::string& name) {
     const int pid = group_id(group);
     const int tid = static_cast<int>(tracks_.size()) + 1;
     tracks_.push_back({pid, tid, {}});
+    auto out = std::back_inserter(events_);
     event_separator();
-    perfetto_ << fmt::format(R"({{"ph":"M","name":"thread_name","pid":{},"tid":{},"args":{{"name":{}}}}})", pid, tid,
-                             json_string(name));
+    fmt::format_to(out, R"({{"ph":"M","name":"thread_name","pid":{},"tid":{},"args":{{"name":)", pid, tid);
+    put_json_string(events_, name);
+    put(events_, "}}");
     event_separator();
-    perfetto_ << fmt::format(R"({{"ph":"M","name":"thread_sort_index","pid":{},"tid":{},"args":{{"sort_index":{}}}}})",
-                             pid, tid, tid);
+    fmt::format_to(out, R"({{"ph":"M","name":"thread_sort_index","pid":{},"tid":{},"args":{{"sort_index":{}}}}})", pid, tid,
+                   tid);
     return static_cast<int>(tracks_.size()) - 1;
 }
 
@@ -115,10 +130,13 @@ void Tracer::slice(int track, std::string_view name, const sc_core::sc_time& sta
     if (!perfetto_on() || track < 0) return;
     const Track& t = tracks_[track];
     event_separator();
-    // Formatted into a string and written through the stream, so that a failed stream (a full
-    // disk) only stops taking data: writing into its buffer directly would run past its end.
-    perfetto_ << fmt::format(R"({{"ph":"X","name":{},"pid":{},"tid":{},"ts":{},"dur":{}}})", json_string(name), t.pid, t.tid,
-                             micros(start), micros(end - start));
+    put(events_, R"({"ph":"X","name":)");
+    put_json_string(events_, name);
+    fmt::format_to(std::back_inserter(events_), R"(,"pid":{},"tid":{},"ts":)", t.pid, t.tid);
+    put_micros(events_, start);
+    put(events_, R"(,"dur":)");
+    put_micros(events_, end - start);
+    put(events_, "}");
 }
 
 void Tracer::counter(int track, std::string_view name, const sc_core::sc_time& at, double value) {
@@ -129,8 +147,11 @@ void Tracer::counter(int track, std::string_view name, const sc_core::sc_time& a
     else if (last->second == value) return;
     else last->second = value;
     event_separator();
-    perfetto_ << fmt::format(R"({{"ph":"C","name":{},"pid":{},"ts":{},"args":{{"value":{}}}}})", json_string(name),
-                             tracks_[track].pid, micros(at), value);
+    put(events_, R"({"ph":"C","name":)");
+    put_json_string(events_, name);
+    fmt::format_to(std::back_inserter(events_), R"(,"pid":{},"ts":)", tracks_[track].pid);
+    put_micros(events_, at);
+    fmt::format_to(std::back_inserter(events_), R"(,"args":{{"value":{}}}}})", value);
 }
 
 std::vector<std::string> Tracer::write_gtkwave_save(const fs::path& dir) {
@@ -158,6 +179,7 @@ std::vector<std::string> Tracer::finish() {
         for (const std::string& f : write_gtkwave_save(dir)) written.push_back(f);
     }
     if (perfetto_.is_open()) {
+        flush_events();
         perfetto_ << "\n]}\n";
         perfetto_.close();
         if (!perfetto_) {

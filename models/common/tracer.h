@@ -9,6 +9,7 @@
 #include <fstream>
 #include <string>
 #include <string_view>
+#include <fmt/format.h>
 #include <systemc>
 #include <type_traits>
 #include <utility>
@@ -63,7 +64,8 @@ private:
         int tid;
         std::vector<std::pair<std::string, double>> counters;  // each counter's last value written
     };
-    void event_separator();
+    void event_separator();  // before each event; writes out what has gathered
+    void flush_events();
     int group_id(const std::string& group);
 
     std::vector<std::string> write_gtkwave_save(const std::filesystem::path& dir);
@@ -73,6 +75,7 @@ private:
     std::vector<VcdSignal> vcd_signals_;
     std::vector<std::pair<std::string, std::string>> titles_;
     std::ofstream perfetto_;
+    fmt::memory_buffer events_;  // formatted events not yet written
     std::vector<std::string> groups_;
     std::vector<Track> tracks_;
     bool first_event_ = true;
