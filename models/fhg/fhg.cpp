@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <fmt/format.h>
 
+#include "block_row.h"
 #include "fhg_regs.h"
 #include "models/common/byte_order.h"
 #include "models/common/clock.h"
@@ -187,13 +188,7 @@ void Fhg::send_line(int y, const uint32_t* data, int width, const sc_time& trans
 // before the row began) and writes only `records`, so it may run beside the kernel.
 std::vector<fhg::Candidate> Fhg::compute_block_row(int by, uint8_t* row) {
     const IntegralView view{lines_.data(), int(frame_.width), int(frame_.height), frame_.width};
-    thread_local std::vector<int32_t> records;
-    records.resize(size_t(frame_.blocks_x) * fhg::kDeterminantsPerBlock);
-    core_.block_row(view, by, records.data());
-    r::store_dets(row, records.data(), records.size(), det_bytes());
-    std::vector<fhg::Candidate> found;
-    fhg::LocalMaxFinder(frame_.threshold).block_row(records.data(), int(frame_.blocks_x), by, found);
-    return found;
+    return fhg::block_row(core_, view, by, frame_.threshold, det_bytes(), row);
 }
 
 int Fhg::needed_line(uint32_t by) const { return std::min(int(frame_.height) - 1, int(2 * by) + fhg::kReachAfter); }

@@ -9,7 +9,7 @@
 #include "platform/address_map.h"
 #include "models/common/byte_order.h"
 #include "models/fhg/fhg_regs.h"
-#include "models/fhg/local_max_finder.h"
+#include "models/fhg/block_row.h"
 #include "models/iig/iig_regs.h"
 #include "models/iig/integral_core.h"
 #include "models/intc/intc_regs.h"
@@ -178,14 +178,7 @@ uint32_t DirectChip::row_bytes(const Pair& p) const {
 std::vector<fhg::Candidate> DirectChip::compute_row(const Pair& p, uint32_t by, uint8_t* out) const {
     const FhgRegisters::Frame& h = p.determinants;
     const IntegralView view{p.lines.data(), int(h.width), int(h.height), h.width};
-    const uint32_t blocks_x = (h.width + 1) / 2;
-    thread_local std::vector<int32_t> records;
-    records.resize(size_t(blocks_x) * fhg::kDeterminantsPerBlock);
-    core_.block_row(view, int(by), records.data());
-    f::store_dets(out, records.data(), records.size(), f::det_bytes_for(core_.precision().det_bits));
-    std::vector<fhg::Candidate> found;
-    fhg::LocalMaxFinder(h.threshold).block_row(records.data(), int(blocks_x), int(by), found);
-    return found;
+    return fhg::block_row(core_, view, int(by), h.threshold, f::det_bytes_for(core_.precision().det_bits), out);
 }
 
 // With run.parallel every block row of the frame goes to the worker as soon as the integral
