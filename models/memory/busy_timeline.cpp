@@ -29,16 +29,31 @@ uint64_t BusyTimeline::reserve(uint64_t request, uint64_t length) {
     } else if (joins_after) {
         next->start = start;
     } else {
-        busy_.insert(next, Interval{start, end});
+        insert(next, Interval{start, end});
     }
     return start;
 }
 
+// Moves whichever side of the insertion point is shorter: the intervals before it into a dead
+// slot, or those after it. Requests at the kernel's time land near the front of the live
+// intervals while the CPU's fills reserved ahead of time fill the back (hundreds of them), so
+// the front side is usually the short one.
+void BusyTimeline::insert(std::vector<Interval>::iterator before, const Interval& interval) {
+    const size_t at = size_t(before - busy_.begin());
+    if (first_ > 0 && at - first_ < busy_.size() - at) {
+        std::move(busy_.begin() + std::ptrdiff_t(first_), before, busy_.begin() + std::ptrdiff_t(first_ - 1));
+        --first_;
+        busy_[at - 1] = interval;
+    } else {
+        busy_.insert(before, interval);
+    }
+}
+
 void BusyTimeline::forget_before(uint64_t time) {
     while (first_ < busy_.size() && busy_[first_].end <= time) ++first_;
-    if (first_ > 64 && first_ * 2 > busy_.size()) {
-        busy_.erase(busy_.begin(), busy_.begin() + std::ptrdiff_t(first_));
-        first_ = 0;
+    if (first_ > 2 * kSpare && first_ * 2 > busy_.size()) {  // compacted, keeping kSpare dead slots for insert()
+        busy_.erase(busy_.begin(), busy_.begin() + std::ptrdiff_t(first_ - kSpare));
+        first_ = kSpare;
     }
 }
 

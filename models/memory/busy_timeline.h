@@ -24,9 +24,12 @@ private:
     struct Interval {
         uint64_t start, end;
     };
+    static constexpr size_t kSpare = 64;  // dead slots compaction leaves before the live ones
+    void insert(std::vector<Interval>::iterator before, const Interval& interval);
     // Sorted by start; disjoint, never touching. A sorted vector, not a map: nearly every
     // reservation lands at the end, forgetting takes from the front (slots before first_
-    // are dead and compacted now and then), and no node is allocated per transaction.
+    // are dead and compacted now and then), and no node is allocated per transaction. An
+    // insertion in the middle moves the shorter side (insert()).
     std::vector<Interval> busy_;
     size_t first_ = 0;
 };
