@@ -5,7 +5,9 @@
 // (byte i of the array is the byte at address + i), so a memory-to-memory copy is a plain
 // byte copy and needs no swapping. Only code that turns bytes into numbers (register
 // slaves, the CPU stub's MMIO and word accesses) converts, through these helpers.
+#include <cstddef>
 #include <cstdint>
+#include <cstring>
 
 namespace surfvp {
 
@@ -18,6 +20,16 @@ inline void store_be32(uint8_t* p, uint32_t v) {
     p[1] = uint8_t(v >> 16);
     p[2] = uint8_t(v >> 8);
     p[3] = uint8_t(v);
+}
+
+// `count` words stored from `p` on: whole-word byte swaps, which the compiler vectorises (a
+// loop of store_be32's byte stores it does not).
+inline void store_be32_run(uint8_t* p, const uint32_t* words, size_t count) {
+    for (size_t k = 0; k < count; ++k) {
+        uint32_t word = words[k];
+        if constexpr (__BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__) word = __builtin_bswap32(word);
+        std::memcpy(p + 4 * k, &word, 4);
+    }
 }
 
 inline uint16_t load_be16(const uint8_t* p) { return uint16_t(p[0] << 8 | p[1]); }

@@ -2,7 +2,6 @@
 // SSA FHG registers and the determinant buffer's layout: the contract between the model
 // and libSSA2. 32-bit registers, big-endian on the bus (models/common/byte_order.h).
 #include <cstdint>
-#include <cstring>
 
 #include "models/common/byte_order.h"
 #include "models/common/register_bank.h"
@@ -101,18 +100,10 @@ inline void store_det(uint8_t* p, int32_t value, uint32_t det_bytes) {
     else p[0] = uint8_t(value);
 }
 
-// A run of determinants as the writer stores them; 4-byte words as whole-word byte swaps, which
-// the compiler vectorises (store_be32's byte stores it does not).
+// A run of determinants as the writer stores them.
 inline void store_dets(uint8_t* p, const int32_t* values, size_t count, uint32_t det_bytes) {
-    if (det_bytes != 4) {
-        for (size_t k = 0; k < count; ++k) store_det(p + det_bytes * k, values[k], det_bytes);
-        return;
-    }
-    for (size_t k = 0; k < count; ++k) {
-        uint32_t word = uint32_t(values[k]);
-        if constexpr (__BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__) word = __builtin_bswap32(word);
-        std::memcpy(p + 4 * k, &word, 4);
-    }
+    if (det_bytes == 4) return store_be32_run(p, reinterpret_cast<const uint32_t*>(values), count);  // signed/unsigned may alias
+    for (size_t k = 0; k < count; ++k) store_det(p + det_bytes * k, values[k], det_bytes);
 }
 
 inline int32_t load_det(const uint8_t* p, uint32_t det_bytes) {

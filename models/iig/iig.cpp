@@ -129,7 +129,7 @@ void Iig::write_thread() {
         computed_for_write_.read(y);  // read(T&): the returning read() trips -Wmaybe-uninitialized in sc_fifo.h
         if (!frame_.failed) {
             const uint32_t* row = integral_.data() + size_t(y) * frame_.width;
-            for (uint32_t x = 0; x < frame_.width; ++x) store_be32(bytes_.data() + 4 * x, row[x]);
+            store_be32_run(bytes_.data(), row, frame_.width);
             if (!dma.write(frame_.dst + uint64_t(y) * frame_.dst_stride, bytes_.data(), bytes_.size()).ok)
                 fail(iig::ERR_WRITE);
         }

@@ -161,11 +161,11 @@ void DirectChip::run_integral(Pair& p) {
         if (!integral_core.row(memory_.get() + i.src + size_t(y) * i.src_stride, above, &integral[size_t(y) * i.width], int(i.width)))
             return p.iig.end(true, iig::ERR_OVERFLOW, 0);
         uint8_t* out = memory_.get() + i.dst + size_t(y) * i.dst_stride;
-        for (uint32_t x = 0; x < i.width; ++x) store_be32(out + 4 * x, integral[size_t(y) * i.width + x]);
+        store_be32_run(out, &integral[size_t(y) * i.width], i.width);
     }
     if (i.stream && p.fhg.status().busy()) {
         if (p.determinants.width != i.width || p.determinants.height != i.height) p.fhg.status().end(true, f::ERR_PIXELBUS);
-        else p.lines = std::move(integral), compute_ahead(p);
+        else p.stop_listening(), p.lines = std::move(integral), compute_ahead(p);  // (a second stream replaces the first)
     }
     p.iig.end(false, iig::ERR_NONE, 0);  // no time, so no back-pressure: STALL_CYCLES 0
 }
@@ -181,18 +181,19 @@ std::vector<fhg::Candidate> DirectChip::compute_row(const Pair& p, uint32_t by, 
     return fhg::block_row(core_, view, int(by), h.threshold, f::det_bytes_for(core_.precision().det_bits), out);
 }
 
-// With run.parallel every block row of the frame goes to the worker as soon as the integral
-// image is known, while the software goes on with the frame before; block_row() takes them
-// in turn (the same bytes, computed earlier).
+// With run.parallel the frame's block rows from the next one on go to the worker as soon as
+// the integral image is known, while the software goes on with the frame before; block_row()
+// takes them in turn (the same bytes, computed earlier).
 void DirectChip::compute_ahead(Pair& p) {
     if (!worker_) return;
     const uint32_t blocks_y = (p.determinants.height + 1) / 2;
     const size_t bytes = row_bytes(p);
     p.rows.resize(bytes * blocks_y);
     p.found.assign(blocks_y, {});
-    for (uint32_t by = 0; by < blocks_y; ++by) {
+    p.first_row = p.next_row;
+    for (uint32_t by = p.first_row; by < blocks_y; ++by) {
         const size_t job = worker_->submit([this, &p, by, bytes] { p.found[by] = compute_row(p, by, p.rows.data() + by * bytes); });
-        if (by == 0) p.first_job = job;
+        if (by == p.first_row) p.first_job = job;
     }
     p.ahead = true;
 }
@@ -206,7 +207,7 @@ uint32_t DirectChip::block_row(Pair& p) {
     if (!in_memory(at, bytes)) return f::ERR_WRITE;
     std::vector<fhg::Candidate> found;
     if (p.ahead) {
-        worker_->wait(p.first_job + by);
+        worker_->wait(p.first_job + (by - p.first_row));
         std::memcpy(memory_.get() + at, p.rows.data() + by * bytes, bytes);
         found = std::move(p.found[by]);
     } else {

@@ -51,7 +51,7 @@ private:
     // One IIG + FHG pair: their registers, and the frame each has taken.
     struct Pair {
         Pair(DirectChip& chip, const IigRegisters::Limits& iig, const FhgRegisters::Limits& fhg);
-        void stop_listening();  // the FHG's frame is over: its integral lines go
+        void stop_listening();  // the FHG's integral lines go (the frame is over, or a new stream replaces them)
         DirectChip& chip;
         IigRegisters iig;
         FhgRegisters fhg;
@@ -60,10 +60,11 @@ private:
         std::vector<uint32_t> lines;  // the integral image streamed to the FHG
         uint32_t next_row = 0;        // the FHG's next block row; its frame has work while BUSY
         // Rows computed ahead on the worker (run.parallel): stored determinants and maxima;
-        // row r is job first_job + r.
+        // row r (from first_row on) is job first_job + r - first_row.
         bool ahead = false;
         std::vector<uint8_t> rows;
         std::vector<std::vector<fhg::Candidate>> found;
+        uint32_t first_row = 0;
         size_t first_job = 0;
     };
 
