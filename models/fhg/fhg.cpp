@@ -101,12 +101,11 @@ void Fhg::start(const FhgRegisters::Frame& f) {
               0, 0, 0, sc_core::sc_time_stamp()};
     lines_.assign(size_t(f.width) * f.height, 0);
     // Every row is written whole before the writer sends it: no need to clear.
-    const size_t row_bytes = size_t(frame_.blocks_x) * r::record_bytes(det_bytes());
     if (worker_) {
-        ahead_rows_.resize(row_bytes * frame_.blocks_y);
+        ahead_rows_.resize(size_t(r::buffer_bytes(f.width, f.height, det_bytes())));
         ahead_found_.assign(frame_.blocks_y, {});
     } else {
-        for (auto& slot : slots_) slot.resize(row_bytes);
+        for (auto& slot : slots_) slot.resize(r::row_bytes(f.width, det_bytes()));
     }
     busy_.write(true);
     faults_.irq_lost = false;
@@ -185,7 +184,7 @@ void Fhg::send_line(int y, const uint32_t* data, int width, const sc_time& trans
 }
 
 // The row's determinants and marked maxima: reads only lines_ up to the row's reach (received
-// before the row began) and writes only `records`, so it may run beside the kernel.
+// before the row began) and writes only `row`, so it may run beside the kernel.
 std::vector<fhg::Candidate> Fhg::compute_block_row(int by, uint8_t* row) {
     const IntegralView view{lines_.data(), int(frame_.width), int(frame_.height), frame_.width};
     return fhg::block_row(core_, view, by, frame_.threshold, det_bytes(), row);
@@ -205,7 +204,7 @@ void Fhg::queue_ready_rows() {
 
 uint8_t* Fhg::row_bytes(uint32_t by) {
     if (!worker_) return slots_[by % slots_.size()].data();
-    return ahead_rows_.data() + size_t(by) * frame_.blocks_x * r::record_bytes(det_bytes());
+    return ahead_rows_.data() + size_t(by) * r::row_bytes(frame_.width, det_bytes());
 }
 
 // Row `by`'s marked maxima, its determinants at row_bytes(by): the worker's, once it has done
@@ -273,7 +272,7 @@ void Fhg::writer_thread() {
         int by = 0;
         det_rows_.read(by);  // read(T&): the returning read() trips -Wmaybe-uninitialized in sc_fifo.h
         if (!frame_.failed) {
-            const uint32_t n = det_bytes(), bytes = frame_.blocks_x * r::record_bytes(n);
+            const uint32_t n = det_bytes(), bytes = r::row_bytes(frame_.width, n);
             uint8_t* row = row_bytes(uint32_t(by));  // nothing reads it after this write
             if (corruption_.row == by) {
                 uint8_t* det = row + n * corruption_.index;

@@ -93,6 +93,11 @@ inline const RegisterTable& table() {
 constexpr uint32_t kDeterminantsPerRecord = 18;
 constexpr uint32_t det_bytes_for(unsigned det_bits) { return det_bits <= 8 ? 1 : det_bits <= 16 ? 2 : 4; }
 constexpr uint32_t record_bytes(uint32_t det_bytes) { return kDeterminantsPerRecord * det_bytes; }
+// One block row of records (a frame `width` pixels wide), and a whole frame's buffer.
+constexpr uint32_t row_bytes(uint32_t width, uint32_t det_bytes) { return (width + 1) / 2 * record_bytes(det_bytes); }
+constexpr uint64_t buffer_bytes(uint32_t width, uint32_t height, uint32_t det_bytes) {
+    return uint64_t(row_bytes(width, det_bytes)) * ((height + 1) / 2);
+}
 
 inline void store_det(uint8_t* p, int32_t value, uint32_t det_bytes) {
     if (det_bytes == 4) store_be32(p, uint32_t(value));

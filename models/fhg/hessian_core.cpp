@@ -66,6 +66,7 @@ HessianCore::Factors factor(const std::vector<Read>& reads, Response response, i
     };
     for (const Read& r : own) {
         if (std::find(f.dx.begin(), f.dx.begin() + f.taps, r.dx) != f.dx.begin() + f.taps) continue;
+        if (weight_of(r.dy) == 0) throw std::logic_error("filter " + std::to_string(size) + " does not factor");
         const int tap = r.coefficient / weight_of(r.dy);
         int group = 0;
         for (const Read& g : own)
@@ -192,7 +193,8 @@ void weigh(uint32_t* out, const Terms& t, int n, int step) {
             out[k] = w0 * s0[k * step] + w1 * s1[k * step] + w2 * s2[k * step] + w3 * s3[k * step];
 }
 
-// `count` terms (up to 4) of `what`'s rows or taps; the missing ones read the first, times 0.
+// `count` terms (up to 4), each a source (nullptr: a zero row) and its weight; the missing and
+// zero ones read a present source, times 0.
 template <class Source>
 Terms terms(int count, const std::array<int, 4>& weight, Source source) {
     Terms t{};

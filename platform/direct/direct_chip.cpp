@@ -1,7 +1,6 @@
 #include "platform/direct/direct_chip.h"
 
 #include <cmath>
-#include <cstdlib>
 #include <cstring>
 #include <fmt/format.h>
 #include <stdexcept>
@@ -165,13 +164,17 @@ void DirectChip::run_integral(Pair& p) {
     }
     if (i.stream && p.fhg.status().busy()) {
         if (p.determinants.width != i.width || p.determinants.height != i.height) p.fhg.status().end(true, f::ERR_PIXELBUS);
-        else p.stop_listening(), p.lines = std::move(integral), compute_ahead(p);  // (a second stream replaces the first)
+        else {
+            p.stop_listening();  // a second stream replaces the first
+            p.lines = std::move(integral);
+            compute_ahead(p);
+        }
     }
     p.iig.end(false, iig::ERR_NONE, 0);  // no time, so no back-pressure: STALL_CYCLES 0
 }
 
 uint32_t DirectChip::row_bytes(const Pair& p) const {
-    return (p.determinants.width + 1) / 2 * f::record_bytes(f::det_bytes_for(core_.precision().det_bits));
+    return f::row_bytes(p.determinants.width, f::det_bytes_for(core_.precision().det_bits));
 }
 
 // Block row `by`'s determinants stored into `out` as the FHG writes them, and its marked maxima.

@@ -56,7 +56,7 @@ public:
     void frame(const sw::FrameBuffers& b, const sw::StageParams& p) {
         flush();
         namespace dump = sw::calibration_dump;
-        const size_t det_bytes = size_t((b.width + 1) / 2) * ((b.height + 1) / 2) * fhg_regs::record_bytes(b.det_bytes);
+        const size_t det_bytes = size_t(fhg_regs::buffer_bytes(uint32_t(b.width), uint32_t(b.height), b.det_bytes));
         header_ = {dump::kMagic, uint32_t(b.width), uint32_t(b.height), b.det_frac_bits, b.det_bytes,
                    p.haar == surf::HaarMode::rounded, p.upright, p.threshold, b.integral_address,
                    b.determinants_address, uint32_t(b.integral_stride * b.height), uint32_t(det_bytes), 0};
@@ -112,7 +112,7 @@ public:
             records_ = 0;
         }
         const size_t integral_bytes = size_t(frame.width) * frame.height * 4;
-        const size_t det_bytes = size_t((frame.width + 1) / 2) * ((frame.height + 1) / 2) * fhg_regs::record_bytes(frame.det_bytes);
+        const size_t det_bytes = size_t(fhg_regs::buffer_bytes(uint32_t(frame.width), uint32_t(frame.height), frame.det_bytes));
         const sw::FrameBuffers buffers{hal.map(frame.integral, integral_bytes), frame.integral, size_t(frame.width) * 4,
                                        hal.map(frame.determinants, det_bytes), frame.determinants, frame.width,
                                        frame.height, frame.det_frac_bits, frame.det_bytes};

@@ -47,8 +47,8 @@ Layout layout_for(const Config& c, int width, int height) {
     Layout l{};
     l.image_bytes = round_up(uint64_t(width) * height);
     l.integral_bytes = round_up(uint64_t(width) * height * 4);
-    l.det_bytes = round_up(uint64_t((width + 1) / 2) * ((height + 1) / 2) *
-                           fhg_regs::record_bytes(fhg_regs::det_bytes_for(c.bits("fhg.det_bits"))));
+    const uint32_t det = fhg_regs::det_bytes_for(c.bits("fhg.det_bits"));
+    l.det_bytes = round_up(fhg_regs::buffer_bytes(uint32_t(width), uint32_t(height), det));
     l.slot_bytes = l.image_bytes + l.integral_bytes + l.det_bytes +
                    round_up(uint64_t(sw::ssa2::kRecordRing) * sw::ssa2::kRecordSlot);
     l.slots_base = 0x0010'0000;
