@@ -1,8 +1,35 @@
 #include "models/common/worker.h"
 
+#include <chrono>
 #include <utility>
 
 namespace surfvp {
+namespace {
+
+// How long a side polls before it sleeps: longer than the kernel's thread usually takes
+// between two block rows (tens of microseconds), short enough that an idle worker costs
+// nothing measurable beside another process.
+constexpr auto kSpin = std::chrono::microseconds(200);
+
+void relax() {
+#if defined(__x86_64__) || defined(__i386__)
+    __builtin_ia32_pause();  // stays on the core without a system call
+#else
+    std::this_thread::yield();
+#endif
+}
+
+template <class Ready>
+bool spin_until(Ready ready) {
+    const auto until = std::chrono::steady_clock::now() + kSpin;
+    for (int polls = 0;; ++polls) {
+        if (ready()) return true;
+        if (polls % 64 == 63 && std::chrono::steady_clock::now() > until) return false;
+        relax();
+    }
+}
+
+}  // namespace
 
 Worker::Worker() : thread_([this] { loop(); }) {}
 
@@ -11,20 +38,34 @@ Worker::~Worker() {
         std::lock_guard<std::mutex> lock(mutex_);
         stopping_ = true;
     }
-    changed_.notify_all();
+    work_.notify_one();
     thread_.join();
 }
 
 size_t Worker::submit(std::function<void()> job) {
-    std::lock_guard<std::mutex> lock(mutex_);
-    jobs_.push_back(std::move(job));
-    changed_.notify_all();
-    return submitted_++;
+    bool wake = false;
+    size_t number = 0;
+    {
+        std::lock_guard<std::mutex> lock(mutex_);
+        jobs_.push_back(std::move(job));
+        number = submitted_++;
+        queued_.store(submitted_, std::memory_order_release);
+        wake = worker_sleeps_;
+        worker_sleeps_ = false;
+    }
+    if (wake) work_.notify_one();  // outside the lock: the woken thread does not block on it
+    return number;
 }
 
 void Worker::wait(size_t job) {
-    std::unique_lock<std::mutex> lock(mutex_);
-    changed_.wait(lock, [&] { return done_ > job; });
+    const auto reached = [&] { return finished_.load(std::memory_order_acquire) > job; };
+    if (!reached() && !spin_until(reached)) {
+        std::unique_lock<std::mutex> lock(mutex_);
+        ++waiters_sleeping_;
+        done_.wait(lock, reached);
+        --waiters_sleeping_;
+    }
+    std::lock_guard<std::mutex> lock(mutex_);
     if (failure_) std::rethrow_exception(std::exchange(failure_, nullptr));
 }
 
@@ -37,24 +78,37 @@ void Worker::drain() {
     if (submitted) wait(submitted - 1);
 }
 
-void Worker::loop() {
+bool Worker::next_job(std::function<void()>& job) {
+    const size_t taken = finished_.load(std::memory_order_relaxed);
+    spin_until([&] { return queued_.load(std::memory_order_acquire) > taken; });
     std::unique_lock<std::mutex> lock(mutex_);
-    for (;;) {
-        changed_.wait(lock, [this] { return !jobs_.empty() || stopping_; });
-        if (jobs_.empty()) return;  // stopping with nothing left
-        std::function<void()> job = std::move(jobs_.front());
-        jobs_.pop_front();
-        lock.unlock();
+    while (jobs_.empty() && !stopping_) {
+        worker_sleeps_ = true;
+        work_.wait(lock);
+    }
+    if (jobs_.empty()) return false;
+    job = std::move(jobs_.front());
+    jobs_.pop_front();
+    return true;
+}
+
+void Worker::loop() {
+    std::function<void()> job;
+    while (next_job(job)) {
         try {
             job();
         } catch (...) {
-            lock.lock();
+            std::lock_guard<std::mutex> lock(mutex_);
             if (!failure_) failure_ = std::current_exception();
-            lock.unlock();
         }
-        lock.lock();
-        ++done_;
-        changed_.notify_all();
+        job = nullptr;  // its captures go before the job counts as done
+        bool wake = false;
+        {
+            std::lock_guard<std::mutex> lock(mutex_);
+            finished_.fetch_add(1, std::memory_order_release);
+            wake = waiters_sleeping_ > 0;
+        }
+        if (wake) done_.notify_all();
     }
 }
 

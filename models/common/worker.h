@@ -4,6 +4,12 @@
 // once with the job's number (0, 1, ...), wait(n) blocks until jobs 0..n are done and rethrows
 // what one threw, drain() waits for all. The caller keeps a job's inputs unchanged until it is
 // done and reads its outputs only after waiting for it.
+//
+// The kernel's thread submits a job per FHG block row (thousands a run) and is the simulator's
+// limit, so waking a sleeping thread (a futex call and an inter-processor wake-up, ~15 us on a
+// virtual machine) is what this class avoids: either side spins a short while for the other
+// before it sleeps, and a side wakes the other only when it says it sleeps.
+#include <atomic>
 #include <condition_variable>
 #include <cstddef>
 #include <deque>
@@ -27,11 +33,17 @@ public:
 
 private:
     void loop();
+    bool next_job(std::function<void()>& job);  // false: stopping with nothing left
 
     std::mutex mutex_;
-    std::condition_variable changed_;
+    std::condition_variable work_;  // the worker sleeps on it
+    std::condition_variable done_;  // waiters sleep on it
     std::deque<std::function<void()>> jobs_;
-    size_t submitted_ = 0, done_ = 0;
+    size_t submitted_ = 0;               // under mutex_
+    std::atomic<size_t> queued_{0};      // = submitted_, read by the spinning worker
+    std::atomic<size_t> finished_{0};    // jobs done, read by spinning waiters
+    bool worker_sleeps_ = false;         // under mutex_
+    int waiters_sleeping_ = 0;           // under mutex_
     bool stopping_ = false;
     std::exception_ptr failure_;
     std::thread thread_;  // last: started once the rest exists
