@@ -28,6 +28,7 @@ PlbBus::Params plb_params(const Config& c, const std::string& bus) {
 DdrMemory::Params memory_params(const Config& c) {
     DdrMemory::Params p = DdrMemory::parameter_table().make(c);
     p.series_bin = c.duration("run.series_bin");
+    p.populate_ahead = c.choice("run.parallel") == "on";
     return p;
 }
 MciLink::Params mci_params(const Config& c) { return MciLink::parameter_table().make(c); }

@@ -1,15 +1,9 @@
 #include "models/common/worker.h"
 
-#include <chrono>
 #include <utility>
 
 namespace surfvp {
 namespace {
-
-// How long a side polls before it sleeps: longer than the kernel's thread usually takes
-// between two block rows (tens of microseconds), short enough that an idle worker costs
-// nothing measurable beside another process.
-constexpr auto kSpin = std::chrono::microseconds(200);
 
 void relax() {
 #if defined(__x86_64__) || defined(__i386__)
@@ -19,19 +13,20 @@ void relax() {
 #endif
 }
 
+}  // namespace
+
+Worker::Worker(std::chrono::microseconds spin) : spin_(spin), thread_([this] { loop(); }) {}
+
 template <class Ready>
-bool spin_until(Ready ready) {
-    const auto until = std::chrono::steady_clock::now() + kSpin;
+bool Worker::spin_until(Ready ready) const {
+    if (spin_.count() <= 0) return ready();
+    const auto until = std::chrono::steady_clock::now() + spin_;
     for (int polls = 0;; ++polls) {
         if (ready()) return true;
         if (polls % 64 == 63 && std::chrono::steady_clock::now() > until) return false;
         relax();
     }
 }
-
-}  // namespace
-
-Worker::Worker() : thread_([this] { loop(); }) {}
 
 Worker::~Worker() {
     {

@@ -8,8 +8,11 @@
 // The kernel's thread submits a job per FHG block row (thousands a run) and is the simulator's
 // limit, so waking a sleeping thread (a futex call and an inter-processor wake-up, ~15 us on a
 // virtual machine) is what this class avoids: either side spins a short while for the other
-// before it sleeps, and a side wakes the other only when it says it sleeps.
+// before it sleeps (`spin`: tens of microseconds cover the kernel's thread between two block
+// rows; zero for a worker that is rarely busy), and a side wakes the other only when it says
+// it sleeps.
 #include <atomic>
+#include <chrono>
 #include <condition_variable>
 #include <cstddef>
 #include <deque>
@@ -22,7 +25,7 @@ namespace surfvp {
 
 class Worker {
 public:
-    Worker();
+    explicit Worker(std::chrono::microseconds spin = std::chrono::microseconds(200));
     ~Worker();  // finishes the jobs already submitted
     Worker(const Worker&) = delete;
     Worker& operator=(const Worker&) = delete;
@@ -33,8 +36,11 @@ public:
 
 private:
     void loop();
+    template <class Ready>
+    bool spin_until(Ready ready) const;
     bool next_job(std::function<void()>& job);  // false: stopping with nothing left
 
+    const std::chrono::microseconds spin_;
     std::mutex mutex_;
     std::condition_variable work_;  // the worker sleeps on it
     std::condition_variable done_;  // waiters sleep on it

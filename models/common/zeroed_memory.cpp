@@ -1,5 +1,7 @@
 #include "zeroed_memory.h"
 
+#include <algorithm>
+#include <chrono>
 #include <stdexcept>
 #include <sys/mman.h>
 
@@ -14,6 +16,26 @@ ZeroedMemory zeroed_memory(size_t bytes, const std::string& what) {
     if (p == MAP_FAILED) throw std::runtime_error(what + ": cannot allocate " + std::to_string(bytes) + " bytes");
     madvise(p, bytes, MADV_HUGEPAGE);  // a hint: without transparent huge pages it changes nothing
     return ZeroedMemory(static_cast<uint8_t*>(p), ZeroedMemoryRelease{bytes});
+}
+
+PopulateAhead::PopulateAhead(uint8_t* block, size_t bytes)
+    : block_(block),
+      bytes_(bytes),
+      first_offset_(reinterpret_cast<uintptr_t>(block) & ((uint64_t(1) << kPageShift) - 1)),
+      asked_(page_of(bytes ? bytes - 1 : 0) + 1, false),
+      worker_(std::chrono::microseconds(0)) {}  // asked for a few dozen times a run: no spinning
+
+PopulateAhead::~PopulateAhead() { worker_.drain(); }
+
+void PopulateAhead::ask(size_t page) {
+    asked_[page] = true;
+#ifdef MADV_POPULATE_WRITE
+    const uint64_t begin = page ? (uint64_t(page) << kPageShift) - first_offset_ : 0;
+    const uint64_t end = std::min<uint64_t>((uint64_t(page + 1) << kPageShift) - first_offset_, bytes_);
+    uint8_t* start = block_ + begin;
+    const size_t length = size_t(end - begin);
+    worker_.submit([start, length] { madvise(start, length, MADV_POPULATE_WRITE); });  // a hint: failure is a fault later
+#endif
 }
 
 }  // namespace surfvp

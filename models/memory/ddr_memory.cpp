@@ -16,6 +16,7 @@ DdrMemory::DdrMemory(const sc_core::sc_module_name& name, const Params& params)
     if (params.efficiency <= 0 || params.efficiency > 1)
         throw std::invalid_argument(fmt::format("{}: efficiency must be in (0, 1], not {}", basename(), params.efficiency));
     storage_ = zeroed_memory(params.size.n, basename());
+    if (params.populate_ahead) populate_ = std::make_unique<PopulateAhead>(storage_.get(), params.size.n);
     ports.register_b_transport(this, &DdrMemory::b_transport);
     ports.register_get_direct_mem_ptr(this, &DdrMemory::get_direct_mem_ptr);
     ports.register_transport_dbg(this, &DdrMemory::transport_dbg);
@@ -71,6 +72,7 @@ void DdrMemory::b_transport(int port, tlm::tlm_generic_payload& tx, sc_time& del
     const uint64_t bytes = tx.get_data_length();
     PortStats& s = stats(port);
     if (tx.is_write()) {
+        if (populate_) populate_->writing(tx.get_address(), bytes);
         std::memcpy(cell, tx.get_data_ptr(), bytes);
         ++s.writes;
         s.bytes_written += bytes;

@@ -39,6 +39,7 @@ public:
         unsigned latency_cycles = 25;       // a read's, before the first data
         unsigned write_latency_cycles = 0;  // a write's, as its master sees it (posted)
         Duration series_bin{1'000'000'000};  // report.html's time bins (the wiring's run.series_bin)
+        bool populate_ahead = true;  // written pages faulted in on a second thread (the wiring's run.parallel)
     };
     // Its scenario parameters with the Params field each sets (ddr_memory_params.cpp).
     static const ParamTable<Params>& parameter_table();
@@ -84,6 +85,7 @@ private:
 
     Params params_;
     ZeroedMemory storage_;
+    std::unique_ptr<PopulateAhead> populate_;  // with Params::populate_ahead; goes before storage_
     std::vector<PortStats> port_stats_;
     BusyTimeline dram_;
     sc_core::sc_time busy_;

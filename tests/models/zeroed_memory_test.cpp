@@ -1,0 +1,45 @@
+// The modelled memories' block: zero-filled, and pages faulted in ahead of the writes on a
+// second thread without a byte of them changing.
+#include <gtest/gtest.h>
+
+#include <cstdint>
+#include <sys/mman.h>
+#include <unistd.h>
+
+#include "models/common/zeroed_memory.h"
+
+namespace surfvp {
+namespace {
+
+constexpr size_t kHuge = size_t(1) << 21;
+
+bool resident(const uint8_t* p) {
+    const size_t page = size_t(sysconf(_SC_PAGESIZE));
+    unsigned char state = 0;
+    const auto start = reinterpret_cast<uintptr_t>(p) & ~(page - 1);
+    EXPECT_EQ(mincore(reinterpret_cast<void*>(start), page, &state), 0);
+    return state & 1;
+}
+
+TEST(PopulateAhead, AWriteFaultsInTheNextTwoMegabytesAndNoFurtherWithTheirBytesUnchanged) {
+    const size_t bytes = 8 * kHuge;
+    ZeroedMemory block = zeroed_memory(bytes, "test block");
+    uint8_t* p = block.get();
+    // The first 2 MB boundary inside the block: the written page ends there, the next begins.
+    const size_t boundary = kHuge - (reinterpret_cast<uintptr_t>(p) & (kHuge - 1));
+    ASSERT_FALSE(resident(p + boundary + 4096));
+    {
+        PopulateAhead ahead(p, bytes);
+        p[0] = 7;
+        ahead.writing(0, 1);
+    }  // waits for the page asked for
+#ifdef MADV_POPULATE_WRITE
+    EXPECT_TRUE(resident(p + boundary + 4096));
+#endif
+    EXPECT_FALSE(resident(p + boundary + kHuge + 4096));  // one page ahead, not more
+    EXPECT_EQ(p[0], 7);
+    for (size_t i = boundary; i < boundary + kHuge && i < bytes; i += 4096) ASSERT_EQ(p[i], 0) << i;
+}
+
+}  // namespace
+}  // namespace surfvp
