@@ -15,6 +15,25 @@ unsigned log2_of(uint64_t v) {
     return s;
 }
 
+// The way holding `line` among `ways` distinct tags, or -1. Without an early exit, so that it
+// vectorises: at most one way matches, so the sum of (way + 1) over matches is that way + 1.
+__attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
+int find_way(const uint32_t* tags, uint32_t ways, uint32_t line) {
+    uint32_t match = 0;
+    for (uint32_t w = 0; w < ways; ++w) match += tags[w] == line ? w + 1 : 0;
+    return int(match) - 1;
+}
+
+// The way with the smallest stamp among `ways` distinct ones (the least recently used).
+__attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
+uint32_t oldest_way(const uint64_t* stamps, uint32_t ways) {
+    uint64_t least = ~uint64_t(0);
+    for (uint32_t w = 0; w < ways; ++w) least = std::min(least, stamps[w]);
+    uint32_t way = 0;
+    for (uint32_t w = 0; w < ways; ++w) way += stamps[w] == least ? w : 0;
+    return way;
+}
+
 }  // namespace
 
 CacheModel::CacheModel(const CacheParams& params) : params_(params) {
@@ -26,12 +45,14 @@ CacheModel::CacheModel(const CacheParams& params) : params_(params) {
     sets_ = uint32_t(params.size_bytes / set_bytes);
     if (!power_of_two(sets_)) throw std::invalid_argument("cache: the number of sets must be a power of two");
     line_shift_ = log2_of(params.line_bytes);
-    lines_.assign(size_t(sets_) * params.ways, 0);
+    lines_.assign(size_t(sets_) * params.ways, kNoLine);
+    use_.assign(lines_.size(), 0);
     filled_.assign(sets_, 0);
     victim_.assign(sets_, 0);
 }
 
 void CacheModel::invalidate() {
+    std::fill(lines_.begin(), lines_.end(), kNoLine);
     std::fill(filled_.begin(), filled_.end(), 0);
     std::fill(victim_.begin(), victim_.end(), 0);
     last_valid_ = false;
@@ -64,21 +85,23 @@ bool CacheModel::touch(uint32_t line) {
     return params_.replacement == Replacement::lru ? touch_lru(set, line) : touch_round_robin(set, line);
 }
 
-// Slots [0, filled) in recency order; a hit moves the line to the front, a miss inserts it
-// at the front and, in a full set, drops the last (least recently used) one.
+// A hit stamps its way; a miss fills the next free way or, in a full set, replaces the least
+// recently used one.
 bool CacheModel::touch_lru(uint32_t set, uint32_t line) {
-    uint32_t* slot = lines_.data() + size_t(set) * params_.ways;
-    uint32_t& filled = filled_[set];
-    uint32_t* end = slot + filled;
-    uint32_t* found = std::find(slot, end, line);
-    const bool hit = found != end;
-    if (!hit) {
-        if (filled < params_.ways) ++filled;
-        found = slot + filled - 1;  // the victim: the free slot, or the least recent
+    const size_t first = size_t(set) * params_.ways;
+    uint32_t* tags = lines_.data() + first;
+    uint64_t* stamps = use_.data() + first;
+    const int found = find_way(tags, params_.ways, line);
+    ++clock_;
+    if (found >= 0) {
+        stamps[found] = clock_;
+        return true;
     }
-    std::copy_backward(slot, found, found + 1);
-    slot[0] = line;
-    return hit;
+    uint32_t& filled = filled_[set];
+    const uint32_t victim = filled < params_.ways ? filled++ : oldest_way(stamps, params_.ways);
+    tags[victim] = line;
+    stamps[victim] = clock_;
+    return false;
 }
 
 // Hits change nothing; a miss fills way victim_[set] and advances it (PPC440x5 §4.1.1).

@@ -55,9 +55,15 @@ private:
     CacheParams params_;
     uint32_t sets_ = 0;
     unsigned line_shift_ = 0;
-    // Per set, `ways` line numbers. LRU: the first `filled_[set]` slots in recency order,
-    // most recent first. Round-robin: slot w holds way w; victim_[set] is the next to fill.
+    // Per set, `ways` line numbers (kNoLine in a way never filled since the last invalidate)
+    // and the ways filled so far. LRU: use_[way] is the clock at the way's last touch, so the
+    // least recently used way has the smallest (a hit writes one stamp instead of moving the
+    // set's recency order: the Haar wavelets' rows share sets and hit deep in it). Round-robin:
+    // victim_[set] is the next way to fill.
+    static constexpr uint32_t kNoLine = ~uint32_t(0);  // above any line number (address >> 5)
     std::vector<uint32_t> lines_;
+    std::vector<uint64_t> use_;
+    uint64_t clock_ = 0;
     std::vector<uint32_t> filled_;
     std::vector<uint32_t> victim_;
     uint32_t last_line_ = 0;  // fast path: the line touched last is a hit without any change

@@ -2,7 +2,10 @@
 // 64 ways, so 16 sets and a set index from address bits 5..8).
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <deque>
 #include <stdexcept>
+#include <vector>
 
 #include "sw/cpu_cost/cache_model.h"
 
@@ -150,6 +153,54 @@ TEST(CacheModel, SameAccessesSameCounts) {
         return std::make_pair(cache.hits(), cache.misses());
     };
     EXPECT_EQ(run(), run());
+}
+
+// LRU by its definition: per set, the lines in recency order; a hit moves its line to the
+// front, a miss puts the line there and drops the last one of a full set.
+class ReferenceLru {
+public:
+    ReferenceLru(uint32_t sets, uint32_t ways) : sets_(sets), ways_(ways), order_(sets) {}
+    bool touch(uint32_t line) {
+        std::deque<uint32_t>& set = order_[line % sets_];
+        const auto it = std::find(set.begin(), set.end(), line);
+        const bool hit = it != set.end();
+        if (hit) set.erase(it);
+        else if (set.size() == ways_) set.pop_back();
+        set.push_front(line);
+        return hit;
+    }
+    void invalidate() { for (auto& set : order_) set.clear(); }
+
+private:
+    uint32_t sets_, ways_;
+    std::vector<std::deque<uint32_t>> order_;
+};
+
+// The Haar wavelets' kind of traffic: many rows of an image 4 KB wide (so that the rows share
+// sets and sets overflow), each touch checked against the definition, with invalidates.
+TEST(CacheModel, LruHitsAndMissesEqualTheDefinitionTouchByTouch) {
+    for (const uint32_t ways : {64u, 4u, 1u}) {
+        CacheParams p = ppc440();
+        p.ways = ways;
+        CacheModel cache(p);
+        ReferenceLru reference(cache.sets(), ways);
+        uint32_t seed = 7;
+        uint64_t hits = 0;
+        for (int i = 0; i < 200000; ++i) {
+            seed = seed * 1103515245u + 12345u;
+            if (i % 50000 == 49999) {
+                cache.invalidate();
+                reference.invalidate();
+            }
+            const uint32_t row = (seed >> 8) % 96, column = (seed >> 20) % 160;  // a 96 x 160-pixel window
+            const uint32_t address = 0x100000 + row * 4096 + column * 4;
+            const bool hit = cache.access(address, 4).hits == 1;
+            ASSERT_EQ(hit, reference.touch(address / 32)) << "touch " << i << ", " << ways << " ways";
+            hits += hit;
+        }
+        EXPECT_GT(hits, 10000u);   // both hits and misses were exercised
+        EXPECT_LT(hits, 190000u);
+    }
 }
 
 }  // namespace
