@@ -1,5 +1,6 @@
 #include "models/common/worker.h"
 
+#include <algorithm>
 #include <utility>
 
 namespace surfvp {
@@ -17,6 +18,15 @@ void relax() {
 
 Worker::Worker(std::chrono::microseconds spin) : spin_(spin), thread_([this] { loop(); }) {}
 
+Worker::~Worker() {
+    {
+        std::lock_guard<std::mutex> lock(mutex_);
+        stopping_ = true;
+    }
+    work_.notify_one();
+    thread_.join();
+}
+
 template <class Ready>
 bool Worker::spin_until(Ready ready) const {
     if (spin_.count() <= 0) return ready();
@@ -28,22 +38,13 @@ bool Worker::spin_until(Ready ready) const {
     }
 }
 
-Worker::~Worker() {
-    {
-        std::lock_guard<std::mutex> lock(mutex_);
-        stopping_ = true;
-    }
-    work_.notify_one();
-    thread_.join();
-}
-
 size_t Worker::submit(std::function<void()> job) {
     bool wake = false;
     size_t number = 0;
     {
         std::lock_guard<std::mutex> lock(mutex_);
-        jobs_.push_back(std::move(job));
         number = submitted_++;
+        jobs_.push_back({number, std::move(job)});
         queued_.store(submitted_, std::memory_order_release);
         wake = worker_sleeps_;
         worker_sleeps_ = false;
@@ -54,6 +55,8 @@ size_t Worker::submit(std::function<void()> job) {
 
 void Worker::wait(size_t job) {
     const auto reached = [&] { return finished_.load(std::memory_order_acquire) > job; };
+    for (Job mine; !reached() && take_up_to(job, mine);) run(mine);
+    // What is left of jobs 0..job runs on the worker; nothing the waiter could take.
     if (!reached() && !spin_until(reached)) {
         std::unique_lock<std::mutex> lock(mutex_);
         ++waiters_sleeping_;
@@ -73,9 +76,17 @@ void Worker::drain() {
     if (submitted) wait(submitted - 1);
 }
 
-bool Worker::next_job(std::function<void()>& job) {
-    const size_t taken = finished_.load(std::memory_order_relaxed);
-    spin_until([&] { return queued_.load(std::memory_order_acquire) > taken; });
+bool Worker::take_up_to(size_t last, Job& job) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (jobs_.empty() || jobs_.front().number > last) return false;
+    job = std::move(jobs_.front());
+    jobs_.pop_front();
+    taken_.fetch_add(1, std::memory_order_relaxed);
+    return true;
+}
+
+bool Worker::next_job(Job& job) {
+    spin_until([&] { return queued_.load(std::memory_order_acquire) > taken_.load(std::memory_order_relaxed); });
     std::unique_lock<std::mutex> lock(mutex_);
     while (jobs_.empty() && !stopping_) {
         worker_sleeps_ = true;
@@ -84,27 +95,43 @@ bool Worker::next_job(std::function<void()>& job) {
     if (jobs_.empty()) return false;
     job = std::move(jobs_.front());
     jobs_.pop_front();
+    taken_.fetch_add(1, std::memory_order_relaxed);
     return true;
 }
 
-void Worker::loop() {
-    std::function<void()> job;
-    while (next_job(job)) {
-        try {
-            job();
-        } catch (...) {
-            std::lock_guard<std::mutex> lock(mutex_);
-            if (!failure_) failure_ = std::current_exception();
-        }
-        job = nullptr;  // its captures go before the job counts as done
-        bool wake = false;
-        {
-            std::lock_guard<std::mutex> lock(mutex_);
-            finished_.fetch_add(1, std::memory_order_release);
-            wake = waiters_sleeping_ > 0;
-        }
-        if (wake) done_.notify_all();
+void Worker::run(Job& job) {
+    std::exception_ptr thrown;
+    try {
+        job.run();
+    } catch (...) {
+        thrown = std::current_exception();
     }
+    job.run = nullptr;  // its captures go before the job counts as done
+    bool wake = false;
+    {
+        std::lock_guard<std::mutex> lock(mutex_);
+        if (thrown && (!failure_ || job.number < failed_job_)) {
+            failure_ = thrown;
+            failed_job_ = job.number;
+        }
+        size_t finished = finished_.load(std::memory_order_relaxed);
+        if (job.number != finished) {
+            done_ahead_.push_back(job.number);
+        } else {
+            for (++finished;; ++finished) {  // and those done ahead that now follow on
+                const auto next = std::find(done_ahead_.begin(), done_ahead_.end(), finished);
+                if (next == done_ahead_.end()) break;
+                done_ahead_.erase(next);
+            }
+            finished_.store(finished, std::memory_order_release);
+        }
+        wake = waiters_sleeping_ > 0;
+    }
+    if (wake) done_.notify_all();
+}
+
+void Worker::loop() {
+    for (Job job; next_job(job);) run(job);
 }
 
 }  // namespace surfvp

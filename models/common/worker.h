@@ -1,9 +1,12 @@
 #pragma once
 // One background thread that runs a model's plain C++ work (never SystemC) while the kernel
-// simulates something else. Jobs run one at a time in the order submitted; submit() returns at
-// once with the job's number (0, 1, ...), wait(n) blocks until jobs 0..n are done and rethrows
-// what one threw, drain() waits for all. The caller keeps a job's inputs unchanged until it is
-// done and reads its outputs only after waiting for it.
+// simulates something else. Jobs are independent of each other; they start in the order
+// submitted. submit() returns at once with the job's number (0, 1, ...); wait(n) returns once
+// jobs 0..n are done and rethrows what one threw (the lowest-numbered); drain() waits for all.
+// A waiter does not idle while jobs it waits for are still queued: it takes them off the queue
+// and runs them itself, so that both cores work on a backlog. The caller keeps a job's inputs
+// unchanged until it is done and reads its outputs only after waiting for it. One thread
+// submits and waits.
 //
 // The kernel's thread submits a job per FHG block row (thousands a run) and is the simulator's
 // limit, so waking a sleeping thread (a futex call and an inter-processor wake-up, ~15 us on a
@@ -20,6 +23,7 @@
 #include <functional>
 #include <mutex>
 #include <thread>
+#include <vector>
 
 namespace surfvp {
 
@@ -35,23 +39,32 @@ public:
     void drain();
 
 private:
+    struct Job {
+        size_t number = 0;
+        std::function<void()> run;
+    };
     void loop();
+    bool next_job(Job& job);             // the worker's next; false: stopping with nothing left
+    bool take_up_to(size_t last, Job& job);  // a waiter's: the queue's first if numbered <= last
+    void run(Job& job);                  // runs it, records its failure, counts it done
     template <class Ready>
     bool spin_until(Ready ready) const;
-    bool next_job(std::function<void()>& job);  // false: stopping with nothing left
 
     const std::chrono::microseconds spin_;
     std::mutex mutex_;
     std::condition_variable work_;  // the worker sleeps on it
     std::condition_variable done_;  // waiters sleep on it
-    std::deque<std::function<void()>> jobs_;
+    std::deque<Job> jobs_;
     size_t submitted_ = 0;               // under mutex_
     std::atomic<size_t> queued_{0};      // = submitted_, read by the spinning worker
-    std::atomic<size_t> finished_{0};    // jobs done, read by spinning waiters
+    std::atomic<size_t> taken_{0};       // jobs taken off the queue, by the worker or a waiter
+    std::atomic<size_t> finished_{0};    // every job below it is done; read by spinning waiters
+    std::vector<size_t> done_ahead_;     // done above finished_ (two ran at once); under mutex_
     bool worker_sleeps_ = false;         // under mutex_
     int waiters_sleeping_ = 0;           // under mutex_
     bool stopping_ = false;
-    std::exception_ptr failure_;
+    size_t failed_job_ = 0;
+    std::exception_ptr failure_;         // the lowest-numbered job's that threw
     std::thread thread_;  // last: started once the rest exists
 };
 

@@ -1,7 +1,9 @@
-// The background worker: jobs in submission order, wait(n) covers jobs 0..n, a job's exception
-// reaches the waiter, and no hand-over is lost whether the other side spins or sleeps.
+// The background worker: wait(n) covers jobs 0..n, a waiter runs the queued jobs it waits for,
+// the lowest-numbered job's exception reaches the waiter, and no hand-over is lost whether the
+// other side spins or sleeps.
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <chrono>
 #include <stdexcept>
 #include <thread>
@@ -12,16 +14,39 @@
 namespace surfvp {
 namespace {
 
-TEST(Worker, RunsJobsInOrderAndWaitCoversEveryEarlierJob) {
-    std::vector<int> order;
+TEST(Worker, WaitCoversEveryEarlierJob) {
+    std::vector<int> out(1000, -1);
     Worker w;
-    for (int i = 0; i < 1000; ++i) EXPECT_EQ(w.submit([&order, i] { order.push_back(i); }), size_t(i));
+    for (int i = 0; i < 1000; ++i) EXPECT_EQ(w.submit([&out, i] { out[size_t(i)] = i * i; }), size_t(i));
     w.wait(499);
-    EXPECT_GE(order.size(), 500u);
-    for (size_t i = 0; i < 500; ++i) EXPECT_EQ(order[i], int(i));
+    for (size_t i = 0; i < 500; ++i) ASSERT_EQ(out[i], int(i * i)) << i;
     w.drain();
-    ASSERT_EQ(order.size(), 1000u);
-    for (size_t i = 0; i < order.size(); ++i) EXPECT_EQ(order[i], int(i));
+    for (size_t i = 0; i < out.size(); ++i) ASSERT_EQ(out[i], int(i * i)) << i;
+}
+
+// While the worker is held up by job 0, a waiter for job 3 runs jobs 1 to 3 itself: job 0
+// sees job 3 done (it would wait in vain if only the worker ran jobs).
+TEST(Worker, AWaiterRunsTheQueuedJobsItWaitsFor) {
+    Worker w;
+    std::atomic<bool> third_done{false};
+    std::atomic<bool> worker_saw_it{false};
+    std::vector<std::thread::id> ran_on(4);
+    w.submit([&] {
+        ran_on[0] = std::this_thread::get_id();
+        const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(5);
+        while (!third_done && std::chrono::steady_clock::now() < until) std::this_thread::yield();
+        worker_saw_it = third_done.load();
+    });
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));  // the worker has taken job 0
+    for (size_t k = 1; k <= 3; ++k)
+        w.submit([&, k] {
+            ran_on[k] = std::this_thread::get_id();
+            if (k == 3) third_done = true;
+        });
+    w.wait(3);
+    EXPECT_TRUE(worker_saw_it);
+    for (size_t k = 1; k <= 3; ++k) EXPECT_EQ(ran_on[k], std::this_thread::get_id()) << "job " << k;
+    EXPECT_NE(ran_on[0], std::this_thread::get_id());
 }
 
 // Pauses longer than the spin let both sides fall asleep: each job must still be picked up
@@ -40,16 +65,22 @@ TEST(Worker, HandsOverAcrossSleepsOnBothSides) {
     }
 }
 
-TEST(Worker, AJobsExceptionReachesTheWaiterAndLaterJobsStillRun) {
+// Job 1 throws first in time (job 0 takes longer), yet the waiter gets job 0's: the same
+// error whichever thread ran what.
+TEST(Worker, TheLowestNumberedJobsExceptionReachesTheWaiterAndLaterJobsStillRun) {
     Worker w;
-    bool later = false;
-    const size_t bad = w.submit([] { throw std::runtime_error("row 7 failed"); });
+    std::atomic<bool> later{false};
+    w.submit([] {
+        std::this_thread::sleep_for(std::chrono::milliseconds(20));
+        throw std::runtime_error("row 0 failed");
+    });
+    const size_t second = w.submit([] { throw std::runtime_error("row 1 failed"); });
     w.submit([&later] { later = true; });
     try {
-        w.wait(bad);
+        w.wait(second);
         FAIL() << "wait() returned without the job's exception";
     } catch (const std::runtime_error& e) {
-        EXPECT_STREQ(e.what(), "row 7 failed");
+        EXPECT_STREQ(e.what(), "row 0 failed");
     }
     w.drain();
     EXPECT_TRUE(later);
