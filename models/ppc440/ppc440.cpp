@@ -93,12 +93,14 @@ void Ppc440::invalidate_dmi(sc_dt::uint64, sc_dt::uint64) { dmi_valid_ = false; 
 // One line on the memory path, requested at time `at`, or now if the kernel has passed it (a
 // synchronising path such as PLB1 waits for its grant); returns when it is done.
 sc_time Ppc440::line_access(tlm::tlm_command command, uint32_t address, uint8_t* data, size_t bytes, const sc_time& at) {
-    tlm::tlm_generic_payload tx;
+    tlm::tlm_generic_payload& tx = line_tx_;
     tx.set_command(command);
     tx.set_address(address);
     tx.set_data_ptr(data);
     tx.set_data_length(static_cast<unsigned>(bytes));
     tx.set_streaming_width(static_cast<unsigned>(bytes));
+    tx.set_byte_enable_ptr(nullptr);
+    tx.set_dmi_allowed(false);
     tx.set_response_status(tlm::TLM_INCOMPLETE_RESPONSE);
     sc_time delay = std::max(at, sc_core::sc_time_stamp()) - sc_core::sc_time_stamp();
     mem->b_transport(tx, delay);  // the MCI link annotates; PLB1 synchronises first

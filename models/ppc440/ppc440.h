@@ -94,6 +94,7 @@ private:
     tlm::tlm_dmi dmi_;  // for map(): reading memory in place
     bool dmi_valid_ = false;
     std::vector<uint8_t> line_;  // a fill's data (the software reads in place) or a write-back's
+    tlm::tlm_generic_payload line_tx_;  // every line access's (a payload allocates on construction)
     bool finished_ = false;
     sc_core::sc_event done_;
     sc_core::sc_time finish_time_;

@@ -8,6 +8,7 @@
 #include <string_view>
 #include <vector>
 
+#include <fmt/compile.h>
 #include <fmt/format.h>
 
 #include "sw/eval/region.h"
@@ -37,9 +38,10 @@ std::string format_keypoints(const surf::Keypoints& keypoints, bool laplacian) {
     for (const auto& k : keypoints) {
         double r = region_radius(k);
         double a = 1.0 / (r * r);
-        fmt::format_to(std::back_inserter(out), "{:.9g} {:.9g} {:.9g} 0 {:.9g}", k.x, k.y, a, a);
-        if (laplacian) fmt::format_to(std::back_inserter(out), " {}", k.laplacian);
-        for (float d : k.descriptor) fmt::format_to(std::back_inserter(out), " {:.9g}", d);
+        // Formats parsed at compile time: a run writes 64 descriptor values per keypoint.
+        fmt::format_to(std::back_inserter(out), FMT_COMPILE("{:.9g} {:.9g} {:.9g} 0 {:.9g}"), k.x, k.y, a, a);
+        if (laplacian) fmt::format_to(std::back_inserter(out), FMT_COMPILE(" {}"), k.laplacian);
+        for (float d : k.descriptor) fmt::format_to(std::back_inserter(out), FMT_COMPILE(" {:.9g}"), d);
         out.push_back('\n');
     }
     return fmt::to_string(out);
@@ -49,7 +51,7 @@ std::string format_meta(const surf::Keypoints& keypoints) {
     fmt::memory_buffer out;
     fmt::format_to(std::back_inserter(out), "{}\n", keypoints.size());
     for (const auto& k : keypoints) {
-        fmt::format_to(std::back_inserter(out), "{:.9g} {:.9g} {:.9g} {:.9g} {:.9g} {}\n", k.x, k.y,
+        fmt::format_to(std::back_inserter(out), FMT_COMPILE("{:.9g} {:.9g} {:.9g} {:.9g} {:.9g} {}\n"), k.x, k.y,
                        k.scale, k.orientation, k.response, k.laplacian);
     }
     return fmt::to_string(out);
