@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
+#include <fmt/compile.h>
 #include <fmt/format.h>
 #include <fstream>
 #include <iterator>
@@ -26,7 +27,7 @@ constexpr size_t kFlushBytes = 1 << 20;
 // Trace-event timestamps are microseconds; the simulator resolves picoseconds.
 void put_micros(fmt::memory_buffer& out, const sc_core::sc_time& t) {
     const auto ps = t.value();
-    fmt::format_to(std::back_inserter(out), "{}.{:06}", ps / 1000000, ps % 1000000);
+    fmt::format_to(std::back_inserter(out), FMT_COMPILE("{}.{:06}"), ps / 1000000, ps % 1000000);
 }
 
 // Event names are short and mostly plain: escaped here rather than through a JSON value.
@@ -132,7 +133,7 @@ void Tracer::slice(int track, std::string_view name, const sc_core::sc_time& sta
     event_separator();
     put(events_, R"({"ph":"X","name":)");
     put_json_string(events_, name);
-    fmt::format_to(std::back_inserter(events_), R"(,"pid":{},"tid":{},"ts":)", t.pid, t.tid);
+    fmt::format_to(std::back_inserter(events_), FMT_COMPILE(R"(,"pid":{},"tid":{},"ts":)"), t.pid, t.tid);
     put_micros(events_, start);
     put(events_, R"(,"dur":)");
     put_micros(events_, end - start);
@@ -149,9 +150,9 @@ void Tracer::counter(int track, std::string_view name, const sc_core::sc_time& a
     event_separator();
     put(events_, R"({"ph":"C","name":)");
     put_json_string(events_, name);
-    fmt::format_to(std::back_inserter(events_), R"(,"pid":{},"ts":)", tracks_[track].pid);
+    fmt::format_to(std::back_inserter(events_), FMT_COMPILE(R"(,"pid":{},"ts":)"), tracks_[track].pid);
     put_micros(events_, at);
-    fmt::format_to(std::back_inserter(events_), R"(,"args":{{"value":{}}}}})", value);
+    fmt::format_to(std::back_inserter(events_), FMT_COMPILE(R"(,"args":{{"value":{}}}}})"), value);
 }
 
 std::vector<std::string> Tracer::write_gtkwave_save(const fs::path& dir) {

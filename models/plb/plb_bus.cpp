@@ -1,6 +1,7 @@
 #include "plb_bus.h"
 
 #include <algorithm>
+#include <fmt/compile.h>
 #include <fmt/format.h>
 #include <stdexcept>
 
@@ -244,9 +245,9 @@ void PlbBus::trace_transaction(int master, bool write, uint64_t bytes, const sc_
                                const sc_time& granted, const sc_time& end) {
     const int track = master_tracks_[master];
     if (granted > requested) tracer_.slice(track, "wait", requested, granted);
-    const std::string name = fmt::format("{} {} B", write ? "write" : "read", bytes);
+    const std::string name = fmt::format(FMT_COMPILE("{} {} B"), write ? "write" : "read", bytes);  // per transaction
     tracer_.slice(track, name, granted, end);
-    tracer_.slice((write ? write_ : read_).track, fmt::format("{} {}", master_stats_[master].name, name), granted,
+    tracer_.slice((write ? write_ : read_).track, fmt::format(FMT_COMPILE("{} {}"), master_stats_[master].name, name), granted,
                   end);
 }
 
