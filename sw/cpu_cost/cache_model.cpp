@@ -47,6 +47,7 @@ CacheModel::CacheModel(const CacheParams& params) : params_(params) {
     line_shift_ = log2_of(params.line_bytes);
     lines_.assign(size_t(sets_) * params.ways, kNoLine);
     use_.assign(lines_.size(), 0);
+    hint_.assign(kHints, 0);
     filled_.assign(sets_, 0);
     victim_.assign(sets_, 0);
 }
@@ -91,14 +92,17 @@ bool CacheModel::touch_lru(uint32_t set, uint32_t line) {
     const size_t first = size_t(set) * params_.ways;
     uint32_t* tags = lines_.data() + first;
     uint64_t* stamps = use_.data() + first;
-    const int found = find_way(tags, params_.ways, line);
+    uint32_t& hint = hint_[line & (kHints - 1)];
+    const int found = tags[hint] == line ? int(hint) : find_way(tags, params_.ways, line);
     ++clock_;
     if (found >= 0) {
         stamps[found] = clock_;
+        hint = uint32_t(found);
         return true;
     }
     uint32_t& filled = filled_[set];
     const uint32_t victim = filled < params_.ways ? filled++ : oldest_way(stamps, params_.ways);
+    hint = victim;
     tags[victim] = line;
     stamps[victim] = clock_;
     return false;

@@ -63,6 +63,10 @@ private:
     static constexpr uint32_t kNoLine = ~uint32_t(0);  // above any line number (address >> 5)
     std::vector<uint32_t> lines_;
     std::vector<uint64_t> use_;
+    // LRU: per line number modulo kHints, the way it was last found in or filled into; a hint
+    // is checked against lines_ before it is believed, so a stale one only costs the search.
+    static constexpr uint32_t kHints = 4096;
+    std::vector<uint32_t> hint_;
     uint64_t clock_ = 0;
     std::vector<uint32_t> filled_;
     std::vector<uint32_t> victim_;
