@@ -1,5 +1,6 @@
 // LocalMaxFinder: every true 3x3x3 maximum is marked; what it marks beyond is counted.
 #include <cstdio>
+#include <random>
 #include <set>
 #include <tuple>
 
@@ -44,6 +45,30 @@ bool true_maximum(const Planes& p, int x, int y, int octave, int s, int32_t thre
                 if (p.at(x + dx, y + dy, kOctave[octave - 1][s + ds]) >= v) return false;
             }
     return true;
+}
+
+// block_row() skips a block when none of the determinants block() tests is above the threshold:
+// with each of the 18 record positions alone above it in turn (the rest random below), the row
+// marks exactly what block() marks block by block.
+TEST(LocalMaxFinder, ARowMarksWhatItsBlocksMarkWhicheverDeterminantIsAboveTheThreshold) {
+    const int32_t threshold = 1000;
+    const LocalMaxFinder finder(threshold);
+    std::mt19937 random(5);
+    std::uniform_int_distribution<int32_t> below(-5000, threshold);
+    const int blocks = 3 * kDeterminantsPerBlock;
+    std::vector<int32_t> records(size_t(blocks) * kDeterminantsPerBlock);
+    for (int32_t& r : records) r = below(random);
+    for (int bx = 0; bx < blocks; ++bx)  // block bx: position bx % 18 above, a different one each
+        records[size_t(bx) * kDeterminantsPerBlock + size_t(bx % kDeterminantsPerBlock)] = threshold + 1 + bx;
+    std::vector<Candidate> by_row, by_block;
+    finder.block_row(records.data(), blocks, 7, by_row);
+    for (int bx = 0; bx < blocks; ++bx) {
+        const int32_t* record = records.data() + size_t(bx) * kDeterminantsPerBlock;
+        finder.block(record, bx ? record - kDeterminantsPerBlock : nullptr, bx, 7, by_block);
+    }
+    ASSERT_EQ(by_row.size(), by_block.size());
+    EXPECT_GE(by_row.size(), 10u);  // octave 1's 8 tested positions and octave 2's 2, at least once each
+    for (size_t i = 0; i < by_row.size(); ++i) EXPECT_EQ(pack_candidate(by_row[i]), pack_candidate(by_block[i])) << i;
 }
 
 TEST(LocalMaxFinder, MarksEveryTrueMaximumOnARealImage) {
