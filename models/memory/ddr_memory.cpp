@@ -11,7 +11,13 @@ namespace surfvp {
 using sc_core::sc_time;
 
 DdrMemory::DdrMemory(const sc_core::sc_module_name& name, const Params& params)
-    : sc_module(name), ports("ports"), params_(params), series_(params.series_bin.ps) {
+    : sc_module(name),
+      ports("ports"),
+      params_(params),
+      bytes_per_second_(bytes_per_second(params)),
+      read_latency_(cycles(params.clock, params.latency_cycles)),
+      write_latency_(cycles(params.clock, params.write_latency_cycles)),
+      series_(params.series_bin.ps) {
     if (params.size.n == 0) throw std::invalid_argument(fmt::format("{}: memory size must be above zero", basename()));
     if (params.efficiency <= 0 || params.efficiency > 1)
         throw std::invalid_argument(fmt::format("{}: efficiency must be in (0, 1], not {}", basename(), params.efficiency));
@@ -32,13 +38,13 @@ DdrMemory::PortStats& DdrMemory::stats(int port) {
     return port_stats_[port];
 }
 
-sc_time DdrMemory::latency() const { return cycles(params_.clock, params_.latency_cycles); }
+sc_time DdrMemory::latency() const { return read_latency_; }
 
 double DdrMemory::bytes_per_second(const Params& p) {
     return p.width_bits / 8.0 * p.transfers_per_clock * p.clock.hz * p.efficiency;
 }
 
-double DdrMemory::bytes_per_second() const { return bytes_per_second(params_); }
+double DdrMemory::bytes_per_second() const { return bytes_per_second_; }
 
 sc_time DdrMemory::read_time(const Params& p, uint64_t bytes) {
     return cycles(p.clock, p.latency_cycles) + transfer_time(bytes, bytes_per_second(p));
@@ -81,15 +87,15 @@ void DdrMemory::b_transport(int port, tlm::tlm_generic_payload& tx, sc_time& del
         ++s.reads;
         s.bytes_read += bytes;
     }
-    const sc_time request = sc_core::sc_time_stamp() + delay;
-    const sc_time transfer = transfer_time(bytes, bytes_per_second());
-    dram_.forget_before(sc_core::sc_time_stamp().value());
+    const sc_time now = sc_core::sc_time_stamp();
+    const sc_time request = now + delay;
+    const sc_time transfer = transfer_time(bytes, bytes_per_second_);
+    dram_.forget_before(now.value());
     const sc_time start = sc_time::from_value(dram_.reserve(request.value(), transfer.value()));
     busy_ += transfer;
     series_.busy(start.value(), (start + transfer).value());
     s.wait += start - request;
-    const unsigned latency = tx.is_write() ? params_.write_latency_cycles : params_.latency_cycles;
-    delay += (start - request) + cycles(params_.clock, latency) + transfer;
+    delay += (start - request) + (tx.is_write() ? write_latency_ : read_latency_) + transfer;
     tx.set_response_status(tlm::TLM_OK_RESPONSE);
 }
 
@@ -99,7 +105,7 @@ bool DdrMemory::get_direct_mem_ptr(int, tlm::tlm_generic_payload& tx, tlm::tlm_d
     dmi.set_end_address(params_.size.n - 1);
     dmi.allow_read_write();
     dmi.set_read_latency(latency());
-    dmi.set_write_latency(cycles(params_.clock, params_.write_latency_cycles));
+    dmi.set_write_latency(write_latency_);
     return tx.get_address() < params_.size.n;
 }
 

@@ -84,6 +84,9 @@ private:
     PortStats& stats(int port);
 
     Params params_;
+    // Per access, from params_ once (the same formulas, so the same values).
+    double bytes_per_second_;
+    sc_core::sc_time read_latency_, write_latency_;
     ZeroedMemory storage_;
     std::unique_ptr<PopulateAhead> populate_;  // with Params::populate_ahead; goes before storage_
     std::vector<PortStats> port_stats_;
