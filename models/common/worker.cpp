@@ -43,9 +43,9 @@ size_t Worker::submit(std::function<void()> job) {
     size_t number = 0;
     {
         std::lock_guard<std::mutex> lock(mutex_);
-        number = submitted_++;
+        number = submitted_.load(std::memory_order_relaxed);
         jobs_.push_back({number, std::move(job)});
-        queued_.store(submitted_, std::memory_order_release);
+        submitted_.store(number + 1, std::memory_order_release);
         wake = worker_sleeps_;
         worker_sleeps_ = false;
     }
@@ -68,11 +68,7 @@ void Worker::wait(size_t job) {
 }
 
 void Worker::drain() {
-    size_t submitted = 0;
-    {
-        std::lock_guard<std::mutex> lock(mutex_);
-        submitted = submitted_;
-    }
+    const size_t submitted = submitted_.load(std::memory_order_relaxed);  // the caller is the submitter
     if (submitted) wait(submitted - 1);
 }
 
@@ -86,7 +82,7 @@ bool Worker::take_up_to(size_t last, Job& job) {
 }
 
 bool Worker::next_job(Job& job) {
-    spin_until([&] { return queued_.load(std::memory_order_acquire) > taken_.load(std::memory_order_relaxed); });
+    spin_until([&] { return submitted_.load(std::memory_order_acquire) > taken_.load(std::memory_order_relaxed); });
     std::unique_lock<std::mutex> lock(mutex_);
     while (jobs_.empty() && !stopping_) {
         worker_sleeps_ = true;

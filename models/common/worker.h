@@ -55,8 +55,7 @@ private:
     std::condition_variable work_;  // the worker sleeps on it
     std::condition_variable done_;  // waiters sleep on it
     std::deque<Job> jobs_;
-    size_t submitted_ = 0;               // under mutex_
-    std::atomic<size_t> queued_{0};      // = submitted_, read by the spinning worker
+    std::atomic<size_t> submitted_{0};   // written by the submitting thread, under mutex_
     std::atomic<size_t> taken_{0};       // jobs taken off the queue, by the worker or a waiter
     std::atomic<size_t> finished_{0};    // every job below it is done; read by spinning waiters
     std::vector<size_t> done_ahead_;     // done above finished_ (two ran at once); under mutex_

@@ -25,8 +25,6 @@ PopulateAhead::PopulateAhead(uint8_t* block, size_t bytes)
       asked_(page_of(bytes ? bytes - 1 : 0) + 1, false),
       worker_(std::chrono::microseconds(0)) {}  // asked for a few dozen times a run: no spinning
 
-PopulateAhead::~PopulateAhead() { worker_.drain(); }
-
 void PopulateAhead::ask(size_t page) {
     asked_[page] = true;
 #ifdef MADV_POPULATE_WRITE

@@ -29,8 +29,7 @@ ZeroedMemory zeroed_memory(size_t bytes, const std::string& what);
 // without that call (kernels before 5.14) the writes fault as before.
 class PopulateAhead {
 public:
-    PopulateAhead(uint8_t* block, size_t bytes);
-    ~PopulateAhead();  // waits for the pages already asked for
+    PopulateAhead(uint8_t* block, size_t bytes);  // destroyed, it waits for the pages asked for
     PopulateAhead(const PopulateAhead&) = delete;
     PopulateAhead& operator=(const PopulateAhead&) = delete;
 
@@ -48,7 +47,7 @@ private:
     size_t bytes_;
     uint64_t first_offset_;     // the block's start within its first 2 MB page
     std::vector<bool> asked_;   // per page of the block
-    Worker worker_;             // last: stops before the rest goes
+    Worker worker_;             // last: finishes its jobs and stops before the rest goes
 };
 
 }  // namespace surfvp

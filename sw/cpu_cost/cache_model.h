@@ -60,7 +60,7 @@ private:
     // least recently used way has the smallest (a hit writes one stamp instead of moving the
     // set's recency order: the Haar wavelets' rows share sets and hit deep in it). Round-robin:
     // victim_[set] is the next way to fill.
-    static constexpr uint32_t kNoLine = ~uint32_t(0);  // above any line number (address >> 5)
+    static constexpr uint32_t kNoLine = ~uint32_t(0);  // no 32-bit address's line number with lines of 2 B or more
     std::vector<uint32_t> lines_;
     std::vector<uint64_t> use_;
     // LRU: per line number modulo kHints, the way it was last found in or filled into; a hint

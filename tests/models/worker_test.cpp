@@ -28,16 +28,16 @@ TEST(Worker, WaitCoversEveryEarlierJob) {
 // sees job 3 done (it would wait in vain if only the worker ran jobs).
 TEST(Worker, AWaiterRunsTheQueuedJobsItWaitsFor) {
     Worker w;
-    std::atomic<bool> third_done{false};
-    std::atomic<bool> worker_saw_it{false};
+    std::atomic<bool> first_started{false}, third_done{false}, worker_saw_it{false};
     std::vector<std::thread::id> ran_on(4);
     w.submit([&] {
         ran_on[0] = std::this_thread::get_id();
+        first_started = true;
         const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(5);
         while (!third_done && std::chrono::steady_clock::now() < until) std::this_thread::yield();
         worker_saw_it = third_done.load();
     });
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));  // the worker has taken job 0
+    while (!first_started) std::this_thread::yield();  // the worker has taken job 0
     for (size_t k = 1; k <= 3; ++k)
         w.submit([&, k] {
             ran_on[k] = std::this_thread::get_id();
