@@ -1,5 +1,7 @@
 #include "models/common/yaml_text.h"
 
+#include <algorithm>
+
 namespace surfvp {
 
 namespace {
@@ -49,6 +51,11 @@ std::size_t yaml_hang_line(const std::string& text) {
 namespace {
 
 void refuse_hang(const std::string& text) {
+    if (const std::size_t nul = text.find('\0'); nul != std::string::npos) {  // yaml-cpp loops on one
+        YAML::Mark mark;
+        mark.line = int(std::count(text.begin(), text.begin() + std::ptrdiff_t(nul), '\n'));
+        throw YAML::ParserException(mark, "a NUL byte (YAML text holds none)");
+    }
     if (const std::size_t line = yaml_hang_line(text)) {
         YAML::Mark mark;
         mark.line = int(line - 1);

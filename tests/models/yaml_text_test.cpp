@@ -39,5 +39,16 @@ TEST(YamlText, RefusalIsAParserExceptionAtTheLine) {
     }
 }
 
+// yaml-cpp never returns from a NUL byte followed by a comma (found by the scenario fuzzer).
+TEST(YamlText, ANulByteIsRefusedAtItsLine) {
+    try {
+        load_all_yaml(std::string("name: x\n\0,", 10));
+        FAIL() << "a NUL byte was handed to yaml-cpp";
+    } catch (const YAML::ParserException& e) {
+        EXPECT_EQ(e.mark.line, 1);
+        EXPECT_NE(std::string(e.what()).find("NUL"), std::string::npos);
+    }
+}
+
 }  // namespace
 }  // namespace surfvp
