@@ -122,6 +122,7 @@ void Soc::build(const Config& c, Tracer& tracer) {
     for (unsigned k = 0; k < pairs; ++k) cpu.markers.push_back(fmt::format("accelerator{}_task", k));
     cpu.markers.push_back("describing_task");
     cpu_ = std::make_unique<Ppc440>("cpu", cpu, workload_->software(), tracer);
+    loan_.emplace(*workload_, fhgs_.empty() ? nullptr : fhgs_[0]->worker());
     const uint64_t ddr_size = memory_params(c).size.n;
 
     // PLB1: the CPU's MPLB; DDR, the INTC and the register slaves.

@@ -3,6 +3,7 @@
 // binds their sockets and interrupt lines, and maps their regions from address_map.h.
 // It holds no behaviour of its own.
 #include <memory>
+#include <optional>
 #include <vector>
 #include <systemc>
 
@@ -64,6 +65,9 @@ private:
     std::vector<std::unique_ptr<Iig>> iigs_;
     std::vector<std::unique_ptr<Fhg>> fhgs_;
     std::unique_ptr<Ppc440> cpu_;
+    // The first FHG's worker lent to the software; declared after the blocks and the memory,
+    // so the loan ends before they go.
+    std::optional<WorkerLoan> loan_;
     sc_core::sc_signal<bool> dma_irq_{"dma_irq"}, cpu_irq_{"cpu_irq"}, low_{"unused_irq"};
     sc_core::sc_vector<sc_core::sc_signal<bool>> iig_irqs_{"iig_irq"}, fhg_irqs_{"fhg_irq"};
 };

@@ -43,10 +43,11 @@ public:
     virtual void read(uint32_t address, void* data, size_t bytes) = 0;
     virtual void write(uint32_t address, const void* data, size_t bytes) = 0;
 
-    // Memory for reading in place: a pointer to `bytes` bytes at `address`, valid until the
-    // next HAL call, without time. Software that reads through it counts its own accesses and
-    // their cache misses (sw/cpu_cost) and charges them with compute(). Throws BusError
-    // outside memory.
+    // Memory for reading in place: a pointer to `bytes` bytes at `address`, without time; it
+    // stays valid while the platform exists (memory does not move), and the bytes behind it
+    // change only when something writes them. Software that reads through it counts its own
+    // accesses and their cache misses (sw/cpu_cost) and charges them with compute(). Throws
+    // BusError outside memory.
     virtual const uint8_t* map(uint32_t address, size_t bytes) = 0;
 
     // Blocks until the CPU's interrupt input is high, or until `timeout_ps` of the time base

@@ -81,18 +81,49 @@ bool Worker::take_up_to(size_t last, Job& job) {
     return true;
 }
 
-bool Worker::next_job(Job& job) {
-    spin_until([&] { return submitted_.load(std::memory_order_acquire) > taken_.load(std::memory_order_relaxed); });
+// A job first; else background work when there may be some; else sleeps until either comes.
+Worker::Next Worker::next(Job& job) {
+    const auto poked = [&] { return pokes_.load(std::memory_order_acquire) != pokes_seen_; };
+    spin_until([&] {
+        return submitted_.load(std::memory_order_acquire) > taken_.load(std::memory_order_relaxed) || poked();
+    });
     std::unique_lock<std::mutex> lock(mutex_);
-    while (jobs_.empty() && !stopping_) {
+    while (jobs_.empty() && !poked() && !stopping_) {
         worker_sleeps_ = true;
         work_.wait(lock);
     }
-    if (jobs_.empty()) return false;
+    if (jobs_.empty()) return stopping_ ? Next::stop : Next::background;
     job = std::move(jobs_.front());
     jobs_.pop_front();
     taken_.fetch_add(1, std::memory_order_relaxed);
-    return true;
+    return Next::job;
+}
+
+bool Worker::background_piece() {
+    const uint64_t pokes = pokes_.load(std::memory_order_acquire);
+    bool did = false;
+    {
+        std::lock_guard<std::mutex> lock(background_mutex_);
+        did = background_ && background_();
+    }
+    if (!did) pokes_seen_ = pokes;  // nothing to do as of those pokes: wait for the next one
+    return did;
+}
+
+void Worker::set_background(std::function<bool()> work) {
+    std::lock_guard<std::mutex> lock(background_mutex_);
+    background_ = std::move(work);
+}
+
+void Worker::poke() {
+    pokes_.fetch_add(1, std::memory_order_release);
+    bool wake = false;
+    {
+        std::lock_guard<std::mutex> lock(mutex_);
+        wake = worker_sleeps_;
+        worker_sleeps_ = false;
+    }
+    if (wake) work_.notify_one();
 }
 
 void Worker::run(Job& job) {
@@ -127,7 +158,12 @@ void Worker::run(Job& job) {
 }
 
 void Worker::loop() {
-    for (Job job; next_job(job);) run(job);
+    for (Job job;;) {
+        const Next n = next(job);
+        if (n == Next::stop) return;
+        if (n == Next::job) run(job);
+        else background_piece();
+    }
 }
 
 }  // namespace surfvp

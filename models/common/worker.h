@@ -14,6 +14,11 @@
 // before it sleeps (`spin`: tens of microseconds cover the kernel's thread between two block
 // rows; zero for a worker that is rarely busy), and a side wakes the other only when it says
 // it sleeps.
+//
+// Besides its jobs, the worker can be given background work for its idle time (the software
+// stage describing a task's candidates ahead): a function that does one small piece and says
+// whether it did anything. Jobs come first: the worker takes a piece only when no job is
+// queued, and a job submitted meanwhile waits for at most one piece.
 #include <atomic>
 #include <chrono>
 #include <condition_variable>
@@ -38,13 +43,22 @@ public:
     void wait(size_t job);
     void drain();
 
+    // The background work (nullptr: none). It runs on the worker's thread only, never throws,
+    // and returns false when it has nothing to do; the worker then calls it again only after
+    // poke(). Returns once a piece in progress is done, so the old work is not running after it.
+    void set_background(std::function<bool()> work);
+    // There may be background work again: the worker calls it when idle, waking up if it sleeps.
+    void poke();
+
 private:
     struct Job {
         size_t number = 0;
         std::function<void()> run;
     };
     void loop();
-    bool next_job(Job& job);             // the worker's next; false: stopping with nothing left
+    enum class Next { job, background, stop };
+    Next next(Job& job);                 // the worker's next thing to do; waits for one
+    bool background_piece();             // one piece of background work; false: there was none
     bool take_up_to(size_t last, Job& job);  // a waiter's: the queue's first if numbered <= last
     void run(Job& job);                  // runs it, records its failure, counts it done
     template <class Ready>
@@ -60,6 +74,10 @@ private:
     std::atomic<size_t> finished_{0};    // every job below it is done; read by spinning waiters
     std::vector<size_t> done_ahead_;     // done above finished_ (two ran at once); under mutex_
     bool worker_sleeps_ = false;         // under mutex_
+    std::mutex background_mutex_;        // held while a piece runs, and to replace the work
+    std::function<bool()> background_;   // under background_mutex_
+    std::atomic<uint64_t> pokes_{0};     // poke() calls; the worker has looked for work after pokes_seen_
+    uint64_t pokes_seen_ = 0;            // the worker's own
     int waiters_sleeping_ = 0;           // under mutex_
     bool stopping_ = false;
     size_t failed_job_ = 0;

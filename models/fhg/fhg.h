@@ -94,6 +94,9 @@ public:
     const Stats& stats() const { return stats_; }
     uint64_t errors() const { return registers_.status().errors(); }
     const Params& params() const { return params_; }
+    // Its second thread (Params::parallel), or nullptr: the platform lends it to the software
+    // for its idle time (Worker::set_background).
+    Worker* worker() const { return worker_.get(); }
 
     void send_line(int y, const uint32_t* data, int width, const sc_core::sc_time& transfer) override;
 

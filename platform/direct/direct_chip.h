@@ -30,6 +30,8 @@ public:
 
     uint8_t* backdoor(uint64_t address, uint64_t bytes);
     uint64_t cycles_consumed() const { return cycles_; }
+    // Its second thread (run.parallel), or nullptr: lent to the software for its idle time.
+    Worker* worker() const { return worker_.get(); }
 
     uint32_t read32(uint32_t address) override;
     void write32(uint32_t address, uint32_t value) override;

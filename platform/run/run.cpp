@@ -206,6 +206,7 @@ void print_warnings(const Config& config) {
 int run_direct(const Config& config, const fs::path& dir) {
     const auto workload = make_workload(config);
     DirectChip chip(config, unsigned(config.count("soc.accelerators")));
+    const WorkerLoan loan(*workload, chip.worker());  // ends before the chip (its memory and worker) goes
     workload->attach_memory([&chip](uint64_t address, uint64_t bytes) { return chip.backdoor(address, bytes); });
     workload->write_into(dir.string());
     std::string failure;

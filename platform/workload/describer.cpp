@@ -1,7 +1,11 @@
 #include "platform/workload/describer.h"
 
+#include <atomic>
 #include <cmath>
+#include <exception>
 #include <fstream>
+#include <mutex>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <fmt/format.h>
@@ -12,6 +16,7 @@
 #include "platform/soc.h"
 #include "platform/workload/workload.h"
 #include "models/common/byte_order.h"
+#include "models/common/worker.h"
 #include "sw/cpu_cost/calibration.h"
 #include "sw/cpu_cost/calibration_dump.h"
 #include "sw/stage/software_stage.h"
@@ -95,53 +100,165 @@ private:
 // libSSA2's phase 4 on the software stage: the frame's buffers read in place (DMI), the
 // stage's counted work and its L1 fills handed back for the CPU to spend, and the described
 // keypoint's record written back to the task's ring.
+//
+// With the simulator's second thread lent to it (run.parallel), the stage describes a task's
+// candidates ahead, in the worker's idle time (Worker::set_background), one candidate a piece
+// and in the driver's order, while the kernel simulates the next task's hardware. It is the
+// same stage on the same bytes in the same order (the driver keeps a task's buffers until it
+// is reported, and describes its candidates one after the other: Describer::ahead), so each
+// result is the one describe() would have made; a candidate not yet done when the driver asks
+// for it is done then, on the kernel's thread. The report counts only what the driver was
+// handed (a run cut short by run.max_time may have described further ahead).
 class StageDescriber : public sw::ssa2::Describer {
 public:
     StageDescriber(const sw::StageParams& params, const sw::CostParams& cost, unsigned line_bytes)
         : params_(params), stage_(params, sw::CostCounter(cost)), line_bytes_(line_bytes) {
         stage_.cost().log_misses(true);
         if (!g_record_inputs.empty()) recorder_ = std::make_unique<InputRecorder>(g_record_inputs, g_record_expected);
+        handed_ = tally();
+    }
+
+    // The worker whose idle time describes ahead; nullptr takes it back (nothing of this
+    // describer runs on it after the call).
+    void share_worker(Worker* worker) {
+        if (worker_) worker_->set_background(nullptr);
+        worker_ = recorder_ ? nullptr : worker;  // `surfvp calibrate` records each word as it is described
+        if (worker_) worker_->set_background([this] { return describe_ahead(); });
+    }
+
+    void ahead(sw::Hal& hal, const std::vector<uint32_t>& candidates, const sw::ssa2::FrameInMemory& frame) override {
+        if (!worker_) return;
+        {
+            std::lock_guard<std::mutex> lock(stage_mutex_);
+            start_task(frame);
+            ahead_ = Ahead{frame.task, candidates, buffers(hal, frame), std::vector<Result>(candidates.size())};
+            ready_.store(0, std::memory_order_relaxed);
+        }
+        worker_->poke();
     }
 
     std::optional<surf::Keypoint> describe(sw::Hal& hal, uint32_t word, const sw::ssa2::FrameInMemory& frame,
                                            sw::ssa2::Work& work) override {
-        if (frame.task != task_) {  // new DMA'd buffers: the cached lines are stale
-            stage_.begin_frame();
-            stage_.set_register_threshold(frame.threshold);  // the one the FHG compared with
-            task_ = frame.task;
-            records_ = 0;
-        }
-        const size_t integral_bytes = size_t(frame.width) * frame.height * 4;
-        const size_t det_bytes = size_t(fhg_regs::buffer_bytes(uint32_t(frame.width), uint32_t(frame.height), frame.det_bytes));
-        const sw::FrameBuffers buffers{hal.map(frame.integral, integral_bytes), frame.integral, size_t(frame.width) * 4,
-                                       hal.map(frame.determinants, det_bytes), frame.determinants, frame.width,
-                                       frame.height, frame.det_frac_bits, frame.det_bytes};
-        if (recorder_ && frame.task != recorded_task_) {
-            recorder_->frame(buffers, params_);
-            recorded_task_ = frame.task;
-        }
-        const double start = stage_.cost().exact_cycles();
-        const uint64_t inconsistent = stage_.stats().inconsistent;
-        auto keypoint = stage_.process(word, buffers);
-        if (stage_.stats().inconsistent != inconsistent) {
-            const fhg::Candidate c = fhg::unpack_candidate(word);
-            work.inconsistency = fmt::format("candidate ({}, {}, size {}) is not above the threshold in the determinant "
-                                             "buffer, though the FHG marked it: the buffer is corrupted",
-                                             c.x, c.y, fhg::kSizes[size_t(c.size_index)]);
-        }
-        if (recorder_) recorder_->word(word, keypoint);
-        work.cycles = stage_.cost().take_cycles();
-        for (const sw::CostCounter::Miss& m : stage_.cost().misses())
-            work.lines.push_back({m.line, uint64_t(std::llround(m.cycle - start)), false});
-        stage_.cost().clear_misses();
-        if (keypoint) write_back_record(frame, work);
-        return keypoint;
+        Result r = ahead_ && ahead_->task == frame.task ? take_ahead(word) : describe_now(hal, word, frame);
+        handed_ = r.tally;
+        if (r.error) std::rethrow_exception(r.error);
+        work = std::move(r.work);
+        if (r.keypoint) write_back_record(frame, work);
+        return std::move(r.keypoint);
     }
 
     const sw::SoftwareStage& stage() const { return stage_; }
+    // What the stage had counted after the last candidate handed to the driver.
+    struct Tally {
+        sw::SoftwareStage::Stats stats;
+        sw::CostTotals cost;
+    };
+    const Tally& handed() const { return handed_; }
     bool rounded() const { return params_.haar == surf::HaarMode::rounded; }
 
 private:
+    struct Result {
+        std::optional<surf::Keypoint> keypoint;
+        sw::ssa2::Work work;
+        Tally tally;
+        std::exception_ptr error;
+    };
+    // A task described ahead: results[k] is ready once ready_ > k.
+    struct Ahead {
+        int task;
+        std::vector<uint32_t> words;
+        sw::FrameBuffers buffers;
+        std::vector<Result> results;
+        size_t done = 0;    // described, under stage_mutex_
+        size_t handed = 0;  // handed to the driver (its thread only)
+        bool stopped = false;  // after a failed check or an error the driver describes no further
+    };
+
+    Tally tally() const { return {stage_.stats(), stage_.cost().totals()}; }
+
+    sw::FrameBuffers buffers(sw::Hal& hal, const sw::ssa2::FrameInMemory& frame) const {
+        const size_t integral_bytes = size_t(frame.width) * frame.height * 4;
+        const size_t det_bytes = size_t(fhg_regs::buffer_bytes(uint32_t(frame.width), uint32_t(frame.height), frame.det_bytes));
+        return {hal.map(frame.integral, integral_bytes), frame.integral, size_t(frame.width) * 4,
+                hal.map(frame.determinants, det_bytes), frame.determinants, frame.width,
+                frame.height, frame.det_frac_bits, frame.det_bytes};
+    }
+
+    void start_task(const sw::ssa2::FrameInMemory& frame) {
+        if (frame.task == task_) return;
+        if (ahead_ && ahead_->done != ahead_->handed)  // the driver's promise (Describer::ahead) broken
+            throw std::logic_error("software stage: a task was left with candidates described ahead");
+        stage_.begin_frame();  // new DMA'd buffers: the cached lines are stale
+        stage_.set_register_threshold(frame.threshold);  // the one the FHG compared with
+        task_ = frame.task;
+        records_ = 0;
+    }
+
+    // The stage on one candidate: its keypoint, its work and fills, the stage's counts after it.
+    Result run_stage(uint32_t word, const sw::FrameBuffers& buffers) {
+        Result r;
+        const double start = stage_.cost().exact_cycles();
+        const uint64_t inconsistent = stage_.stats().inconsistent;
+        try {
+            r.keypoint = stage_.process(word, buffers);
+        } catch (...) {
+            r.error = std::current_exception();
+        }
+        if (stage_.stats().inconsistent != inconsistent) {
+            const fhg::Candidate c = fhg::unpack_candidate(word);
+            r.work.inconsistency = fmt::format("candidate ({}, {}, size {}) is not above the threshold in the determinant "
+                                               "buffer, though the FHG marked it: the buffer is corrupted",
+                                               c.x, c.y, fhg::kSizes[size_t(c.size_index)]);
+        }
+        r.work.cycles = stage_.cost().take_cycles();
+        for (const sw::CostCounter::Miss& m : stage_.cost().misses())
+            r.work.lines.push_back({m.line, uint64_t(std::llround(m.cycle - start)), false});
+        stage_.cost().clear_misses();
+        r.tally = tally();
+        return r;
+    }
+
+    Result describe_now(sw::Hal& hal, uint32_t word, const sw::ssa2::FrameInMemory& frame) {
+        std::lock_guard<std::mutex> lock(stage_mutex_);
+        start_task(frame);
+        const sw::FrameBuffers b = buffers(hal, frame);
+        if (recorder_ && frame.task != recorded_task_) {
+            recorder_->frame(b, params_);
+            recorded_task_ = frame.task;
+        }
+        Result r = run_stage(word, b);
+        if (recorder_ && !r.error) recorder_->word(word, r.keypoint);
+        return r;
+    }
+
+    // The next candidate of the task described ahead; under stage_mutex_.
+    void describe_next() {
+        Ahead& a = *ahead_;
+        Result& r = a.results[a.done] = run_stage(a.words[a.done], a.buffers);
+        a.stopped = r.error || !r.work.inconsistency.empty();
+        ready_.store(++a.done, std::memory_order_release);
+    }
+
+    // The worker's piece: one candidate ahead, if there is one.
+    bool describe_ahead() {
+        std::lock_guard<std::mutex> lock(stage_mutex_);
+        if (!ahead_ || ahead_->stopped || ahead_->done == ahead_->words.size()) return false;
+        describe_next();
+        return true;
+    }
+
+    Result take_ahead(uint32_t word) {
+        Ahead& a = *ahead_;
+        const size_t k = a.handed++;
+        if (k >= a.words.size() || a.words[k] != word)
+            throw std::logic_error("software stage: the driver asked for a candidate out of the order it gave");
+        if (ready_.load(std::memory_order_acquire) <= k) {  // not done yet: here and now
+            std::lock_guard<std::mutex> lock(stage_mutex_);
+            while (a.done <= k) describe_next();
+        }
+        return std::move(a.results[k]);
+    }
+
     // Each record has lines of its own (ring slots are whole lines, kRecordSlot), written once
     // and never read again: they leave the L1 as write-backs, counted when the record is
     // complete, without a fill (the driver allocates them, as with dcbz) [A].
@@ -158,6 +275,11 @@ private:
     int recorded_task_ = -1;
     int task_ = -1;
     uint32_t records_ = 0;
+    Tally handed_;
+    Worker* worker_ = nullptr;
+    std::mutex stage_mutex_;  // the stage and ahead_'s progress, between the driver's thread and the worker
+    std::optional<Ahead> ahead_;
+    std::atomic<size_t> ready_{0};  // ahead_->done, for the driver's thread to read without the lock
 };
 
 }  // namespace
@@ -167,18 +289,22 @@ void record_stage_inputs(const std::string& inputs, const std::string& expected)
     g_record_expected = expected;
 }
 
+void share_worker(sw::ssa2::Describer& describer, Worker* worker) {
+    if (auto* stage = dynamic_cast<StageDescriber*>(&describer)) stage->share_worker(worker);
+}
+
 nlohmann::ordered_json describer_report(const sw::ssa2::Describer& describer) {
     const auto* stage = dynamic_cast<const StageDescriber*>(&describer);
     if (!stage) return nullptr;
-    const sw::SoftwareStage& s = stage->stage();
-    const auto& st = s.stats();
-    const sw::CostCounter& cost = s.cost();
-    const sw::CostBreakdown b = cost.breakdown();
+    const sw::CostCounter& cost = stage->stage().cost();
+    const auto& st = stage->handed().stats;
+    const sw::CostTotals& totals = stage->handed().cost;
+    const sw::CostBreakdown b = cost.breakdown(totals);
     const double keypoints = st.keypoints ? double(st.keypoints) : 1.0;
     nlohmann::ordered_json by_step = nlohmann::ordered_json::object(), per_keypoint = nlohmann::ordered_json::object();
     for (size_t k = 0; k < sw::kSteps; ++k) {
-        by_step[sw::step_name(sw::Step(k))] = cost.step_cycles()[k];
-        per_keypoint[sw::step_name(sw::Step(k))] = cost.step_cycles()[k] / keypoints;
+        by_step[sw::step_name(sw::Step(k))] = totals.steps[k];
+        per_keypoint[sw::step_name(sw::Step(k))] = totals.steps[k] / keypoints;
     }
     nlohmann::ordered_json units = nlohmann::ordered_json::object();
     for (const sw::CostLine& line : b.lines)
@@ -188,7 +314,7 @@ nlohmann::ordered_json describer_report(const sw::ssa2::Describer& describer) {
     std::array<double, sw::kInsnClasses> mix{};
     double instructions = 0, libm_calls = 0;
     for (size_t u = 0; u < sw::kUnits; ++u) {
-        const double n = double(cost.counted(sw::Unit(u)));
+        const double n = double(totals.units[u]);
         instructions += n * table[u].instructions;
         libm_calls += n * table[u].libm_calls;
         for (size_t c = 0; c < sw::kInsnClasses; ++c) mix[c] += n * table[u].mix[c];

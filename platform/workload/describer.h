@@ -9,7 +9,13 @@
 
 namespace surfvp {
 
+class Worker;
+
 std::unique_ptr<sw::ssa2::Describer> make_describer(const Config& config, float threshold);
+
+// Lends the describer the simulator's second thread, to describe a task's candidates ahead in
+// its idle time (nullptr takes it back: nothing of the describer runs on it after the call).
+void share_worker(sw::ssa2::Describer& describer, Worker* worker);
 
 // `surfvp calibrate`: every describer made after this call appends each frame's buffers and
 // FIFO words to `inputs`, and the native stage's result for each word to `expected`

@@ -333,6 +333,7 @@ public:
 
     void attach_memory(const Backdoor& memory) override { memory_ = memory; }
     void inject(FaultPlan& faults) override { faults_ = &faults; }
+    void share_worker(Worker* worker) override { surfvp::share_worker(*describer_, worker); }
     void write_into(const std::string& dir) override { out_ = dir; }
     std::vector<std::string> files_written() override;
 

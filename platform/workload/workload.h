@@ -21,6 +21,8 @@ class Mat;  // for_each_chip_frame (this header is also built without OpenCV's i
 
 namespace surfvp {
 
+class Worker;
+
 struct Check {
     std::string name;
     bool passed;
@@ -45,6 +47,10 @@ public:
     // The faults the scenario injects (the platform hands them to the blocks as well): the
     // workload tells the plan its frames, and reports what became of each.
     virtual void inject(FaultPlan&) {}
+    // The simulator's second thread (run.parallel), for work the workload's software can do
+    // ahead of the simulation in the thread's idle time; nullptr takes it back, and nothing of
+    // the workload runs on it after that. Lent through WorkerLoan.
+    virtual void share_worker(Worker*) {}
     virtual Ppc440::Software software() = 0;
     virtual Progress progress() const = 0;
     virtual std::vector<Check> checks() const = 0;
@@ -61,6 +67,19 @@ public:
     // Its first frame with what it found drawn on it, as an <svg> element for report.html
     // (the image inline): "" when it has none.
     virtual std::string first_frame_svg() const { return ""; }
+};
+
+// Lends a worker to a workload for the loan's lifetime: the owner of the worker and of the
+// memory the workload reads holds the loan and ends it before either goes.
+class WorkerLoan {
+public:
+    WorkerLoan(Workload& workload, Worker* worker) : workload_(workload) { workload_.share_worker(worker); }
+    ~WorkerLoan() { workload_.share_worker(nullptr); }
+    WorkerLoan(const WorkerLoan&) = delete;
+    WorkerLoan& operator=(const WorkerLoan&) = delete;
+
+private:
+    Workload& workload_;
 };
 
 // The workload `run.workload` names; throws ConfigError when its parameters do not fit the

@@ -62,18 +62,18 @@ uint64_t CostCounter::take_cycles() {
     return taken;
 }
 
-CostBreakdown CostCounter::breakdown() const {
+CostBreakdown CostCounter::breakdown(const CostTotals& t) const {
     CostBreakdown b;
     for (size_t k = 0; k < kUnits; ++k) {
-        b.lines.push_back({unit_name(Unit(k)), units_[k], double(units_[k]) * params_.unit_cycles[k]});
+        b.lines.push_back({unit_name(Unit(k)), t.units[k], double(t.units[k]) * params_.unit_cycles[k]});
         b.total_cycles += b.lines.back().cycles;
     }
-    b.lines.push_back({"cache_miss", cache_.misses(), double(cache_.misses()) * params_.miss_cycles});
+    b.lines.push_back({"cache_miss", t.cache_misses, double(t.cache_misses) * params_.miss_cycles});
     b.total_cycles += b.lines.back().cycles;
-    b.cache_accesses = cache_.accesses();
-    b.cache_hits = cache_.hits();
-    b.cache_misses = cache_.misses();
-    b.hit_rate = cache_.hit_rate();
+    b.cache_hits = t.cache_hits;
+    b.cache_misses = t.cache_misses;
+    b.cache_accesses = t.cache_hits + t.cache_misses;
+    b.hit_rate = b.cache_accesses ? double(t.cache_hits) / double(b.cache_accesses) : 0.0;
     return b;
 }
 

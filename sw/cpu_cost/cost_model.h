@@ -38,6 +38,14 @@ struct CostBreakdown {
     double hit_rate = 0;
 };
 
+// What a counter has accumulated, as a value: a report can be made from one taken at any
+// point (the platform's describer keeps the one after the last candidate it handed over).
+struct CostTotals {
+    std::array<uint64_t, kUnits> units{};
+    std::array<double, kSteps> steps{};  // cycles per step: its units and the fills charged while it ran
+    uint64_t cache_hits = 0, cache_misses = 0;
+};
+
 class CostCounter {
 public:
     // Throws std::invalid_argument for a negative or non-finite price or an invalid cache geometry.
@@ -82,7 +90,9 @@ public:
     // Where the cycles went: each step's units and the fills charged while it ran.
     const std::array<double, kSteps>& step_cycles() const { return steps_; }
 
-    CostBreakdown breakdown() const;
+    CostTotals totals() const { return {units_, steps_, cache_.hits(), cache_.misses()}; }
+    CostBreakdown breakdown(const CostTotals& totals) const;
+    CostBreakdown breakdown() const { return breakdown(totals()); }
     void reset();  // counts, cache contents and cache counters, takes
 
     CacheModel& cache() { return cache_; }

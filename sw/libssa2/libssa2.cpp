@@ -312,13 +312,19 @@ Task* Driver::describing(std::vector<Task>& tasks) {
 }
 
 // One candidate at a time, so that interrupts are served between them.
+// With one accelerator pair tasks reach phase 4 in their order, so a task's candidates are
+// described one after the other (describing() takes the first task in phase 4), and the
+// describer may work on them ahead.
 void Driver::describe_one(Task& task, const Callback& callback) {
-    if (task.described == 0) hal_.mark(unsigned(config_.accelerators.size()), task.id);
+    const Format& format = formats_[size_t(task.described_on)];
+    const FrameInMemory frame{task.id,    task.integral, task.determinants, task.records,  task.width,
+                              task.height, format.det_bytes, format.det_frac_bits, task.threshold};
+    if (task.described == 0) {
+        hal_.mark(unsigned(config_.accelerators.size()), task.id);
+        if (config_.accelerators.size() == 1 && !task.candidates.empty()) describer_.ahead(hal_, task.candidates, frame);
+    }
     if (task.described < task.candidates.size()) {
         Span span(hal_, "describe");
-        const Format& format = formats_[size_t(task.described_on)];
-        const FrameInMemory frame{task.id,    task.integral, task.determinants, task.records,  task.width,
-                                  task.height, format.det_bytes, format.det_frac_bits, task.threshold};
         Work work;
         auto keypoint = describer_.describe(hal_, task.candidates[task.described++], frame, work);
         task.descriptor_cycles += hal_.compute(work.cycles, work.lines);

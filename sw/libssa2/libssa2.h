@@ -94,6 +94,12 @@ public:
     virtual ~Describer() = default;
     virtual std::optional<surf::Keypoint> describe(Hal& hal, uint32_t candidate, const FrameInMemory& frame,
                                                    Work& work) = 0;
+    // Before a task's first describe(), when the driver will describe its candidates one after
+    // the other, without another task's between them, until the last or the first whose check
+    // fails (Work::inconsistency): a describer may work on them ahead, as long as each
+    // describe() then gives what it would have given alone. The task's buffers are not written
+    // until it is reported.
+    virtual void ahead(Hal& /*hal*/, const std::vector<uint32_t>& /*candidates*/, const FrameInMemory& /*frame*/) {}
 };
 
 enum class Phase { queued, hardware, descriptors, done, failed };

@@ -1,6 +1,7 @@
 // The background worker: wait(n) covers jobs 0..n, a waiter runs the queued jobs it waits for,
 // the lowest-numbered job's exception reaches the waiter, and no hand-over is lost whether the
-// other side spins or sleeps.
+// other side spins or sleeps; background work runs in the idle time, after the jobs, until it
+// says it has nothing, again after each poke, and never after it is taken back.
 #include <gtest/gtest.h>
 
 #include <atomic>
@@ -93,6 +94,71 @@ TEST(Worker, DestroyingItFinishesTheJobsSubmitted) {
         for (int i = 0; i < 50; ++i) w.submit([&done] { ++done; });
     }
     EXPECT_EQ(done, 50);
+}
+
+// Pieces run on the worker's thread until the work says it has none; a poke (here to a
+// sleeping worker) brings it back; once taken back, it is never called again.
+TEST(Worker, BackgroundWorkRunsUntilItHasNoneAndAgainAfterAPoke) {
+    Worker w;
+    std::atomic<int> left{5}, pieces{0}, calls{0};
+    std::atomic<bool> on_worker{true};
+    const auto caller = std::this_thread::get_id();
+    w.set_background([&] {
+        ++calls;
+        if (std::this_thread::get_id() == caller) on_worker = false;
+        if (left <= 0) return false;
+        --left;
+        ++pieces;
+        return true;
+    });
+    auto settle = [&] {
+        const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(5);
+        for (int seen = -1; calls != seen && std::chrono::steady_clock::now() < until;) {
+            seen = calls;
+            std::this_thread::sleep_for(std::chrono::milliseconds(5));  // longer than the spin: it sleeps
+        }
+    };
+    w.poke();
+    settle();
+    EXPECT_EQ(pieces, 5);
+    const int after_first = calls;
+    EXPECT_EQ(after_first, 6);  // five pieces and the call that found none; no poke, no call
+    left = 3;
+    w.poke();
+    settle();
+    EXPECT_EQ(pieces, 8);
+    EXPECT_TRUE(on_worker);
+    w.set_background(nullptr);
+    const int before = calls;
+    left = 100;
+    w.poke();
+    settle();
+    EXPECT_EQ(calls, before);
+}
+
+// With background work that never runs out, a submitted job is still taken by the worker
+// (the submitter does not wait(), which would run it itself).
+TEST(Worker, JobsComeBeforeBackgroundWork) {
+    Worker w;
+    std::atomic<uint64_t> pieces{0};
+    w.set_background([&] {
+        ++pieces;
+        return true;
+    });
+    w.poke();
+    while (pieces < 100) std::this_thread::yield();
+    std::atomic<bool> ran{false};
+    std::thread::id ran_on;
+    w.submit([&] {
+        ran_on = std::this_thread::get_id();
+        ran = true;
+    });
+    const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(5);
+    while (!ran && std::chrono::steady_clock::now() < until) std::this_thread::yield();
+    EXPECT_TRUE(ran);
+    w.drain();
+    EXPECT_NE(ran_on, std::this_thread::get_id());
+    w.set_background(nullptr);
 }
 
 }  // namespace
