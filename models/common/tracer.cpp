@@ -9,7 +9,9 @@
 #include <fmt/format.h>
 #include <fstream>
 #include <iterator>
+#include <memory>
 #include <unistd.h>
+#include <utility>
 
 namespace surfvp {
 namespace fs = std::filesystem;
@@ -20,13 +22,11 @@ namespace {
 std::string vcd_temp() { return fmt::format("trace.vcd.{}.partial", ::getpid()); }
 std::string perfetto_temp() { return fmt::format("trace.perfetto.json.{}.partial", ::getpid()); }
 
-// Perfetto's events are formatted into a buffer (no string per event: the timeline writer is
-// on every transaction's path when tracing is on) and written to the file in large pieces.
-constexpr size_t kFlushBytes = 1 << 20;
+// Events a batch holds before it goes to the writing thread (~0.5 MB of text).
+constexpr size_t kBatchEvents = 1 << 13;
 
 // Trace-event timestamps are microseconds; the simulator resolves picoseconds.
-void put_micros(fmt::memory_buffer& out, const sc_core::sc_time& t) {
-    const auto ps = t.value();
+void put_micros(fmt::memory_buffer& out, uint64_t ps) {
     fmt::format_to(std::back_inserter(out), FMT_COMPILE("{}.{:06}"), ps / 1000000, ps % 1000000);
 }
 
@@ -71,11 +71,14 @@ Tracer::Tracer(const Options& options) : options_(options) {
         perfetto_.open(fs::path(options.dir) / perfetto_temp(), std::ios::binary | std::ios::trunc);
         if (!perfetto_) throw EnvironmentError("cannot write " + (fs::path(options.dir) / perfetto_temp()).string());
         perfetto_ << "{\"displayTimeUnit\":\"ns\",\"traceEvents\":[";
+        perfetto_on_ = true;
+        writer_ = std::make_unique<Worker>(std::chrono::microseconds(0));
     }
 }
 
 Tracer::~Tracer() {
     if (finished_) return;
+    writer_.reset();  // its batches written: the stream is this thread's again
     // A run that did not finish removes its partial files rather than leave them behind.
     if (vcd_) sc_core::sc_close_vcd_trace_file(vcd_);
     if (perfetto_.is_open()) perfetto_.close();
@@ -84,16 +87,53 @@ Tracer::~Tracer() {
     fs::remove(fs::path(options_.dir) / perfetto_temp(), ignored);
 }
 
-void Tracer::event_separator() {
-    if (events_.size() >= kFlushBytes) flush_events();
-    put(events_, first_event_ ? "\n" : ",\n");
-    first_event_ = false;
+void Tracer::record(Event event, std::string_view text) {
+    event.text = uint32_t(batch_.text.size());
+    event.text_bytes = uint32_t(text.size());
+    batch_.text.append(text);
+    batch_.events.push_back(event);
+    if (batch_.events.size() == kBatchEvents) hand_over();
 }
 
-// Through the stream, so that a failed stream (a full disk) only stops taking data.
-void Tracer::flush_events() {
-    perfetto_.write(events_.data(), std::streamsize(events_.size()));
-    events_.clear();
+// Batches are formatted and written on the writer's thread, one after the other in the order
+// handed over (nobody waits on the worker, so no other thread runs one).
+void Tracer::hand_over() {
+    if (batch_.events.empty()) return;
+    batch_.first = std::exchange(first_batch_, false);
+    writer_->submit([this, batch = std::make_shared<Batch>(std::move(batch_))] {
+        fmt::memory_buffer out;
+        format(*batch, out);
+        perfetto_.write(out.data(), std::streamsize(out.size()));  // a failed stream (a full disk) only stops taking data
+    });
+    batch_ = Batch();
+    batch_.events.reserve(kBatchEvents);
+}
+
+void Tracer::format(const Batch& batch, fmt::memory_buffer& out) {
+    bool first = batch.first;
+    for (const Event& e : batch.events) {
+        put(out, std::exchange(first, false) ? "\n" : ",\n");
+        const std::string_view text(batch.text.data() + e.text, e.text_bytes);
+        switch (e.kind) {
+            case Event::metadata: put(out, text); break;
+            case Event::slice:
+                put(out, R"({"ph":"X","name":)");
+                put_json_string(out, text);
+                fmt::format_to(std::back_inserter(out), FMT_COMPILE(R"(,"pid":{},"tid":{},"ts":)"), e.pid, e.tid);
+                put_micros(out, e.ps);
+                put(out, R"(,"dur":)");
+                put_micros(out, e.duration_ps);
+                put(out, "}");
+                break;
+            case Event::counter:
+                put(out, R"({"ph":"C","name":)");
+                put_json_string(out, text);
+                fmt::format_to(std::back_inserter(out), FMT_COMPILE(R"(,"pid":{},"ts":)"), e.pid);
+                put_micros(out, e.ps);
+                fmt::format_to(std::back_inserter(out), FMT_COMPILE(R"(,"args":{{"value":{}}}}})"), e.value);
+                break;
+        }
+    }
 }
 
 int Tracer::group_id(const std::string& group) {
@@ -101,13 +141,15 @@ int Tracer::group_id(const std::string& group) {
         if (groups_[i] == group) return static_cast<int>(i) + 1;
     groups_.push_back(group);
     const int pid = static_cast<int>(groups_.size());
-    auto out = std::back_inserter(events_);
-    event_separator();
-    fmt::format_to(out, R"({{"ph":"M","name":"process_name","pid":{},"tid":0,"args":{{"name":)", pid);
-    put_json_string(events_, group);
-    put(events_, "}}");
-    event_separator();
-    fmt::format_to(out, R"({{"ph":"M","name":"process_sort_index","pid":{},"tid":0,"args":{{"sort_index":{}}}}})", pid, pid);
+    fmt::memory_buffer text;
+    fmt::format_to(std::back_inserter(text), R"({{"ph":"M","name":"process_name","pid":{},"tid":0,"args":{{"name":)", pid);
+    put_json_string(text, group);
+    put(text, "}}");
+    record({Event::metadata, pid, 0, 0, 0, 0, 0, 0}, {text.data(), text.size()});
+    text.clear();
+    fmt::format_to(std::back_inserter(text), R"({{"ph":"M","name":"process_sort_index","pid":{},"tid":0,"args":{{"sort_index":{}}}}})",
+                   pid, pid);
+    record({Event::metadata, pid, 0, 0, 0, 0, 0, 0}, {text.data(), text.size()});
     return pid;
 }
 
@@ -116,28 +158,22 @@ int Tracer::track(const std::string& group, const std::string& name) {
     const int pid = group_id(group);
     const int tid = static_cast<int>(tracks_.size()) + 1;
     tracks_.push_back({pid, tid, {}});
-    auto out = std::back_inserter(events_);
-    event_separator();
-    fmt::format_to(out, R"({{"ph":"M","name":"thread_name","pid":{},"tid":{},"args":{{"name":)", pid, tid);
-    put_json_string(events_, name);
-    put(events_, "}}");
-    event_separator();
-    fmt::format_to(out, R"({{"ph":"M","name":"thread_sort_index","pid":{},"tid":{},"args":{{"sort_index":{}}}}})", pid, tid,
-                   tid);
+    fmt::memory_buffer text;
+    fmt::format_to(std::back_inserter(text), R"({{"ph":"M","name":"thread_name","pid":{},"tid":{},"args":{{"name":)", pid, tid);
+    put_json_string(text, name);
+    put(text, "}}");
+    record({Event::metadata, pid, tid, 0, 0, 0, 0, 0}, {text.data(), text.size()});
+    text.clear();
+    fmt::format_to(std::back_inserter(text), R"({{"ph":"M","name":"thread_sort_index","pid":{},"tid":{},"args":{{"sort_index":{}}}}})",
+                   pid, tid, tid);
+    record({Event::metadata, pid, tid, 0, 0, 0, 0, 0}, {text.data(), text.size()});
     return static_cast<int>(tracks_.size()) - 1;
 }
 
 void Tracer::slice(int track, std::string_view name, const sc_core::sc_time& start, const sc_core::sc_time& end) {
     if (!perfetto_on() || track < 0) return;
     const Track& t = tracks_[track];
-    event_separator();
-    put(events_, R"({"ph":"X","name":)");
-    put_json_string(events_, name);
-    fmt::format_to(std::back_inserter(events_), FMT_COMPILE(R"(,"pid":{},"tid":{},"ts":)"), t.pid, t.tid);
-    put_micros(events_, start);
-    put(events_, R"(,"dur":)");
-    put_micros(events_, end - start);
-    put(events_, "}");
+    record({Event::slice, t.pid, t.tid, start.value(), end.value() - start.value(), 0, 0, 0}, name);
 }
 
 void Tracer::counter(int track, std::string_view name, const sc_core::sc_time& at, double value) {
@@ -147,12 +183,7 @@ void Tracer::counter(int track, std::string_view name, const sc_core::sc_time& a
     if (last == counters.end()) counters.emplace_back(std::string(name), value);
     else if (last->second == value) return;
     else last->second = value;
-    event_separator();
-    put(events_, R"({"ph":"C","name":)");
-    put_json_string(events_, name);
-    fmt::format_to(std::back_inserter(events_), FMT_COMPILE(R"(,"pid":{},"ts":)"), tracks_[track].pid);
-    put_micros(events_, at);
-    fmt::format_to(std::back_inserter(events_), FMT_COMPILE(R"(,"args":{{"value":{}}}}})"), value);
+    record({Event::counter, tracks_[track].pid, 0, at.value(), 0, value, 0, 0}, name);
 }
 
 std::vector<std::string> Tracer::write_gtkwave_save(const fs::path& dir) {
@@ -179,8 +210,10 @@ std::vector<std::string> Tracer::finish() {
         written.push_back((dir / "trace.vcd").string());
         for (const std::string& f : write_gtkwave_save(dir)) written.push_back(f);
     }
-    if (perfetto_.is_open()) {
-        flush_events();
+    if (perfetto_on_) {
+        hand_over();
+        writer_.reset();  // every batch written
+        perfetto_on_ = false;
         perfetto_ << "\n]}\n";
         perfetto_.close();
         if (!perfetto_) {

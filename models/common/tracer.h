@@ -3,19 +3,23 @@
 // that opens it ready to read, gtkwave_save.h) and a Chrome trace-event JSON timeline (Perfetto). Either can be off; a model asks `perfetto_on()` before
 // building a slice's name, so tracing costs a branch when off. Files are written under
 // temporary names and renamed by finish(), so an interrupted run leaves no half file
-// under the final name.
+// under the final name. Perfetto's events are recorded as their fields, in batches, and a
+// thread of their own (a Worker that does not spin: it gets a batch every few thousand
+// events) formats and writes each batch, in order: the kernel's thread only records.
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <string>
 #include <string_view>
 #include <fmt/format.h>
+#include <memory>
 #include <systemc>
 #include <type_traits>
 #include <utility>
 #include <vector>
 
 #include "gtkwave_save.h"
+#include "worker.h"
 
 namespace surfvp {
 
@@ -34,7 +38,7 @@ public:
     Tracer& operator=(const Tracer&) = delete;
 
     bool vcd_on() const { return vcd_ != nullptr; }
-    bool perfetto_on() const { return perfetto_.is_open(); }
+    bool perfetto_on() const { return perfetto_on_; }
 
     // VCD: trace a signal under a dotted name ("plb2.write_busy"); call before sc_start.
     template <typename T>
@@ -64,8 +68,23 @@ private:
         int tid;
         std::vector<std::pair<std::string, double>> counters;  // each counter's last value written
     };
-    void event_separator();  // before each event; writes out what has gathered
-    void flush_events();
+    // A Perfetto event as recorded: its fields, its text (a name, or a metadata event whole)
+    // in the batch's text.
+    struct Event {
+        enum Kind : uint8_t { metadata, slice, counter } kind;
+        int pid, tid;
+        uint64_t ps, duration_ps;  // slice: start and duration; counter: its time
+        double value;
+        uint32_t text, text_bytes;
+    };
+    struct Batch {
+        std::vector<Event> events;
+        std::string text;
+        bool first = false;  // holds the file's first event
+    };
+    void record(Event event, std::string_view text);
+    void hand_over();  // the batch to the writing thread
+    static void format(const Batch& batch, fmt::memory_buffer& out);
     int group_id(const std::string& group);
 
     std::vector<std::string> write_gtkwave_save(const std::filesystem::path& dir);
@@ -74,12 +93,14 @@ private:
     sc_core::sc_trace_file* vcd_ = nullptr;
     std::vector<VcdSignal> vcd_signals_;
     std::vector<std::pair<std::string, std::string>> titles_;
-    std::ofstream perfetto_;
-    fmt::memory_buffer events_;  // formatted events not yet written
+    bool perfetto_on_ = false;
+    std::ofstream perfetto_;  // the writing thread's while it has batches
+    Batch batch_;             // being recorded
+    bool first_batch_ = true;
     std::vector<std::string> groups_;
     std::vector<Track> tracks_;
-    bool first_event_ = true;
     bool finished_ = false;
+    std::unique_ptr<Worker> writer_;  // last: stops (its batches written) before the stream goes
 };
 
 }  // namespace surfvp

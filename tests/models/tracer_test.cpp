@@ -50,6 +50,45 @@ TEST(Tracer, TimelineIsValidJsonWithEscapedNamesAndPicosecondTimes) {
     EXPECT_TRUE(slice && counter && names);
 }
 
+// Events go to the file in batches written on another thread: across many batches, with
+// tracks added between them and counters that repeat their value, every event is there once,
+// in the order it was given.
+TEST(Tracer, ManyBatchesKeepEveryEventInOrder) {
+    const std::string dir = temp_dir("batches");
+    constexpr int kEvents = 50000;
+    {
+        Tracer tracer({false, true, dir});
+        int track = tracer.track("g", "t0");
+        for (int i = 0; i < kEvents; ++i) {
+            if (i % 10000 == 9999) track = tracer.track("g" + std::to_string(i), "t");
+            tracer.slice(track, "s" + std::to_string(i), sc_core::sc_time(double(i), sc_core::SC_PS),
+                         sc_core::sc_time(double(i + 1), sc_core::SC_PS));
+            tracer.counter(track, "c", sc_core::sc_time(double(i), sc_core::SC_PS), double(i / 2));  // every other repeats
+        }
+        tracer.finish();
+    }
+    std::ifstream in(dir + "/trace.perfetto.json");
+    const auto json = nlohmann::json::parse(in);
+    int slices = 0, counters = 0, tracks = 0;
+    double last_counter = -1;
+    for (const auto& e : json["traceEvents"]) {
+        if (e["ph"] == "X") {
+            ASSERT_EQ(e["name"], "s" + std::to_string(slices)) << "slice " << slices;
+            ++slices;
+        } else if (e["ph"] == "C") {
+            ASSERT_GE(e["args"]["value"].get<double>(), last_counter);  // equal only at a new track
+            last_counter = e["args"]["value"].get<double>();
+            ++counters;
+        } else if (e["name"] == "thread_name") {
+            ++tracks;
+        }
+    }
+    EXPECT_EQ(slices, kEvents);
+    EXPECT_EQ(tracks, 1 + kEvents / 10000);
+    // A new track starts its counter afresh: the value repeated across a track change is written again.
+    EXPECT_EQ(counters, kEvents / 2 + kEvents / 10000);
+}
+
 TEST(Tracer, UnfinishedTracesLeaveNoFiles) {
     const std::string dir = temp_dir("unfinished");
     {
