@@ -4,6 +4,7 @@
 #include <chrono>
 #include <stdexcept>
 #include <sys/mman.h>
+#include <unistd.h>
 
 namespace surfvp {
 
@@ -11,11 +12,25 @@ void ZeroedMemoryRelease::operator()(uint8_t* p) const {
     if (p) munmap(p, bytes);
 }
 
+// Maps 2 MB more than asked and gives back what lies before the first 2 MB boundary and after
+// the block: the kernel backs a 2 MB page only where the mapping covers it whole.
+uint8_t* map_zeroed(size_t bytes) {
+    constexpr uintptr_t kHuge = uintptr_t(1) << 21;
+    const size_t mapped = bytes + kHuge;
+    void* p = mmap(nullptr, mapped, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS | MAP_NORESERVE, -1, 0);
+    if (p == MAP_FAILED) return nullptr;
+    const uintptr_t begin = reinterpret_cast<uintptr_t>(p), start = (begin + kHuge - 1) & ~(kHuge - 1);
+    const uintptr_t page = uintptr_t(sysconf(_SC_PAGESIZE)), end = (start + bytes + page - 1) & ~(page - 1);
+    if (start > begin) munmap(p, start - begin);
+    if (begin + mapped > end) munmap(reinterpret_cast<void*>(end), begin + mapped - end);
+    madvise(reinterpret_cast<void*>(start), bytes, MADV_HUGEPAGE);  // a hint: without transparent huge pages it changes nothing
+    return reinterpret_cast<uint8_t*>(start);
+}
+
 ZeroedMemory zeroed_memory(size_t bytes, const std::string& what) {
-    void* p = mmap(nullptr, bytes, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS | MAP_NORESERVE, -1, 0);
-    if (p == MAP_FAILED) throw std::runtime_error(what + ": cannot allocate " + std::to_string(bytes) + " bytes");
-    madvise(p, bytes, MADV_HUGEPAGE);  // a hint: without transparent huge pages it changes nothing
-    return ZeroedMemory(static_cast<uint8_t*>(p), ZeroedMemoryRelease{bytes});
+    uint8_t* p = map_zeroed(bytes);
+    if (!p) throw std::runtime_error(what + ": cannot allocate " + std::to_string(bytes) + " bytes");
+    return ZeroedMemory(p, ZeroedMemoryRelease{bytes});
 }
 
 PopulateAhead::PopulateAhead(uint8_t* block, size_t bytes)

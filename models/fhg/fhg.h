@@ -30,6 +30,7 @@
 #include "models/common/register_target.h"
 #include "models/common/tracer.h"
 #include "models/common/worker.h"
+#include "models/common/zeroed_memory.h"
 #include "models/common/units.h"
 #include "models/pixelbus/pixel_bus.h"
 #include "sequence_generator.h"
@@ -144,7 +145,7 @@ private:
         uint32_t rows_queued;   // block rows handed to the worker (Params::parallel)
         sc_core::sc_time began;
     } frame_{};
-    std::vector<uint32_t> lines_;              // received integral rows (the FIFO's contents live here)
+    FrameBuffer<uint32_t> lines_;              // received integral rows (the FIFO's contents live here)
     std::vector<std::vector<uint8_t>> slots_;  // block rows for the writer (without Params::parallel)
     sc_core::sc_fifo<int> det_rows_;  // block rows ready for the writer
     sc_core::sc_event start_, line_arrived_, room_, rows_written_, irq_changed_;
@@ -156,7 +157,7 @@ private:
     int frame_track_ = -1, row_track_ = -1, level_track_ = -1;
     // The worker's results, every block row of the frame: stored determinants (the writer
     // sends them from here) and marked maxima. Row r is the worker's job first_job_ + r.
-    std::vector<uint8_t> ahead_rows_;
+    FrameBuffer<uint8_t> ahead_rows_;
     std::vector<std::vector<fhg::Candidate>> ahead_found_;
     size_t first_job_ = 0;
     std::unique_ptr<Worker> worker_;  // with Params::parallel; last, so it stops before the rest goes

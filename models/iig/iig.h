@@ -19,6 +19,7 @@
 #include "iig_registers.h"
 #include "models/common/fault_plan.h"
 #include "integral_core.h"
+#include "models/common/zeroed_memory.h"
 #include "models/common/statistics.h"
 #include "models/common/parameter.h"
 #include "models/common/register_target.h"
@@ -98,8 +99,8 @@ private:
         unsigned rows_finished;  // written and (if streaming) sent
         sc_core::sc_time began;
     } frame_{};
-    std::vector<uint8_t> image_;       // the frame's image rows as fetched
-    std::vector<uint32_t> integral_;   // the frame's integral rows
+    FrameBuffer<uint8_t> image_;       // the frame's image rows as fetched
+    FrameBuffer<uint32_t> integral_;   // the frame's integral rows
     std::vector<uint8_t> bytes_;       // one integral row as bus bytes
     sc_core::sc_fifo<int> fetched_, computed_for_write_, computed_for_send_;
     sc_core::sc_event start_, irq_changed_;

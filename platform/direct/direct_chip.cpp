@@ -153,7 +153,8 @@ void DirectChip::run_integral(Pair& p) {
     const IigRegisters::Frame& i = p.integral;
     if (!in_memory(i.src, uint64_t(i.src_stride) * (i.height - 1) + i.width)) return p.iig.end(true, iig::ERR_READ, 0);
     if (!in_memory(i.dst, uint64_t(i.dst_stride) * (i.height - 1) + 4ull * i.width)) return p.iig.end(true, iig::ERR_WRITE, 0);
-    std::vector<uint32_t> integral(size_t(i.width) * i.height);
+    FrameBuffer<uint32_t>& integral = p.making;
+    integral.resize(size_t(i.width) * i.height);  // every word is written before it is read
     const IntegralCore integral_core(sum_bits_);
     for (uint32_t y = 0; y < i.height; ++y) {
         const uint32_t* above = y ? &integral[size_t(y - 1) * i.width] : nullptr;
@@ -166,7 +167,7 @@ void DirectChip::run_integral(Pair& p) {
         if (p.determinants.width != i.width || p.determinants.height != i.height) p.fhg.status().end(true, f::ERR_PIXELBUS);
         else {
             p.stop_listening();  // a second stream replaces the first
-            p.lines = std::move(integral);
+            std::swap(p.lines, p.making);
             compute_ahead(p);
         }
     }

@@ -59,12 +59,15 @@ private:
         FhgRegisters fhg;
         IigRegisters::Frame integral{};
         FhgRegisters::Frame determinants{};
-        std::vector<uint32_t> lines;  // the integral image streamed to the FHG
+        FrameBuffer<uint32_t> lines;  // the integral image streamed to the FHG
+        // The IIG's integral image being made; kept from frame to frame with `lines` (swapped),
+        // so a frame does not allocate one.
+        FrameBuffer<uint32_t> making;
         uint32_t next_row = 0;        // the FHG's next block row; its frame has work while BUSY
         // Rows computed ahead on the worker (run.parallel): stored determinants and maxima;
         // row r (from first_row on) is job first_job + r - first_row.
         bool ahead = false;
-        std::vector<uint8_t> rows;
+        FrameBuffer<uint8_t> rows;
         std::vector<std::vector<fhg::Candidate>> found;
         uint32_t first_row = 0;
         size_t first_job = 0;
