@@ -136,20 +136,26 @@ void Tracer::format(const Batch& batch, fmt::memory_buffer& out) {
     }
 }
 
+// A process's or thread's name and its place in the timeline's order, as two metadata events.
+void Tracer::name_and_order(std::string_view what, int pid, int tid, std::string_view name, int sort_index) {
+    fmt::memory_buffer text;
+    fmt::format_to(std::back_inserter(text), R"({{"ph":"M","name":"{}_name","pid":{},"tid":{},"args":{{"name":)", what, pid,
+                   tid);
+    put_json_string(text, name);
+    put(text, "}}");
+    record({Event::metadata, pid, tid, 0, 0, 0, 0, 0}, {text.data(), text.size()});
+    text.clear();
+    fmt::format_to(std::back_inserter(text), R"({{"ph":"M","name":"{}_sort_index","pid":{},"tid":{},"args":{{"sort_index":{}}}}})",
+                   what, pid, tid, sort_index);
+    record({Event::metadata, pid, tid, 0, 0, 0, 0, 0}, {text.data(), text.size()});
+}
+
 int Tracer::group_id(const std::string& group) {
     for (size_t i = 0; i < groups_.size(); ++i)
         if (groups_[i] == group) return static_cast<int>(i) + 1;
     groups_.push_back(group);
     const int pid = static_cast<int>(groups_.size());
-    fmt::memory_buffer text;
-    fmt::format_to(std::back_inserter(text), R"({{"ph":"M","name":"process_name","pid":{},"tid":0,"args":{{"name":)", pid);
-    put_json_string(text, group);
-    put(text, "}}");
-    record({Event::metadata, pid, 0, 0, 0, 0, 0, 0}, {text.data(), text.size()});
-    text.clear();
-    fmt::format_to(std::back_inserter(text), R"({{"ph":"M","name":"process_sort_index","pid":{},"tid":0,"args":{{"sort_index":{}}}}})",
-                   pid, pid);
-    record({Event::metadata, pid, 0, 0, 0, 0, 0, 0}, {text.data(), text.size()});
+    name_and_order("process", pid, 0, group, pid);
     return pid;
 }
 
@@ -158,15 +164,7 @@ int Tracer::track(const std::string& group, const std::string& name) {
     const int pid = group_id(group);
     const int tid = static_cast<int>(tracks_.size()) + 1;
     tracks_.push_back({pid, tid, {}});
-    fmt::memory_buffer text;
-    fmt::format_to(std::back_inserter(text), R"({{"ph":"M","name":"thread_name","pid":{},"tid":{},"args":{{"name":)", pid, tid);
-    put_json_string(text, name);
-    put(text, "}}");
-    record({Event::metadata, pid, tid, 0, 0, 0, 0, 0}, {text.data(), text.size()});
-    text.clear();
-    fmt::format_to(std::back_inserter(text), R"({{"ph":"M","name":"thread_sort_index","pid":{},"tid":{},"args":{{"sort_index":{}}}}})",
-                   pid, tid, tid);
-    record({Event::metadata, pid, tid, 0, 0, 0, 0, 0}, {text.data(), text.size()});
+    name_and_order("thread", pid, tid, name, tid);
     return static_cast<int>(tracks_.size()) - 1;
 }
 

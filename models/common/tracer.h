@@ -85,6 +85,7 @@ private:
     void record(Event event, std::string_view text);
     void hand_over();  // the batch to the writing thread
     static void format(const Batch& batch, fmt::memory_buffer& out);
+    void name_and_order(std::string_view what, int pid, int tid, std::string_view name, int sort_index);
     int group_id(const std::string& group);
 
     std::vector<std::string> write_gtkwave_save(const std::filesystem::path& dir);

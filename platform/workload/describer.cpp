@@ -132,7 +132,7 @@ public:
             std::lock_guard<std::mutex> lock(stage_mutex_);
             start_task(frame);
             ahead_ = Ahead{frame.task, candidates, buffers(hal, frame), std::vector<Result>(candidates.size())};
-            ready_.store(0, std::memory_order_relaxed);
+            described_.store(0, std::memory_order_relaxed);
         }
         worker_->poke();
     }
@@ -163,13 +163,12 @@ private:
         Tally tally;
         std::exception_ptr error;
     };
-    // A task described ahead: results[k] is ready once ready_ > k.
+    // A task described ahead: results[k] is ready once described_ > k.
     struct Ahead {
         int task;
         std::vector<uint32_t> words;
         sw::FrameBuffers buffers;
         std::vector<Result> results;
-        size_t done = 0;    // described, under stage_mutex_
         size_t handed = 0;  // handed to the driver (its thread only)
         bool stopped = false;  // after a failed check or an error the driver describes no further
     };
@@ -186,7 +185,7 @@ private:
 
     void start_task(const sw::ssa2::FrameInMemory& frame) {
         if (frame.task == task_) return;
-        if (ahead_ && ahead_->done != ahead_->handed)  // the driver's promise (Describer::ahead) broken
+        if (ahead_ && described_.load(std::memory_order_relaxed) != ahead_->handed)  // the driver's promise (Describer::ahead) broken
             throw std::logic_error("software stage: a task was left with candidates described ahead");
         stage_.begin_frame();  // new DMA'd buffers: the cached lines are stale
         stage_.set_register_threshold(frame.threshold);  // the one the FHG compared with
@@ -234,15 +233,16 @@ private:
     // The next candidate of the task described ahead; under stage_mutex_.
     void describe_next() {
         Ahead& a = *ahead_;
-        Result& r = a.results[a.done] = run_stage(a.words[a.done], a.buffers);
+        const size_t k = described_.load(std::memory_order_relaxed);
+        Result& r = a.results[k] = run_stage(a.words[k], a.buffers);
         a.stopped = r.error || !r.work.inconsistency.empty();
-        ready_.store(++a.done, std::memory_order_release);
+        described_.store(k + 1, std::memory_order_release);
     }
 
     // The worker's piece: one candidate ahead, if there is one.
     bool describe_ahead() {
         std::lock_guard<std::mutex> lock(stage_mutex_);
-        if (!ahead_ || ahead_->stopped || ahead_->done == ahead_->words.size()) return false;
+        if (!ahead_ || ahead_->stopped || described_.load(std::memory_order_relaxed) == ahead_->words.size()) return false;
         describe_next();
         return true;
     }
@@ -252,9 +252,9 @@ private:
         const size_t k = a.handed++;
         if (k >= a.words.size() || a.words[k] != word)
             throw std::logic_error("software stage: the driver asked for a candidate out of the order it gave");
-        if (ready_.load(std::memory_order_acquire) <= k) {  // not done yet: here and now
+        if (described_.load(std::memory_order_acquire) <= k) {  // not done yet: here and now
             std::lock_guard<std::mutex> lock(stage_mutex_);
-            while (a.done <= k) describe_next();
+            while (described_.load(std::memory_order_relaxed) <= k) describe_next();
         }
         return std::move(a.results[k]);
     }
@@ -279,7 +279,9 @@ private:
     Worker* worker_ = nullptr;
     std::mutex stage_mutex_;  // the stage and ahead_'s progress, between the driver's thread and the worker
     std::optional<Ahead> ahead_;
-    std::atomic<size_t> ready_{0};  // ahead_->done, for the driver's thread to read without the lock
+    // ahead_'s candidates described so far: written under stage_mutex_, read by the driver's
+    // thread without it.
+    std::atomic<size_t> described_{0};
 };
 
 }  // namespace
