@@ -22,15 +22,9 @@ inline void store_be32(uint8_t* p, uint32_t v) {
     p[3] = uint8_t(v);
 }
 
-// `count` words stored from `p` on: whole-word byte swaps, which the compiler vectorises (a
-// loop of store_be32's byte stores it does not).
-inline void store_be32_run(uint8_t* p, const uint32_t* words, size_t count) {
-    for (size_t k = 0; k < count; ++k) {
-        uint32_t word = words[k];
-        if constexpr (__BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__) word = __builtin_bswap32(word);
-        std::memcpy(p + 4 * k, &word, 4);
-    }
-}
+// `count` words stored from `p` on (byte_order.cpp): byte swaps of 16 words at a time into a
+// word array, which the compiler vectorises (a loop of memcpy'd single words it does not).
+void store_be32_run(uint8_t* p, const uint32_t* words, size_t count);
 
 inline uint16_t load_be16(const uint8_t* p) { return uint16_t(p[0] << 8 | p[1]); }
 

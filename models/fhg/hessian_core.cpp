@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <stdexcept>
 #include <vector>
 
@@ -174,38 +175,86 @@ void finish_run_exact_double(const uint32_t* xx, const uint32_t* yy, const uint3
     }
 }
 
-// P(x) = sum of weight_i x row_i(x): one response's integral rows combined (a row above the
-// image is zero: weight 0). 32-bit unsigned sums wrap, which is exact modulo 2^32 in any order
-// and so for any accumulator width up to 32 bits.
-struct Terms {
-    const uint32_t* src[4];
-    uint32_t weight[4];
+// P(x) = sum of weight_i x row_i(x): one response's integral rows combined. The box filters'
+// corners come in equal and opposite weights, so the terms go as pairs,
+// P(x) = sum of m_j x (plus_j(x) - minus_j(x)), those of magnitude 1 first (no multiply); a
+// term without a partner pairs with a zero row. 32-bit unsigned sums wrap, which is exact
+// modulo 2^32 in any order and so for any accumulator width up to 32 bits.
+struct Pairs {
+    int count = 0, units = 0;
+    const uint32_t* plus[4] = {};
+    const uint32_t* minus[4] = {};
+    uint32_t magnitude[4] = {};
 };
 
-__attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
-void weigh(uint32_t* out, const Terms& t, int n, int step) {
-    const uint32_t *s0 = t.src[0], *s1 = t.src[1], *s2 = t.src[2], *s3 = t.src[3];
-    const uint32_t w0 = t.weight[0], w1 = t.weight[1], w2 = t.weight[2], w3 = t.weight[3];
-    if (step == 1)
-        for (int k = 0; k < n; ++k) out[k] = w0 * s0[k] + w1 * s1[k] + w2 * s2[k] + w3 * s3[k];
-    else
-        for (int k = 0; k < n; ++k)
-            out[k] = w0 * s0[k * step] + w1 * s1[k * step] + w2 * s2[k * step] + w3 * s3[k * step];
+// The loop for a known number of pairs and stride, so that it vectorises (a stride of 2, the
+// second octave's, with permuting loads).
+template <int P, int U, int Step>
+[[gnu::always_inline]] inline void weigh_n(uint32_t* out, const Pairs& t, int n, int step) {
+    const uint32_t *plus[P], *minus[P];
+    uint32_t magnitude[P];
+    for (int j = 0; j < P; ++j) plus[j] = t.plus[j], minus[j] = t.minus[j], magnitude[j] = t.magnitude[j];
+    const int stride = Step ? Step : step;
+    for (int k = 0; k < n; ++k) {
+        uint32_t sum = 0;
+        for (int j = 0; j < P; ++j) {
+            const uint32_t d = plus[j][k * stride] - minus[j][k * stride];
+            sum += j < U ? d : magnitude[j] * d;
+        }
+        out[k] = sum;
+    }
 }
 
-// `count` terms (up to 4), each a source (nullptr: a zero row) and its weight; the missing and
-// zero ones read a present source, times 0.
-template <class Source>
-Terms terms(int count, const std::array<int, 4>& weight, Source source) {
-    Terms t{};
-    const uint32_t* any = nullptr;
-    for (int i = 0; i < count; ++i) {
-        t.src[i] = source(i);
-        if (t.src[i]) any = t.src[i], t.weight[i] = uint32_t(weight[i]);
+template <int P, int U>
+[[gnu::always_inline]] inline void weigh_stride(uint32_t* out, const Pairs& t, int n, int step) {
+    if (step == 1) weigh_n<P, U, 1>(out, t, n, step);
+    else if (step == 2) weigh_n<P, U, 2>(out, t, n, step);
+    else weigh_n<P, U, 0>(out, t, n, step);
+}
+
+__attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
+void weigh(uint32_t* out, const Pairs& t, int n, int step) {
+    switch (t.count * 8 + std::min(t.units, 2)) {
+        case 0: std::fill(out, out + n, 0u); break;
+        case 8: weigh_stride<1, 0>(out, t, n, step); break;
+        case 9: weigh_stride<1, 1>(out, t, n, step); break;
+        case 16: weigh_stride<2, 0>(out, t, n, step); break;
+        case 17: weigh_stride<2, 1>(out, t, n, step); break;
+        case 18: weigh_stride<2, 2>(out, t, n, step); break;
+        case 24: case 25: case 26: weigh_stride<3, 0>(out, t, n, step); break;
+        default: weigh_stride<4, 0>(out, t, n, step); break;
     }
-    for (auto& src : t.src)
-        if (!src) src = any;
-    return t;
+}
+
+// `count` terms (up to 4), each a source (nullptr: a zero row) and its weight, as Pairs;
+// `zeros` is a zero row as long as the sources.
+template <class Source>
+Pairs pairs(int count, const std::array<int, 4>& weight, Source source, const uint32_t* zeros) {
+    const uint32_t* src[4];
+    int w[4];
+    int left = 0;
+    for (int i = 0; i < count; ++i) {
+        if (weight[size_t(i)] == 0) continue;
+        const uint32_t* s = source(i);
+        src[left] = s ? s : zeros;
+        w[left++] = weight[size_t(i)];
+    }
+    Pairs unit, other;  // the pairs of magnitude 1, the others
+    bool taken[4] = {};
+    for (int i = 0; i < left; ++i) {
+        if (taken[i]) continue;
+        int j = i + 1;
+        while (j < left && (taken[j] || w[j] != -w[i])) ++j;
+        const uint32_t* partner = j < left ? (taken[j] = true, src[j]) : zeros;
+        Pairs& to = std::abs(w[i]) == 1 ? unit : other;
+        to.plus[to.count] = w[i] > 0 ? src[i] : partner;
+        to.minus[to.count] = w[i] > 0 ? partner : src[i];
+        to.magnitude[to.count++] = uint32_t(std::abs(w[i]));
+    }
+    unit.units = unit.count;
+    for (int j = 0; j < other.count; ++j)
+        unit.plus[unit.count] = other.plus[j], unit.minus[unit.count] = other.minus[j], unit.magnitude[unit.count++] = other.magnitude[j];
+    return unit;
 }
 
 }  // namespace
@@ -225,9 +274,10 @@ void HessianCore::row(const IntegralView& ii, int y, int size, int x0, int step,
     if (first >= last) return;
 
     const int n = last - first;
-    thread_local std::vector<uint32_t> combined, sums;
+    thread_local std::vector<uint32_t> combined, sums, zeros;
     thread_local std::vector<int32_t> dets;
     combined.resize(size_t(ii.width) + 1);
+    zeros.resize(size_t(ii.width));  // never written: the row above the image
     sums.resize(size_t(3) * n);
     dets.resize(size_t(n));
     int32_t* finished = out_stride == 1 ? out + first : dets.data();  // contiguous output takes them directly
@@ -237,9 +287,12 @@ void HessianCore::row(const IntegralView& ii, int y, int size, int x0, int step,
     for (int r = 0; r < 3; ++r) {
         const Factors& f = factors_[size_t(size)][size_t(r)];
         // Inside the image every row read is in [-1, height - 1]; row -1 is zero.
-        weigh(p, terms(f.rows, f.weight, [&](int i) { return y + f.dy[size_t(i)] < 0 ? nullptr : ii.row(y + f.dy[size_t(i)]); }),
+        weigh(p,
+              pairs(f.rows, f.weight, [&](int i) { return y + f.dy[size_t(i)] < 0 ? nullptr : ii.row(y + f.dy[size_t(i)]); },
+                    zeros.data()),
               ii.width, 1);
-        weigh(sums.data() + size_t(r) * n, terms(f.taps, f.tap, [&](int i) { return p + x_first + f.dx[size_t(i)]; }), n, step);
+        weigh(sums.data() + size_t(r) * n,
+              pairs(f.taps, f.tap, [&](int i) { return p + x_first + f.dx[size_t(i)]; }, zeros.data()), n, step);
     }
     const Precision& pr = precision_;
     if (double_exact_) {
