@@ -146,18 +146,24 @@ std::array<int32_t, kDeterminantsPerBlock> HessianCore::block(const IntegralView
 
 namespace {
 
-// The same steps in double precision: every intermediate is an integer below 2^53 (the
+// The same steps in double precision: every intermediate is an integer below 2^52 (the
 // constructor checks the bounds), so each product, sum and power-of-two scaling is exact and
-// floor() gives the arithmetic shift; the loop vectorises where int64 multiplies do not. The
-// sums come as the low 32 bits of the TripleMAC's; `drop` narrows them to its width.
+// floor() gives the arithmetic shift; the loop vectorises where int64 multiplies do not. A
+// rounding shift, (v + 2^(s-1)) >> s, is floor(v x 2^-s + 1/2): a product by a constant
+// pre-scaled by 2^-s, plus a half, each exact (the result needs at most 52 significant bits),
+// so the constants K and W come scaled. The sums come as the low 32 bits of the TripleMAC's;
+// `drop` narrows them to its width.
 struct FinishConstantsF {
     unsigned drop;
-    double k, weight;
-    double recip_half, recip_inverse, weight_half, weight_inverse, det_half, det_inverse;
+    double k_scaled, recip_half;     // K x 2^-recip_shift; 1/2, or 0 without a shift
+    double weight_scaled, weight_half;
+    double det_scale, det_half;      // 2^-det_shift
     double response_max, det_max;
 };
 
-[[gnu::always_inline]] inline double shift_f(double v, double half, double inverse) { return std::floor((v + half) * inverse); }
+// 2^-s, and the half a rounding shift by s adds (none for s = 0).
+double scale_of(unsigned s) { return 1.0 / double(uint64_t(1) << s); }
+double half_of(unsigned s) { return s ? 0.5 : 0.0; }
 
 [[gnu::always_inline]] inline double clamp_f(double v, double max) { return std::min(std::max(v, -max - 1), max); }
 
@@ -167,11 +173,11 @@ __attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
 void finish_run_exact_double(const uint32_t* xx, const uint32_t* yy, const uint32_t* xy, int n,
                              const FinishConstantsF& c, int32_t* out) {
     for (int i = 0; i < n; ++i) {
-        const double rxx = clamp_f(shift_f(narrow_f(xx[i], c.drop) * c.k, c.recip_half, c.recip_inverse), c.response_max);
-        const double ryy = clamp_f(shift_f(narrow_f(yy[i], c.drop) * c.k, c.recip_half, c.recip_inverse), c.response_max);
-        const double rxy = clamp_f(shift_f(narrow_f(xy[i], c.drop) * c.k, c.recip_half, c.recip_inverse), c.response_max);
-        const double det = rxx * ryy - shift_f(c.weight * rxy * rxy, c.weight_half, c.weight_inverse);
-        out[i] = int32_t(clamp_f(shift_f(det, c.det_half, c.det_inverse), c.det_max));
+        const double rxx = clamp_f(std::floor(narrow_f(xx[i], c.drop) * c.k_scaled + c.recip_half), c.response_max);
+        const double ryy = clamp_f(std::floor(narrow_f(yy[i], c.drop) * c.k_scaled + c.recip_half), c.response_max);
+        const double rxy = clamp_f(std::floor(narrow_f(xy[i], c.drop) * c.k_scaled + c.recip_half), c.response_max);
+        const double det = rxx * ryy - std::floor(rxy * rxy * c.weight_scaled + c.weight_half);
+        out[i] = int32_t(clamp_f(std::floor(det * c.det_scale + c.det_half), c.det_max));
     }
 }
 
@@ -296,12 +302,12 @@ void HessianCore::row(const IntegralView& ii, int y, int size, int x0, int step,
     }
     const Precision& pr = precision_;
     if (double_exact_) {
-        auto half = [](unsigned s) { return s ? std::ldexp(1.0, int(s) - 1) : 0.0; };
         const unsigned det_shift = 2 * pr.response_frac_bits - pr.det_frac_bits;
-        const FinishConstantsF c{32 - pr.accumulator_bits, double(reciprocal_[size]), double(weight_),
-                                 half(pr.recip_shift), std::ldexp(1.0, -int(pr.recip_shift)), half(pr.weight_frac_bits),
-                                 std::ldexp(1.0, -int(pr.weight_frac_bits)), half(det_shift), std::ldexp(1.0, -int(det_shift)),
-                                 std::ldexp(1.0, int(pr.response_bits) - 1) - 1, std::ldexp(1.0, int(pr.det_bits) - 1) - 1};
+        const FinishConstantsF c{32 - pr.accumulator_bits,
+                                 double(reciprocal_[size]) * scale_of(pr.recip_shift), half_of(pr.recip_shift),
+                                 double(weight_) * scale_of(pr.weight_frac_bits), half_of(pr.weight_frac_bits),
+                                 scale_of(det_shift), half_of(det_shift),
+                                 double((int64_t(1) << (pr.response_bits - 1)) - 1), double((int64_t(1) << (pr.det_bits - 1)) - 1)};
         finish_run_exact_double(sums.data(), sums.data() + n, sums.data() + 2 * n, n, c, finished);
     } else {
         finish_run(sums.data(), sums.data() + n, sums.data() + 2 * n, n, finish_constants(pr, reciprocal_[size], weight_),
