@@ -17,8 +17,7 @@ namespace surfvp {
 namespace fs = std::filesystem;
 namespace {
 
-// Temporary names of this process's traces (two runs on one folder never share one);
-// SystemC appends ".vcd" to the name it is given.
+// Temporary names of this process's traces (two runs on one folder never share one).
 std::string vcd_temp() { return fmt::format("trace.vcd.{}.partial", ::getpid()); }
 std::string perfetto_temp() { return fmt::format("trace.perfetto.json.{}.partial", ::getpid()); }
 
@@ -43,30 +42,10 @@ void put_json_string(fmt::memory_buffer& out, std::string_view text) {
 
 void put(fmt::memory_buffer& out, std::string_view text) { out.append(text.data(), text.data() + text.size()); }
 
-// SystemC's VCD writer does not report failed writes; a complete file ends with the run's
-// end time ("#<ps>"), which a file cut short by a full disk lacks.
-void check_vcd_complete(const fs::path& vcd) {
-    const std::string end = fmt::format("#{}\n", sc_core::sc_time_stamp().value());
-    std::ifstream in(vcd, std::ios::binary | std::ios::ate);
-    const std::streamoff size = in ? std::streamoff(in.tellg()) : 0;
-    std::string tail(std::min<std::streamoff>(size, std::streamoff(end.size())), '\0');
-    if (in && size >= std::streamoff(end.size())) {
-        in.seekg(size - std::streamoff(end.size()));
-        in.read(tail.data(), std::streamsize(tail.size()));
-    }
-    if (tail == end) return;
-    std::error_code ignored;
-    fs::remove(vcd, ignored);
-    throw EnvironmentError(vcd.parent_path().string() + "/trace.vcd: the write failed, the file was cut short (disk full?)");
-}
-
 }  // namespace
 
 Tracer::Tracer(const Options& options) : options_(options) {
-    if (options.vcd) {
-        vcd_ = sc_core::sc_create_vcd_trace_file((fs::path(options.dir) / vcd_temp()).string().c_str());
-        vcd_->set_time_unit(1, sc_core::SC_PS);
-    }
+    if (options.vcd) vcd_ = std::make_unique<VcdWriter>((fs::path(options.dir) / vcd_temp()).string());
     if (options.perfetto) {
         perfetto_.open(fs::path(options.dir) / perfetto_temp(), std::ios::binary | std::ios::trunc);
         if (!perfetto_) throw EnvironmentError("cannot write " + (fs::path(options.dir) / perfetto_temp()).string());
@@ -80,12 +59,25 @@ Tracer::~Tracer() {
     if (finished_) return;
     writer_.reset();  // its batches written: the stream is this thread's again
     // A run that did not finish removes its partial files rather than leave them behind.
-    if (vcd_) sc_core::sc_close_vcd_trace_file(vcd_);
+    vcd_.reset();
     if (perfetto_.is_open()) perfetto_.close();
     std::error_code ignored;
-    fs::remove(fs::path(options_.dir) / (vcd_temp() + ".vcd"), ignored);
+    fs::remove(fs::path(options_.dir) / vcd_temp(), ignored);
     fs::remove(fs::path(options_.dir) / perfetto_temp(), ignored);
 }
+
+// Runs `note` in the delta cycle after each notification of `changed` (a signal's value change),
+// never at the start.
+void Tracer::on_change(const sc_core::sc_event& changed, std::function<void()> note) {
+    sc_core::sc_spawn_options options;
+    options.spawn_method();
+    options.dont_initialize();
+    options.set_sensitivity(&changed);
+    sc_core::sc_spawn(std::move(note), sc_core::sc_gen_unique_name("vcd_note"), &options);
+}
+
+// The simulator resolves picoseconds (VCD and Perfetto times are its values).
+uint64_t Tracer::now_ps() { return sc_core::sc_time_stamp().value(); }
 
 void Tracer::record(Event event, std::string_view text) {
     event.text = uint32_t(batch_.text.size());
@@ -201,10 +193,14 @@ std::vector<std::string> Tracer::finish() {
     std::vector<std::string> written;
     const fs::path dir(options_.dir);
     if (vcd_) {
-        sc_core::sc_close_vcd_trace_file(vcd_);
-        vcd_ = nullptr;
-        check_vcd_complete(dir / (vcd_temp() + ".vcd"));
-        fs::rename(dir / (vcd_temp() + ".vcd"), dir / "trace.vcd");
+        const bool written_whole = vcd_->close(now_ps());
+        vcd_.reset();
+        if (!written_whole) {
+            std::error_code ignored;
+            fs::remove(dir / vcd_temp(), ignored);
+            throw EnvironmentError((dir / "trace.vcd").string() + ": the write failed, the file was cut short (disk full?)");
+        }
+        fs::rename(dir / vcd_temp(), dir / "trace.vcd");
         written.push_back((dir / "trace.vcd").string());
         for (const std::string& f : write_gtkwave_save(dir)) written.push_back(f);
     }

@@ -1,6 +1,8 @@
 #pragma once
-// The trace writers every model plugs into: a VCD through sc_trace (GTKWave, with a save file
-// that opens it ready to read, gtkwave_save.h) and a Chrome trace-event JSON timeline (Perfetto). Either can be off; a model asks `perfetto_on()` before
+// The trace writers every model plugs into: a VCD (GTKWave, with a save file that opens it
+// ready to read, gtkwave_save.h), written as each traced signal changes (vcd_writer.h: a
+// method process per signal tells it), and a Chrome trace-event JSON timeline (Perfetto).
+// Either can be off; a model asks `perfetto_on()` before
 // building a slice's name, so tracing costs a branch when off. Files are written under
 // temporary names and renamed by finish(), so an interrupted run leaves no half file
 // under the final name. Perfetto's events are recorded as their fields, in batches, and a
@@ -12,6 +14,7 @@
 #include <string>
 #include <string_view>
 #include <fmt/format.h>
+#include <functional>
 #include <memory>
 #include <systemc>
 #include <type_traits>
@@ -19,6 +22,7 @@
 #include <vector>
 
 #include "gtkwave_save.h"
+#include "vcd_writer.h"
 #include "worker.h"
 
 namespace surfvp {
@@ -43,9 +47,17 @@ public:
     // VCD: trace a signal under a dotted name ("plb2.write_busy"); call before sc_start.
     template <typename T>
     void signal(const sc_core::sc_signal_in_if<T>& s, const std::string& name) {
+        static_assert(std::is_integral_v<T>, "a traced signal is a wire or a word");
         if (!vcd_) return;
-        sc_core::sc_trace(vcd_, s, name);
-        vcd_signals_.push_back({name, std::is_same_v<T, bool> ? 1u : unsigned(8 * sizeof(T))});
+        const unsigned bits = std::is_same_v<T, bool> ? 1u : unsigned(8 * sizeof(T));
+        // A word's bits as written: two's complement for a signed one.
+        auto bits_of = [&s] {
+            if constexpr (std::is_same_v<T, bool>) return uint64_t(s.read());
+            else return uint64_t(std::make_unsigned_t<T>(s.read()));
+        };
+        const int index = vcd_->add(name, bits, bits_of());
+        vcd_signals_.push_back({name, bits});
+        on_change(s.value_changed_event(), [this, index, bits_of] { vcd_->change(index, bits_of(), now_ps()); });
     }
     // The save file's group titles, in display order ("iig" -> "SSA IIG").
     void group_titles(std::vector<std::pair<std::string, std::string>> titles) { titles_ = std::move(titles); }
@@ -82,6 +94,8 @@ private:
         std::string text;
         bool first = false;  // holds the file's first event
     };
+    void on_change(const sc_core::sc_event& changed, std::function<void()> note);  // a method process
+    static uint64_t now_ps();
     void record(Event event, std::string_view text);
     void hand_over();  // the batch to the writing thread
     static void format(const Batch& batch, fmt::memory_buffer& out);
@@ -91,7 +105,7 @@ private:
     std::vector<std::string> write_gtkwave_save(const std::filesystem::path& dir);
 
     Options options_;
-    sc_core::sc_trace_file* vcd_ = nullptr;
+    std::unique_ptr<VcdWriter> vcd_;
     std::vector<VcdSignal> vcd_signals_;
     std::vector<std::pair<std::string, std::string>> titles_;
     bool perfetto_on_ = false;
