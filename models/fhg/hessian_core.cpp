@@ -50,6 +50,30 @@ FinishConstants finish_constants(const Precision& p, int64_t k, int64_t weight) 
             (int64_t(1) << (p.det_bits - 1)) - 1};
 }
 
+// `count` terms of these weights as pairs of equal and opposite ones, those of magnitude 1
+// first (no multiply); a term without a partner pairs with a zero row, a zero weight is left out.
+HessianCore::Factors::Pairing pairing(int count, const std::array<int, 4>& weight) {
+    HessianCore::Factors::Pairing unit, other;
+    bool taken[4] = {};
+    for (int i = 0; i < count; ++i) {
+        if (taken[i] || weight[size_t(i)] == 0) continue;
+        const int w = weight[size_t(i)];
+        int j = i + 1;
+        while (j < count && (taken[j] || weight[size_t(j)] != -w)) ++j;
+        const int partner = j < count ? (taken[j] = true, j) : -1;
+        auto& to = std::abs(w) == 1 ? unit : other;
+        to.plus[size_t(to.count)] = w > 0 ? i : partner;
+        to.minus[size_t(to.count)] = w > 0 ? partner : i;
+        to.magnitude[size_t(to.count++)] = uint32_t(std::abs(w));
+    }
+    unit.units = unit.count;
+    for (int j = 0; j < other.count; ++j) {
+        unit.plus[size_t(unit.count)] = other.plus[size_t(j)], unit.minus[size_t(unit.count)] = other.minus[size_t(j)];
+        unit.magnitude[size_t(unit.count++)] = other.magnitude[size_t(j)];
+    }
+    return unit;
+}
+
 // Reads grouped by column offset: each group combines the same rows with the same weights up
 // to a factor (the box filters' corners share their rows), which gives the response as taps
 // of one combined row.
@@ -78,6 +102,8 @@ HessianCore::Factors factor(const std::vector<Read>& reads, Response response, i
         if (group != f.rows || f.taps == 4) throw std::logic_error("filter " + std::to_string(size) + " does not factor");
         f.dx[size_t(f.taps)] = r.dx, f.tap[size_t(f.taps++)] = tap;
     }
+    f.row_pairs = pairing(f.rows, f.weight);
+    f.tap_pairs = pairing(f.taps, f.tap);
     return f;
 }
 
@@ -232,35 +258,19 @@ void weigh(uint32_t* out, const Pairs& t, int n, int step) {
     }
 }
 
-// `count` terms (up to 4), each a source (nullptr: a zero row) and its weight, as Pairs;
+// A plan's pairs with their sources: `source(i)` is term i's row (nullptr: a zero row);
 // `zeros` is a zero row as long as the sources.
 template <class Source>
-Pairs pairs(int count, const std::array<int, 4>& weight, Source source, const uint32_t* zeros) {
-    const uint32_t* src[4];
-    int w[4];
-    int left = 0;
-    for (int i = 0; i < count; ++i) {
-        if (weight[size_t(i)] == 0) continue;
-        const uint32_t* s = source(i);
-        src[left] = s ? s : zeros;
-        w[left++] = weight[size_t(i)];
-    }
-    Pairs unit, other;  // the pairs of magnitude 1, the others
-    bool taken[4] = {};
-    for (int i = 0; i < left; ++i) {
-        if (taken[i]) continue;
-        int j = i + 1;
-        while (j < left && (taken[j] || w[j] != -w[i])) ++j;
-        const uint32_t* partner = j < left ? (taken[j] = true, src[j]) : zeros;
-        Pairs& to = std::abs(w[i]) == 1 ? unit : other;
-        to.plus[to.count] = w[i] > 0 ? src[i] : partner;
-        to.minus[to.count] = w[i] > 0 ? partner : src[i];
-        to.magnitude[to.count++] = uint32_t(std::abs(w[i]));
-    }
-    unit.units = unit.count;
-    for (int j = 0; j < other.count; ++j)
-        unit.plus[unit.count] = other.plus[j], unit.minus[unit.count] = other.minus[j], unit.magnitude[unit.count++] = other.magnitude[j];
-    return unit;
+Pairs pairs(const HessianCore::Factors::Pairing& plan, Source source, const uint32_t* zeros) {
+    const auto row = [&](int term) {
+        const uint32_t* s = term < 0 ? nullptr : source(term);
+        return s ? s : zeros;
+    };
+    Pairs t;
+    t.count = plan.count, t.units = plan.units;
+    for (int j = 0; j < plan.count; ++j)
+        t.plus[j] = row(plan.plus[size_t(j)]), t.minus[j] = row(plan.minus[size_t(j)]), t.magnitude[j] = plan.magnitude[size_t(j)];
+    return t;
 }
 
 }  // namespace
@@ -294,11 +304,11 @@ void HessianCore::row(const IntegralView& ii, int y, int size, int x0, int step,
         const Factors& f = factors_[size_t(size)][size_t(r)];
         // Inside the image every row read is in [-1, height - 1]; row -1 is zero.
         weigh(p,
-              pairs(f.rows, f.weight, [&](int i) { return y + f.dy[size_t(i)] < 0 ? nullptr : ii.row(y + f.dy[size_t(i)]); },
+              pairs(f.row_pairs, [&](int i) { return y + f.dy[size_t(i)] < 0 ? nullptr : ii.row(y + f.dy[size_t(i)]); },
                     zeros.data()),
               ii.width, 1);
         weigh(sums.data() + size_t(r) * n,
-              pairs(f.taps, f.tap, [&](int i) { return p + x_first + f.dx[size_t(i)]; }, zeros.data()), n, step);
+              pairs(f.tap_pairs, [&](int i) { return p + x_first + f.dx[size_t(i)]; }, zeros.data()), n, step);
     }
     const Precision& pr = precision_;
     if (double_exact_) {

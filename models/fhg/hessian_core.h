@@ -59,6 +59,14 @@ public:
     struct Factors {
         int rows = 0, taps = 0;
         std::array<int, 4> dy{}, weight{}, dx{}, tap{};
+        // Each sum's terms as pairs of equal and opposite weights, those of magnitude 1 first:
+        // the terms' indices (-1: a zero row) and the pair's magnitude.
+        struct Pairing {
+            int count = 0, units = 0;
+            std::array<int, 4> plus{}, minus{};
+            std::array<uint32_t, 4> magnitude{};
+        };
+        Pairing row_pairs, tap_pairs;
     };
 
 private:
