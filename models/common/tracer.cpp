@@ -189,19 +189,29 @@ std::vector<std::string> Tracer::write_gtkwave_save(const fs::path& dir) {
     return written;
 }
 
+namespace {
+
+// A trace written under its temporary name gets its final one, or, cut short, is removed.
+// Returns the final path.
+std::string settle(const fs::path& dir, const std::string& temp, const std::string& name, bool whole) {
+    if (!whole) {
+        std::error_code ignored;
+        fs::remove(dir / temp, ignored);
+        throw EnvironmentError((dir / name).string() + ": the write failed, the file was cut short (disk full?)");
+    }
+    fs::rename(dir / temp, dir / name);
+    return (dir / name).string();
+}
+
+}  // namespace
+
 std::vector<std::string> Tracer::finish() {
     std::vector<std::string> written;
     const fs::path dir(options_.dir);
     if (vcd_) {
-        const bool written_whole = vcd_->close(now_ps());
+        const bool whole = vcd_->close(now_ps());
         vcd_.reset();
-        if (!written_whole) {
-            std::error_code ignored;
-            fs::remove(dir / vcd_temp(), ignored);
-            throw EnvironmentError((dir / "trace.vcd").string() + ": the write failed, the file was cut short (disk full?)");
-        }
-        fs::rename(dir / vcd_temp(), dir / "trace.vcd");
-        written.push_back((dir / "trace.vcd").string());
+        written.push_back(settle(dir, vcd_temp(), "trace.vcd", whole));
         for (const std::string& f : write_gtkwave_save(dir)) written.push_back(f);
     }
     if (perfetto_on_) {
@@ -210,13 +220,7 @@ std::vector<std::string> Tracer::finish() {
         perfetto_on_ = false;
         perfetto_ << "\n]}\n";
         perfetto_.close();
-        if (!perfetto_) {
-            std::error_code ignored;
-            fs::remove(dir / perfetto_temp(), ignored);
-            throw EnvironmentError((dir / "trace.perfetto.json").string() + ": the write failed (disk full?)");
-        }
-        fs::rename(dir / perfetto_temp(), dir / "trace.perfetto.json");
-        written.push_back((dir / "trace.perfetto.json").string());
+        written.push_back(settle(dir, perfetto_temp(), "trace.perfetto.json", bool(perfetto_)));
     }
     finished_ = true;
     return written;

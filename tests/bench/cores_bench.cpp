@@ -4,14 +4,9 @@
 // simulated frame does, in the VP on the FHG's worker and in direct mode; issue 14's profile
 // and before/after figures for them come from here, free of the whole run's noise.
 #include <benchmark/benchmark.h>
-
-#include <cstdio>
-#include <cstdlib>
-#include <string>
 #include <vector>
 
-#include <opencv2/imgcodecs.hpp>
-#include <opencv2/imgproc.hpp>
+#include "bench_frame.h"
 
 #include "models/fhg/block_row.h"
 #include "models/fhg/fhg_regs.h"
@@ -23,20 +18,7 @@ constexpr int kWidth = 1024, kHeight = 768;
 constexpr unsigned kSumBits = 32;
 constexpr double kThreshold = 497.7;  // the budget run's: the 100th strongest response of frame 0
 
-const cv::Mat& frame() {
-    static const cv::Mat img = [] {
-        const std::string path = OPENCV_DATA_DIR "/graf1.png";
-        cv::Mat gray = cv::imread(path, cv::IMREAD_GRAYSCALE);
-        if (gray.empty()) {
-            std::fprintf(stderr, "%s is missing: install the Debian package opencv-doc\n", path.c_str());
-            std::exit(1);
-        }
-        cv::Mat resized;
-        cv::resize(gray, resized, cv::Size(kWidth, kHeight), 0, 0, cv::INTER_AREA);
-        return resized;
-    }();
-    return img;
-}
+using surfvp::bench::frame;
 
 std::vector<uint32_t> integral_image() {
     const cv::Mat& f = frame();

@@ -5,31 +5,14 @@
 // ~360 ms at ~3300 on one core (OpenCV's xfeatures2d is not installed here to re-measure).
 #include <benchmark/benchmark.h>
 
-#include <cstdio>
-#include <cstdlib>
-#include <string>
 
-#include <opencv2/imgcodecs.hpp>
-#include <opencv2/imgproc.hpp>
+#include "bench_frame.h"
 
 #include "sw/surf/surf.h"
 
 namespace {
 
-const cv::Mat& frame() {
-    static const cv::Mat img = [] {
-        const std::string path = OPENCV_DATA_DIR "/graf1.png";
-        cv::Mat gray = cv::imread(path, cv::IMREAD_GRAYSCALE);
-        if (gray.empty()) {
-            std::fprintf(stderr, "%s is missing: install the Debian package opencv-doc\n", path.c_str());
-            std::exit(1);
-        }
-        cv::Mat resized;
-        cv::resize(gray, resized, cv::Size(1024, 768), 0, 0, cv::INTER_AREA);
-        return resized;
-    }();
-    return img;
-}
+using surfvp::bench::frame;
 
 void detect_and_describe(benchmark::State& state) {
     const int target = static_cast<int>(state.range(0));
