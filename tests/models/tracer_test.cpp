@@ -12,6 +12,13 @@ namespace surfvp {
 namespace {
 namespace fs = std::filesystem;
 
+std::string slurp(const std::string& path) {
+    std::ifstream in(path);
+    std::stringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+
 std::string temp_dir(const std::string& name) {
     const auto dir = fs::temp_directory_path() / ("surfvp_tracer_" + std::to_string(::getpid())) / name;
     fs::remove_all(dir);
@@ -87,6 +94,52 @@ TEST(Tracer, ManyBatchesKeepEveryEventInOrder) {
     EXPECT_EQ(tracks, 1 + kEvents / 10000);
     // A new track starts its counter afresh: the value repeated across a track change is written again.
     EXPECT_EQ(counters, kEvents / 2 + kEvents / 10000);
+}
+
+// The VCD, written per change, is what SystemC's own writer (which samples every signal at
+// every time step) writes for the same signals: a change at time 0, changes in one step on
+// several signals, a value changed twice in one step (its last counts), a glitch undone within
+// its step (not written), a signed word; only the header's date and version differ. (A run
+// that pauses in its last step, as `surfvp run` does when the software is done, also has that
+// step here; SystemC's writer never sampled it.)
+TEST(Tracer, TheVcdIsWhatSystemCsSamplingWriterWrites) {
+    const std::string dir = temp_dir("vcd_as_systemc");
+    sc_core::sc_signal<bool> wire("wire");
+    sc_core::sc_signal<uint32_t> word("word");
+    sc_core::sc_signal<int> task("task");
+    Tracer tracer({true, false, dir});
+    sc_core::sc_trace_file* sampled = sc_core::sc_create_vcd_trace_file((dir + "/sampled").c_str());
+    sampled->set_time_unit(1, sc_core::SC_PS);
+    tracer.signal(wire, "b.wire");
+    tracer.signal(word, "b.word");
+    tracer.signal(task, "a.task");
+    sc_core::sc_trace(sampled, wire, "b.wire");
+    sc_core::sc_trace(sampled, word, "b.word");
+    sc_core::sc_trace(sampled, task, "a.task");
+    using sc_core::SC_NS;
+    sc_core::sc_spawn([&] {
+        task.write(-1);  // at time 0: an initial value
+        sc_core::wait(10, SC_NS);
+        wire.write(true), word.write(5);
+        sc_core::wait(sc_core::SC_ZERO_TIME);
+        word.write(6);  // the step's last value
+        sc_core::wait(5, SC_NS);
+        wire.write(false);
+        sc_core::wait(sc_core::SC_ZERO_TIME);
+        wire.write(true);  // undone within the step
+        task.write(3);
+        sc_core::wait(7, SC_NS);
+        word.write(0), task.write(-2);
+        sc_core::wait(3, SC_NS);
+        wire.write(false);
+    });
+    sc_core::sc_start(40, SC_NS);
+    tracer.finish();
+    sc_core::sc_close_vcd_trace_file(sampled);
+    const auto body = [](const std::string& vcd) { return vcd.substr(vcd.find("$timescale")); };
+    const std::string ours = body(slurp(dir + "/trace.vcd")), theirs = body(slurp(dir + "/sampled.vcd"));
+    EXPECT_NE(ours.find("\n#10000\n1aaaaa\nb110 aaaab\n\n#15000\nb11 aaaac\n"), std::string::npos) << ours;
+    EXPECT_EQ(ours, theirs);
 }
 
 TEST(Tracer, UnfinishedTracesLeaveNoFiles) {
