@@ -5,7 +5,6 @@
 // ~360 ms at ~3300 on one core (OpenCV's xfeatures2d is not installed here to re-measure).
 #include <benchmark/benchmark.h>
 
-
 #include "bench_frame.h"
 
 #include "sw/surf/surf.h"

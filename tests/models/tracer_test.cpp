@@ -7,17 +7,11 @@
 #include <sstream>
 
 #include "models/common/tracer.h"
+#include "platform/cli.h"
 
 namespace surfvp {
 namespace {
 namespace fs = std::filesystem;
-
-std::string slurp(const std::string& path) {
-    std::ifstream in(path);
-    std::stringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
 
 std::string temp_dir(const std::string& name) {
     const auto dir = fs::temp_directory_path() / ("surfvp_tracer_" + std::to_string(::getpid())) / name;
@@ -137,7 +131,7 @@ TEST(Tracer, TheVcdIsWhatSystemCsSamplingWriterWrites) {
     tracer.finish();
     sc_core::sc_close_vcd_trace_file(sampled);
     const auto body = [](const std::string& vcd) { return vcd.substr(vcd.find("$timescale")); };
-    const std::string ours = body(slurp(dir + "/trace.vcd")), theirs = body(slurp(dir + "/sampled.vcd"));
+    const std::string ours = body(test::slurp(dir + "/trace.vcd")), theirs = body(test::slurp(dir + "/sampled.vcd"));
     EXPECT_NE(ours.find("\n#10000\n1aaaaa\nb110 aaaab\n\n#15000\nb11 aaaac\n"), std::string::npos) << ours;
     EXPECT_EQ(ours, theirs);
 }

@@ -1,30 +1,19 @@
 // The VCD writer: SystemC's layout, and per time step the values at its end that differ from
 // the last written, in the order the signals were added.
-#include <filesystem>
-#include <fstream>
 #include <gtest/gtest.h>
-#include <sstream>
-#include <unistd.h>
+#include <string>
 
 #include "models/common/vcd_writer.h"
+#include "platform/cli.h"
 #include "platform/vcd_reader.h"
 
 namespace surfvp {
 namespace {
-namespace fs = std::filesystem;
 
-std::string temp_path(const std::string& name) {
-    const auto dir = fs::temp_directory_path() / ("surfvp_vcd_" + std::to_string(::getpid()));
-    fs::create_directories(dir);
-    return (dir / name).string();
-}
+using test::slurp;
 
-std::string slurp(const std::string& path) {
-    std::ifstream in(path);
-    std::stringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
+// A file in a fresh folder of this test process.
+std::string temp_path(const std::string& name) { return test::fresh_dir("vcd_writer") + "/" + name; }
 
 // What follows the $date block (the only part that depends on when it was written).
 std::string after_date(const std::string& vcd) { return vcd.substr(vcd.find("$end") + 4); }
