@@ -15,45 +15,33 @@ unsigned log2_of(uint64_t v) {
     return s;
 }
 
-// The way holding `line` among `ways` distinct tags, or -1. Without an early exit, so that it
-// vectorises: at most one way matches, so the sum of (way + 1) over matches is that way + 1.
-__attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
-int find_way(const uint32_t* tags, uint32_t ways, uint32_t line) {
-    uint32_t match = 0;
-    for (uint32_t w = 0; w < ways; ++w) match += tags[w] == line ? w + 1 : 0;
-    return int(match) - 1;
-}
-
-// The way with the smallest stamp among `ways` distinct ones (the least recently used).
-__attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
-uint32_t oldest_way(const uint64_t* stamps, uint32_t ways) {
-    uint64_t least = ~uint64_t(0);
-    for (uint32_t w = 0; w < ways; ++w) least = std::min(least, stamps[w]);
-    uint32_t way = 0;
-    for (uint32_t w = 0; w < ways; ++w) way += stamps[w] == least ? w : 0;
-    return way;
-}
-
 }  // namespace
 
 CacheModel::CacheModel(const CacheParams& params) : params_(params) {
     const uint64_t set_bytes = uint64_t(params.line_bytes) * params.ways;
-    if (!power_of_two(params.line_bytes) || params.ways == 0 || set_bytes == 0 || params.size_bytes % set_bytes)
-        throw std::invalid_argument("cache: line_bytes must be a power of two and size a multiple of line x ways (" +
-                                    std::to_string(params.size_bytes) + " B, " + std::to_string(params.line_bytes) +
-                                    " B lines, " + std::to_string(params.ways) + " ways)");
+    if (!power_of_two(params.line_bytes) || params.line_bytes < 2 || params.ways == 0 || params.ways > 0xFFFF ||
+        set_bytes == 0 || params.size_bytes % set_bytes)
+        throw std::invalid_argument("cache: line_bytes must be a power of two of 2 B or more, the ways 1 to 65535 and size a "
+                                    "multiple of line x ways (" + std::to_string(params.size_bytes) + " B, " +
+                                    std::to_string(params.line_bytes) + " B lines, " + std::to_string(params.ways) + " ways)");
     sets_ = uint32_t(params.size_bytes / set_bytes);
     if (!power_of_two(sets_)) throw std::invalid_argument("cache: the number of sets must be a power of two");
     line_shift_ = log2_of(params.line_bytes);
     lines_.assign(size_t(sets_) * params.ways, kNoLine);
-    use_.assign(lines_.size(), 0);
-    hint_.assign(kHints, 0);
     filled_.assign(sets_, 0);
+    where_.resize(size_t(((uint64_t(1) << (32 - line_shift_)) + kChunk - 1) >> kChunkShift));
+    newer_.assign(lines_.size(), 0);
+    older_.assign(lines_.size(), 0);
+    newest_.assign(sets_, 0);
+    oldest_.assign(sets_, 0);
     victim_.assign(sets_, 0);
 }
 
 void CacheModel::invalidate() {
-    std::fill(lines_.begin(), lines_.end(), kNoLine);
+    for (uint32_t& line : lines_) {
+        if (line != kNoLine) where(line) = 0;
+        line = kNoLine;
+    }
     std::fill(filled_.begin(), filled_.end(), 0);
     std::fill(victim_.begin(), victim_.end(), 0);
     last_valid_ = false;
@@ -86,37 +74,64 @@ bool CacheModel::touch(uint32_t line) {
     return params_.replacement == Replacement::lru ? touch_lru(set, line) : touch_round_robin(set, line);
 }
 
-// A hit stamps its way; a miss fills the next free way or, in a full set, replaces the least
-// recently used one.
+uint16_t& CacheModel::where(uint32_t line) {
+    std::unique_ptr<uint16_t[]>& chunk = where_[line >> kChunkShift];
+    if (!chunk) chunk = std::make_unique<uint16_t[]>(kChunk);
+    return chunk[line & (kChunk - 1)];
+}
+
+void CacheModel::make_newest(size_t base, uint32_t set, uint32_t way) {
+    uint16_t& newest = newest_[set];
+    if (way == newest) return;
+    const uint16_t newer = newer_[base + way], older = older_[base + way];  // `newer` exists: `way` is not the front
+    if (way == oldest_[set]) oldest_[set] = newer;
+    else newer_[base + older] = newer;
+    older_[base + newer] = older;
+    older_[base + way] = newest;
+    newer_[base + newest] = uint16_t(way);
+    newest = uint16_t(way);
+}
+
+// A hit moves its way to the front; a miss fills the next free way (the new front) or, in a
+// full set, refills the least recently used one.
 bool CacheModel::touch_lru(uint32_t set, uint32_t line) {
-    const size_t first = size_t(set) * params_.ways;
-    uint32_t* tags = lines_.data() + first;
-    uint64_t* stamps = use_.data() + first;
-    uint32_t& hint = hint_[line & (kHints - 1)];
-    const int found = tags[hint] == line ? int(hint) : find_way(tags, params_.ways, line);
-    ++clock_;
-    if (found >= 0) {
-        stamps[found] = clock_;
-        hint = uint32_t(found);
+    const size_t base = size_t(set) * params_.ways;
+    uint16_t& slot = where(line);
+    if (slot) {
+        make_newest(base, set, slot - 1u);
         return true;
     }
     uint32_t& filled = filled_[set];
-    const uint32_t victim = filled < params_.ways ? filled++ : oldest_way(stamps, params_.ways);
-    hint = victim;
-    tags[victim] = line;
-    stamps[victim] = clock_;
+    uint32_t way;
+    if (filled == params_.ways) {
+        way = oldest_[set];
+        where(lines_[base + way]) = 0;
+        make_newest(base, set, way);
+    } else {
+        way = filled++;
+        if (way) {
+            older_[base + way] = newest_[set];
+            newer_[base + newest_[set]] = uint16_t(way);
+        } else {
+            oldest_[set] = 0;
+        }
+        newest_[set] = uint16_t(way);
+    }
+    lines_[base + way] = line;
+    slot = uint16_t(way + 1);
     return false;
 }
 
 // Hits change nothing; a miss fills way victim_[set] and advances it (PPC440x5 §4.1.1).
 bool CacheModel::touch_round_robin(uint32_t set, uint32_t line) {
-    uint32_t* slot = lines_.data() + size_t(set) * params_.ways;
-    uint32_t& filled = filled_[set];
-    if (std::find(slot, slot + filled, line) != slot + filled) return true;
+    uint16_t& slot = where(line);
+    if (slot) return true;
     uint32_t& victim = victim_[set];
-    slot[victim] = line;
+    uint32_t& replaced = lines_[size_t(set) * params_.ways + victim];
+    if (replaced != kNoLine) where(replaced) = 0;
+    replaced = line;
+    slot = uint16_t(victim + 1);
     victim = (victim + 1) % params_.ways;
-    if (filled < params_.ways) ++filled;
     return false;
 }
 

@@ -8,6 +8,7 @@
 // §4.1.1); LRU is offered too and is the default the scenario table asks for. The two differ
 // only once a set is full and a line that was filled early is reused (tests/stage).
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 namespace surfvp::sw {
@@ -23,8 +24,9 @@ struct CacheParams {
 
 class CacheModel {
 public:
-    // Throws std::invalid_argument unless line_bytes and the number of sets
-    // (size / (line x ways)) are powers of two and size is a whole number of sets.
+    // Throws std::invalid_argument unless line_bytes (2 B or more) and the number of sets
+    // (size / (line x ways)) are powers of two, size is a whole number of sets and there are
+    // at most 65535 ways.
     explicit CacheModel(const CacheParams& params);
 
     struct Result {
@@ -51,24 +53,29 @@ private:
     bool touch(uint32_t line);  // true on a hit
     bool touch_lru(uint32_t set, uint32_t line);
     bool touch_round_robin(uint32_t set, uint32_t line);
+    uint16_t& where(uint32_t line);              // its entry in where_, made on first use
+    void make_newest(size_t base, uint32_t set, uint32_t way);  // LRU: a filled way to the list's front
 
     CacheParams params_;
     uint32_t sets_ = 0;
     unsigned line_shift_ = 0;
     // Per set, `ways` line numbers (kNoLine in a way never filled since the last invalidate)
-    // and the ways filled so far. LRU: use_[way] is the clock at the way's last touch, so the
-    // least recently used way has the smallest (a hit writes one stamp instead of moving the
-    // set's recency order: the Haar wavelets' rows share sets and hit deep in it). Round-robin:
-    // victim_[set] is the next way to fill.
+    // and the ways filled so far.
     static constexpr uint32_t kNoLine = ~uint32_t(0);  // no 32-bit address's line number with lines of 2 B or more
     std::vector<uint32_t> lines_;
-    std::vector<uint64_t> use_;
-    // LRU: per line number modulo kHints, the way it was last found in or filled into; a hint
-    // is checked against lines_ before it is believed, so a stale one only costs the search.
-    static constexpr uint32_t kHints = 4096;
-    std::vector<uint32_t> hint_;
-    uint64_t clock_ = 0;
     std::vector<uint32_t> filled_;
+    // Which way holds a line: per line number, its way + 1, or 0 when it is not in the cache;
+    // in chunks of kChunk line numbers, each made when a line in it is first touched. A
+    // look-up is two loads, a miss needs no search (the sets have 64 ways).
+    static constexpr unsigned kChunkShift = 16;
+    static constexpr uint32_t kChunk = uint32_t(1) << kChunkShift;
+    std::vector<std::unique_ptr<uint16_t[]>> where_;
+    // LRU: per set, its filled ways as a list from the most to the least recently used:
+    // newer_/older_ per way (way numbers within the set), newest_/oldest_ per set. A hit
+    // moves one way to the front, a miss in a full set refills the last one.
+    std::vector<uint16_t> newer_, older_;
+    std::vector<uint16_t> newest_, oldest_;
+    // Round-robin: victim_[set] is the next way to fill.
     std::vector<uint32_t> victim_;
     uint32_t last_line_ = 0;  // fast path: the line touched last is a hit without any change
     bool last_valid_ = false;
