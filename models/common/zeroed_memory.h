@@ -1,12 +1,12 @@
 #pragma once
 // A large zero-filled block for a modelled memory: untouched pages cost nothing (as with
-// calloc), and the kernel is asked for 2 MB pages, so that a frame's buffers fault in a few
-// hundred times instead of thousands (the page faults were ~5 % of a run's time).
+// calloc); a page is cleared by the kernel when it is first written.
 #include <cstddef>
 #include <cstdint>
 #include <memory>
 #include <new>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "models/common/worker.h"
@@ -19,35 +19,48 @@ struct ZeroedMemoryRelease {
 };
 using ZeroedMemory = std::unique_ptr<uint8_t[], ZeroedMemoryRelease>;
 
-// Throws std::runtime_error naming `what` and the size when the block cannot be had. The
-// block starts on a 2 MB boundary, so its pages can all be 2 MB ones.
+// Throws std::runtime_error naming `what` and the size when the block cannot be had.
 ZeroedMemory zeroed_memory(size_t bytes, const std::string& what);
 
+// Faults [block, block + bytes) in as writes would, without changing a byte of it
+// (MADV_POPULATE_WRITE); `block` on a page boundary. A hint: where it is not had (kernels
+// before 5.14) or fails, the writes fault as before.
+void populate(uint8_t* block, size_t bytes);
+
 // The allocator of a model's large buffers that are refilled every frame (integral lines,
-// determinant rows): zeroed_memory's 2 MB pages, so a run's first frames fault them in a few
-// times instead of a thousand (a page fault cost ~30 us on the virtual machine measured, and
-// a 1024x768 frame's buffers are ~12 MB). Throws std::bad_alloc.
+// determinant rows): zeroed_memory's blocks, given back to the kernel when freed. An element
+// made without a value is left as the memory holds it (zero in a new block), so resize() does
+// not write a block's pages: they are faulted in by whoever first writes them (direct mode's
+// worker, for the rows it computes ahead). assign() fills. Throws std::bad_alloc.
 uint8_t* map_zeroed(size_t bytes);  // nullptr when it cannot be had
 template <class T>
-struct HugePageAllocator {
+struct ZeroedAllocator {
     using value_type = T;
-    HugePageAllocator() = default;
+    ZeroedAllocator() = default;
     template <class U>
-    HugePageAllocator(const HugePageAllocator<U>&) {}
+    ZeroedAllocator(const ZeroedAllocator<U>&) {}
     T* allocate(size_t n) {
         if (uint8_t* p = map_zeroed(n * sizeof(T))) return reinterpret_cast<T*>(p);
         throw std::bad_alloc();
     }
     void deallocate(T* p, size_t n) { ZeroedMemoryRelease{n * sizeof(T)}(reinterpret_cast<uint8_t*>(p)); }
-    bool operator==(const HugePageAllocator&) const { return true; }
-    bool operator!=(const HugePageAllocator&) const { return false; }
+    template <class U>
+    void construct(U* p) {
+        ::new (static_cast<void*>(p)) U;  // default-initialised: no store
+    }
+    template <class U, class... Args>
+    void construct(U* p, Args&&... args) {
+        ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
+    }
+    bool operator==(const ZeroedAllocator&) const { return true; }
+    bool operator!=(const ZeroedAllocator&) const { return false; }
 };
 template <class T>
-using FrameBuffer = std::vector<T, HugePageAllocator<T>>;
+using FrameBuffer = std::vector<T, ZeroedAllocator<T>>;
 
 // Faults a block's pages in on a background thread just ahead of the writes that would
-// fault them on the caller's (the kernel's) thread: a write reaching into a 2 MB page asks
-// for the page after it. The kernel clears a page when it is first written, and those
+// fault them on the caller's (the kernel's) thread: a write reaching into a 2 MB stretch of
+// the block (aligned as addresses are) asks for the stretch after it. The kernel clears a page when it is first written, and those
 // clears were ~5 % of the simulator's main thread (the FHG writer's buffers, the first frames
 // of a run). Only the pages' residency changes, never their bytes (MADV_POPULATE_WRITE);
 // without that call (kernels before 5.14) the writes fault as before.
@@ -63,14 +76,14 @@ public:
     }
 
 private:
-    static constexpr unsigned kPageShift = 21;  // 2 MB: a transparent huge page
+    static constexpr unsigned kPageShift = 21;  // 2 MB stretches, asked for one at a time
     size_t page_of(uint64_t address) const { return size_t((first_offset_ + address) >> kPageShift); }
     void ask(size_t page);
 
     uint8_t* block_;
     size_t bytes_;
-    uint64_t first_offset_;     // the block's start within its first 2 MB page
-    std::vector<bool> asked_;   // per page of the block
+    uint64_t first_offset_;     // the block's start within its first 2 MB stretch
+    std::vector<bool> asked_;   // per stretch of the block
     Worker worker_;             // last: finishes its jobs and stops before the rest goes
 };
 
