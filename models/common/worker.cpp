@@ -16,7 +16,7 @@ void relax() {
 
 }  // namespace
 
-Worker::Worker(std::chrono::microseconds spin) : spin_(spin), thread_([this] { loop(); }) {}
+Worker::Worker(std::chrono::microseconds spin, Waiter waiter) : spin_(spin), waiter_(waiter), thread_([this] { loop(); }) {}
 
 Worker::~Worker() {
     {
@@ -55,7 +55,8 @@ size_t Worker::submit(std::function<void()> job) {
 
 void Worker::wait(size_t job) {
     const auto reached = [&] { return finished_.load(std::memory_order_acquire) > job; };
-    for (Job mine; !reached() && take_up_to(job, mine);) run(mine);
+    const size_t last = waiter_ == Waiter::runs_any ? ~size_t(0) : job;
+    for (Job mine; !reached() && take_up_to(last, mine);) run(mine);
     // What is left of jobs 0..job runs on the worker; nothing the waiter could take.
     if (!reached() && !spin_until(reached)) {
         std::unique_lock<std::mutex> lock(mutex_);

@@ -4,7 +4,11 @@
 // submitted. submit() returns at once with the job's number (0, 1, ...); wait(n) returns once
 // jobs 0..n are done and rethrows what one threw (the lowest-numbered); drain() waits for all.
 // A waiter does not idle while jobs it waits for are still queued: it takes them off the queue
-// and runs them itself, so that both cores work on a backlog. The caller keeps a job's inputs
+// and runs them itself, so that both cores work on a backlog. With Waiter::runs_any, while the
+// worker still runs one of those, the waiter also takes the ones after (jobs are independent)
+// and returns at most one job's time after its own is done: for a caller with nothing else to
+// do (direct mode), not for one whose time is the simulation's limit (the kernel's thread,
+// which the worker keeps up with). The caller keeps a job's inputs
 // unchanged until it is done and reads its outputs only after waiting for it. One thread
 // submits and waits.
 //
@@ -34,7 +38,8 @@ namespace surfvp {
 
 class Worker {
 public:
-    explicit Worker(std::chrono::microseconds spin = std::chrono::microseconds(200));
+    enum class Waiter { runs_its_jobs, runs_any };
+    explicit Worker(std::chrono::microseconds spin = std::chrono::microseconds(200), Waiter waiter = Waiter::runs_its_jobs);
     ~Worker();  // finishes the jobs already submitted
     Worker(const Worker&) = delete;
     Worker& operator=(const Worker&) = delete;
@@ -65,6 +70,7 @@ private:
     bool spin_until(Ready ready) const;
 
     const std::chrono::microseconds spin_;
+    const Waiter waiter_;
     std::mutex mutex_;
     std::condition_variable work_;  // the worker sleeps on it
     std::condition_variable done_;  // waiters sleep on it

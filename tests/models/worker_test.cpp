@@ -1,7 +1,8 @@
-// The background worker: wait(n) covers jobs 0..n, a waiter runs the queued jobs it waits for,
-// the lowest-numbered job's exception reaches the waiter, and no hand-over is lost whether the
-// other side spins or sleeps; background work runs in the idle time, after the jobs, until it
-// says it has nothing, again after each poke, and never after it is taken back.
+// The background worker: wait(n) covers jobs 0..n, a waiter runs the queued jobs it waits for
+// (and, if it runs any, the next ones while the worker runs one of those), the lowest-numbered
+// job's exception reaches the waiter, and no hand-over is lost whether the other side spins or
+// sleeps; background work runs in the idle time, after the jobs, until it says it has nothing,
+// again after each poke, and never after it is taken back.
 #include <gtest/gtest.h>
 
 #include <atomic>
@@ -47,6 +48,30 @@ TEST(Worker, AWaiterRunsTheQueuedJobsItWaitsFor) {
     w.wait(3);
     EXPECT_TRUE(worker_saw_it);
     for (size_t k = 1; k <= 3; ++k) EXPECT_EQ(ran_on[k], std::this_thread::get_id()) << "job " << k;
+    EXPECT_NE(ran_on[0], std::this_thread::get_id());
+}
+
+// Waiter::runs_any: while the worker runs job 0, a waiter for job 0 runs job 1 itself (jobs
+// are independent): job 0 sees job 1 done (it would wait in vain if the waiter only spun).
+TEST(Worker, WhileTheWorkerRunsTheJobWaitedForAWaiterThatRunsAnyRunsTheNextQueuedOne) {
+    Worker w(std::chrono::microseconds(200), Worker::Waiter::runs_any);
+    std::atomic<bool> first_started{false}, second_done{false}, worker_saw_it{false};
+    std::vector<std::thread::id> ran_on(3);
+    w.submit([&] {
+        ran_on[0] = std::this_thread::get_id();
+        first_started = true;
+        const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(5);
+        while (!second_done && std::chrono::steady_clock::now() < until) std::this_thread::yield();
+        worker_saw_it = second_done.load();
+    });
+    while (!first_started) std::this_thread::yield();  // the worker has taken job 0
+    w.submit([&] {
+        ran_on[1] = std::this_thread::get_id();
+        second_done = true;
+    });
+    w.wait(0);
+    EXPECT_TRUE(worker_saw_it);
+    EXPECT_EQ(ran_on[1], std::this_thread::get_id());
     EXPECT_NE(ran_on[0], std::this_thread::get_id());
 }
 
