@@ -1,5 +1,6 @@
 #include "platform/direct/direct_chip.h"
 
+#include <chrono>
 #include <cmath>
 #include <cstring>
 #include <fmt/format.h>
@@ -35,10 +36,10 @@ DirectChip::Pair::Pair(DirectChip& chip, const IigRegisters::Limits& iig_limits,
                            stop_listening();
                        }}) {}
 
-// The rows computed ahead read `lines`: they are done before it goes.
+// The rows being computed read `lines`: they are done before it goes.
 void DirectChip::Pair::stop_listening() {
-    if (ahead) chip.worker_->drain();
-    ahead = false;
+    if (pending) chip.worker_->drain();
+    pending = false;
     lines.clear();
 }
 
@@ -49,7 +50,10 @@ DirectChip::DirectChip(const Config& config, unsigned accelerators)
       sum_bits_(config.bits("iig.sum_bits")),
       core_(fhg_params(config).precision),
       fill_cycles_(uncontended_fill(config).to_seconds() * config.frequency("cpu.clock").hz),
-      worker_(config.choice("run.parallel") == "on" ? std::make_unique<Worker>() : nullptr) {
+      // The software's thread waits for rows only when it has nothing else to do.
+      worker_(config.choice("run.parallel") == "on"
+                  ? std::make_unique<Worker>(std::chrono::microseconds(200), Worker::Waiter::runs_any)
+                  : nullptr) {
     const Iig::Params iig = iig_params(config);
     const FhgRegisters::Limits fhg = Fhg::register_limits(fhg_params(config));
     for (unsigned k = 0; k < accelerators; ++k)
@@ -60,21 +64,25 @@ bool DirectChip::in_memory(uint64_t address, uint64_t bytes) const { return addr
 
 uint8_t* DirectChip::backdoor(uint64_t address, uint64_t bytes) {
     if (!in_memory(address, bytes)) throw std::out_of_range(fmt::format("direct memory: {:#x} +{} B", address, bytes));
+    settle(address, bytes);
     return memory_.get() + address;
 }
 
 void DirectChip::read(uint32_t address, void* data, size_t bytes) {
     if (!in_memory(address, bytes)) throw sw::BusError(fmt::format("memory read at {:#010x}", address), address);
+    settle(address, bytes);
     std::memcpy(data, memory_.get() + address, bytes);
 }
 
 void DirectChip::write(uint32_t address, const void* data, size_t bytes) {
     if (!in_memory(address, bytes)) throw sw::BusError(fmt::format("memory write at {:#010x}", address), address);
+    settle(address, bytes);
     std::memcpy(memory_.get() + address, data, bytes);
 }
 
 const uint8_t* DirectChip::map(uint32_t address, size_t bytes) {
     if (!in_memory(address, bytes)) throw sw::BusError(fmt::format("no memory at {:#010x}", address), address);
+    settle(address, bytes);
     return memory_.get() + address;
 }
 
@@ -153,6 +161,8 @@ void DirectChip::run_integral(Pair& p) {
     const IigRegisters::Frame& i = p.integral;
     if (!in_memory(i.src, uint64_t(i.src_stride) * (i.height - 1) + i.width)) return p.iig.end(true, iig::ERR_READ, 0);
     if (!in_memory(i.dst, uint64_t(i.dst_stride) * (i.height - 1) + 4ull * i.width)) return p.iig.end(true, iig::ERR_WRITE, 0);
+    settle(i.src, uint64_t(i.src_stride) * (i.height - 1) + i.width);
+    settle(i.dst, uint64_t(i.dst_stride) * (i.height - 1) + 4ull * i.width);
     FrameBuffer<uint32_t>& integral = p.making;
     integral.resize(size_t(i.width) * i.height);  // every word is written before it is read
     const IntegralCore integral_core(sum_bits_);
@@ -168,7 +178,7 @@ void DirectChip::run_integral(Pair& p) {
         else {
             p.stop_listening();  // a second stream replaces the first
             std::swap(p.lines, p.making);
-            compute_ahead(p);
+            compute_rows(p);
         }
     }
     p.iig.end(false, iig::ERR_NONE, 0);  // no time, so no back-pressure: STALL_CYCLES 0
@@ -185,39 +195,54 @@ std::vector<fhg::Candidate> DirectChip::compute_row(const Pair& p, uint32_t by, 
     return fhg::block_row(core_, view, int(by), h.threshold, f::det_bytes_for(core_.precision().det_bits), out);
 }
 
-// With run.parallel the frame's block rows from the next one on go to the worker as soon as
-// the integral image is known, while the software goes on with the frame before; block_row()
-// takes them in turn (the same bytes, computed earlier).
-void DirectChip::compute_ahead(Pair& p) {
-    if (!worker_) return;
-    const uint32_t blocks_y = (p.determinants.height + 1) / 2;
-    const size_t bytes = row_bytes(p);
-    p.rows.resize(bytes * blocks_y);
+// The stream's block rows from the next one on, into memory at once: with run.parallel on
+// the worker, while the software goes on with the frame before; block_row() reports them in
+// turn. A row beyond memory is not computed, nor those after it (block_row reports ERR_WRITE
+// there). Rows still being computed for another stream where these go are done first, so the
+// later stream's bytes are the ones left, as without the second thread.
+void DirectChip::compute_rows(Pair& p) {
+    const FhgRegisters::Frame& h = p.determinants;
+    const uint32_t blocks_y = (h.height + 1) / 2;
+    const uint64_t bytes = row_bytes(p);
     p.found.assign(blocks_y, {});
-    p.first_row = p.next_row;
-    for (uint32_t by = p.first_row; by < blocks_y; ++by) {
-        const size_t job = worker_->submit([this, &p, by, bytes] { p.found[by] = compute_row(p, by, p.rows.data() + by * bytes); });
+    p.first_row = p.end_row = p.next_row;
+    while (p.end_row < blocks_y && in_memory(h.det_addr + p.end_row * bytes, bytes)) ++p.end_row;
+    settle(h.det_addr + p.first_row * bytes, (p.end_row - p.first_row) * bytes);
+    for (uint32_t by = p.first_row; by < p.end_row; ++by) {
+        uint8_t* out = memory_.get() + h.det_addr + by * bytes;
+        if (!worker_) {
+            p.found[by] = compute_row(p, by, out);
+            continue;
+        }
+        const size_t job = worker_->submit([this, &p, by, out] { p.found[by] = compute_row(p, by, out); });
         if (by == p.first_row) p.first_job = job;
     }
-    p.ahead = true;
+    p.pending = worker_ && p.end_row > p.first_row;
 }
 
-// The FHG's next block row: determinants to memory, candidates into the maxima FIFO.
-// Returns the FHG's ErrorCode (ERR_NONE when the row went well).
+// Memory about to be read or written besides the rows: if rows still being computed reach it,
+// every job is finished first.
+void DirectChip::settle(uint64_t address, uint64_t bytes) {
+    for (const auto& pair : pairs_) {
+        const Pair& p = *pair;
+        if (!p.pending) continue;
+        const uint64_t row = row_bytes(p), begin = p.determinants.det_addr + p.first_row * row;
+        if (address < begin + (p.end_row - p.first_row) * row && begin < address + bytes) {
+            worker_->drain();
+            for (const auto& q : pairs_) q->pending = false;
+            return;
+        }
+    }
+}
+
+// The FHG's next block row: its candidates into the maxima FIFO (its determinants are in
+// memory). Returns the FHG's ErrorCode (ERR_NONE when the row went well).
 uint32_t DirectChip::block_row(Pair& p) {
     const uint32_t by = p.next_row++;
-    const size_t bytes = row_bytes(p);
-    const uint64_t at = p.determinants.det_addr + uint64_t(by) * bytes;
-    if (!in_memory(at, bytes)) return f::ERR_WRITE;
-    std::vector<fhg::Candidate> found;
-    if (p.ahead) {
-        worker_->wait(p.first_job + (by - p.first_row));
-        std::memcpy(memory_.get() + at, p.rows.data() + by * bytes, bytes);
-        found = std::move(p.found[by]);
-    } else {
-        found = compute_row(p, by, memory_.get() + at);
-    }
-    p.fhg.push(found);
+    if (by >= p.end_row) return f::ERR_WRITE;
+    if (p.pending) worker_->wait(p.first_job + (by - p.first_row));
+    p.fhg.push(p.found[by]);
+    p.found[by].clear();
     return f::ERR_NONE;
 }
 

@@ -2,12 +2,18 @@
 // The chip without time, for `surfvp run --direct`: the same driver and software run on the
 // same cores (IntegralCore, HessianCore, LocalMaxFinder) and the same register behaviour as
 // the models (IigRegisters, FhgRegisters, IntcRegisters), answered at once. An IIG START
-// computes the integral image at once (DONE); an FHG listening to it then works one block
-// row at a time whenever the software waits for an interrupt, its candidates going into the
-// maxima FIFO of the configured depth, so the driver drains the FIFO at its threshold
-// interrupt as on the chip. Without time there is no back-pressure (STALL_CYCLES reads 0);
-// the keypoints are the VP's byte for byte, and a FIFO that is never drained during the frame
-// overflows by the same count (tests hold both).
+// computes the integral image at once (DONE); an FHG listening to it computes the frame's
+// determinants into memory at once too (with run.parallel on the second thread, while the
+// software goes on), and reports one block row at a time whenever the software waits for an
+// interrupt, its candidates going into the maxima FIFO of the configured depth, so the driver
+// drains the FIFO at its threshold interrupt as on the chip. Without time there is no
+// back-pressure (STALL_CYCLES reads 0); the keypoints are the VP's byte for byte, and a FIFO
+// that is never drained during the frame overflows by the same count (tests hold both).
+//
+// Memory the software reads or writes (read, write, map, backdoor, an IIG's image and
+// integral image) waits for the determinants being computed that reach it, so that it holds
+// the same bytes with and without the second thread. A pointer from map() shows memory as of
+// the call: software that starts hardware writing there maps it again.
 #include <cstdint>
 #include <memory>
 #include <vector>
@@ -63,14 +69,15 @@ private:
         // The IIG's integral image being made; kept from frame to frame with `lines` (swapped),
         // so a frame does not allocate one.
         FrameBuffer<uint32_t> making;
-        uint32_t next_row = 0;        // the FHG's next block row; its frame has work while BUSY
-        // Rows computed ahead on the worker (run.parallel): stored determinants and maxima;
-        // row r (from first_row on) is job first_job + r - first_row.
-        bool ahead = false;
-        FrameBuffer<uint8_t> rows;
+        uint32_t next_row = 0;        // the FHG's next block row to report; its frame has work while BUSY
+        // The stream's rows from first_row on, computed into memory when the integral image
+        // came: rows up to end_row (those after a row beyond memory are not), row r's
+        // candidates in found[r]. With run.parallel row r is job first_job + r - first_row,
+        // and `pending` until the jobs are known to be done.
         std::vector<std::vector<fhg::Candidate>> found;
-        uint32_t first_row = 0;
+        uint32_t first_row = 0, end_row = 0;
         size_t first_job = 0;
+        bool pending = false;
     };
 
     bool access(uint32_t address, uint32_t& value, bool write);
@@ -78,7 +85,8 @@ private:
     uint32_t block_row(Pair& p);
     uint32_t row_bytes(const Pair& p) const;  // one block row of stored determinants
     std::vector<fhg::Candidate> compute_row(const Pair& p, uint32_t by, uint8_t* out) const;  // any thread
-    void compute_ahead(Pair& p);
+    void compute_rows(Pair& p);
+    void settle(uint64_t address, uint64_t bytes);
     bool step();
     bool in_memory(uint64_t address, uint64_t bytes) const;
     uint32_t levels() const;

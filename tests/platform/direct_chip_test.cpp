@@ -1,0 +1,89 @@
+// Direct mode's chip programmed as the driver does, without the driver: a frame's
+// determinants are in memory as soon as its integral image streams to the FHG, and memory the
+// software reads or writes in the meantime holds the same bytes with and without the second
+// thread (which computes them).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdint>
+#include <vector>
+
+#include "models/fhg/fhg_regs.h"
+#include "models/iig/iig_regs.h"
+#include "models/intc/intc_regs.h"
+#include "platform/address_map.h"
+#include "platform/direct/direct_chip.h"
+
+namespace surfvp {
+namespace {
+
+constexpr uint32_t kWidth = 64, kHeight = 48;
+constexpr uint32_t kImage = 0x10000, kIntegral = 0x20000, kDets = 0x40000;
+constexpr uint32_t kRowBytes = fhg_regs::row_bytes(kWidth, 4);
+constexpr uint32_t kDetBytes = uint32_t(fhg_regs::buffer_bytes(kWidth, kHeight, 4));
+
+struct Seen {
+    std::vector<uint8_t> at_start;  // the determinant buffer right after the IIG's START
+    std::vector<uint8_t> at_end;    // and once the FHG is done
+    uint32_t fhg_status = 0;
+};
+
+// One frame: the FHG listening, the IIG streaming to it; the software reads the whole
+// determinant buffer and writes 16 bytes into block row 5 before it waits for the FHG.
+Seen frame(bool parallel) {
+    Config config;
+    config.set("run.parallel", parallel ? "on" : "off", "test");
+    config.set("memory.size", "4 MiB", "test");
+    DirectChip chip(config, 1);
+    std::vector<uint8_t> image(size_t(kWidth) * kHeight);
+    uint32_t seed = 11;
+    for (uint8_t& p : image) p = uint8_t((seed = seed * 1103515245u + 12345u) >> 24);
+    chip.write(kImage, image.data(), image.size());
+
+    const uint32_t fhg = map::fhg_base(0), iig = map::iig_base(0), intc = map::intc.base;
+    chip.write32(intc + intc::IER, 1u << map::irq::fhg(0));
+    chip.write32(intc + intc::MER, intc::MER_ME | intc::MER_HIE);
+    chip.write32(fhg + fhg_regs::DET_ADDR, kDets);
+    chip.write32(fhg + fhg_regs::WIDTH, kWidth);
+    chip.write32(fhg + fhg_regs::HEIGHT, kHeight);
+    chip.write32(fhg + fhg_regs::THRESHOLD, 0x7fffffff);  // no candidates: the FIFO stays out of it
+    chip.write32(fhg + fhg_regs::CTRL, fhg_regs::CTRL_START | fhg_regs::CTRL_IRQ_EN_DONE);
+    chip.write32(iig + iig::SRC, kImage);
+    chip.write32(iig + iig::DST, kIntegral);
+    chip.write32(iig + iig::WIDTH, kWidth);
+    chip.write32(iig + iig::HEIGHT, kHeight);
+    chip.write32(iig + iig::SRC_STRIDE, kWidth);
+    chip.write32(iig + iig::DST_STRIDE, 4 * kWidth);
+    chip.write32(iig + iig::CTRL, iig::CTRL_START | iig::CTRL_STREAM);
+
+    Seen seen;
+    seen.at_start.resize(kDetBytes);
+    chip.read(kDets, seen.at_start.data(), kDetBytes);
+    const std::vector<uint8_t> marker(16, 0xA5);
+    chip.write(kDets + 5 * kRowBytes, marker.data(), marker.size());
+    chip.wait_for_irq();
+    seen.fhg_status = chip.read32(fhg + fhg_regs::STATUS);
+    seen.at_end.resize(kDetBytes);
+    chip.read(kDets, seen.at_end.data(), kDetBytes);
+    return seen;
+}
+
+TEST(DirectChip, AFramesDeterminantsAreInMemoryOnceItStreamsAndTheSoftwaresWritesComeAfterThemOnEitherThread) {
+    const Seen serial = frame(false), parallel = frame(true);
+    EXPECT_TRUE(serial.fhg_status & fhg_regs::STATUS_DONE);
+    EXPECT_FALSE(serial.fhg_status & fhg_regs::STATUS_ERROR);
+    // Every block row is there before the FHG has reported one: the last with determinants
+    // too, block row 21 (pixel rows 42 and 43; size 9 leaves 4 rows of border).
+    const auto row_21 = serial.at_start.begin() + 21 * kRowBytes;
+    EXPECT_LT(std::count(row_21, row_21 + kRowBytes, 0), kRowBytes);  // the buffer was zero before
+    // The software's bytes stay: they were written after the row they land in.
+    EXPECT_TRUE(std::all_of(serial.at_end.begin() + 5 * kRowBytes, serial.at_end.begin() + 5 * kRowBytes + 16,
+                            [](uint8_t b) { return b == 0xA5; }));
+    EXPECT_TRUE(std::equal(serial.at_end.begin(), serial.at_end.begin() + 5 * kRowBytes, serial.at_start.begin()));
+    EXPECT_EQ(parallel.at_start, serial.at_start);
+    EXPECT_EQ(parallel.at_end, serial.at_end);
+    EXPECT_EQ(parallel.fhg_status, serial.fhg_status);
+}
+
+}  // namespace
+}  // namespace surfvp
