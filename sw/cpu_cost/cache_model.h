@@ -35,7 +35,15 @@ public:
     // A read of `bytes` bytes at `address`: every line it touches is one hit or one miss
     // (a miss fills the line). bytes == 0 touches nothing. The bus address of each line
     // that missed is appended to `missed` when given.
-    Result access(uint32_t address, uint32_t bytes, std::vector<uint32_t>* missed = nullptr);
+    Result access(uint32_t address, uint32_t bytes, std::vector<uint32_t>* missed = nullptr) {
+        // The common case inline: a read within the line read last, a hit that changes nothing.
+        const uint32_t line = address >> line_shift_;
+        if (line == last_line_ && bytes && uint32_t((uint64_t(address) + bytes - 1) >> line_shift_) == line) {
+            ++hits_;
+            return {1, 0};
+        }
+        return access_lines(address, bytes, missed);
+    }
 
     // Drops every line (e.g. after DMA rewrote the buffers: the PPC440 L1 is not coherent
     // with DMA, so the driver invalidates before reading). Counters are kept.
@@ -50,6 +58,7 @@ public:
     const CacheParams& params() const { return params_; }
 
 private:
+    Result access_lines(uint32_t address, uint32_t bytes, std::vector<uint32_t>* missed);
     bool touch(uint32_t line);  // true on a hit
     bool touch_lru(uint32_t set, uint32_t line);
     bool touch_round_robin(uint32_t set, uint32_t line);
@@ -70,15 +79,20 @@ private:
     static constexpr unsigned kChunkShift = 16;
     static constexpr uint32_t kChunk = uint32_t(1) << kChunkShift;
     std::vector<std::unique_ptr<uint16_t[]>> where_;
-    // LRU: per set, its filled ways as a list from the most to the least recently used:
-    // newer_/older_ per way (way numbers within the set), newest_/oldest_ per set. A hit
-    // moves one way to the front, a miss in a full set refills the last one.
-    std::vector<uint16_t> newer_, older_;
-    std::vector<uint16_t> newest_, oldest_;
+    // LRU: per set, its filled ways as a list from the most to the least recently used: a
+    // Link per way (its neighbours' way numbers within the set), the list's Ends per set. A
+    // hit moves one way to the front, a miss in a full set refills the last one.
+    struct Link {
+        uint16_t newer, older;
+    };
+    struct Ends {
+        uint16_t newest, oldest;
+    };
+    std::vector<Link> links_;  // per set x way
+    std::vector<Ends> ends_;   // per set
     // Round-robin: victim_[set] is the next way to fill.
     std::vector<uint32_t> victim_;
-    uint32_t last_line_ = 0;  // fast path: the line touched last is a hit without any change
-    bool last_valid_ = false;
+    uint32_t last_line_ = kNoLine;  // fast path: the line touched last is a hit without any change
     uint64_t hits_ = 0, misses_ = 0;
 };
 

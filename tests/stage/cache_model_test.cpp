@@ -203,5 +203,46 @@ TEST(CacheModel, LruHitsAndMissesEqualTheDefinitionTouchByTouch) {
     }
 }
 
+// Round-robin by its definition: per set, the lines in the order filled; a hit changes
+// nothing, a miss in a full set drops the first filled.
+TEST(CacheModel, RoundRobinHitsAndMissesEqualTheDefinitionTouchByTouch) {
+    CacheModel cache(ppc440(Replacement::round_robin));
+    std::vector<std::deque<uint32_t>> filled(cache.sets());
+    uint32_t seed = 5;
+    uint64_t hits = 0;
+    for (int i = 0; i < 200000; ++i) {
+        seed = seed * 1103515245u + 12345u;
+        if (i % 50000 == 49999) {
+            cache.invalidate();
+            for (auto& set : filled) set.clear();
+        }
+        const uint32_t row = (seed >> 8) % 96, column = (seed >> 20) % 160;
+        const uint32_t address = 0x100000 + row * 4096 + column * 4;
+        std::deque<uint32_t>& set = filled[(address / 32) % cache.sets()];
+        const bool expected = std::find(set.begin(), set.end(), address / 32) != set.end();
+        if (!expected) {
+            if (set.size() == 64) set.pop_front();
+            set.push_back(address / 32);
+        }
+        ASSERT_EQ(cache.access(address, 4).hits == 1, expected) << "touch " << i;
+        hits += expected;
+    }
+    EXPECT_GT(hits, 10000u);
+    EXPECT_LT(hits, 190000u);
+}
+
+// Lines anywhere in the 32-bit space: the last line below 4 GiB, line 0, and a read that
+// ends at the top. The look-up table is made in chunks as lines are first touched.
+TEST(CacheModel, LinesAtBothEndsOfTheAddressSpace) {
+    CacheModel cache(ppc440());
+    EXPECT_EQ(cache.access(0xFFFFFFE0u, 32).misses, 1u);
+    EXPECT_EQ(cache.access(0x00000000u, 4).misses, 1u);
+    EXPECT_EQ(cache.access(0xFFFFFFFCu, 4).hits, 1u);
+    EXPECT_EQ(cache.access(0x0000001Cu, 4).hits, 1u);
+    const CacheModel::Result both = cache.access(0xFFFFFFC0u, 64);  // the line below, then the top one
+    EXPECT_EQ(both.misses, 1u);
+    EXPECT_EQ(both.hits, 1u);
+}
+
 }  // namespace
 }  // namespace surfvp::sw
