@@ -26,9 +26,9 @@ DirectChip::Pair::Pair(DirectChip& chip, const IigRegisters::Limits& iig_limits,
                        },
                        [this] { iig.end(true, iig::ERR_ABORTED, 0); }, {}, {}}),
       fhg(fhg_limits, {[this](const FhgRegisters::Frame& f) {
+                           stop_listening();  // first: rows still being computed read the frame before
                            determinants = f;
                            next_row = 0;
-                           stop_listening();
                        },
                        [this] { fhg.status().end(true, f::ERR_ABORTED); }, {},
                        [this] {  // RESET: a frame still listening is aborted at once (no time here)
@@ -36,7 +36,7 @@ DirectChip::Pair::Pair(DirectChip& chip, const IigRegisters::Limits& iig_limits,
                            stop_listening();
                        }}) {}
 
-// The rows being computed read `lines`: they are done before it goes.
+// The rows being computed read `lines` and `determinants`: they are done before either goes.
 void DirectChip::Pair::stop_listening() {
     if (pending) chip.worker_->drain();
     pending = false;
