@@ -36,7 +36,7 @@ std::set<std::string> files_under(const fs::path& root) {
             it.disable_recursion_pending();
             continue;
         }
-        if (it->is_regular_file()) files.insert(fs::relative(it->path(), root).string());
+        if (it->is_regular_file()) files.insert(it->path().lexically_relative(root).string());  // no system calls
     }
     return files;
 }
