@@ -8,9 +8,8 @@
 // worker still runs one of those, the waiter also takes the ones after (jobs are independent)
 // and returns at most one job's time after its own is done: for a caller with nothing else to
 // do (direct mode), not for one whose time is the simulation's limit (the kernel's thread,
-// which the worker keeps up with). The caller keeps a job's inputs
-// unchanged until it is done and reads its outputs only after waiting for it. One thread
-// submits and waits.
+// which the worker keeps up with). The caller keeps a job's inputs unchanged until it is done
+// and reads its outputs only after waiting for it. One thread submits and waits.
 //
 // The kernel's thread submits a job per FHG block row (thousands a run) and is the simulator's
 // limit, so waking a sleeping thread (a futex call and an inter-processor wake-up, ~15 us on a

@@ -30,7 +30,7 @@ void populate(uint8_t* block, size_t bytes);
 // The allocator of a model's large buffers that are refilled every frame (integral lines,
 // determinant rows): zeroed_memory's blocks, given back to the kernel when freed. An element
 // made without a value is left as the memory holds it (zero in a new block), so resize() does
-// not write a block's pages: they are faulted in by whoever first writes them (direct mode's
+// not write a block's pages: they are faulted in by whoever first writes them (the FHG's
 // worker, for the rows it computes ahead). assign() fills. Throws std::bad_alloc.
 uint8_t* map_zeroed(size_t bytes);  // nullptr when it cannot be had
 template <class T>
@@ -60,9 +60,9 @@ using FrameBuffer = std::vector<T, ZeroedAllocator<T>>;
 
 // Faults a block's pages in on a background thread just ahead of the writes that would
 // fault them on the caller's (the kernel's) thread: a write reaching into a 2 MB stretch of
-// the block (aligned as addresses are) asks for the stretch after it. The kernel clears a page when it is first written, and those
-// clears were ~5 % of the simulator's main thread (the FHG writer's buffers, the first frames
-// of a run). Only the pages' residency changes, never their bytes (MADV_POPULATE_WRITE);
+// the block (aligned as addresses are) asks for the stretch after it. The kernel clears a
+// page when it is first written, and those clears were ~5 % of the simulator's main thread
+// (the FHG writer's buffers, the first frames of a run). Only the pages' residency changes, never their bytes (MADV_POPULATE_WRITE);
 // without that call (kernels before 5.14) the writes fault as before.
 class PopulateAhead {
 public:

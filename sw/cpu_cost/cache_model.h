@@ -69,7 +69,7 @@ private:
     uint32_t sets_ = 0;
     unsigned line_shift_ = 0;
     // Per set, `ways` line numbers (kNoLine in a way never filled since the last invalidate)
-    // and the ways filled so far.
+    // and (LRU) the ways filled so far.
     static constexpr uint32_t kNoLine = ~uint32_t(0);  // no 32-bit address's line number with lines of 2 B or more
     std::vector<uint32_t> lines_;
     std::vector<uint32_t> filled_;
