@@ -69,9 +69,13 @@ Eigen::Matrix3d read_yaml(const std::filesystem::path& file, std::string text) {
 Eigen::Matrix3d read_file_storage(const std::filesystem::path& file, const std::string& text) {
     // Neither XML nor JSON holds a NUL byte, and OpenCV 4.6's XML parser dereferences a null
     // pointer on one in the XML declaration (found by tests/fuzz homography).
+    const auto line_of = [&](std::size_t at) { return std::size_t(std::count(text.begin(), text.begin() + long(at), '\n') + 1); };
     if (const std::size_t nul = text.find('\0'); nul != std::string::npos)
-        throw FormatError(file, std::size_t(std::count(text.begin(), text.begin() + long(nul), '\n') + 1),
-                          "a NUL byte: not a text file");
+        throw FormatError(file, line_of(nul), "a NUL byte: not a text file");
+    // It does so too when the file ends after an attribute's '=' (and spaces), in the XML
+    // declaration or in a tag (found by tests/fuzz homography).
+    if (const std::size_t last = text.find_last_not_of(" \t\r\n"); last != std::string::npos && text[last] == '=')
+        throw FormatError(file, line_of(last), "the file ends after an '=': an attribute without its value");
     cv::FileStorage storage;
     try {
         storage.open(file.string(), cv::FileStorage::READ);

@@ -5,6 +5,8 @@
 
 #include <Eigen/Dense>
 #include <gtest/gtest.h>
+
+#include <algorithm>
 #include <opencv2/core.hpp>
 
 #include "eval/eval_test_support.h"
@@ -104,6 +106,23 @@ TEST(Homography, AFileStorageWithANulByteIsAFormatError) {
     } catch (const FormatError& e) {
         EXPECT_EQ(e.line(), 1u);
         EXPECT_NE(e.problem().find("a NUL byte"), std::string::npos) << e.what();
+    }
+}
+
+// Found by tests/fuzz (homography): OpenCV 4.6's XML parser also crashes (a null pointer) on
+// a file that ends after an attribute's '=', in the declaration or in a tag (spaces after it
+// too); such a file is refused before OpenCV reads it.
+TEST(Homography, AFileStorageEndingAfterAnAttributesEqualsSignIsAFormatError) {
+    test::TemporaryFolder dir;
+    for (const std::string xml : {"<?xml tersion=", "<?xml version= \n", "<?xml version=\"1.0\"?>\n<opencv_storage>\n<H x="}) {
+        std::ofstream(dir / "cut.xml", std::ios::binary) << xml;
+        try {
+            read_homography_file(dir / "cut.xml");
+            ADD_FAILURE() << "no FormatError for " << xml;
+        } catch (const FormatError& e) {
+            EXPECT_EQ(e.line(), xml.back() == '=' ? size_t(std::count(xml.begin(), xml.end(), '\n') + 1) : 1u) << xml;
+            EXPECT_NE(e.problem().find("ends after an '='"), std::string::npos) << e.what();
+        }
     }
 }
 
