@@ -108,6 +108,10 @@ surf::Keypoint parse_keypoint(const TextReader& reader, const std::vector<std::s
     }
     // The radius of the circle with the ellipse's area, pi / sqrt(det).
     k.scale = static_cast<float>(std::pow(det, -0.25) / kRegionRadiusPerScale);
+    if (!(k.scale > 0) || !std::isfinite(k.scale)) {  // found by tests/fuzz (keypoint_file): 0 once rounded to a float
+        reader.fail("ellipse a b c = " + std::string(t[2]) + " " + std::string(t[3]) + " " + std::string(t[4]) +
+                    " gives a scale beyond a float's range");
+    }
     std::size_t first = 5;
     if (dimension == kDescriptorSize + 1) k.laplacian = read_laplacian(reader, t[first++]);
     if (dimension > 0) {

@@ -187,6 +187,9 @@ TEST(KeypointFile, MalformedFilesNameFileLineAndProblem) {
         {"extra", "64\n1\n" + good64 + "\n" + good64, 5, "more keypoint lines than the count 1"},
         // Found by tests/fuzz (keypoint_file): the count was reserved as it stood, 28 GB here.
         {"claims", "64\n100000000\n" + good64, 3, "file ends after 1 of 100000000 keypoints"},
+        // Found by tests/fuzz (keypoint_file): an ellipse so narrow that its scale rounds to 0 as
+        // a float read, and the file could not be written back.
+        {"tiny", "64\n1\n1 2 25 0 6e250" + zeros(64) + "\n", 3, "gives a scale beyond a float's range"},
     };
     for (const auto& c : cases) {
         SCOPED_TRACE(c.name);
