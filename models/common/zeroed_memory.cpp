@@ -4,7 +4,6 @@
 #include <chrono>
 #include <stdexcept>
 #include <sys/mman.h>
-#include <unistd.h>
 
 namespace surfvp {
 
@@ -22,14 +21,6 @@ uint8_t* map_zeroed(size_t bytes) {
     return p == MAP_FAILED ? nullptr : static_cast<uint8_t*>(p);
 }
 
-void populate(uint8_t* block, size_t bytes) {
-#ifdef MADV_POPULATE_WRITE
-    madvise(block, bytes, MADV_POPULATE_WRITE);
-#else
-    (void)block, (void)bytes;
-#endif
-}
-
 ZeroedMemory zeroed_memory(size_t bytes, const std::string& what) {
     uint8_t* p = map_zeroed(bytes);
     if (!p) throw std::runtime_error(what + ": cannot allocate " + std::to_string(bytes) + " bytes");
@@ -45,11 +36,13 @@ PopulateAhead::PopulateAhead(uint8_t* block, size_t bytes)
 
 void PopulateAhead::ask(size_t page) {
     asked_[page] = true;
+#ifdef MADV_POPULATE_WRITE
     const uint64_t begin = page ? (uint64_t(page) << kPageShift) - first_offset_ : 0;
     const uint64_t end = std::min<uint64_t>((uint64_t(page + 1) << kPageShift) - first_offset_, bytes_);
     uint8_t* start = block_ + begin;
     const size_t length = size_t(end - begin);
-    worker_.submit([start, length] { populate(start, length); });
+    worker_.submit([start, length] { madvise(start, length, MADV_POPULATE_WRITE); });  // a hint: failure is a fault later
+#endif
 }
 
 }  // namespace surfvp

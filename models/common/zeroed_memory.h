@@ -22,11 +22,6 @@ using ZeroedMemory = std::unique_ptr<uint8_t[], ZeroedMemoryRelease>;
 // Throws std::runtime_error naming `what` and the size when the block cannot be had.
 ZeroedMemory zeroed_memory(size_t bytes, const std::string& what);
 
-// Faults [block, block + bytes) in as writes would, without changing a byte of it
-// (MADV_POPULATE_WRITE); `block` on a page boundary. A hint: where it is not had (kernels
-// before 5.14) or fails, the writes fault as before.
-void populate(uint8_t* block, size_t bytes);
-
 // The allocator of a model's large buffers that are refilled every frame (integral lines,
 // determinant rows): zeroed_memory's blocks, given back to the kernel when freed. An element
 // made without a value is left as the memory holds it (zero in a new block), so resize() does
