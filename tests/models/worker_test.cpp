@@ -26,53 +26,54 @@ TEST(Worker, WaitCoversEveryEarlierJob) {
     for (size_t i = 0; i < out.size(); ++i) ASSERT_EQ(out[i], int(i * i)) << i;
 }
 
+// Job 0 as the first job submitted: it holds the worker until `released` (at most 5 s) and
+// notes whether it saw that; made once the worker has taken it.
+struct HoldingJob {
+    explicit HoldingJob(Worker& w) {
+        w.submit([this] {
+            ran_on = std::this_thread::get_id();
+            started = true;
+            const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(5);
+            while (!released && std::chrono::steady_clock::now() < until) std::this_thread::yield();
+            saw_release = released.load();
+        });
+        while (!started) std::this_thread::yield();
+    }
+    std::atomic<bool> started{false}, released{false}, saw_release{false};
+    std::thread::id ran_on;
+};
+
 // While the worker is held up by job 0, a waiter for job 3 runs jobs 1 to 3 itself: job 0
 // sees job 3 done (it would wait in vain if only the worker ran jobs).
 TEST(Worker, AWaiterRunsTheQueuedJobsItWaitsFor) {
     Worker w;
-    std::atomic<bool> first_started{false}, third_done{false}, worker_saw_it{false};
+    HoldingJob first(w);
     std::vector<std::thread::id> ran_on(4);
-    w.submit([&] {
-        ran_on[0] = std::this_thread::get_id();
-        first_started = true;
-        const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(5);
-        while (!third_done && std::chrono::steady_clock::now() < until) std::this_thread::yield();
-        worker_saw_it = third_done.load();
-    });
-    while (!first_started) std::this_thread::yield();  // the worker has taken job 0
     for (size_t k = 1; k <= 3; ++k)
         w.submit([&, k] {
             ran_on[k] = std::this_thread::get_id();
-            if (k == 3) third_done = true;
+            if (k == 3) first.released = true;
         });
     w.wait(3);
-    EXPECT_TRUE(worker_saw_it);
+    EXPECT_TRUE(first.saw_release);
     for (size_t k = 1; k <= 3; ++k) EXPECT_EQ(ran_on[k], std::this_thread::get_id()) << "job " << k;
-    EXPECT_NE(ran_on[0], std::this_thread::get_id());
+    EXPECT_NE(first.ran_on, std::this_thread::get_id());
 }
 
 // Waiter::runs_any: while the worker runs job 0, a waiter for job 0 runs job 1 itself (jobs
 // are independent): job 0 sees job 1 done (it would wait in vain if the waiter only spun).
 TEST(Worker, WhileTheWorkerRunsTheJobWaitedForAWaiterThatRunsAnyRunsTheNextQueuedOne) {
     Worker w(std::chrono::microseconds(200), Worker::Waiter::runs_any);
-    std::atomic<bool> first_started{false}, second_done{false}, worker_saw_it{false};
-    std::vector<std::thread::id> ran_on(3);
+    HoldingJob first(w);
+    std::thread::id second_ran_on;
     w.submit([&] {
-        ran_on[0] = std::this_thread::get_id();
-        first_started = true;
-        const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(5);
-        while (!second_done && std::chrono::steady_clock::now() < until) std::this_thread::yield();
-        worker_saw_it = second_done.load();
-    });
-    while (!first_started) std::this_thread::yield();  // the worker has taken job 0
-    w.submit([&] {
-        ran_on[1] = std::this_thread::get_id();
-        second_done = true;
+        second_ran_on = std::this_thread::get_id();
+        first.released = true;
     });
     w.wait(0);
-    EXPECT_TRUE(worker_saw_it);
-    EXPECT_EQ(ran_on[1], std::this_thread::get_id());
-    EXPECT_NE(ran_on[0], std::this_thread::get_id());
+    EXPECT_TRUE(first.saw_release);
+    EXPECT_EQ(second_ran_on, std::this_thread::get_id());
+    EXPECT_NE(first.ran_on, std::this_thread::get_id());
 }
 
 // Pauses longer than the spin let both sides fall asleep: each job must still be picked up
