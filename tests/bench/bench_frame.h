@@ -10,6 +10,8 @@
 
 namespace surfvp::bench {
 
+constexpr int kFrameWidth = 1024, kFrameHeight = 768;
+
 inline const cv::Mat& frame() {
     static const cv::Mat img = [] {
         const std::string path = OPENCV_DATA_DIR "/graf1.png";
@@ -19,7 +21,7 @@ inline const cv::Mat& frame() {
             std::exit(1);
         }
         cv::Mat resized;
-        cv::resize(gray, resized, cv::Size(1024, 768), 0, 0, cv::INTER_AREA);
+        cv::resize(gray, resized, cv::Size(kFrameWidth, kFrameHeight), 0, 0, cv::INTER_AREA);
         return resized;
     }();
     return img;

@@ -14,7 +14,7 @@
 
 namespace {
 
-constexpr int kWidth = 1024, kHeight = 768;
+constexpr int kWidth = surfvp::bench::kFrameWidth, kHeight = surfvp::bench::kFrameHeight;
 constexpr unsigned kSumBits = 32;
 constexpr double kThreshold = 497.7;  // the budget run's: the 100th strongest response of frame 0
 
