@@ -48,6 +48,10 @@ struct BlockDeterminant {
 // Index k in 0..17 of the determinant buffer's block record (fhg_regs.h documents it):
 // k = 4 i + (2 py + px) for octave 1 size index i (0..3), k = 16 + j for octave 2 size 39 (j = 0), 51 (j = 1).
 BlockDeterminant block_determinant(int k);
+// The record positions LocalMaxFinder compares with the threshold (its candidate scales):
+// octave 1's sizes 15 and 21 at the four pixels (k = 4..11), octave 2's 27 and 39 at pixel
+// (0, 0) (k = 12, 16). A block none of them exceeds marks nothing.
+constexpr bool tested_by_finder(int k) { return (k >= 4 && k <= 12) || k == 16; }
 
 // The integral-image window one block reads, relative to its pixel (0, 0): from -26 (L = 51:
 // b = 25, plus the row/column before the box) to +25 (L = 51's far edge; octave 1's L = 27 at

@@ -46,6 +46,22 @@ public:
     // Every block of block row `by`: out[bx * 18 + k]; `out` holds ceil(width / 2) x 18 values.
     void block_row(const IntegralView& ii, int by, int32_t* out) const;
 
+    // The same determinants as the image rows give them: octave 1's size index i at image row
+    // 2 by + py for every pixel (`octave1[i][py]`, two a block) and octave 2's j at the blocks'
+    // pixel (0, 0) (`octave2[j]`). at(bx, k) is block bx's record position k. Writing the records
+    // from these once, block by block, costs a third of scattering them line by line.
+    struct Lines {
+        int blocks = 0;
+        const int32_t* octave1[4][2] = {};
+        const int32_t* octave2[2] = {};
+        int32_t at(int bx, int k) const {
+            return k < 16 ? octave1[k / 4][k / 2 % 2][2 * bx + k % 2] : octave2[k - 16][bx];
+        }
+    };
+    // The lines are the calling thread's until its next call. With `peaks`, each block's largest
+    // determinant at the positions LocalMaxFinder tests (tested_by_finder).
+    Lines block_row_lines(const IntegralView& ii, int by, int32_t* peaks = nullptr) const;
+
     double to_float(int64_t det) const { return double(det) / double(int64_t(1) << precision_.det_frac_bits); }
     int32_t from_float(double det) const;  // a threshold in OpenCV's units, as the hardware compares it
     static bool inside(int width, int height, int x, int y, int size) {

@@ -1,6 +1,7 @@
 #include "local_max_finder.h"
 
 #include <algorithm>
+#include <limits>
 
 namespace surfvp::fhg {
 namespace {
@@ -60,12 +61,12 @@ void LocalMaxFinder::block(const int32_t* current, const int32_t* left, int bx, 
 
 namespace {
 
-// The largest of the determinants block() tests against the threshold (octave 1's sizes 1 and 2
-// at four pixels, octave 2's sizes 1 and 2): with none above it, the block marks nothing. Without
-// branches, so the scan of a row's blocks costs a few vector max operations each.
+// The largest of the determinants block() tests against the threshold: with none above it,
+// the block marks nothing.
 int32_t tested_peak(const int32_t* record) {
-    int32_t peak = std::max(record[kOctave2Index[1]], record[kOctave2Index[2]]);
-    for (int i = 4; i < 12; ++i) peak = std::max(peak, record[i]);  // octave 1, sizes 1 and 2
+    int32_t peak = std::numeric_limits<int32_t>::min();
+    for (int k = 0; k < kDeterminantsPerBlock; ++k)
+        if (tested_by_finder(k)) peak = std::max(peak, record[k]);
     return peak;
 }
 
