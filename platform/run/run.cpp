@@ -209,12 +209,15 @@ int run_direct(const Config& config, const fs::path& dir) {
     const WorkerLoan loan(*workload, chip.worker());  // ends before the chip (its memory and worker) goes
     workload->attach_memory([&chip](uint64_t address, uint64_t bytes) { return chip.backdoor(address, bytes); });
     workload->write_into(dir.string());
+    const double startup_s = process_age_s();
+    const auto start = WallClock::now();
     std::string failure;
     try {
         workload->software()(chip);
     } catch (const std::exception& e) {
         failure = std::string("software error: ") + e.what();
     }
+    const double wall_s = since(start);
     nlohmann::ordered_json checks = nlohmann::ordered_json::array();
     bool passed = failure.empty();
     for (const Check& c : workload->checks()) {
@@ -236,6 +239,9 @@ int run_direct(const Config& config, const fs::path& dir) {
                             "threshold_rule"})
         if (summary.contains(key)) r[key] = summary[key];
     r["software_cycles"] = chip.cycles_consumed();
+    r["startup_s"] = startup_s;  // from the process's start to the software's (as the VP's)
+    r["wall_time_s"] = wall_s;   // the software's run on the chip's behaviour
+    r["wall_clock_fields"] = {"startup_s", "wall_time_s"};
     r["workload"] = workload->report();
     r["outputs"] = outputs;
     write_file_atomically((dir / "config.yaml").string(), config_as_run(config, r).to_yaml());

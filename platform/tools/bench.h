@@ -5,7 +5,8 @@
 // frame is the difference between the simulations of N and 2N frames (report.json
 // wall_time_s), divided by N, and start-up is the run's own startup_s: from the process's start
 // (the dynamic loader included) to the simulation's (loading, calibration, the sequence,
-// elaboration). Printed as JSON with the
+// elaboration). A SURF scenario is also run in direct mode the same way, and the VP's time
+// per frame (traces off) over direct mode's is its speed-up. Printed as JSON with the
 // targets beside the figures (docs/architecture.md, "Simulation speed").
 #include <string>
 

@@ -260,7 +260,26 @@ TEST(Cli, BenchGivesTheFiguresAndTheTargets) {
     for (const char* target : {"wall_per_frame_ms", "traces_all_over_none", "startup_ms", "peak_rss_mb", "real_time_factor"})
         EXPECT_TRUE(j["targets"][target].contains("met")) << target;
     EXPECT_FALSE(j.contains("float_reference"));  // the smoke scenario runs no SURF
+    EXPECT_FALSE(j.contains("direct"));           // nor direct mode, which runs SURF only
     EXPECT_EQ(test::surfvp("bench no_such_scenario").exit_code, 2);
+}
+
+// On a SURF scenario `surfvp bench` also runs direct mode the same way (N and 2N frames, its
+// report's own wall_time_s and startup_s) and holds the VP's time per frame over direct mode's
+// to its target.
+TEST(Cli, BenchOnASurfScenarioGivesDirectModesFiguresAndItsSpeedUp) {
+    const auto r = test::surfvp("bench budget_1024x768 --frames 2");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const auto j = nlohmann::json::parse(r.out);
+    for (const char* key : {"wall_per_frame_ms", "startup_ms", "peak_rss_mb"})
+        EXPECT_GT(j["direct"][key].get<double>(), 0.0) << key;
+    EXPECT_FALSE(j["direct"].contains("real_time_factor"));  // direct mode has no time
+    const auto& speed_up = j["targets"]["vp_over_direct"];
+    EXPECT_EQ(speed_up["target"].get<double>(), 3.0);
+    EXPECT_DOUBLE_EQ(speed_up["value"].get<double>(), j["traces_none"]["wall_per_frame_ms"].get<double>() /
+                                                          j["direct"]["wall_per_frame_ms"].get<double>());
+    EXPECT_EQ(speed_up["met"].get<bool>(), speed_up["value"].get<double>() >= 3.0);
+    EXPECT_GT(j["float_reference"]["ms_per_frame"].get<double>(), 0.0);
 }
 
 }  // namespace

@@ -56,7 +56,7 @@ void compare(const nlohmann::json& a, const nlohmann::json& b, const std::set<st
 
 void expect_same_figures(const nlohmann::json& a, const nlohmann::json& b, const std::string& what) {
     std::set<std::string> skip{"wall_clock_fields", "simulation_fields", "outputs"};
-    for (const char* list : {"wall_clock_fields", "simulation_fields"})  // direct mode's report has neither
+    for (const char* list : {"wall_clock_fields", "simulation_fields"})  // direct mode's report has no simulation_fields
         for (const auto& f : a.value(list, nlohmann::json::array())) skip.insert(f.get<std::string>());
     std::vector<std::string> differences;
     compare(a, b, skip, "", differences);
