@@ -196,16 +196,18 @@ double half_of(unsigned s) { return s ? 0.5 : 0.0; }
 
 [[gnu::always_inline]] inline double narrow_f(uint32_t sum, unsigned drop) { return double(int32_t(sum << drop) >> drop); }
 
+[[gnu::always_inline]] inline int32_t finish_exact_double(uint32_t xx, uint32_t yy, uint32_t xy, const FinishConstantsF& c) {
+    const double rxx = clamp_f(std::floor(narrow_f(xx, c.drop) * c.k_scaled + c.recip_half), c.response_max);
+    const double ryy = clamp_f(std::floor(narrow_f(yy, c.drop) * c.k_scaled + c.recip_half), c.response_max);
+    const double rxy = clamp_f(std::floor(narrow_f(xy, c.drop) * c.k_scaled + c.recip_half), c.response_max);
+    const double det = rxx * ryy - std::floor(rxy * rxy * c.weight_scaled + c.weight_half);
+    return int32_t(clamp_f(std::floor(det * c.det_scale + c.det_half), c.det_max));
+}
+
 __attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
 void finish_run_exact_double(const uint32_t* xx, const uint32_t* yy, const uint32_t* xy, int n,
                              const FinishConstantsF& c, int32_t* out) {
-    for (int i = 0; i < n; ++i) {
-        const double rxx = clamp_f(std::floor(narrow_f(xx[i], c.drop) * c.k_scaled + c.recip_half), c.response_max);
-        const double ryy = clamp_f(std::floor(narrow_f(yy[i], c.drop) * c.k_scaled + c.recip_half), c.response_max);
-        const double rxy = clamp_f(std::floor(narrow_f(xy[i], c.drop) * c.k_scaled + c.recip_half), c.response_max);
-        const double det = rxx * ryy - std::floor(rxy * rxy * c.weight_scaled + c.weight_half);
-        out[i] = int32_t(clamp_f(std::floor(det * c.det_scale + c.det_half), c.det_max));
-    }
+    for (int i = 0; i < n; ++i) out[i] = finish_exact_double(xx[i], yy[i], xy[i], c);
 }
 
 // P(x) = sum of weight_i x row_i(x): one response's integral rows combined. The box filters'
@@ -274,42 +276,72 @@ Pairs pairs(const HessianCore::Factors::Pairing& plan, Source source, const uint
     return t;
 }
 
+// Step 1's taps and steps 2 and 3 in one loop, so that a determinant's three sums stay in
+// registers instead of going through memory: for the taps every box filter has (xx: a unit
+// pair and one of magnitude 3, yy: one unit pair, xy: two unit pairs). The same sums and the
+// same finish as weigh() then finish_run_exact_double().
+bool box_filter_taps(const Pairs (&taps)[3]) {
+    return taps[0].count == 2 && taps[0].units == 1 && taps[1].count == 1 && taps[1].units == 1 && taps[2].count == 2 &&
+           taps[2].units == 2;
+}
+
+template <int Step>
+[[gnu::always_inline]] inline void taps_and_finish_n(const Pairs (&taps)[3], int n, int step, const FinishConstantsF& c,
+                                                     int32_t* __restrict out) {
+    // The output is a row of its own (restrict: without it, ten inputs are too many alias checks to vectorise).
+    const uint32_t *xx_p0 = taps[0].plus[0], *xx_m0 = taps[0].minus[0], *xx_p1 = taps[0].plus[1], *xx_m1 = taps[0].minus[1];
+    const uint32_t *yy_p = taps[1].plus[0], *yy_m = taps[1].minus[0];
+    const uint32_t *xy_p0 = taps[2].plus[0], *xy_m0 = taps[2].minus[0], *xy_p1 = taps[2].plus[1], *xy_m1 = taps[2].minus[1];
+    const uint32_t xx_m = taps[0].magnitude[1];
+    const int stride = Step ? Step : step;
+    for (int k = 0; k < n; ++k) {
+        const int i = k * stride;
+        const uint32_t sxx = (xx_p0[i] - xx_m0[i]) + xx_m * (xx_p1[i] - xx_m1[i]);
+        const uint32_t syy = yy_p[i] - yy_m[i];
+        const uint32_t sxy = (xy_p0[i] - xy_m0[i]) + (xy_p1[i] - xy_m1[i]);
+        out[k] = finish_exact_double(sxx, syy, sxy, c);
+    }
+}
+
+__attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
+void taps_and_finish(const Pairs (&taps)[3], int n, int step, const FinishConstantsF& c, int32_t* __restrict out) {
+    if (step == 1) taps_and_finish_n<1>(taps, n, step, c, out);
+    else if (step == 2) taps_and_finish_n<2>(taps, n, step, c, out);
+    else taps_and_finish_n<0>(taps, n, step, c, out);
+}
+
 }  // namespace
 
 // The fast path: for one filter and one image row, each response is a few taps of one
 // combined integral row, so the sums are loops over x.
-void HessianCore::row(const IntegralView& ii, int y, int size, int x0, int step, int count, int32_t* out,
-                      int out_stride) const {
+void HessianCore::row(const IntegralView& ii, int y, int size, int x0, int step, int count, int32_t* out) const {
     const int b = (size - 1) / 2;
     // Only x in [b, width - 1 - b] and y in [b, height - 1 - b] have determinants.
     int first = 0, last = count;  // k range inside
     while (first < count && x0 + first * step < b) ++first;
     while (last > first && x0 + (last - 1) * step > ii.width - 1 - b) --last;
     if (y < b || y > ii.height - 1 - b) first = last = count;
-    for (int k = 0; k < first; ++k) out[k * out_stride] = 0;
-    for (int k = last; k < count; ++k) out[k * out_stride] = 0;
+    std::fill(out, out + first, 0);
+    std::fill(out + last, out + count, 0);
     if (first >= last) return;
 
     const int n = last - first;
+    const size_t combined_size = size_t(ii.width) + 1;
     thread_local std::vector<uint32_t> combined, sums, zeros;
-    thread_local std::vector<int32_t> dets;
-    combined.resize(size_t(ii.width) + 1);
+    combined.resize(3 * combined_size);
     zeros.resize(size_t(ii.width));  // never written: the row above the image
-    sums.resize(size_t(3) * n);
-    dets.resize(size_t(n));
-    int32_t* finished = out_stride == 1 ? out + first : dets.data();  // contiguous output takes them directly
     const int x_first = x0 + first * step;
-    uint32_t* p = combined.data() + 1;  // p[-1] = 0: column -1 of the integral image
-    combined[0] = 0;
+    Pairs taps[3];
     for (int r = 0; r < 3; ++r) {
         const Factors& f = factors_[size_t(size)][size_t(r)];
+        uint32_t* p = combined.data() + size_t(r) * combined_size + 1;  // p[-1] = 0: column -1 of the integral image
+        p[-1] = 0;
         // Inside the image every row read is in [-1, height - 1]; row -1 is zero.
         weigh(p,
               pairs(f.row_pairs, [&](int i) { return y + f.dy[size_t(i)] < 0 ? nullptr : ii.row(y + f.dy[size_t(i)]); },
                     zeros.data()),
               ii.width, 1);
-        weigh(sums.data() + size_t(r) * n,
-              pairs(f.tap_pairs, [&](int i) { return p + x_first + f.dx[size_t(i)]; }, zeros.data()), n, step);
+        taps[r] = pairs(f.tap_pairs, [&](int i) { return p + x_first + f.dx[size_t(i)]; }, zeros.data());
     }
     const Precision& pr = precision_;
     if (double_exact_) {
@@ -319,13 +351,16 @@ void HessianCore::row(const IntegralView& ii, int y, int size, int x0, int step,
                                  double(weight_) * scale_of(pr.weight_frac_bits), half_of(pr.weight_frac_bits),
                                  scale_of(det_shift), half_of(det_shift),
                                  double((int64_t(1) << (pr.response_bits - 1)) - 1), double((int64_t(1) << (pr.det_bits - 1)) - 1)};
-        finish_run_exact_double(sums.data(), sums.data() + n, sums.data() + 2 * n, n, c, finished);
+        if (box_filter_taps(taps)) return taps_and_finish(taps, n, step, c, out + first);
+        sums.resize(size_t(3) * n);
+        for (int r = 0; r < 3; ++r) weigh(sums.data() + size_t(r) * n, taps[r], n, step);
+        finish_run_exact_double(sums.data(), sums.data() + n, sums.data() + 2 * n, n, c, out + first);
     } else {
+        sums.resize(size_t(3) * n);
+        for (int r = 0; r < 3; ++r) weigh(sums.data() + size_t(r) * n, taps[r], n, step);
         finish_run(sums.data(), sums.data() + n, sums.data() + 2 * n, n, finish_constants(pr, reciprocal_[size], weight_),
-                   finished);
+                   out + first);
     }
-    if (out_stride != 1)
-        for (int k = 0; k < n; ++k) out[(first + k) * out_stride] = dets[size_t(k)];
 }
 
 namespace {
@@ -357,7 +392,7 @@ HessianCore::Lines HessianCore::block_row_lines(const IntegralView& ii, int by, 
             int32_t* line = &storage[(2 * size_t(i) + size_t(py)) * pixels];
             lines.octave1[i][py] = line;
             line[pixels - 1] = 0;
-            if (y < ii.height) row(ii, y, kSizes[i], 0, 1, ii.width, line, 1);
+            if (y < ii.height) row(ii, y, kSizes[i], 0, 1, ii.width, line);
             else std::fill(line, line + pixels, 0);
             if (peaks) raise_peaks(line, 2, 4 * i + 2 * py, lines.blocks, peaks);
         }
@@ -365,7 +400,7 @@ HessianCore::Lines HessianCore::block_row_lines(const IntegralView& ii, int by, 
     for (int j = 0; j < 2; ++j) {
         int32_t* line = &storage[8 * pixels + size_t(j) * size_t(lines.blocks)];
         lines.octave2[j] = line;
-        row(ii, 2 * by, kSizes[4 + j], 0, 2, lines.blocks, line, 1);
+        row(ii, 2 * by, kSizes[4 + j], 0, 2, lines.blocks, line);
         if (peaks) raise_peaks(line, 1, 16 + j, lines.blocks, peaks);
     }
     return lines;

@@ -88,8 +88,8 @@ public:
 private:
     int32_t finish(int64_t xx, int64_t yy, int64_t xy, int size) const;  // steps 2 and 3
     int64_t wrap(int64_t sum) const;
-    // One image row at filter `size`: dets at x = x0 + k step for k < count into out[k * out_stride].
-    void row(const IntegralView& ii, int y, int size, int x0, int step, int count, int32_t* out, int out_stride) const;
+    // One image row at filter `size`: dets at x = x0 + k step for k < count into out[k].
+    void row(const IntegralView& ii, int y, int size, int x0, int step, int count, int32_t* out) const;
 
     Precision precision_;
     int64_t weight_;
