@@ -210,6 +210,7 @@ private:
                                                c.x, c.y, fhg::kSizes[size_t(c.size_index)]);
         }
         r.work.cycles = stage_.cost().take_cycles();
+        r.work.lines.reserve(stage_.cost().misses().size());
         for (const sw::CostCounter::Miss& m : stage_.cost().misses())
             r.work.lines.push_back({m.line, uint64_t(std::llround(m.cycle - start)), false});
         stage_.cost().clear_misses();

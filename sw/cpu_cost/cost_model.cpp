@@ -37,7 +37,11 @@ void CostCounter::charge_misses(uint32_t misses, size_t logged_from) {
     cycles_ += c;
     if (!log_misses_) return;
     for (size_t i = logged_from; i < missed_.size(); ++i) {
-        misses_.push_back({missed_[i], cycles_});
+        // Written in place: a Miss built aside and copied in was read back whole right after
+        // its two halves were stored, which the store buffer cannot forward (a stall a fill).
+        Miss& m = misses_.emplace_back();
+        m.line = missed_[i];
+        m.cycle = cycles_;
         miss_read_.push_back(step_reads_ - 1);
     }
     missed_.clear();
