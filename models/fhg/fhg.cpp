@@ -104,6 +104,7 @@ void Fhg::start(const FhgRegisters::Frame& f) {
     if (worker_) {
         ahead_rows_.resize(size_t(r::buffer_bytes(f.width, f.height, det_bytes())));
         ahead_found_.assign(frame_.blocks_y, {});
+        row_jobs_.assign(frame_.blocks_y, 0);
     } else {
         for (auto& slot : slots_) slot.resize(r::row_bytes(f.width, det_bytes()));
     }
@@ -197,8 +198,7 @@ void Fhg::queue_ready_rows() {
     while (frame_.rows_queued < frame_.blocks_y && frame_.received > needed_line(frame_.rows_queued)) {
         const uint32_t by = frame_.rows_queued++;
         uint8_t* row = row_bytes(by);
-        const size_t job = worker_->submit([this, by, row] { ahead_found_[by] = compute_block_row(int(by), row); });
-        if (by == 0) first_job_ = job;
+        row_jobs_[by] = worker_->submit([this, by, row] { ahead_found_[by] = compute_block_row(int(by), row); });
     }
 }
 
@@ -211,7 +211,7 @@ uint8_t* Fhg::row_bytes(uint32_t by) {
 // them, or computed here.
 std::vector<fhg::Candidate> Fhg::block_row_results(uint32_t by) {
     if (!worker_ || by >= frame_.rows_queued) return compute_block_row(int(by), row_bytes(by));
-    worker_->wait(first_job_ + by);
+    worker_->wait(row_jobs_[by]);
     return std::move(ahead_found_[by]);
 }
 

@@ -156,10 +156,11 @@ private:
     TimeSeries line_series_, maxima_series_;  // FIFO levels per time bin
     int frame_track_ = -1, row_track_ = -1, level_track_ = -1;
     // The worker's results, every block row of the frame: stored determinants (the writer
-    // sends them from here) and marked maxima. Row r is the worker's job first_job_ + r.
+    // sends them from here) and marked maxima. Row r is the worker's job row_jobs_[r] (the
+    // worker runs others' jobs too: the keypoint files the workload hands it).
     FrameBuffer<uint8_t> ahead_rows_;
     std::vector<std::vector<fhg::Candidate>> ahead_found_;
-    size_t first_job_ = 0;
+    std::vector<size_t> row_jobs_;
     std::unique_ptr<Worker> worker_;  // with Params::parallel; last, so it stops before the rest goes
     BlockFaults faults_{"fhg"};
     struct Corruption {  // a determinant to invert as its row is written

@@ -3,12 +3,14 @@
 #include <algorithm>
 #include <filesystem>
 #include <map>
+#include <mutex>
 #include <optional>
 #include <fmt/format.h>
 #include <opencv2/imgcodecs.hpp>  // cv::IMREAD_GRAYSCALE
 #include <opencv2/imgproc.hpp>
 #include <yaml-cpp/binary.h>
 
+#include "models/common/worker.h"
 #include "platform/address_map.h"
 #include "platform/workload/describer.h"
 #include "models/fhg/fhg_regs.h"
@@ -333,7 +335,11 @@ public:
 
     void attach_memory(const Backdoor& memory) override { memory_ = memory; }
     void inject(FaultPlan& faults) override { faults_ = &faults; }
-    void share_worker(Worker* worker) override { surfvp::share_worker(*describer_, worker); }
+    void share_worker(Worker* worker) override {
+        finish_writes();  // the files handed to the worker before
+        writer_ = worker;
+        surfvp::share_worker(*describer_, worker);
+    }
     void write_into(const std::string& dir) override { out_ = dir; }
     std::vector<std::string> files_written() override;
 
@@ -446,6 +452,13 @@ private:
     std::string out_;                     // where keypoint files go as frames are reported ("" : nowhere)
     std::vector<std::string> written_;    // their names, relative to out_
     std::exception_ptr write_failure_;    // the first that failed; no more are written after it
+    // With a worker lent, each file is formatted and written there (the simulation's or the
+    // software's thread has better to do); finish_writes() waits for them and takes their failure.
+    void finish_writes();
+    Worker* writer_ = nullptr;
+    std::optional<size_t> last_write_;    // the worker's job number of the last file handed to it
+    std::mutex write_mutex_;
+    std::exception_ptr worker_failure_;   // a file the worker failed to write; under write_mutex_
     sw::ssa2::Driver::Recovery recovery_;
     double budget_fps_ = 0, cpu_hz_ = 0;
     std::vector<sw::ssa2::AcceleratorTime> accelerator_time_;
@@ -672,14 +685,30 @@ void SurfWorkload::write_keypoints(const sw::ssa2::Task& task, const surf::Keypo
         const fs::path folder = fs::path(out_) / "keypoints";
         if (written_.empty()) fs::create_directories(folder);
         const fs::path file = keypoint_file(out_, task.id);
-        eval::write_keypoint_file(file, keypoints);
-        written_.push_back(fs::relative(file, out_).string());
+        written_.push_back(file.lexically_relative(out_).string());
+        if (!writer_) return eval::write_keypoint_file(file, keypoints);
+        last_write_ = writer_->submit([this, file, keypoints] {
+            try {
+                eval::write_keypoint_file(file, keypoints);
+            } catch (...) {
+                const std::lock_guard<std::mutex> lock(write_mutex_);
+                if (!worker_failure_) worker_failure_ = std::current_exception();
+            }
+        });
     } catch (...) {
         write_failure_ = std::current_exception();
     }
 }
 
+void SurfWorkload::finish_writes() {
+    if (writer_ && last_write_) writer_->wait(*last_write_);
+    last_write_.reset();
+    const std::lock_guard<std::mutex> lock(write_mutex_);
+    if (worker_failure_ && !write_failure_) write_failure_ = worker_failure_;
+}
+
 std::vector<std::string> SurfWorkload::files_written() {
+    finish_writes();
     if (write_failure_) std::rethrow_exception(write_failure_);
     std::vector<std::string> names = written_;
     std::sort(names.begin(), names.end());  // frames are reported in the order they finish

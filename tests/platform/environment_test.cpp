@@ -48,6 +48,19 @@ TEST(Environment, AFullDiskWhileTracingEndsWithItsOwnExitCodeAndNoPartialFile) {
     }
 }
 
+// The keypoint files are written on the second thread (run.parallel) while the run goes on; a
+// write that fails there still ends the run with the exit code of a full disk, naming the
+// file, in the VP and in direct mode, and no keypoint file is left in the folder.
+TEST(Environment, AFullDiskWhileWritingKeypointsEndsWithItsOwnExitCode) {
+    for (const char* mode : {" --trace none", " --direct"}) {
+        const std::string out = fresh_dir(std::string("full_keypoints") + (mode[3] == 'd' ? "_direct" : ""));
+        std::string err;
+        EXPECT_EQ(run_with_file_limit("run " + kBudget + " --quiet --out " + out + kShort + mode, 8, err), 4) << mode << err;
+        EXPECT_NE(err.find("surfvp: cannot write: " + out + "/keypoints/frame_0000.surf"), std::string::npos) << mode << err;
+        EXPECT_FALSE(fs::exists(out + "/keypoints")) << mode;
+    }
+}
+
 // Two runs on one folder at once: the later one is refused while the first holds the folder,
 // and what is left is the first one's complete output.
 TEST(Environment, TwoRunsOnOneFolderDoNotCorruptEachOther) {
