@@ -211,8 +211,11 @@ private:
         }
         r.work.cycles = stage_.cost().take_cycles();
         r.work.lines.reserve(stage_.cost().misses().size());
-        for (const sw::CostCounter::Miss& m : stage_.cost().misses())
-            r.work.lines.push_back({m.line, uint64_t(std::llround(m.cycle - start)), false});
+        for (const sw::CostCounter::Miss& m : stage_.cost().misses()) {
+            sw::LineTransfer& fill = r.work.lines.emplace_back();  // in place: see CostCounter::charge_misses
+            fill.address = m.line;
+            fill.at_cycle = uint64_t(std::llround(m.cycle - start));
+        }
         stage_.cost().clear_misses();
         r.tally = tally();
         return r;
