@@ -1,6 +1,5 @@
 #include "block_row.h"
 
-#include <array>
 #include <cstring>
 #include <immintrin.h>
 
@@ -43,13 +42,6 @@ void store_records(const HessianCore::Lines& lines, uint32_t det_bytes, uint8_t*
         for (int k = 0; k < kDeterminantsPerBlock; ++k, row += det_bytes) fhg_regs::store_det(row, lines.at(bx, k), det_bytes);
 }
 
-using Record = std::array<int32_t, kDeterminantsPerBlock>;
-
-Record record(const HessianCore::Lines& lines, int bx) {
-    Record r;
-    for (int k = 0; k < kDeterminantsPerBlock; ++k) r[size_t(k)] = lines.at(bx, k);
-    return r;
-}
 
 }  // namespace
 
@@ -65,8 +57,10 @@ std::vector<Candidate> block_row(const HessianCore& core, const IntegralView& li
     std::vector<Candidate> found;
     for (int bx = 0; bx < dets.blocks; ++bx) {
         if (peaks[size_t(bx)] <= threshold) continue;
-        const Record current = record(dets, bx), left = bx ? record(dets, bx - 1) : Record{};
-        finder.block(current.data(), bx ? left.data() : nullptr, bx, by, found);
+        int32_t current[kDeterminantsPerBlock], left[kDeterminantsPerBlock];
+        dets.record(bx, current);
+        if (bx) dets.record(bx - 1, left);
+        finder.block(current, bx ? left : nullptr, bx, by, found);
     }
     return found;
 }

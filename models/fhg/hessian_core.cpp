@@ -192,6 +192,13 @@ struct FinishConstantsF {
 double scale_of(unsigned s) { return 1.0 / double(uint64_t(1) << s); }
 double half_of(unsigned s) { return s ? 0.5 : 0.0; }
 
+FinishConstantsF finish_constants_f(const Precision& p, int64_t k, int64_t weight) {
+    const unsigned det_shift = 2 * p.response_frac_bits - p.det_frac_bits;
+    return {32 - p.accumulator_bits, double(k) * scale_of(p.recip_shift), half_of(p.recip_shift),
+            double(weight) * scale_of(p.weight_frac_bits), half_of(p.weight_frac_bits), scale_of(det_shift), half_of(det_shift),
+            double((int64_t(1) << (p.response_bits - 1)) - 1), double((int64_t(1) << (p.det_bits - 1)) - 1)};
+}
+
 [[gnu::always_inline]] inline double clamp_f(double v, double max) { return std::min(std::max(v, -max - 1), max); }
 
 [[gnu::always_inline]] inline double narrow_f(uint32_t sum, unsigned drop) { return double(int32_t(sum << drop) >> drop); }
@@ -344,23 +351,16 @@ void HessianCore::row(const IntegralView& ii, int y, int size, int x0, int step,
         taps[r] = pairs(f.tap_pairs, [&](int i) { return p + x_first + f.dx[size_t(i)]; }, zeros.data());
     }
     const Precision& pr = precision_;
-    if (double_exact_) {
-        const unsigned det_shift = 2 * pr.response_frac_bits - pr.det_frac_bits;
-        const FinishConstantsF c{32 - pr.accumulator_bits,
-                                 double(reciprocal_[size]) * scale_of(pr.recip_shift), half_of(pr.recip_shift),
-                                 double(weight_) * scale_of(pr.weight_frac_bits), half_of(pr.weight_frac_bits),
-                                 scale_of(det_shift), half_of(det_shift),
-                                 double((int64_t(1) << (pr.response_bits - 1)) - 1), double((int64_t(1) << (pr.det_bits - 1)) - 1)};
-        if (box_filter_taps(taps)) return taps_and_finish(taps, n, step, c, out + first);
-        sums.resize(size_t(3) * n);
-        for (int r = 0; r < 3; ++r) weigh(sums.data() + size_t(r) * n, taps[r], n, step);
-        finish_run_exact_double(sums.data(), sums.data() + n, sums.data() + 2 * n, n, c, out + first);
-    } else {
-        sums.resize(size_t(3) * n);
-        for (int r = 0; r < 3; ++r) weigh(sums.data() + size_t(r) * n, taps[r], n, step);
+    if (double_exact_ && box_filter_taps(taps))
+        return taps_and_finish(taps, n, step, finish_constants_f(pr, reciprocal_[size], weight_), out + first);
+    sums.resize(size_t(3) * n);
+    for (int r = 0; r < 3; ++r) weigh(sums.data() + size_t(r) * n, taps[r], n, step);
+    if (double_exact_)
+        finish_run_exact_double(sums.data(), sums.data() + n, sums.data() + 2 * n, n,
+                                finish_constants_f(pr, reciprocal_[size], weight_), out + first);
+    else
         finish_run(sums.data(), sums.data() + n, sums.data() + 2 * n, n, finish_constants(pr, reciprocal_[size], weight_),
                    out + first);
-    }
 }
 
 namespace {
@@ -408,8 +408,7 @@ HessianCore::Lines HessianCore::block_row_lines(const IntegralView& ii, int by, 
 
 void HessianCore::block_row(const IntegralView& ii, int by, int32_t* out) const {
     const Lines lines = block_row_lines(ii, by);
-    for (int bx = 0; bx < lines.blocks; ++bx)
-        for (int k = 0; k < kDeterminantsPerBlock; ++k) *out++ = lines.at(bx, k);
+    for (int bx = 0; bx < lines.blocks; ++bx) lines.record(bx, out + size_t(bx) * kDeterminantsPerBlock);
 }
 
 int32_t HessianCore::from_float(double det) const {

@@ -57,6 +57,9 @@ public:
         int32_t at(int bx, int k) const {
             return k < 16 ? octave1[k / 4][k / 2 % 2][2 * bx + k % 2] : octave2[k - 16][bx];
         }
+        void record(int bx, int32_t* out) const {  // block bx's 18 determinants
+            for (int k = 0; k < kDeterminantsPerBlock; ++k) out[k] = at(bx, k);
+        }
     };
     // The lines are the calling thread's until its next call. With `peaks`, each block's largest
     // determinant at the positions LocalMaxFinder tests (tested_by_finder).

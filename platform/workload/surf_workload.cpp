@@ -451,7 +451,8 @@ private:
     Backdoor memory_;
     std::string out_;                     // where keypoint files go as frames are reported ("" : nowhere)
     std::vector<std::string> written_;    // their names, relative to out_
-    std::exception_ptr write_failure_;    // the first that failed; no more are written after it
+    std::exception_ptr write_failure_;    // the first that failed; no more are handed out after it
+                                          // (one on the worker counts from finish_writes())
     // With a worker lent, each file is formatted and written there (the simulation's or the
     // software's thread has better to do); finish_writes() waits for them and takes their failure.
     void finish_writes();
