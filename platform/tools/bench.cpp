@@ -61,32 +61,45 @@ Measure child_run(const BenchOptions& o, const std::string& mode, unsigned frame
             fps > 0 ? 1e3 / fps : 0.0};
 }
 
-// The fastest of three runs: on a shared machine the others only add noise from elsewhere.
-Measure fastest_run(const BenchOptions& o, const std::string& mode, unsigned frames, const fs::path& out,
-                    const std::vector<std::string>& sets) {
-    Measure best = child_run(o, mode, frames, out, sets);
-    for (int k = 1; k < 3; ++k) {
-        const Measure m = child_run(o, mode, frames, out, sets);
+// A mode (the VP's traces, or direct) at a number of frames, with settings: a pair of runs of
+// N and 2N frames gives its figures.
+struct Series {
+    std::string mode;
+    unsigned frames;
+    std::vector<std::string> sets;
+    Measure shorter{}, longer{};
+};
+
+// Three rounds, each running every series' N and 2N frames in turn (the next round in the
+// opposite order), keeping each run's fastest: on a shared machine the slower runs only add
+// noise from elsewhere, and series whose figures are compared (traces all over none, the VP
+// over direct) are measured in the same minutes, so that a change in the machine's speed
+// between them cannot pass for a difference of the simulator's.
+void measure_together(const BenchOptions& o, std::vector<Series>& series, const fs::path& out) {
+    auto fastest = [](Measure& best, const Measure& m, bool first) {
+        if (first) return void(best = m);
         best.wall_s = std::min(best.wall_s, m.wall_s);
         best.startup_s = std::min(best.startup_s, m.startup_s);
         best.peak_rss_mb = std::max(best.peak_rss_mb, m.peak_rss_mb);
-    }
-    return best;
+    };
+    for (int round = 0; round < 3; ++round)
+        for (size_t k = 0; k < series.size(); ++k) {
+            Series& s = series[round % 2 ? series.size() - 1 - k : k];
+            fastest(s.shorter, child_run(o, s.mode, s.frames, out, s.sets), round == 0);
+            fastest(s.longer, child_run(o, s.mode, 2 * s.frames, out, s.sets), round == 0);
+        }
 }
 
-// Wall per frame, start-up and peak memory from runs of N and 2N frames; the VP's also the
-// chip's time per frame and the real-time factor (direct mode has no time).
-Json pair_of_runs(const BenchOptions& o, const std::string& mode, unsigned frames, const fs::path& out,
-                  const std::vector<std::string>& sets = {}) {
-    const Measure shorter = fastest_run(o, mode, frames, out, sets);
-    const Measure longer = fastest_run(o, mode, 2 * frames, out, sets);
-    const double per_frame = (longer.wall_s - shorter.wall_s) / frames;
+// Wall per frame, start-up and peak memory from a series' runs of N and 2N frames; the VP's
+// also the chip's time per frame and the real-time factor (direct mode has no time).
+Json figures_of(const Series& s) {
+    const double per_frame = (s.longer.wall_s - s.shorter.wall_s) / s.frames;
     Json figures = {{"wall_per_frame_ms", per_frame * 1e3},
-                    {"startup_ms", std::min(shorter.startup_s, longer.startup_s) * 1e3},
-                    {"peak_rss_mb", std::max(shorter.peak_rss_mb, longer.peak_rss_mb)}};
-    if (mode == "direct") return figures;
-    figures["chip_ms_per_frame"] = longer.chip_ms_per_frame;
-    figures["real_time_factor"] = per_frame > 0 ? longer.chip_ms_per_frame / (per_frame * 1e3) : 0.0;
+                    {"startup_ms", std::min(s.shorter.startup_s, s.longer.startup_s) * 1e3},
+                    {"peak_rss_mb", std::max(s.shorter.peak_rss_mb, s.longer.peak_rss_mb)}};
+    if (s.mode == "direct") return figures;
+    figures["chip_ms_per_frame"] = s.longer.chip_ms_per_frame;
+    figures["real_time_factor"] = per_frame > 0 ? s.longer.chip_ms_per_frame / (per_frame * 1e3) : 0.0;
     return figures;
 }
 
@@ -118,10 +131,14 @@ Json reference_time(const std::string& scenario) {
 
 int bench_command(const BenchOptions& o) {
     if (o.frames == 0) throw ConfigError("--frames must be above zero");
-    load_scenario(resolve_scenario(o.scenario), {});  // bad input is reported before any run
+    const Config config = load_scenario(resolve_scenario(o.scenario), {});  // bad input is reported before any run
     const fs::path out = fs::temp_directory_path() / fmt::format("surfvp_bench_{}", ::getpid());
     Json result = {{"scenario", o.scenario}, {"frames", o.frames}};
-    const Json none = pair_of_runs(o, "none", o.frames, out), all = pair_of_runs(o, "all", o.frames, out);
+    const bool surf = config.choice("run.workload") == "surf";  // direct mode runs SURF only
+    std::vector<Series> compared{{"none", o.frames, {}}, {"all", o.frames, {}}};
+    if (surf) compared.push_back({"direct", o.frames, {}});
+    measure_together(o, compared, out);
+    const Json none = figures_of(compared[0]), all = figures_of(compared[1]);
     result["traces_none"] = none;
     result["traces_all"] = all;
     const double wall = none["wall_per_frame_ms"].get<double>();
@@ -134,22 +151,27 @@ int bench_command(const BenchOptions& o) {
                          {"startup_ms", target(none["startup_ms"].get<double>(), 150, true)},
                          {"peak_rss_mb", target(std::max(none["peak_rss_mb"].get<double>(), all["peak_rss_mb"].get<double>()), 200, true)},
                          {"real_time_factor", target(none["real_time_factor"].get<double>(), 4, false)}};
-    if (load_scenario(resolve_scenario(o.scenario), {}).choice("run.workload") == "surf") {  // direct mode runs SURF only
+    if (surf) {
         const Json reference = reference_time(o.scenario);
         result["float_reference"] = reference;
         result["ratio_to_float_reference"] = wall / reference["ms_per_frame"].get<double>();
-        const Json direct = pair_of_runs(o, "direct", o.frames, out);
+        const Json direct = figures_of(compared[2]);
         result["direct"] = direct;
         result["targets"]["vp_over_direct"] = target(wall / direct["wall_per_frame_ms"].get<double>(), 3, false);
     }
     if (o.scaling) {
+        std::vector<Series> scaling;
+        std::vector<std::string> sizes;
+        for (const auto& [w, h] : {std::pair{640, 480}, std::pair{1024, 768}, std::pair{1024, 1024}}) {
+            scaling.push_back({"none", o.frames, {fmt::format("surf.width={}", w), fmt::format("surf.height={}", h)}});
+            sizes.push_back(fmt::format("{}x{}", w, h));
+        }
+        scaling.push_back({"none", 10 * o.frames, {}});
+        sizes.push_back("as the scenario");
+        measure_together(o, scaling, out);
         result["scaling"] = Json::array();
-        for (const auto& [w, h] : {std::pair{640, 480}, std::pair{1024, 768}, std::pair{1024, 1024}})
-            result["scaling"].push_back({{"size", fmt::format("{}x{}", w, h)}, {"frames", o.frames},
-                                         {"traces_none", pair_of_runs(o, "none", o.frames, out,
-                                                                      {fmt::format("surf.width={}", w), fmt::format("surf.height={}", h)})}});
-        result["scaling"].push_back({{"size", "as the scenario"}, {"frames", 10 * o.frames},
-                                     {"traces_none", pair_of_runs(o, "none", 10 * o.frames, out)}});
+        for (size_t k = 0; k < scaling.size(); ++k)
+            result["scaling"].push_back({{"size", sizes[k]}, {"frames", scaling[k].frames}, {"traces_none", figures_of(scaling[k])}});
     }
     std::error_code ignored;
     fs::remove_all(out, ignored);
