@@ -73,7 +73,7 @@ int dispatch(int argc, char** argv) {
                  "the float reference's time on the same frame, against their targets");
     bench->add_option("scenario", bench_options.scenario, "Scenario to run")->capture_default_str();
     bench->add_flag("--scaling", bench_options.scaling, "Also 640x480 and 1024x1024 frames, and ten times as many frames");
-    bench->add_option("--frames", bench_options.frames, "Frames of the shorter run (the longer has twice as many)")
+    bench->add_option("--frames", bench_options.frames, "Frames each run simulates (its time per frame is from the last three quarters)")
         ->capture_default_str();
     CalibrateOptions calibrate_options;
     CLI::App* calibrate = app.add_subcommand(

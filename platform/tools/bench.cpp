@@ -27,11 +27,27 @@ namespace fs = std::filesystem;
 using Json = nlohmann::ordered_json;
 
 struct Measure {
-    double wall_s;             // the simulation's (report.json wall_time_s)
+    double per_frame_s;        // wall time per simulated frame (per_frame_of)
     double startup_s;          // the process's start to the simulation's (report.json)
     double peak_rss_mb;
     double chip_ms_per_frame;  // the modelled chip's steady-state period (report.json)
 };
+
+// Wall time per frame in the steady state: the least-squares slope of the times the frames were
+// reported at (report.json frame_wall_s) over their last three quarters, past the pipeline's
+// filling, all from one process (a difference of two runs' times takes in both runs' noise). A
+// workload without frames (smoke): its simulation's wall time over the frames asked for.
+double per_frame_of(const Json& report, unsigned frames) {
+    const std::vector<double> t = report.value("frame_wall_s", std::vector<double>{});
+    const size_t first = t.size() / 4;
+    if (t.size() < first + 2) return report.value("wall_time_s", 0.0) / frames;
+    double n = 0, sx = 0, sy = 0, sxx = 0, sxy = 0;
+    for (size_t i = first; i < t.size(); ++i) {
+        const double x = double(i);
+        n += 1, sx += x, sy += t[i], sxx += x * x, sxy += x * t[i];
+    }
+    return (n * sxy - sx * sy) / (n * sxx - sx * sx);
+}
 
 // One child run; its wall time and peak resident memory (from wait4's rusage). `mode` is the
 // VP's traces (none or all), or direct (direct mode, no traces).
@@ -58,71 +74,61 @@ Measure child_run(const BenchOptions& o, const std::string& mode, unsigned frame
         throw ConfigError(fmt::format("bench: `surfvp run {}` failed (exit {})", o.scenario, WEXITSTATUS(status)));
     const Json report = Json::parse(std::ifstream(out / "report.json"));
     const double fps = report.value("throughput_fps", 0.0);
-    return {report.value("wall_time_s", 0.0), report.value("startup_s", 0.0), usage.ru_maxrss / 1024.0,
-            fps > 0 ? 1e3 / fps : 0.0};
+    return {per_frame_of(report, frames), report.value("startup_s", 0.0), usage.ru_maxrss / 1024.0, fps > 0 ? 1e3 / fps : 0.0};
 }
 
-// A mode (the VP's traces, or direct) at a number of frames, with settings, and its runs of N
-// and 2N frames, one of each per round.
+// A mode (the VP's traces, or direct) at a number of frames, with settings, and its run in each
+// round.
 struct Series {
     Series(std::string mode, unsigned frames, std::vector<std::string> sets = {})
         : mode(std::move(mode)), frames(frames), sets(std::move(sets)) {}
     std::string mode;
     unsigned frames;
     std::vector<std::string> sets;
-    std::vector<Measure> shorter, longer;
-
-    double per_frame_s(size_t round) const { return (longer[round].wall_s - shorter[round].wall_s) / frames; }
-    // The fastest of the rounds' runs: on a shared machine the slower ones only add noise from elsewhere.
-    Measure fastest(const std::vector<Measure>& runs) const {
-        Measure best = runs[0];
-        for (const Measure& m : runs) {
-            best.wall_s = std::min(best.wall_s, m.wall_s);
-            best.startup_s = std::min(best.startup_s, m.startup_s);
-            best.peak_rss_mb = std::max(best.peak_rss_mb, m.peak_rss_mb);
-        }
-        return best;
-    }
+    std::vector<Measure> runs;
 };
 
 constexpr size_t kRounds = 3;
 
-// Rounds, each running every series' N and 2N frames in turn (the next round in the opposite
-// order), so that series whose figures are compared (traces all over none, the VP over direct)
-// are measured in the same minutes: a change in the machine's speed between them cannot pass
-// for a difference of the simulator's.
+// Rounds, each running every series in turn (the next round in the opposite order), so that
+// series whose figures are compared (traces all over none, the VP over direct) are measured in
+// the same minutes: a change in the machine's speed between them cannot pass for a difference
+// of the simulator's.
 void measure_together(const BenchOptions& o, std::vector<Series>& series, const fs::path& out) {
     for (size_t round = 0; round < kRounds; ++round)
         for (size_t k = 0; k < series.size(); ++k) {
             Series& s = series[round % 2 ? series.size() - 1 - k : k];
-            s.shorter.push_back(child_run(o, s.mode, s.frames, out, s.sets));
-            s.longer.push_back(child_run(o, s.mode, 2 * s.frames, out, s.sets));
+            s.runs.push_back(child_run(o, s.mode, s.frames, out, s.sets));
         }
 }
 
-// Wall per frame, start-up and peak memory from a series' fastest runs of N and 2N frames; the
-// VP's also the chip's time per frame and the real-time factor (direct mode has no time).
+// Wall per frame (the fastest round's: on a shared machine the slower ones only add noise from
+// elsewhere), start-up and peak memory; the VP's also the chip's time per frame and the
+// real-time factor (direct mode has no time).
 Json figures_of(const Series& s) {
-    const Measure shorter = s.fastest(s.shorter), longer = s.fastest(s.longer);
-    const double per_frame = (longer.wall_s - shorter.wall_s) / s.frames;
-    Json figures = {{"wall_per_frame_ms", per_frame * 1e3},
-                    {"startup_ms", std::min(shorter.startup_s, longer.startup_s) * 1e3},
-                    {"peak_rss_mb", std::max(shorter.peak_rss_mb, longer.peak_rss_mb)}};
+    double per_frame = s.runs[0].per_frame_s, startup = s.runs[0].startup_s, peak = 0;
     Json rounds = Json::array();  // each round's own, for the spread (and the ratios)
-    for (size_t round = 0; round < kRounds; ++round) rounds.push_back(s.per_frame_s(round) * 1e3);
-    figures["per_round_ms"] = rounds;
+    for (const Measure& m : s.runs) {
+        per_frame = std::min(per_frame, m.per_frame_s);
+        startup = std::min(startup, m.startup_s);
+        peak = std::max(peak, m.peak_rss_mb);
+        rounds.push_back(m.per_frame_s * 1e3);
+    }
+    Json figures = {{"wall_per_frame_ms", per_frame * 1e3}, {"per_round_ms", rounds}, {"startup_ms", startup * 1e3},
+                    {"peak_rss_mb", peak}};
     if (s.mode == "direct") return figures;
-    figures["chip_ms_per_frame"] = longer.chip_ms_per_frame;
-    figures["real_time_factor"] = per_frame > 0 ? longer.chip_ms_per_frame / (per_frame * 1e3) : 0.0;
+    const double chip_ms = s.runs[0].chip_ms_per_frame;
+    figures["chip_ms_per_frame"] = chip_ms;
+    figures["real_time_factor"] = per_frame > 0 ? chip_ms / (per_frame * 1e3) : 0.0;
     return figures;
 }
 
 // One series' time per frame over another's: the median of the rounds' own ratios, each
-// taken from runs minutes apart at most (a slow spell of the machine moves both sides).
+// taken from runs seconds apart (a slow spell of the machine moves both sides).
 double ratio_by_round(const Series& a, const Series& b) {
     std::vector<double> ratios;
     for (size_t round = 0; round < kRounds; ++round)
-        ratios.push_back(b.per_frame_s(round) > 0 ? a.per_frame_s(round) / b.per_frame_s(round) : 0.0);
+        ratios.push_back(b.runs[round].per_frame_s > 0 ? a.runs[round].per_frame_s / b.runs[round].per_frame_s : 0.0);
     std::sort(ratios.begin(), ratios.end());
     return ratios[kRounds / 2];
 }

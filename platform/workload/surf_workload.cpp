@@ -1,6 +1,7 @@
 // The SURF workload: frames in memory, libSSA2 driving the accelerators, the software stage
 // describing the candidates; judged on frame rate against the budget.
 #include <algorithm>
+#include <chrono>
 #include <filesystem>
 #include <map>
 #include <mutex>
@@ -345,6 +346,7 @@ public:
 
     Ppc440::Software software() override {
         return [this](sw::Hal& hal) {
+            software_start_ = std::chrono::steady_clock::now();
             std::vector<sw::ssa2::Task> tasks(source_.count);
             for (size_t i = 0; i < tasks.size(); ++i) {
                 tasks[i].width = source_.sizes[i].width;
@@ -447,6 +449,10 @@ private:
     int width_ = 0, height_ = 0;
     Layout layout_{};
     uint64_t done_ = 0;
+    // The host's wall clock: when the software started, and how long after it each frame was
+    // reported (in the order they were): the simulator's own speed, frame by frame.
+    std::chrono::steady_clock::time_point software_start_{};
+    std::vector<double> frame_wall_s_;
     FaultPlan* faults_ = nullptr;
     Backdoor memory_;
     std::string out_;                     // where keypoint files go as frames are reported ("" : nowhere)
@@ -603,6 +609,7 @@ nlohmann::ordered_json SurfWorkload::summary() const {
             {"accelerator_pairs", pairs}};
     if (sizes.size() > 1) out["frame_sizes"] = sizes;  // "image" is frame 0's
     if (faults_) out["faults"] = fault_report();
+    out["frame_wall_s"] = frame_wall_s_;  // a wall-clock field (run.cpp)
     return out;
 }
 
@@ -674,6 +681,7 @@ void SurfWorkload::reported(const sw::ssa2::Task& task, surf::Keypoints&& keypoi
     r.keypoint_count = keypoints.size();
     r.reported = true;
     ++done_;
+    frame_wall_s_.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - software_start_).count());
     if (task.phase == sw::ssa2::Phase::done) write_keypoints(task, keypoints);  // a failed frame has no keypoints
     if (kept(size_t(task.id))) r.keypoints = std::move(keypoints);
 }
