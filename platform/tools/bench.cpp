@@ -49,8 +49,8 @@ double per_frame_of(const Json& report, unsigned frames) {
     return (n * sxy - sx * sy) / (n * sxx - sx * sx);
 }
 
-// One child run; its wall time and peak resident memory (from wait4's rusage). `mode` is the
-// VP's traces (none or all), or direct (direct mode, no traces).
+// One child run: its time per frame, start-up and peak resident memory (from wait4's rusage).
+// `mode` is the VP's traces (none or all), or direct (direct mode, no traces).
 Measure child_run(const BenchOptions& o, const std::string& mode, unsigned frames, const fs::path& out,
                   const std::vector<std::string>& sets = {}) {
     const bool direct = mode == "direct";

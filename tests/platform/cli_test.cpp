@@ -265,9 +265,9 @@ TEST(Cli, BenchGivesTheFiguresAndTheTargets) {
     EXPECT_EQ(test::surfvp("bench no_such_scenario").exit_code, 2);
 }
 
-// On a SURF scenario `surfvp bench` also runs direct mode the same way (N and 2N frames, its
-// report's own wall_time_s and startup_s) and holds the VP's time per frame over direct mode's
-// to its target: the median of the rounds' own ratios (each round runs both modes in turn).
+// On a SURF scenario `surfvp bench` also runs direct mode the same way (runs of N frames timed
+// by their own frames, their startup_s) and holds the VP's time per frame over direct mode's to
+// its target: the median of the rounds' own ratios (each round runs both modes in turn).
 TEST(Cli, BenchOnASurfScenarioGivesDirectModesFiguresAndItsSpeedUp) {
     const auto r = test::surfvp("bench budget_1024x768 --frames 2");
     ASSERT_EQ(r.exit_code, 0) << r.err;
