@@ -42,7 +42,6 @@ void store_records(const HessianCore::Lines& lines, uint32_t det_bytes, uint8_t*
         for (int k = 0; k < kDeterminantsPerBlock; ++k, row += det_bytes) fhg_regs::store_det(row, lines.at(bx, k), det_bytes);
 }
 
-
 }  // namespace
 
 std::vector<Candidate> block_row(const HessianCore& core, const IntegralView& lines, int by, int32_t threshold,

@@ -205,6 +205,7 @@ void DirectChip::compute_rows(Pair& p) {
     const uint32_t blocks_y = (h.height + 1) / 2;
     const uint64_t bytes = row_bytes(p);
     p.found.assign(blocks_y, {});
+    p.jobs.assign(blocks_y, 0);
     p.first_row = p.end_row = p.next_row;
     while (p.end_row < blocks_y && in_memory(h.det_addr + p.end_row * bytes, bytes)) ++p.end_row;
     settle(h.det_addr + p.first_row * bytes, (p.end_row - p.first_row) * bytes);
@@ -214,8 +215,7 @@ void DirectChip::compute_rows(Pair& p) {
             p.found[by] = compute_row(p, by, out);
             continue;
         }
-        const size_t job = worker_->submit([this, &p, by, out] { p.found[by] = compute_row(p, by, out); });
-        if (by == p.first_row) p.first_job = job;
+        p.jobs[by] = worker_->submit([this, &p, by, out] { p.found[by] = compute_row(p, by, out); });
     }
     p.pending = worker_ && p.end_row > p.first_row;
 }
@@ -240,7 +240,7 @@ void DirectChip::settle(uint64_t address, uint64_t bytes) {
 uint32_t DirectChip::block_row(Pair& p) {
     const uint32_t by = p.next_row++;
     if (by >= p.end_row) return f::ERR_WRITE;
-    if (p.pending) worker_->wait(p.first_job + (by - p.first_row));
+    if (p.pending) worker_->wait(p.jobs[by]);
     p.fhg.push(p.found[by]);
     p.found[by].clear();
     return f::ERR_NONE;

@@ -72,12 +72,12 @@ private:
         uint32_t next_row = 0;        // the FHG's next block row to report; its frame has work while BUSY
         // The stream's rows from first_row on, computed into memory when the integral image
         // came: rows up to end_row (those after a row beyond memory are not), row r's
-        // candidates in found[r]. With run.parallel row r is job first_job + r - first_row
-        // (they are submitted in one loop: no other job comes between them), and `pending`
-        // until the jobs are known to be done.
+        // candidates in found[r]. With run.parallel row r is the worker's job jobs[r] (the
+        // worker runs others' jobs too: the keypoint files), and `pending` until the jobs are
+        // known to be done.
         std::vector<std::vector<fhg::Candidate>> found;
         uint32_t first_row = 0, end_row = 0;
-        size_t first_job = 0;
+        std::vector<size_t> jobs;
         bool pending = false;
     };
 
