@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <dlfcn.h>
 #include <filesystem>
 #include <fmt/format.h>
@@ -101,8 +102,16 @@ cv::Mat read_mat_text(const std::string& text) {
 std::string content_key(const cv::Mat& image) {
     const cv::Mat c = image.isContinuous() ? image : image.clone();
     const std::string_view bytes(reinterpret_cast<const char*>(c.data), c.total() * c.elemSize());
+    // FNV-1a over 8-byte words, each product rotated so that a word's high bits reach the low
+    // ones of the next (a byte at a time, a 1024x768 frame took ~0.8 ms at every start).
     uint64_t fnv = 1469598103934665603ull;
-    for (unsigned char b : bytes) fnv = (fnv ^ b) * 1099511628211ull;
+    size_t i = 0;
+    for (uint64_t word; i + 8 <= bytes.size(); i += 8) {
+        std::memcpy(&word, bytes.data() + i, 8);
+        fnv = (fnv ^ word) * 1099511628211ull;
+        fnv = fnv << 29 | fnv >> 35;
+    }
+    for (; i < bytes.size(); ++i) fnv = (fnv ^ static_cast<unsigned char>(bytes[i])) * 1099511628211ull;
     return fmt::format("{}x{} type {} hash {:016x} {:016x}", c.cols, c.rows, c.type(), std::hash<std::string_view>{}(bytes),
                        fnv);
 }
