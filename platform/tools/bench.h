@@ -8,7 +8,8 @@
 // own. Start-up is the run's own startup_s: from the process's start (the dynamic loader
 // included) to the simulation's (loading, calibration, the sequence, elaboration). A SURF
 // scenario is also run in direct mode the same way, and the VP's time per frame (traces off)
-// over direct mode's is its speed-up. Printed as JSON with the targets beside the figures
+// over direct mode's is its speed-up, beside the same ratio of whole runs (start to exit, as a
+// sweep's point waits for them). Printed as JSON with the targets beside the figures
 // (docs/architecture.md, "Simulation speed").
 #include <string>
 

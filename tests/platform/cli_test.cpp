@@ -267,7 +267,8 @@ TEST(Cli, BenchGivesTheFiguresAndTheTargets) {
 
 // On a SURF scenario `surfvp bench` also runs direct mode the same way (runs of N frames timed
 // by their own frames, their startup_s) and holds the VP's time per frame over direct mode's to
-// its target: the median of the rounds' own ratios (each round runs both modes in turn).
+// its target: the median of the rounds' own ratios (each round runs both modes in turn); and
+// the same ratio of whole runs.
 TEST(Cli, BenchOnASurfScenarioGivesDirectModesFiguresAndItsSpeedUp) {
     const auto r = test::surfvp("bench budget_1024x768 --frames 2");
     ASSERT_EQ(r.exit_code, 0) << r.err;
@@ -290,6 +291,13 @@ TEST(Cli, BenchOnASurfScenarioGivesDirectModesFiguresAndItsSpeedUp) {
         for (const auto& ms : j[mode]["per_round_ms"]) fastest = std::min(fastest, ms.get<double>());
         EXPECT_DOUBLE_EQ(j[mode]["wall_per_frame_ms"].get<double>(), fastest) << mode;
     }
+    // Whole runs too: each takes longer than its own start-up (the fastest of each are given).
+    for (const char* mode : {"traces_none", "traces_all", "direct"})
+        EXPECT_GT(j[mode]["whole_run_ms"].get<double>(), j[mode]["startup_ms"].get<double>()) << mode;
+    const auto& whole = j["targets"]["vp_over_direct_whole_run"];
+    EXPECT_EQ(whole["target"].get<double>(), 3.0);
+    EXPECT_GT(whole["value"].get<double>(), 0.0);
+    EXPECT_EQ(whole["met"].get<bool>(), whole["value"].get<double>() >= 3.0);
     EXPECT_GT(j["float_reference"]["ms_per_frame"].get<double>(), 0.0);
 }
 
