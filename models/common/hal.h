@@ -67,9 +67,14 @@ public:
     virtual void consume(uint64_t cycles) = 0;
     // Computation with the L1 traffic it causes: `cycles` cycles of work during which each of
     // `lines` is filled (the CPU stalls until it is in) or written back (posted), at the work's
-    // cycle that needed it. Returns the CPU cycles it all took: the work plus the stalls, as
-    // the memory path serves the fills.
-    virtual uint64_t compute(uint64_t cycles, const std::vector<LineTransfer>& lines) = 0;
+    // cycle that needed it, and `untimed_fills` more lines are filled (only where the platform
+    // does not time fills: times_fills()). Returns the CPU cycles it all took: the work plus
+    // the stalls, as the memory path serves the fills.
+    virtual uint64_t compute(uint64_t cycles, const std::vector<LineTransfer>& lines, uint64_t untimed_fills) = 0;
+    // Whether compute() times each fill at the cycle that needed it (the VP). Where it does not
+    // (direct mode: every fill costs an uncontended one), software may count its fills instead
+    // of listing them, and so not stamp each with its cycle.
+    virtual bool times_fills() const { return true; }
 
     // Marks a span of software work on the CPU's timeline (spans may nest).
     virtual void begin(const char* what) = 0;

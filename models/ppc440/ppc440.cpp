@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <stdexcept>
 #include <fmt/format.h>
 
 #include "models/common/clock.h"
@@ -146,7 +147,8 @@ const uint8_t* Ppc440::map(uint32_t address, size_t bytes) {
 // masters' traffic in order whatever the quantum. A write-back carries the line's current
 // contents (the model keeps no dirty data of its own, so memory is unchanged); it is posted
 // over the MCI link, while over PLB1 (a synchronising bus) the CPU waits for its grant.
-uint64_t Ppc440::compute(uint64_t count, const std::vector<sw::LineTransfer>& lines) {
+uint64_t Ppc440::compute(uint64_t count, const std::vector<sw::LineTransfer>& lines, uint64_t untimed_fills) {
+    if (untimed_fills) throw std::logic_error("cpu: every line fill is timed here: give it as a line");
     keeper_.sync();
     const sc_time start = sc_core::sc_time_stamp();
     sc_time at = start;  // where the step has got to

@@ -74,7 +74,8 @@ private:
     bool irq_pending() override;
     uint64_t time_ps() override;
     void consume(uint64_t cycles) override;
-    uint64_t compute(uint64_t cycles, const std::vector<sw::LineTransfer>& lines) override;
+    // Every fill is timed: `untimed_fills` must be 0 (std::logic_error otherwise).
+    uint64_t compute(uint64_t cycles, const std::vector<sw::LineTransfer>& lines, uint64_t untimed_fills) override;
     void begin(const char* what) override;
     void end() override;
     void mark(unsigned index, int value) override;

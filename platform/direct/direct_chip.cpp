@@ -86,8 +86,8 @@ const uint8_t* DirectChip::map(uint32_t address, size_t bytes) {
     return memory_.get() + address;
 }
 
-uint64_t DirectChip::compute(uint64_t cycles, const std::vector<sw::LineTransfer>& lines) {
-    size_t fills = 0;
+uint64_t DirectChip::compute(uint64_t cycles, const std::vector<sw::LineTransfer>& lines, uint64_t untimed_fills) {
+    uint64_t fills = untimed_fills;
     for (const sw::LineTransfer& line : lines) fills += !line.write_back;
     const uint64_t spent = cycles + uint64_t(std::llround(double(fills) * fill_cycles_));
     cycles_ += spent;

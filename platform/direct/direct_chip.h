@@ -49,8 +49,10 @@ public:
     bool irq_pending() override;
     uint64_t time_ps() override { return 0; }
     void consume(uint64_t cycles) override { cycles_ += cycles; }
-    // No time here: each fill costs what an uncontended one costs on the chip's memory path.
-    uint64_t compute(uint64_t cycles, const std::vector<sw::LineTransfer>& lines) override;
+    // No time here: each fill costs what an uncontended one costs on the chip's memory path,
+    // so the software need not stamp its fills (times_fills()).
+    uint64_t compute(uint64_t cycles, const std::vector<sw::LineTransfer>& lines, uint64_t untimed_fills) override;
+    bool times_fills() const override { return false; }
     void begin(const char*) override {}
     void end() override {}
     void mark(unsigned, int) override {}

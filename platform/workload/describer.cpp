@@ -113,7 +113,6 @@ class StageDescriber : public sw::ssa2::Describer {
 public:
     StageDescriber(const sw::StageParams& params, const sw::CostParams& cost, unsigned line_bytes)
         : params_(params), stage_(params, sw::CostCounter(cost)), line_bytes_(line_bytes) {
-        stage_.cost().log_misses(true);
         if (!g_record_inputs.empty()) recorder_ = std::make_unique<InputRecorder>(g_record_inputs, g_record_expected);
         handed_ = tally();
     }
@@ -130,6 +129,7 @@ public:
         if (!worker_) return;
         {
             std::lock_guard<std::mutex> lock(stage_mutex_);
+            fills_for(hal);
             start_task(frame);
             ahead_ = Ahead{frame.task, candidates, buffers(hal, frame), std::vector<Result>(candidates.size())};
             described_.store(0, std::memory_order_relaxed);
@@ -183,6 +183,11 @@ private:
                 frame.height, frame.det_frac_bits, frame.det_bytes};
     }
 
+    // The stage's misses as the platform takes its fills: each stamped with the cycle that
+    // needed it where the platform times them, only counted where it does not (direct mode),
+    // which spares a record a miss. Under stage_mutex_.
+    void fills_for(const sw::Hal& hal) { stage_.cost().log_misses(hal.times_fills()); }
+
     void start_task(const sw::ssa2::FrameInMemory& frame) {
         if (frame.task == task_) return;
         if (ahead_ && described_.load(std::memory_order_relaxed) != ahead_->handed)  // the driver's promise (Describer::ahead) broken
@@ -197,6 +202,7 @@ private:
     Result run_stage(uint32_t word, const sw::FrameBuffers& buffers) {
         Result r;
         const double start = stage_.cost().exact_cycles();
+        const uint64_t misses = stage_.cost().cache().misses();
         const uint64_t inconsistent = stage_.stats().inconsistent;
         try {
             r.keypoint = stage_.process(word, buffers);
@@ -210,6 +216,7 @@ private:
                                                c.x, c.y, fhg::kSizes[size_t(c.size_index)]);
         }
         r.work.cycles = stage_.cost().take_cycles();
+        if (!stage_.cost().logs_misses()) r.work.untimed_fills = stage_.cost().cache().misses() - misses;
         r.work.lines.reserve(stage_.cost().misses().size());
         for (const sw::CostCounter::Miss& m : stage_.cost().misses()) {
             sw::LineTransfer& fill = r.work.lines.emplace_back();  // in place: see CostCounter::charge_misses
@@ -223,6 +230,7 @@ private:
 
     Result describe_now(sw::Hal& hal, uint32_t word, const sw::ssa2::FrameInMemory& frame) {
         std::lock_guard<std::mutex> lock(stage_mutex_);
+        fills_for(hal);
         start_task(frame);
         const sw::FrameBuffers b = buffers(hal, frame);
         if (recorder_ && frame.task != recorded_task_) {

@@ -76,6 +76,7 @@ public:
         double cycle;   // when it was needed (exact cycles)
     };
     void log_misses(bool on) { log_misses_ = on; }
+    bool logs_misses() const { return log_misses_; }
     const std::vector<Miss>& misses() const { return misses_; }
     void clear_misses();
 

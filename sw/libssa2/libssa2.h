@@ -84,6 +84,7 @@ struct FrameInMemory {
 struct Work {
     uint64_t cycles = 0;
     std::vector<LineTransfer> lines;
+    uint64_t untimed_fills = 0;  // fills not in `lines`, for a platform that does not time them (Hal::times_fills)
     std::string inconsistency;  // the software's check of the hardware's results failed: why
 };
 

@@ -98,7 +98,7 @@ TEST(Ppc440, TimeIsMmioPlusMemoryPlusConsumedCycles) {
 TEST(Ppc440, ComputeStallsForEachFillAndPostsWriteBacks) {
     uint64_t spent = 0;
     Bench bench([&](sw::Hal& hal) {
-        spent = hal.compute(1000, {{0x2000, 100, false}, {0x2020, 100, false}, {0x3000, 900, true}, {0x2040, 950, false}});
+        spent = hal.compute(1000, {{0x2000, 100, false}, {0x2020, 100, false}, {0x3000, 900, true}, {0x2040, 950, false}}, 0);
     });
     sc_core::sc_start();
     const sc_core::sc_time fill = bench.line(32, bench.memory.access_time(32));  // 20 ns + 125 ns + 12.5 ns
@@ -123,7 +123,7 @@ TEST(Ppc440, WriteBacksOverASynchronisingBusKeepTimeForward) {
     Ppc440 cpu("cpu", Ppc440::Params{}, [&](sw::Hal& hal) {
         std::vector<sw::LineTransfer> lines;
         for (uint32_t i = 0; i < 10; ++i) lines.push_back({0x4000 + 32 * i, 100, true});  // one record's lines at once
-        spent = hal.compute(200, lines);
+        spent = hal.compute(200, lines, 0);
     }, tracer);
     bus.connect_master(cpu.bus, "cpu");
     bus.connect_master(cpu.mem, "cpu memory");
@@ -138,6 +138,24 @@ TEST(Ppc440, WriteBacksOverASynchronisingBusKeepTimeForward) {
     EXPECT_EQ(cpu.finish_time(), ns(250) + 9 * burst + ns(250));
     EXPECT_EQ(spent, uint64_t(std::llround((cpu.finish_time().to_seconds()) * 400e6)));
     EXPECT_EQ(cpu.stats().write_backs, 10u);
+}
+
+// The VP times every fill at its cycle: software must list its fills, a bare count is refused.
+TEST(Ppc440, TimesEveryFillAndRefusesACount) {
+    bool timed = false;
+    std::string refused;
+    Bench bench([&](sw::Hal& hal) {
+        timed = hal.times_fills();
+        try {
+            hal.compute(100, {}, 1);
+        } catch (const std::logic_error& e) {
+            refused = e.what();
+        }
+    });
+    sc_core::sc_start();
+    EXPECT_TRUE(timed);
+    EXPECT_NE(refused.find("timed"), std::string::npos) << refused;
+    EXPECT_EQ(bench.cpu.stats().fills, 0u);
 }
 
 TEST(Ppc440, WaitForIrqSleepsUntilTheLineRises) {

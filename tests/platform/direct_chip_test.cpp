@@ -85,5 +85,21 @@ TEST(DirectChip, AFramesDeterminantsAreInMemoryOnceItStreamsAndTheSoftwaresWrite
     EXPECT_EQ(parallel.fhg_status, serial.fhg_status);
 }
 
+// Without time every fill costs an uncontended one, so the software may count its fills instead
+// of listing them: three counted cost what three listed do (write-backs cost nothing).
+TEST(DirectChip, FillsCountedCostWhatFillsListedCost) {
+    Config config;
+    config.set("memory.size", "4 MiB", "test");
+    DirectChip listed(config, 1), counted(config, 1);
+    EXPECT_FALSE(counted.times_fills());
+    const std::vector<sw::LineTransfer> lines{{0x1000, 10, false}, {0x1020, 20, false}, {0x2000, 30, true}, {0x1040, 40, false}};
+    const uint64_t a = listed.compute(500, lines, 0);
+    const uint64_t b = counted.compute(500, {{0x2000, 30, true}}, 3);
+    EXPECT_EQ(a, b);
+    EXPECT_GT(a, 500u);  // the fills cost something
+    EXPECT_EQ(listed.cycles_consumed(), counted.cycles_consumed());
+    EXPECT_EQ(counted.compute(500, {}, 0), 500u);
+}
+
 }  // namespace
 }  // namespace surfvp
