@@ -60,19 +60,6 @@ void CacheModel::invalidate() {
     return chunk[line & (kChunk - 1)];
 }
 
-[[gnu::always_inline]] inline void CacheModel::make_newest(size_t base, uint32_t set, uint32_t way) {
-    Ends& ends = ends_[set];
-    if (way == ends.newest) return;
-    Link* links = links_.data() + base;
-    const Link moved = links[way];  // `moved.newer` exists: `way` is not the front
-    if (way == ends.oldest) ends.oldest = moved.newer;
-    else links[moved.older].newer = moved.newer;
-    links[moved.newer].older = moved.older;
-    links[way].older = ends.newest;
-    links[ends.newest].newer = uint16_t(way);
-    ends.newest = uint16_t(way);
-}
-
 // A hit moves its way to the front; a miss fills the next free way (the new front) or, in a
 // full set, refills the least recently used one.
 [[gnu::always_inline]] inline bool CacheModel::touch_lru(uint32_t set, uint32_t line) {
