@@ -36,7 +36,7 @@ public:
     // (a miss fills the line). bytes == 0 touches nothing. The bus address of each line
     // that missed is appended to `missed` when given.
     Result access(uint32_t address, uint32_t bytes, std::vector<uint32_t>* missed = nullptr) {
-        // The common cases inline (a call was a fifth of the software stage's time): a read
+        // The common cases inline (a call was a tenth of the software stage's time): a read
         // within one line, in the line read last (a hit that changes nothing) or, with LRU,
         // in another line the cache holds. Misses and reads across lines go the general way.
         const uint32_t line = address >> line_shift_;
