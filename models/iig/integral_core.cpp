@@ -1,5 +1,7 @@
 #include "integral_core.h"
 
+#include <cstring>
+#include <emmintrin.h>
 #include <stdexcept>
 
 namespace surfvp {
@@ -9,8 +11,55 @@ IntegralCore::IntegralCore(unsigned sum_bits) : sum_bits_(sum_bits), limit_(uint
         throw std::invalid_argument("integral sum width must be 8 to 32 bits, not " + std::to_string(sum_bits));
 }
 
+namespace {
+
+// The sum of a row's pixels, 16 at a time.
+uint64_t pixel_sum(const uint8_t* pixels, int width) {
+    __m128i sums = _mm_setzero_si128();
+    int x = 0;
+    for (; x + 16 <= width; x += 16)
+        sums = _mm_add_epi64(sums, _mm_sad_epu8(_mm_loadu_si128(reinterpret_cast<const __m128i*>(pixels + x)), _mm_setzero_si128()));
+    uint64_t total = uint64_t(_mm_cvtsi128_si64(sums)) + uint64_t(_mm_cvtsi128_si64(_mm_unpackhi_epi64(sums, sums)));
+    for (; x < width; ++x) total += pixels[x];
+    return total;
+}
+
+// Running sums of four pixels at a time (each lane its prefix within the four, plus the run
+// before them), the row above added; every sum fits 32 bits.
+void row_fitting(const uint8_t* pixels, const uint32_t* above, uint32_t* out, int width) {
+    const __m128i zero = _mm_setzero_si128();
+    __m128i run = zero;  // the sum so far, in every lane
+    int x = 0;
+    for (; x + 4 <= width; x += 4) {
+        int32_t four;
+        std::memcpy(&four, pixels + x, 4);
+        __m128i v = _mm_unpacklo_epi16(_mm_unpacklo_epi8(_mm_cvtsi32_si128(four), zero), zero);
+        v = _mm_add_epi32(v, _mm_slli_si128(v, 4));
+        v = _mm_add_epi32(v, _mm_slli_si128(v, 8));
+        v = _mm_add_epi32(v, run);
+        run = _mm_shuffle_epi32(v, _MM_SHUFFLE(3, 3, 3, 3));
+        if (above) v = _mm_add_epi32(v, _mm_loadu_si128(reinterpret_cast<const __m128i*>(above + x)));
+        _mm_storeu_si128(reinterpret_cast<__m128i*>(out + x), v);
+    }
+    uint32_t last = uint32_t(_mm_cvtsi128_si32(run));
+    for (; x < width; ++x) {
+        last += pixels[x];
+        out[x] = last + (above ? above[x] : 0);
+    }
+}
+
+}  // namespace
+
 bool IntegralCore::row(const uint8_t* pixels, const uint32_t* above, uint32_t* out, int width) const {
-    // A running sum along the row plus the row above: what a 1 pixel/clock adder chain does.
+    // The row's values rise along it (pixels are not negative, nor is the rise of the row above,
+    // itself a row of the image), so its last is its largest: when that fits, every sum does and
+    // they go four at a time.
+    if (width > 0 && pixel_sum(pixels, width) + (above ? above[width - 1] : 0) < limit_) {
+        row_fitting(pixels, above, out, width);
+        return true;
+    }
+    // A running sum along the row plus the row above: what a 1 pixel/clock adder chain does,
+    // stopping at the first value that does not fit.
     uint64_t run = 0;
     for (int x = 0; x < width; ++x) {
         run += pixels[x];

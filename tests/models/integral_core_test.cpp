@@ -1,5 +1,6 @@
 // IntegralCore against OpenCV's cv::integral, bit for bit.
 #include <opencv2/imgproc.hpp>
+#include <vector>
 
 #include "models/iig/integral_core.h"
 #include "test_images.h"
@@ -44,6 +45,26 @@ TEST(IntegralCore, SumsBeyondTheWidthAreAnErrorNotAWrap) {
     EXPECT_TRUE(IntegralCore(16).image(small.data, 16, 16, small.step).has_value());
     const cv::Mat over(17, 16, CV_8UC1, cv::Scalar(255));  // 69,360 >= 2^16
     EXPECT_FALSE(IntegralCore(16).image(over.data, 16, 17, over.step).has_value());
+}
+
+// A row stops at its first value that does not fit, as the adder chain does: the values before
+// it are written, the rest of `out` is left; a row whose last value is one below the limit fits.
+TEST(IntegralCore, ARowStopsAtItsFirstValueThatDoesNotFit) {
+    const IntegralCore core(16);
+    const std::vector<uint8_t> pixels(40, 255);
+    const std::vector<uint32_t> above(40, 64000);  // 255 (x + 1) + 64000 >= 65536 from x = 6 on
+    std::vector<uint32_t> out(40, 0xDEADBEEF);
+    EXPECT_FALSE(core.row(pixels.data(), above.data(), out.data(), 40));
+    for (uint32_t x = 0; x < 6; ++x) EXPECT_EQ(out[x], 255 * (x + 1) + 64000) << x;
+    for (uint32_t x = 6; x < 40; ++x) EXPECT_EQ(out[x], 0xDEADBEEFu) << x;
+    const std::vector<uint32_t> just(40, 65535 - 255 * 40);  // the last value is 65535
+    EXPECT_TRUE(core.row(pixels.data(), just.data(), out.data(), 40));
+    EXPECT_EQ(out[39], 65535u);
+    EXPECT_EQ(out[0], 65535u - 255 * 39);
+    const std::vector<uint32_t> over(40, 65536 - 255 * 40);  // the last value is the limit
+    EXPECT_FALSE(core.row(pixels.data(), over.data(), out.data(), 40));
+    EXPECT_EQ(out[38], 65536u - 255);  // written: it fits
+    EXPECT_EQ(out[39], 65535u);        // left from the row before
 }
 
 TEST(IntegralCore, RejectsImpossibleWidths) {
