@@ -38,13 +38,13 @@ bool Worker::spin_until(Ready ready) const {
     }
 }
 
-size_t Worker::submit(std::function<void()> job) {
+size_t Worker::submit(std::function<void()> job, Taker taker) {
     bool wake = false;
     size_t number = 0;
     {
         std::lock_guard<std::mutex> lock(mutex_);
         number = submitted_.load(std::memory_order_relaxed);
-        jobs_.push_back({number, std::move(job)});
+        jobs_.push_back({number, std::move(job), taker});
         submitted_.store(number + 1, std::memory_order_release);
         wake = worker_sleeps_;
         worker_sleeps_ = false;
@@ -75,9 +75,10 @@ void Worker::drain() {
 
 bool Worker::take_up_to(size_t last, Job& job) {
     std::lock_guard<std::mutex> lock(mutex_);
-    if (jobs_.empty() || jobs_.front().number > last) return false;
-    job = std::move(jobs_.front());
-    jobs_.pop_front();
+    const auto mine = std::find_if(jobs_.begin(), jobs_.end(), [](const Job& j) { return j.taker == Taker::any; });
+    if (mine == jobs_.end() || mine->number > last) return false;
+    job = std::move(*mine);
+    jobs_.erase(mine);
     taken_.fetch_add(1, std::memory_order_relaxed);
     return true;
 }

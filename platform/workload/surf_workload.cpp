@@ -696,14 +696,16 @@ void SurfWorkload::write_keypoints(const sw::ssa2::Task& task, const surf::Keypo
         const fs::path file = keypoint_file(out_, task.id);
         written_.push_back(file.lexically_relative(out_).string());
         if (!writer_) return eval::write_keypoint_file(file, keypoints);
-        last_write_ = writer_->submit([this, file, keypoints] {
-            try {
-                eval::write_keypoint_file(file, keypoints);
-            } catch (...) {
-                const std::lock_guard<std::mutex> lock(write_mutex_);
-                if (!worker_failure_) worker_failure_ = std::current_exception();
-            }
-        });
+        last_write_ = writer_->submit(
+            [this, file, keypoints] {
+                try {
+                    eval::write_keypoint_file(file, keypoints);
+                } catch (...) {
+                    const std::lock_guard<std::mutex> lock(write_mutex_);
+                    if (!worker_failure_) worker_failure_ = std::current_exception();
+                }
+            },
+            Worker::Taker::worker);  // not on the simulation's thread, which waits for block rows behind it
     } catch (...) {
         write_failure_ = std::current_exception();
     }
