@@ -51,8 +51,8 @@ void row_fitting(const uint8_t* pixels, const uint32_t* above, uint32_t* out, in
 }  // namespace
 
 bool IntegralCore::row(const uint8_t* pixels, const uint32_t* above, uint32_t* out, int width) const {
-    // The row's values rise along it (pixels are not negative, nor is the rise of the row above,
-    // itself a row of the image), so its last is its largest: when that fits, every sum does and
+    // The row's values rise along it (pixels are not negative, and the row above, a row of the
+    // same image, rises too), so its last is its largest: when that fits, every sum does and
     // they go four at a time.
     if (width > 0 && pixel_sum(pixels, width) + (above ? above[width - 1] : 0) < limit_) {
         row_fitting(pixels, above, out, width);

@@ -28,7 +28,8 @@ class IntegralCore {
 public:
     explicit IntegralCore(unsigned sum_bits);
 
-    // One row: `pixels` (width bytes) added to the row above (`above`, nullptr for row 0).
+    // One row: `pixels` (width bytes) added to the row above (`above`, this image's row before,
+    // nullptr for row 0).
     // Returns false (and leaves `out` partial) if a value exceeds sum_bits.
     bool row(const uint8_t* pixels, const uint32_t* above, uint32_t* out, int width) const;
 
