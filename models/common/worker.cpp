@@ -4,17 +4,6 @@
 #include <utility>
 
 namespace surfvp {
-namespace {
-
-void relax() {
-#if defined(__x86_64__) || defined(__i386__)
-    __builtin_ia32_pause();  // stays on the core without a system call
-#else
-    std::this_thread::yield();
-#endif
-}
-
-}  // namespace
 
 Worker::Worker(std::chrono::microseconds spin, Waiter waiter) : spin_(spin), waiter_(waiter), thread_([this] { loop(); }) {}
 
@@ -34,7 +23,7 @@ bool Worker::spin_until(Ready ready) const {
     for (int polls = 0;; ++polls) {
         if (ready()) return true;
         if (polls % 64 == 63 && std::chrono::steady_clock::now() > until) return false;
-        relax();
+        Worker::relax();
     }
 }
 

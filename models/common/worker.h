@@ -58,6 +58,15 @@ public:
     // There may be background work again: the worker calls it when idle, waking up if it sleeps.
     void poke();
 
+    // A spinning thread's pause: it stays on its core without a system call.
+    static void relax() {
+#if defined(__x86_64__) || defined(__i386__)
+        __builtin_ia32_pause();
+#else
+        std::this_thread::yield();
+#endif
+    }
+
 private:
     struct Job {
         size_t number = 0;

@@ -70,6 +70,12 @@ bool IntegralCore::row(const uint8_t* pixels, const uint32_t* above, uint32_t* o
     return true;
 }
 
+bool IntegralCore::fits(const uint8_t* pixels, int width, int height, size_t stride) const {
+    uint64_t total = 0;
+    for (int y = 0; y < height; ++y) total += pixel_sum(pixels + size_t(y) * stride, width);
+    return total < limit_;
+}
+
 std::optional<std::vector<uint32_t>> IntegralCore::image(const uint8_t* pixels, int width, int height,
                                                          size_t stride) const {
     std::vector<uint32_t> out(size_t(width) * size_t(height));

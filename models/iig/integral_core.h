@@ -33,6 +33,10 @@ public:
     // Returns false (and leaves `out` partial) if a value exceeds sum_bits.
     bool row(const uint8_t* pixels, const uint32_t* above, uint32_t* out, int width) const;
 
+    // Whether every sum of an image (`stride` bytes per row) fits sum_bits: its last, the sum of
+    // all its pixels, is its largest.
+    bool fits(const uint8_t* pixels, int width, int height, size_t stride) const;
+
     // A whole image (`stride` bytes per row); empty when the sums overflow `sum_bits`.
     std::optional<std::vector<uint32_t>> image(const uint8_t* pixels, int width, int height, size_t stride) const;
 

@@ -156,31 +156,53 @@ bool DirectChip::access(uint32_t address, uint32_t& value, bool write) {
     return false;
 }
 
-// An IIG START: the whole integral image at once, streamed to the FHG when it listens.
-void DirectChip::run_integral(Pair& p) {
-    const IigRegisters::Frame& i = p.integral;
-    if (!in_memory(i.src, uint64_t(i.src_stride) * (i.height - 1) + i.width)) return p.iig.end(true, iig::ERR_READ, 0);
-    if (!in_memory(i.dst, uint64_t(i.dst_stride) * (i.height - 1) + 4ull * i.width)) return p.iig.end(true, iig::ERR_WRITE, 0);
-    settle(i.src, uint64_t(i.src_stride) * (i.height - 1) + i.width);
-    settle(i.dst, uint64_t(i.dst_stride) * (i.height - 1) + 4ull * i.width);
-    FrameBuffer<uint32_t>& integral = p.making;
-    integral.resize(size_t(i.width) * i.height);  // every word is written before it is read
+// The integral image of frame `i` into `integral` (native words, sized for it) and into memory
+// (big-endian); false when a sum overflows (the rows before it are written, as the IIG's).
+bool DirectChip::integrate(const IigRegisters::Frame& i, FrameBuffer<uint32_t>& integral) const {
     const IntegralCore integral_core(sum_bits_);
     for (uint32_t y = 0; y < i.height; ++y) {
         const uint32_t* above = y ? &integral[size_t(y - 1) * i.width] : nullptr;
         if (!integral_core.row(memory_.get() + i.src + size_t(y) * i.src_stride, above, &integral[size_t(y) * i.width], int(i.width)))
-            return p.iig.end(true, iig::ERR_OVERFLOW, 0);
-        uint8_t* out = memory_.get() + i.dst + size_t(y) * i.dst_stride;
-        store_be32_run(out, &integral[size_t(y) * i.width], i.width);
+            return false;
+        store_be32_run(memory_.get() + i.dst + size_t(y) * i.dst_stride, &integral[size_t(y) * i.width], i.width);
     }
-    if (i.stream && p.fhg.status().busy()) {
-        if (p.determinants.width != i.width || p.determinants.height != i.height) p.fhg.status().end(true, f::ERR_PIXELBUS);
-        else {
-            p.stop_listening();  // a second stream replaces the first
-            std::swap(p.lines, p.making);
-            compute_rows(p);
-        }
+    return true;
+}
+
+// An IIG START: the whole integral image at once, streamed to the FHG when it listens. With
+// run.parallel and sums that all fit, the image is a job on the worker, the stream's rows
+// after it (each waits until the image is done: a waiter may take one early), and the
+// software's thread goes on; memory it reaches is settled first, as the rows' is.
+void DirectChip::run_integral(Pair& p) {
+    if (p.integrating) worker_->wait(p.integral_job);  // the image before, into the buffers this one may take
+    p.integrating = false;
+    const IigRegisters::Frame& i = p.integral;
+    const uint64_t src_bytes = uint64_t(i.src_stride) * (i.height - 1) + i.width;
+    const uint64_t dst_bytes = uint64_t(i.dst_stride) * (i.height - 1) + 4ull * i.width;
+    if (!in_memory(i.src, src_bytes)) return p.iig.end(true, iig::ERR_READ, 0);
+    if (!in_memory(i.dst, dst_bytes)) return p.iig.end(true, iig::ERR_WRITE, 0);
+    settle(i.src, src_bytes);
+    settle(i.dst, dst_bytes);
+    const bool streams = i.stream && p.fhg.status().busy();
+    const bool matches = p.determinants.width == i.width && p.determinants.height == i.height;
+    if (streams && matches) p.stop_listening();  // a second stream replaces the first
+    FrameBuffer<uint32_t>& integral = streams && matches ? p.lines : p.making;
+    integral.resize(size_t(i.width) * i.height);  // every word is written before it is read
+    if (worker_ && IntegralCore(sum_bits_).fits(memory_.get() + i.src, int(i.width), int(i.height), i.src_stride)) {
+        p.integrated.store(false, std::memory_order_relaxed);
+        p.integral_job = worker_->submit([this, i, &p, &integral] {
+            integrate(i, integral);
+            p.integrated.store(true, std::memory_order_release);
+        });
+        p.integrating = true;
+        p.integrating_frame = i;
+    } else if (!integrate(i, integral)) {
+        return p.iig.end(true, iig::ERR_OVERFLOW, 0);
+    } else {
+        p.integrated.store(true, std::memory_order_relaxed);
     }
+    if (streams && !matches) p.fhg.status().end(true, f::ERR_PIXELBUS);
+    if (streams && matches) compute_rows(p);
     p.iig.end(false, iig::ERR_NONE, 0);  // no time, so no back-pressure: STALL_CYCLES 0
 }
 
@@ -215,7 +237,10 @@ void DirectChip::compute_rows(Pair& p) {
             p.found[by] = compute_row(p, by, out);
             continue;
         }
-        p.jobs[by] = worker_->submit([this, &p, by, out] { p.found[by] = compute_row(p, by, out); });
+        p.jobs[by] = worker_->submit([this, &p, by, out] {
+            while (!p.integrated.load(std::memory_order_acquire)) Worker::relax();  // taken by a waiter before the image was done
+            p.found[by] = compute_row(p, by, out);
+        });
     }
     p.pending = worker_ && p.end_row > p.first_row;
 }
@@ -223,6 +248,17 @@ void DirectChip::compute_rows(Pair& p) {
 // Memory about to be read or written besides the rows: if rows still being computed reach it,
 // every job is finished first.
 void DirectChip::settle(uint64_t address, uint64_t bytes) {
+    for (const auto& pair : pairs_) {
+        Pair& p = *pair;
+        if (!p.integrating) continue;
+        const IigRegisters::Frame& i = p.integrating_frame;
+        const auto reaches = [&](uint64_t begin, uint64_t length) { return address < begin + length && begin < address + bytes; };
+        if (reaches(i.src, uint64_t(i.src_stride) * (i.height - 1) + i.width) ||
+            reaches(i.dst, uint64_t(i.dst_stride) * (i.height - 1) + 4ull * i.width)) {
+            worker_->wait(p.integral_job);
+            p.integrating = false;
+        }
+    }
     for (const auto& pair : pairs_) {
         const Pair& p = *pair;
         if (!p.pending) continue;

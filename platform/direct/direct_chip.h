@@ -3,17 +3,19 @@
 // same cores (IntegralCore, HessianCore, LocalMaxFinder) and the same register behaviour as
 // the models (IigRegisters, FhgRegisters, IntcRegisters), answered at once. An IIG START
 // computes the integral image at once (DONE); an FHG listening to it computes the frame's
-// determinants into memory at once too (with run.parallel on the second thread, while the
-// software goes on), and reports one block row at a time whenever the software waits for an
-// interrupt, its candidates going into the maxima FIFO of the configured depth, so the driver
-// drains the FIFO at its threshold interrupt as on the chip. Without time there is no
-// back-pressure (STALL_CYCLES reads 0); the keypoints are the VP's byte for byte, and a FIFO
-// that is never drained during the frame overflows by the same count (tests hold both).
+// determinants into memory at once too (with run.parallel both on the second thread, the
+// image first, while the software goes on), and reports one block row at a time whenever the
+// software waits for an interrupt, its candidates going into the maxima FIFO of the configured
+// depth, so the driver drains the FIFO at its threshold interrupt as on the chip. Without time
+// there is no back-pressure (STALL_CYCLES reads 0); the keypoints are the VP's byte for byte,
+// and a FIFO that is never drained during the frame overflows by the same count (tests hold
+// both).
 //
 // Memory the software reads or writes (read, write, map, backdoor, an IIG's image and
-// integral image) waits for the determinants being computed that reach it, so that it holds
-// the same bytes with and without the second thread. A pointer from map() shows memory as of
-// the call: software that starts hardware writing there maps it again.
+// integral image) waits for the integral image and the determinants being computed that reach
+// it, so that it holds the same bytes with and without the second thread. A pointer from map()
+// shows memory as of the call: software that starts hardware writing there maps it again.
+#include <atomic>
 #include <cstdint>
 #include <memory>
 #include <vector>
@@ -81,10 +83,18 @@ private:
         uint32_t first_row = 0, end_row = 0;
         std::vector<size_t> jobs;
         bool pending = false;
+        // With run.parallel, the integral image is the worker's job integral_job (integrating
+        // until it is known done: memory it reads or writes is settled first); the stream's rows
+        // wait for `integrated`.
+        size_t integral_job = 0;
+        bool integrating = false;
+        IigRegisters::Frame integrating_frame{};
+        std::atomic<bool> integrated{true};
     };
 
     bool access(uint32_t address, uint32_t& value, bool write);
     void run_integral(Pair& p);
+    bool integrate(const IigRegisters::Frame& i, FrameBuffer<uint32_t>& integral) const;
     uint32_t block_row(Pair& p);
     uint32_t row_bytes(const Pair& p) const;  // one block row of stored determinants
     std::vector<fhg::Candidate> compute_row(const Pair& p, uint32_t by, uint8_t* out) const;  // any thread

@@ -1,15 +1,17 @@
-// Direct mode's chip programmed as the driver does, without the driver: a frame's
-// determinants are in memory as soon as its integral image streams to the FHG, and memory the
-// software reads or writes in the meantime holds the same bytes with and without the second
-// thread (which computes them).
+// Direct mode's chip programmed as the driver does, without the driver: a frame's integral
+// image and determinants are in memory as soon as its integral image streams to the FHG, and
+// memory the software reads or writes in the meantime holds the same bytes with and without
+// the second thread (which computes them).
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cstdint>
 #include <vector>
 
+#include "models/common/byte_order.h"
 #include "models/fhg/fhg_regs.h"
 #include "models/iig/iig_regs.h"
+#include "models/iig/integral_core.h"
 #include "models/intc/intc_regs.h"
 #include "platform/address_map.h"
 #include "platform/direct/direct_chip.h"
@@ -22,7 +24,16 @@ constexpr uint32_t kImage = 0x10000, kIntegral = 0x20000, kDets = 0x40000;
 constexpr uint32_t kRowBytes = fhg_regs::row_bytes(kWidth, 4);
 constexpr uint32_t kDetBytes = uint32_t(fhg_regs::buffer_bytes(kWidth, kHeight, 4));
 
+// The frame's pixels (fixed pseudo-random).
+std::vector<uint8_t> pixels() {
+    std::vector<uint8_t> image(size_t(kWidth) * kHeight);
+    uint32_t seed = 11;
+    for (uint8_t& p : image) p = uint8_t((seed = seed * 1103515245u + 12345u) >> 24);
+    return image;
+}
+
 struct Seen {
+    std::vector<uint8_t> integral;  // the integral image, read right after the IIG's START
     std::vector<uint8_t> at_start;  // the determinant buffer right after the IIG's START
     std::vector<uint8_t> at_end;    // and once the FHG is done
     uint32_t fhg_status = 0;
@@ -35,9 +46,7 @@ Seen frame(bool parallel) {
     config.set("run.parallel", parallel ? "on" : "off", "test");
     config.set("memory.size", "4 MiB", "test");
     DirectChip chip(config, 1);
-    std::vector<uint8_t> image(size_t(kWidth) * kHeight);
-    uint32_t seed = 11;
-    for (uint8_t& p : image) p = uint8_t((seed = seed * 1103515245u + 12345u) >> 24);
+    const std::vector<uint8_t> image = pixels();
     chip.write(kImage, image.data(), image.size());
 
     const uint32_t fhg = map::fhg_base(0), iig = map::iig_base(0), intc = map::intc.base;
@@ -57,6 +66,8 @@ Seen frame(bool parallel) {
     chip.write32(iig + iig::CTRL, iig::CTRL_START | iig::CTRL_STREAM);
 
     Seen seen;
+    seen.integral.resize(size_t(kWidth) * kHeight * 4);
+    chip.read(kIntegral, seen.integral.data(), seen.integral.size());
     seen.at_start.resize(kDetBytes);
     chip.read(kDets, seen.at_start.data(), kDetBytes);
     const std::vector<uint8_t> marker(16, 0xA5);
@@ -80,6 +91,12 @@ TEST(DirectChip, AFramesDeterminantsAreInMemoryOnceItStreamsAndTheSoftwaresWrite
     EXPECT_TRUE(std::all_of(serial.at_end.begin() + 5 * kRowBytes, serial.at_end.begin() + 5 * kRowBytes + 16,
                             [](uint8_t b) { return b == 0xA5; }));
     EXPECT_TRUE(std::equal(serial.at_end.begin(), serial.at_end.begin() + 5 * kRowBytes, serial.at_start.begin()));
+    // The integral image is whole as soon as the software reads it, on the second thread too.
+    const std::vector<uint8_t> image = pixels();
+    const auto expected = IntegralCore(28).image(image.data(), kWidth, kHeight, kWidth);
+    ASSERT_TRUE(expected.has_value());
+    for (size_t k = 0; k < expected->size(); ++k) ASSERT_EQ(load_be32(&serial.integral[4 * k]), (*expected)[k]) << k;
+    EXPECT_EQ(parallel.integral, serial.integral);
     EXPECT_EQ(parallel.at_start, serial.at_start);
     EXPECT_EQ(parallel.at_end, serial.at_end);
     EXPECT_EQ(parallel.fhg_status, serial.fhg_status);
