@@ -18,6 +18,14 @@
 namespace surfvp {
 namespace f = fhg_regs;
 
+namespace {
+
+// The bytes an IIG frame reads and writes from its first address on.
+uint64_t source_bytes(const IigRegisters::Frame& i) { return uint64_t(i.src_stride) * (i.height - 1) + i.width; }
+uint64_t integral_bytes(const IigRegisters::Frame& i) { return uint64_t(i.dst_stride) * (i.height - 1) + 4ull * i.width; }
+
+}  // namespace
+
 DirectChip::Pair::Pair(DirectChip& chip, const IigRegisters::Limits& iig_limits, const FhgRegisters::Limits& fhg_limits)
     : chip(chip),
       iig(iig_limits, {[this, &chip](const IigRegisters::Frame& f) {
@@ -36,10 +44,11 @@ DirectChip::Pair::Pair(DirectChip& chip, const IigRegisters::Limits& iig_limits,
                            stop_listening();
                        }}) {}
 
-// The rows being computed read `lines` and `determinants`: they are done before either goes.
+// The rows being computed read `lines` and `determinants`, and the integral image being
+// computed writes `lines`: they are done before either goes.
 void DirectChip::Pair::stop_listening() {
-    if (pending) chip.worker_->drain();
-    pending = false;
+    if (pending || integrating) chip.worker_->drain();
+    pending = integrating = false;
     lines.clear();
 }
 
@@ -177,12 +186,10 @@ void DirectChip::run_integral(Pair& p) {
     if (p.integrating) worker_->wait(p.integral_job);  // the image before, into the buffers this one may take
     p.integrating = false;
     const IigRegisters::Frame& i = p.integral;
-    const uint64_t src_bytes = uint64_t(i.src_stride) * (i.height - 1) + i.width;
-    const uint64_t dst_bytes = uint64_t(i.dst_stride) * (i.height - 1) + 4ull * i.width;
-    if (!in_memory(i.src, src_bytes)) return p.iig.end(true, iig::ERR_READ, 0);
-    if (!in_memory(i.dst, dst_bytes)) return p.iig.end(true, iig::ERR_WRITE, 0);
-    settle(i.src, src_bytes);
-    settle(i.dst, dst_bytes);
+    if (!in_memory(i.src, source_bytes(i))) return p.iig.end(true, iig::ERR_READ, 0);
+    if (!in_memory(i.dst, integral_bytes(i))) return p.iig.end(true, iig::ERR_WRITE, 0);
+    settle(i.src, source_bytes(i));
+    settle(i.dst, integral_bytes(i));
     const bool streams = i.stream && p.fhg.status().busy();
     const bool matches = p.determinants.width == i.width && p.determinants.height == i.height;
     if (streams && matches) p.stop_listening();  // a second stream replaces the first
@@ -245,16 +252,16 @@ void DirectChip::compute_rows(Pair& p) {
     p.pending = worker_ && p.end_row > p.first_row;
 }
 
-// Memory about to be read or written besides the rows: if rows still being computed reach it,
-// every job is finished first.
+// Memory about to be read or written besides the rows: an integral image still being computed
+// that reads or writes there is finished first, and if rows still being computed reach it,
+// every job is.
 void DirectChip::settle(uint64_t address, uint64_t bytes) {
     for (const auto& pair : pairs_) {
         Pair& p = *pair;
         if (!p.integrating) continue;
         const IigRegisters::Frame& i = p.integrating_frame;
         const auto reaches = [&](uint64_t begin, uint64_t length) { return address < begin + length && begin < address + bytes; };
-        if (reaches(i.src, uint64_t(i.src_stride) * (i.height - 1) + i.width) ||
-            reaches(i.dst, uint64_t(i.dst_stride) * (i.height - 1) + 4ull * i.width)) {
+        if (reaches(i.src, source_bytes(i)) || reaches(i.dst, integral_bytes(i))) {
             worker_->wait(p.integral_job);
             p.integrating = false;
         }
