@@ -195,19 +195,19 @@ void DirectChip::run_integral(Pair& p) {
     if (streams && matches) p.stop_listening();  // a second stream replaces the first
     FrameBuffer<uint32_t>& integral = streams && matches ? p.lines : p.making;
     integral.resize(size_t(i.width) * i.height);  // every word is written before it is read
+    auto done = std::make_shared<std::atomic<bool>>(true);  // this image's: the stream's rows wait for it
     if (worker_ && IntegralCore(sum_bits_).fits(memory_.get() + i.src, int(i.width), int(i.height), i.src_stride)) {
-        p.integrated.store(false, std::memory_order_relaxed);
-        p.integral_job = worker_->submit([this, i, &p, &integral] {
+        done->store(false, std::memory_order_relaxed);
+        p.integral_job = worker_->submit([this, i, &integral, done] {
             integrate(i, integral);
-            p.integrated.store(true, std::memory_order_release);
+            done->store(true, std::memory_order_release);
         });
         p.integrating = true;
         p.integrating_frame = i;
     } else if (!integrate(i, integral)) {
         return p.iig.end(true, iig::ERR_OVERFLOW, 0);
-    } else {
-        p.integrated.store(true, std::memory_order_relaxed);
     }
+    if (streams && matches) p.lines_done = done;
     if (streams && !matches) p.fhg.status().end(true, f::ERR_PIXELBUS);
     if (streams && matches) compute_rows(p);
     p.iig.end(false, iig::ERR_NONE, 0);  // no time, so no back-pressure: STALL_CYCLES 0
@@ -244,8 +244,10 @@ void DirectChip::compute_rows(Pair& p) {
             p.found[by] = compute_row(p, by, out);
             continue;
         }
-        p.jobs[by] = worker_->submit([this, &p, by, out] {
-            while (!p.integrated.load(std::memory_order_acquire)) Worker::relax();  // taken by a waiter before the image was done
+        // Submitted after its image, so a row waits only when a waiter took it while the image
+        // was being computed elsewhere.
+        p.jobs[by] = worker_->submit([this, &p, by, out, done = p.lines_done] {
+            while (!done->load(std::memory_order_acquire)) Worker::relax();
             p.found[by] = compute_row(p, by, out);
         });
     }

@@ -85,11 +85,11 @@ private:
         bool pending = false;
         // With run.parallel, the integral image is the worker's job integral_job (integrating
         // until it is known done: memory it reads or writes is settled first); the stream's rows
-        // wait for `integrated`.
+        // wait for lines_done, the image in `lines` done (a later image, not streamed, has its own).
         size_t integral_job = 0;
         bool integrating = false;
         IigRegisters::Frame integrating_frame{};
-        std::atomic<bool> integrated{true};
+        std::shared_ptr<const std::atomic<bool>> lines_done = std::make_shared<std::atomic<bool>>(true);
     };
 
     bool access(uint32_t address, uint32_t& value, bool write);

@@ -20,7 +20,7 @@ namespace surfvp {
 namespace {
 
 constexpr uint32_t kWidth = 64, kHeight = 48;
-constexpr uint32_t kImage = 0x10000, kIntegral = 0x20000, kDets = 0x40000;
+constexpr uint32_t kImage = 0x10000, kIntegral = 0x20000, kDets = 0x40000, kSecondIntegral = 0x80000;
 constexpr uint32_t kRowBytes = fhg_regs::row_bytes(kWidth, 4);
 constexpr uint32_t kDetBytes = uint32_t(fhg_regs::buffer_bytes(kWidth, kHeight, 4));
 
@@ -36,12 +36,15 @@ struct Seen {
     std::vector<uint8_t> integral;  // the integral image, read right after the IIG's START
     std::vector<uint8_t> at_start;  // the determinant buffer right after the IIG's START
     std::vector<uint8_t> at_end;    // and once the FHG is done
+    std::vector<uint8_t> second;    // a second integral image, not streamed, once the FHG is done
     uint32_t fhg_status = 0;
 };
 
 // One frame: the FHG listening, the IIG streaming to it; the software reads the whole
-// determinant buffer and writes 16 bytes into block row 5 before it waits for the FHG.
-Seen frame(bool parallel) {
+// determinant buffer and writes 16 bytes into block row 5 before it waits for the FHG. With
+// `second_image`, the IIG is started again at once, not streamed, into kSecondIntegral (the
+// stream's rows are still being computed), and nothing is read before the FHG is done.
+Seen frame(bool parallel, bool second_image = false) {
     Config config;
     config.set("run.parallel", parallel ? "on" : "off", "test");
     config.set("memory.size", "4 MiB", "test");
@@ -66,6 +69,17 @@ Seen frame(bool parallel) {
     chip.write32(iig + iig::CTRL, iig::CTRL_START | iig::CTRL_STREAM);
 
     Seen seen;
+    if (second_image) {
+        chip.write32(iig + iig::DST, kSecondIntegral);
+        chip.write32(iig + iig::CTRL, iig::CTRL_START);
+        chip.wait_for_irq();
+        seen.fhg_status = chip.read32(fhg + fhg_regs::STATUS);
+        seen.at_end.resize(kDetBytes);
+        chip.read(kDets, seen.at_end.data(), kDetBytes);
+        seen.second.resize(size_t(kWidth) * kHeight * 4);
+        chip.read(kSecondIntegral, seen.second.data(), seen.second.size());
+        return seen;
+    }
     seen.integral.resize(size_t(kWidth) * kHeight * 4);
     chip.read(kIntegral, seen.integral.data(), seen.integral.size());
     seen.at_start.resize(kDetBytes);
@@ -100,6 +114,22 @@ TEST(DirectChip, AFramesDeterminantsAreInMemoryOnceItStreamsAndTheSoftwaresWrite
     EXPECT_EQ(parallel.at_start, serial.at_start);
     EXPECT_EQ(parallel.at_end, serial.at_end);
     EXPECT_EQ(parallel.fhg_status, serial.fhg_status);
+}
+
+// A second image started while the stream's rows are still being computed (found by the
+// registers fuzz target: the rows waited for the later image, queued behind them) leaves the
+// stream's determinants as they are, and is whole itself, on either thread.
+TEST(DirectChip, AnImageStartedWhileAStreamsRowsAreComputedLeavesThem) {
+    const Seen serial = frame(false, true), parallel = frame(true, true);
+    EXPECT_TRUE(serial.fhg_status & fhg_regs::STATUS_DONE);
+    EXPECT_EQ(parallel.fhg_status, serial.fhg_status);
+    EXPECT_EQ(parallel.at_end, serial.at_end);
+    EXPECT_EQ(parallel.second, serial.second);
+    EXPECT_EQ(serial.at_end, frame(false).at_start);  // the stream's determinants, untouched
+    const std::vector<uint8_t> image = pixels();
+    const auto expected = IntegralCore(28).image(image.data(), kWidth, kHeight, kWidth);
+    ASSERT_TRUE(expected.has_value());
+    for (size_t k = 0; k < expected->size(); ++k) ASSERT_EQ(load_be32(&parallel.second[4 * k]), (*expected)[k]) << k;
 }
 
 // Without time every fill costs an uncontended one, so the software may count its fills instead
