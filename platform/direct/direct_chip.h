@@ -70,8 +70,8 @@ private:
         IigRegisters::Frame integral{};
         FhgRegisters::Frame determinants{};
         FrameBuffer<uint32_t> lines;  // the integral image streamed to the FHG
-        // The IIG's integral image being made; kept from frame to frame with `lines` (swapped),
-        // so a frame does not allocate one.
+        // The IIG's integral image when it is not streamed (or streamed to an FHG of another
+        // size); kept from frame to frame, so a frame does not allocate one.
         FrameBuffer<uint32_t> making;
         uint32_t next_row = 0;        // the FHG's next block row to report; its frame has work while BUSY
         // The stream's rows from first_row on, computed into memory when the integral image

@@ -32,6 +32,15 @@ std::vector<uint8_t> pixels() {
     return image;
 }
 
+// `integral` (big-endian words) is the integral image of pixels(), as IntegralCore makes it.
+void expect_integral_of_pixels(const std::vector<uint8_t>& integral) {
+    const std::vector<uint8_t> image = pixels();
+    const auto expected = IntegralCore(28).image(image.data(), kWidth, kHeight, kWidth);
+    ASSERT_TRUE(expected.has_value());
+    ASSERT_EQ(integral.size(), 4 * expected->size());
+    for (size_t k = 0; k < expected->size(); ++k) ASSERT_EQ(load_be32(&integral[4 * k]), (*expected)[k]) << k;
+}
+
 struct Seen {
     std::vector<uint8_t> integral;  // the integral image, read right after the IIG's START
     std::vector<uint8_t> at_start;  // the determinant buffer right after the IIG's START
@@ -106,10 +115,7 @@ TEST(DirectChip, AFramesDeterminantsAreInMemoryOnceItStreamsAndTheSoftwaresWrite
                             [](uint8_t b) { return b == 0xA5; }));
     EXPECT_TRUE(std::equal(serial.at_end.begin(), serial.at_end.begin() + 5 * kRowBytes, serial.at_start.begin()));
     // The integral image is whole as soon as the software reads it, on the second thread too.
-    const std::vector<uint8_t> image = pixels();
-    const auto expected = IntegralCore(28).image(image.data(), kWidth, kHeight, kWidth);
-    ASSERT_TRUE(expected.has_value());
-    for (size_t k = 0; k < expected->size(); ++k) ASSERT_EQ(load_be32(&serial.integral[4 * k]), (*expected)[k]) << k;
+    expect_integral_of_pixels(serial.integral);
     EXPECT_EQ(parallel.integral, serial.integral);
     EXPECT_EQ(parallel.at_start, serial.at_start);
     EXPECT_EQ(parallel.at_end, serial.at_end);
@@ -126,10 +132,7 @@ TEST(DirectChip, AnImageStartedWhileAStreamsRowsAreComputedLeavesThem) {
     EXPECT_EQ(parallel.at_end, serial.at_end);
     EXPECT_EQ(parallel.second, serial.second);
     EXPECT_EQ(serial.at_end, frame(false).at_start);  // the stream's determinants, untouched
-    const std::vector<uint8_t> image = pixels();
-    const auto expected = IntegralCore(28).image(image.data(), kWidth, kHeight, kWidth);
-    ASSERT_TRUE(expected.has_value());
-    for (size_t k = 0; k < expected->size(); ++k) ASSERT_EQ(load_be32(&parallel.second[4 * k]), (*expected)[k]) << k;
+    expect_integral_of_pixels(parallel.second);
 }
 
 // Without time every fill costs an uncontended one, so the software may count its fills instead
