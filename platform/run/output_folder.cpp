@@ -1,6 +1,7 @@
 #include "platform/run/output_folder.h"
 
 #include <cerrno>
+#include <cstdio>
 #include <cstring>
 #include <fcntl.h>
 #include <fmt/format.h>
@@ -39,6 +40,23 @@ std::set<std::string> files_under(const fs::path& root) {
         if (it->is_regular_file()) files.insert(it->path().lexically_relative(root).string());  // no system calls
     }
     return files;
+}
+
+bool hidden(const fs::path& p) { return p.filename().string().front() == '.'; }
+
+// Whether every file under `dir` (hidden ones too; symbolic links are not followed) is one of
+// `outputs`, named relative to `root`, and nothing there is hidden: a folder that may go
+// whole, or be replaced whole.
+bool holds_only(const fs::path& root, const fs::path& dir, const std::set<std::string>& outputs) {
+    std::error_code error;
+    for (auto it = fs::recursive_directory_iterator(dir, error); !error && it != fs::recursive_directory_iterator();
+         it.increment(error)) {
+        const fs::file_type type = it->symlink_status(error).type();
+        if (hidden(it->path()) || (type != fs::file_type::directory &&
+                                   (type != fs::file_type::regular || !outputs.count(it->path().lexically_relative(root).string()))))
+            return false;
+    }
+    return !error;
 }
 
 }  // namespace
@@ -92,8 +110,11 @@ std::set<std::string> OutputFolder::previous_outputs() const {
 
 void OutputFolder::publish() {
     const std::set<std::string> written = files_under(staging_), previous = previous_outputs();
+    const std::set<std::string> whole = move_folders(written, previous);
+    auto in_whole = [&whole](const std::string& f) { return whole.count(f.substr(0, f.find('/'))) > 0; };
     std::error_code error;
     for (const std::string& f : written) {
+        if (in_whole(f)) continue;
         const fs::path to = folder_ / f;
         if (fs::path(f).extension() == ".gtkw") name_published_files(staging_ / f);
         fs::create_directories(to.parent_path(), error);
@@ -101,7 +122,7 @@ void OutputFolder::publish() {
         if (error) refuse(folder_, fmt::format("cannot move {} into place: {}", f, error.message()));
     }
     for (const std::string& f : previous) {
-        if (written.count(f)) continue;
+        if (written.count(f) || in_whole(f)) continue;  // a folder replaced whole took its previous files along
         fs::remove(folder_ / f, error);
         const fs::path parent = (folder_ / f).parent_path();
         if (parent != folder_ && fs::is_empty(parent, error)) fs::remove(parent, error);
@@ -109,8 +130,31 @@ void OutputFolder::publish() {
     std::string manifest;
     for (const std::string& f : written) manifest += f + "\n";
     write_file_atomically(folder_ / kManifest, manifest);
-    fs::remove_all(staging_, error);
+    fs::remove_all(staging_, error);  // with the folders replaced whole, the previous run's files in them
     published_ = true;
+}
+
+// A folder of outputs (keypoints/: two files a frame) goes into place in one step when the
+// folder it replaces holds only the previous run's outputs, or there is none: renamed, or
+// exchanged with the previous one (which then leaves with the staging folder). Its files then
+// change at once, and none is renamed over another, which on ext4 writes the new file's data
+// out first (~0.2 ms a file here, 40 files a 20-frame run). The rest go file by file.
+std::set<std::string> OutputFolder::move_folders(const std::set<std::string>& written,
+                                                 const std::set<std::string>& previous) const {
+    std::set<std::string> whole;
+    std::error_code error;
+    for (const auto& entry : fs::directory_iterator(staging_, error)) {
+        const fs::path from = entry.path(), to = folder_ / from.filename();
+        if (hidden(from) || !entry.is_directory(error) || !holds_only(staging_, from, written)) continue;
+        const fs::file_type there = fs::symlink_status(to, error).type();
+        bool moved = false;
+        if (there == fs::file_type::not_found)
+            moved = ::rename(from.c_str(), to.c_str()) == 0;
+        else if (there == fs::file_type::directory && holds_only(folder_, to, previous))
+            moved = ::renameat2(AT_FDCWD, from.c_str(), AT_FDCWD, to.c_str(), RENAME_EXCHANGE) == 0;  // not on every file system
+        if (moved) whole.insert(from.filename().string());
+    }
+    return whole;
 }
 
 // GTKWave's save file names the VCD by its absolute path: the one it is published under.

@@ -34,6 +34,8 @@ public:
 
 private:
     std::set<std::string> previous_outputs() const;
+    // The staging folder's folders moved into place whole (their names).
+    std::set<std::string> move_folders(const std::set<std::string>& written, const std::set<std::string>& previous) const;
     void name_published_files(const std::filesystem::path& file) const;
 
     std::filesystem::path folder_, staging_;
