@@ -13,6 +13,7 @@
 #include <filesystem>
 #include <fstream>
 #include <fmt/format.h>
+#include <opencv2/core/utility.hpp>
 
 #include "models/fhg/hessian_core.h"
 #include "models/fhg/sequence_cache.h"
@@ -307,6 +308,9 @@ void check_scenario(const Config& config) {
 }
 
 int run_scenario(const RunOptions& options) {
+    // The run's threads are its own (run.parallel): OpenCV's pool, which its first resize would
+    // start (~1 ms), would only compete with them.
+    cv::setNumThreads(0);
     const Config config = load_scenario(resolve_scenario(options.scenario), options.sets);
     trace_options(options.trace, "");  // a bad --trace is bad input before anything is written
     if (options.direct && !config.faults.empty())

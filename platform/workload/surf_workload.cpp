@@ -84,11 +84,17 @@ struct SourceFrames {
     }
 };
 
-cv::Mat as_the_chip_takes(const Config& c, const cv::Mat& frame) {
+// A frame's size as the chip takes it: surf.width x surf.height when both are set.
+cv::Size chip_size(const Config& c, cv::Size frame) {
     const int w = int(c.count("surf.width")), h = int(c.count("surf.height"));
-    if (!w || !h || frame.size() == cv::Size(w, h)) return frame;
+    return w && h ? cv::Size(w, h) : frame;
+}
+
+cv::Mat as_the_chip_takes(const Config& c, const cv::Mat& frame) {
+    const cv::Size size = chip_size(c, frame.size());
+    if (frame.size() == size) return frame;
     cv::Mat resized;
-    cv::resize(frame, resized, cv::Size(w, h), 0, 0, cv::INTER_AREA);
+    cv::resize(frame, resized, size, 0, 0, cv::INTER_AREA);
     return resized;
 }
 
@@ -126,7 +132,6 @@ eval::SequenceReader open_frames(const Config& c) {
 // Every frame of a sequence decoded once: its file, and its size against frame 0's.
 void read_sequence(const Config& c, SourceFrames& out) {
     const std::string source = c.text("surf.source");
-    const bool resizing = c.count("surf.width") && c.count("surf.height");
     auto too_few = [&](size_t has) {
         return ConfigError(fmt::format("{}: surf.frames is {} (from {}), but {} has only {}", c.where("surf.source"), out.count,
                                        c.source_of("surf.frames"), source, has));
@@ -141,7 +146,7 @@ void read_sequence(const Config& c, SourceFrames& out) {
             out.first = frame.clone();
             out.original = frame.size();
         }
-        out.sizes.push_back(resizing ? cv::Size(int(c.count("surf.width")), int(c.count("surf.height"))) : frame.size());
+        out.sizes.push_back(chip_size(c, frame.size()));
     }
     if (n < out.count) throw too_few(n);
 }
@@ -163,7 +168,7 @@ SourceFrames read_frames(const Config& c) {
             out.repeated = true;
             out.first = surf::load_gray(source, chip_surf_params(c));
             out.original = out.first.size();
-            out.sizes.assign(out.count, as_the_chip_takes(c, out.first).size());
+            out.sizes.assign(out.count, chip_size(c, out.first.size()));
         } else {
             read_sequence(c, out);
         }
