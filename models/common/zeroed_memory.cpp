@@ -4,6 +4,7 @@
 #include <chrono>
 #include <stdexcept>
 #include <sys/mman.h>
+#include <unistd.h>
 
 namespace surfvp {
 
@@ -25,6 +26,18 @@ ZeroedMemory zeroed_memory(size_t bytes, const std::string& what) {
     uint8_t* p = map_zeroed(bytes);
     if (!p) throw std::runtime_error(what + ": cannot allocate " + std::to_string(bytes) + " bytes");
     return ZeroedMemory(p, ZeroedMemoryRelease{bytes});
+}
+
+void populate_until(const std::atomic<bool>& stop, uint8_t* begin, uint8_t* end) {
+#ifdef MADV_POPULATE_WRITE
+    constexpr size_t kStretch = size_t(64) << 10;  // ~16 faults: the flag is looked at every ~25 us
+    const uintptr_t page = uintptr_t(sysconf(_SC_PAGESIZE));
+    uint8_t* at = reinterpret_cast<uint8_t*>(reinterpret_cast<uintptr_t>(begin) & ~(page - 1));
+    for (; at < end && !stop.load(std::memory_order_acquire); at += kStretch)
+        madvise(at, std::min<size_t>(kStretch, size_t(end - at)), MADV_POPULATE_WRITE);  // a hint: failure is a fault later
+#else
+    (void)stop, (void)begin, (void)end;
+#endif
 }
 
 PopulateAhead::PopulateAhead(uint8_t* block, size_t bytes)

@@ -1,6 +1,7 @@
 #pragma once
 // A large zero-filled block for a modelled memory: untouched pages cost nothing (as with
 // calloc); a page is cleared by the kernel when it is first written.
+#include <atomic>
 #include <cstddef>
 #include <cstdint>
 #include <memory>
@@ -52,6 +53,11 @@ struct ZeroedAllocator {
 };
 template <class T>
 using FrameBuffer = std::vector<T, ZeroedAllocator<T>>;
+
+// Faults [begin, end) in, a stretch at a time, until `stop` is set: what a thread that waits
+// for `stop` before writing there can do meanwhile (its writes then find the pages in). Only
+// the pages' residency changes, never their bytes (MADV_POPULATE_WRITE; nothing without it).
+void populate_until(const std::atomic<bool>& stop, uint8_t* begin, uint8_t* end);
 
 // Faults a block's pages in on a background thread just ahead of the writes that would
 // fault them on the caller's (the kernel's) thread: a write reaching into a 2 MB stretch of

@@ -1,6 +1,7 @@
 #include "sw/cpu_cost/cache_model.h"
 
 #include <algorithm>
+#include <new>
 #include <stdexcept>
 #include <string>
 
@@ -55,9 +56,14 @@ void CacheModel::invalidate() {
 }
 
 [[gnu::always_inline]] inline uint16_t& CacheModel::where(uint32_t line) {
-    std::unique_ptr<uint16_t[]>& chunk = where_[line >> kChunkShift];
-    if (!chunk) chunk = std::make_unique<uint16_t[]>(kChunk);
-    return chunk[line & (kChunk - 1)];
+    Chunk& chunk = where_[line >> kChunkShift];
+    if (!chunk) {
+        // calloc: a chunk's zeroes are the allocator's fresh pages, not written; the software's
+        // few reads spread over the determinant buffers then fault in a page of it, not 32.
+        chunk.reset(static_cast<uint16_t*>(std::calloc(kChunk, sizeof(uint16_t))));
+        if (!chunk) throw std::bad_alloc();
+    }
+    return chunk.get()[line & (kChunk - 1)];
 }
 
 // A hit moves its way to the front; a miss fills the next free way (the new front) or, in a

@@ -8,6 +8,7 @@
 // §4.1.1); LRU is offered too and is the default the scenario table asks for. The two differ
 // only once a set is full and a line that was filled early is reused (tests/stage).
 #include <cstdint>
+#include <cstdlib>
 #include <memory>
 #include <vector>
 
@@ -104,7 +105,11 @@ private:
     // look-up is two loads, a miss needs no search (the sets have 64 ways).
     static constexpr unsigned kChunkShift = 16;
     static constexpr uint32_t kChunk = uint32_t(1) << kChunkShift;
-    std::vector<std::unique_ptr<uint16_t[]>> where_;
+    struct Free {
+        void operator()(uint16_t* p) const { std::free(p); }
+    };
+    using Chunk = std::unique_ptr<uint16_t, Free>;
+    std::vector<Chunk> where_;
     // LRU: per set, its filled ways as a list from the most to the least recently used: a
     // Link per way (its neighbours' way numbers within the set), the list's Ends per set. A
     // hit moves one way to the front, a miss in a full set refills the last one.

@@ -1,7 +1,9 @@
 // Keypoint files: Mikolajczyk format plus the NAME.meta sibling (sw/eval/README.md).
 #include "sw/eval/keypoint_file.h"
 
+#include <cstdio>
 #include <fstream>
+#include <iterator>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -138,6 +140,40 @@ TEST(KeypointFile, LayoutIsMikolajczykWithRadiusTwoAndAHalfScales) {
         ++files;
     }
     EXPECT_EQ(files, 2u);
+}
+
+// Every value is written as printf's %.9g writes it: tiny, huge, negative zero, subnormal,
+// integral, and the random keypoints' values.
+TEST(KeypointFile, ValuesAreWrittenAsPrintfWritesThemToNineDigits) {
+    TemporaryFolder dir;
+    surf::Keypoints keypoints = sample(20);
+    const float awkward[] = {1e-5f, -0.0f, 1e-40f, 123456789.0f, 3.4e38f, -2.5e-7f, 100.0f, 0.1f, 1.0f / 3.0f};
+    for (size_t i = 0; i < std::size(awkward); ++i) keypoints[0].descriptor[i] = awkward[i];
+    keypoints[1].x = 1e-5f;
+    keypoints[1].orientation = -0.0f;
+    write_keypoint_file(dir / "k.surf", keypoints);
+    auto printf_g9 = [](double v) {
+        char text[40];
+        std::snprintf(text, sizeof text, "%.9g", v);
+        return std::string(text);
+    };
+    const auto lines = lines_of(read_text(dir / "k.surf"));
+    const auto meta = lines_of(read_text(dir / "k.surf.meta"));
+    ASSERT_EQ(lines.size(), keypoints.size() + 2);
+    ASSERT_EQ(meta.size(), keypoints.size() + 1);
+    for (size_t i = 0; i < keypoints.size(); ++i) {
+        const surf::Keypoint& k = keypoints[i];
+        const auto t = tokens_of(lines[i + 2]);
+        ASSERT_EQ(t.size(), 5u + 65u);
+        EXPECT_EQ(t[0], printf_g9(k.x));
+        EXPECT_EQ(t[1], printf_g9(k.y));
+        EXPECT_EQ(t[2], t[4]);
+        for (size_t d = 0; d < 64; ++d) EXPECT_EQ(t[6 + d], printf_g9(k.descriptor[d])) << "keypoint " << i << " value " << d;
+        EXPECT_EQ(meta[i + 1], printf_g9(k.x) + " " + printf_g9(k.y) + " " + printf_g9(k.scale) + " " + printf_g9(k.orientation) +
+                                   " " + printf_g9(k.response) + " " + std::to_string(k.laplacian));
+    }
+    EXPECT_EQ(tokens_of(lines[2])[6], "9.99999975e-06");
+    EXPECT_EQ(tokens_of(lines[2])[7], "-0");
 }
 
 TEST(KeypointFile, ReadsADetectorOnlyEllipseFile) {

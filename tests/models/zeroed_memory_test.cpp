@@ -3,6 +3,7 @@
 // blocks.
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <cstdint>
 #include <sys/mman.h>
 #include <unistd.h>
@@ -40,6 +41,24 @@ TEST(PopulateAhead, AWriteFaultsInTheNextTwoMegabytesAndNoFurtherWithTheirBytesU
     EXPECT_FALSE(resident(p + boundary + kHuge + 4096));  // one page ahead, not more
     EXPECT_EQ(p[0], 7);
     for (size_t i = boundary; i < boundary + kHuge && i < bytes; i += 4096) ASSERT_EQ(p[i], 0) << i;
+}
+
+TEST(PopulateUntil, FaultsInTheRangeWhileNotStoppedAndNothingOnceStopped) {
+    const size_t bytes = 4 * kHuge;
+    ZeroedMemory block = zeroed_memory(bytes, "test block");
+    uint8_t* p = block.get();
+    std::atomic<bool> stop{true};
+    populate_until(stop, p, p + bytes / 2);
+    for (size_t i = 0; i < bytes; i += 4096) ASSERT_FALSE(resident(p + i)) << i;
+    stop = false;
+    p[5] = 9;
+    populate_until(stop, p + 1, p + bytes / 2 + 1);  // from the page holding its start, to the one holding its end
+#ifdef MADV_POPULATE_WRITE
+    for (size_t i = 0; i <= bytes / 2; i += 4096) ASSERT_TRUE(resident(p + i)) << i;
+#endif
+    EXPECT_FALSE(resident(p + bytes / 2 + 4096));  // the page after the one holding the end
+    EXPECT_EQ(p[5], 9);
+    for (size_t i = 0; i < bytes; i += 4093) ASSERT_EQ(p[i], i == 5 ? 9 : 0) << i;
 }
 
 TEST(ZeroedMemory, BlocksAndFrameBuffersReadZero) {
