@@ -27,13 +27,13 @@ bool Worker::spin_until(Ready ready) const {
     }
 }
 
-size_t Worker::submit(std::function<void()> job, Taker taker) {
+size_t Worker::submit(std::function<void()> job) {
     bool wake = false;
     size_t number = 0;
     {
         std::lock_guard<std::mutex> lock(mutex_);
         number = submitted_.load(std::memory_order_relaxed);
-        jobs_.push_back({number, std::move(job), taker});
+        jobs_.push_back({number, std::move(job)});
         submitted_.store(number + 1, std::memory_order_release);
         wake = worker_sleeps_;
         worker_sleeps_ = false;
@@ -64,10 +64,9 @@ void Worker::drain() {
 
 bool Worker::take_up_to(size_t last, Job& job) {
     std::lock_guard<std::mutex> lock(mutex_);
-    const auto mine = std::find_if(jobs_.begin(), jobs_.end(), [](const Job& j) { return j.taker == Taker::any; });
-    if (mine == jobs_.end() || mine->number > last) return false;
-    job = std::move(*mine);
-    jobs_.erase(mine);
+    if (jobs_.empty() || jobs_.front().number > last) return false;
+    job = std::move(jobs_.front());
+    jobs_.pop_front();
     taken_.fetch_add(1, std::memory_order_relaxed);
     return true;
 }

@@ -1,13 +1,10 @@
 #pragma once
 // One background thread that runs a model's plain C++ work (never SystemC) while the kernel
 // simulates something else. Jobs are independent of each other; they start in the order
-// submitted (but a waiter passes over those only the worker runs). submit() returns at once
-// with the job's number (0, 1, ...); wait(n) returns once jobs 0..n are done and rethrows what
-// one threw (the lowest-numbered); drain() waits for all.
+// submitted. submit() returns at once with the job's number (0, 1, ...); wait(n) returns once
+// jobs 0..n are done and rethrows what one threw (the lowest-numbered); drain() waits for all.
 // A waiter does not idle while jobs it waits for are still queued: it takes them off the queue
-// and runs them itself, so that both cores work on a backlog. A job submitted for the worker
-// alone (Taker::worker: work the waiter's thread, the simulation's limit, should not do, such
-// as writing a file) is left to the worker. With Waiter::runs_any, while the
+// and runs them itself, so that both cores work on a backlog. With Waiter::runs_any, while the
 // worker still runs one of those, the waiter also takes the ones after (jobs are independent)
 // and returns at most one job's time after its own is done: for a caller with nothing else to
 // do (direct mode), not for one whose time is the simulation's limit (the kernel's thread,
@@ -41,13 +38,12 @@ namespace surfvp {
 class Worker {
 public:
     enum class Waiter { runs_its_jobs, runs_any };
-    enum class Taker { any, worker };  // who may run a job: a waiter too, or the worker alone
     explicit Worker(std::chrono::microseconds spin = std::chrono::microseconds(200), Waiter waiter = Waiter::runs_its_jobs);
     ~Worker();  // finishes the jobs already submitted
     Worker(const Worker&) = delete;
     Worker& operator=(const Worker&) = delete;
 
-    size_t submit(std::function<void()> job, Taker taker = Taker::any);
+    size_t submit(std::function<void()> job);
     void wait(size_t job);
     void drain();
 
@@ -71,13 +67,12 @@ private:
     struct Job {
         size_t number = 0;
         std::function<void()> run;
-        Taker taker = Taker::any;
     };
     void loop();
     enum class Next { job, background, stop };
     Next next(Job& job);                 // the worker's next thing to do; waits for one
     bool background_piece();             // one piece of background work; false: there was none
-    bool take_up_to(size_t last, Job& job);  // a waiter's: the first it may run, if numbered <= last
+    bool take_up_to(size_t last, Job& job);  // a waiter's: the queue's first if numbered <= last
     void run(Job& job);                  // runs it, records its failure, counts it done
     template <class Ready>
     bool spin_until(Ready ready) const;

@@ -343,7 +343,10 @@ public:
     void inject(FaultPlan& faults) override { faults_ = &faults; }
     void share_worker(Worker* worker) override {
         finish_writes();  // the files handed to the worker before
-        writer_ = worker;
+        // With a second thread (run.parallel) the files get a thread of their own: their system
+        // calls block (creating a file alone took ~0.1 ms on ext4 here, two files a frame),
+        // which on the shared worker held up the block rows queued behind them.
+        writer_ = worker ? std::make_unique<Worker>(std::chrono::microseconds(0)) : nullptr;
         surfvp::share_worker(*describer_, worker);
     }
     void write_into(const std::string& dir) override { out_ = dir; }
@@ -463,14 +466,15 @@ private:
     std::string out_;                     // where keypoint files go as frames are reported ("" : nowhere)
     std::vector<std::string> written_;    // their names, relative to out_
     std::exception_ptr write_failure_;    // the first that failed; no more are handed out after it
-                                          // (one on the worker counts from finish_writes())
-    // With a worker lent, each file is formatted and written there (the simulation's or the
-    // software's thread has better to do); finish_writes() waits for them and takes their failure.
+                                          // (one on the writer counts from finish_writes())
+    // With a worker lent, each file is formatted and written on a thread of the files' own (the
+    // simulation's or the software's thread has better to do); finish_writes() waits for them
+    // and takes their failure.
     void finish_writes();
-    Worker* writer_ = nullptr;
-    std::optional<size_t> last_write_;    // the worker's job number of the last file handed to it
+    std::unique_ptr<Worker> writer_;
+    std::optional<size_t> last_write_;    // the writer's job number of the last file handed to it
     std::mutex write_mutex_;
-    std::exception_ptr worker_failure_;   // a file the worker failed to write; under write_mutex_
+    std::exception_ptr worker_failure_;   // a file the writer failed to write; under write_mutex_
     sw::ssa2::Driver::Recovery recovery_;
     double budget_fps_ = 0, cpu_hz_ = 0;
     std::vector<sw::ssa2::AcceleratorTime> accelerator_time_;
@@ -709,8 +713,7 @@ void SurfWorkload::write_keypoints(const sw::ssa2::Task& task, const surf::Keypo
                     const std::lock_guard<std::mutex> lock(write_mutex_);
                     if (!worker_failure_) worker_failure_ = std::current_exception();
                 }
-            },
-            Worker::Taker::worker);  // not on the simulation's thread, which waits for block rows behind it
+            });
     } catch (...) {
         write_failure_ = std::current_exception();
     }

@@ -1,9 +1,8 @@
 // The background worker: wait(n) covers jobs 0..n, a waiter runs the queued jobs it waits for
-// (and, if it runs any, the next ones while the worker runs one of those) but not one for the
-// worker alone, the lowest-numbered job's exception reaches the waiter, and no hand-over is
-// lost whether the other side spins or sleeps; background work runs in the idle time, after
-// the jobs, until it says it has nothing, again after each poke, and never after it is taken
-// back.
+// (and, if it runs any, the next ones while the worker runs one of those), the lowest-numbered
+// job's exception reaches the waiter, and no hand-over is lost whether the other side spins or
+// sleeps; background work runs in the idle time, after the jobs, until it says it has nothing,
+// again after each poke, and never after it is taken back.
 #include <gtest/gtest.h>
 
 #include <atomic>
@@ -75,25 +74,6 @@ TEST(Worker, WhileTheWorkerRunsTheJobWaitedForAWaiterThatRunsAnyRunsTheNextQueue
     EXPECT_TRUE(first.saw_release);
     EXPECT_EQ(second_ran_on, std::this_thread::get_id());
     EXPECT_NE(first.ran_on, std::this_thread::get_id());
-}
-
-// A job for the worker alone is passed over by a waiter, which runs the queued job behind it:
-// while the worker is held up by job 0, a waiter for job 2 runs job 2 (which releases job 0)
-// but not job 1, which the worker runs after job 0.
-TEST(Worker, AWaiterPassesOverAJobForTheWorkerAlone) {
-    Worker w(std::chrono::microseconds(200), Worker::Waiter::runs_any);
-    HoldingJob first(w);
-    std::thread::id ran_on[3];
-    w.submit([&] { ran_on[1] = std::this_thread::get_id(); }, Worker::Taker::worker);
-    w.submit([&] {
-        ran_on[2] = std::this_thread::get_id();
-        first.released = true;
-    });
-    w.wait(2);
-    EXPECT_TRUE(first.saw_release);
-    EXPECT_EQ(ran_on[2], std::this_thread::get_id());
-    EXPECT_EQ(ran_on[1], first.ran_on);  // the worker's
-    EXPECT_NE(ran_on[1], std::this_thread::get_id());
 }
 
 // Pauses longer than the spin let both sides fall asleep: each job must still be picked up
