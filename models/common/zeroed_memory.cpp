@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <chrono>
 #include <stdexcept>
+#include <system_error>
+#include <thread>
 #include <sys/mman.h>
 #include <unistd.h>
 
@@ -26,6 +28,17 @@ ZeroedMemory zeroed_memory(size_t bytes, const std::string& what) {
     uint8_t* p = map_zeroed(bytes);
     if (!p) throw std::runtime_error(what + ": cannot allocate " + std::to_string(bytes) + " bytes");
     return ZeroedMemory(p, ZeroedMemoryRelease{bytes});
+}
+
+void release_in_background(ZeroedMemory block) {
+    const size_t bytes = block.get_deleter().bytes;
+    uint8_t* p = block.release();
+    if (!p) return;
+    try {
+        std::thread([p, bytes] { ZeroedMemoryRelease{bytes}(p); }).detach();
+    } catch (const std::system_error&) {
+        ZeroedMemoryRelease{bytes}(p);
+    }
 }
 
 void populate_until(const std::atomic<bool>& stop, uint8_t* begin, uint8_t* end) {

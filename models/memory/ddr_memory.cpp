@@ -28,6 +28,11 @@ DdrMemory::DdrMemory(const sc_core::sc_module_name& name, const Params& params)
     ports.register_transport_dbg(this, &DdrMemory::transport_dbg);
 }
 
+DdrMemory::~DdrMemory() {
+    populate_.reset();  // it waits for the pages it asked for
+    release_in_background(std::move(storage_));
+}
+
 void DdrMemory::name_port(const std::string& name) {
     port_stats_.emplace_back();
     port_stats_.back().name = name;

@@ -54,6 +54,7 @@ public:
     tlm_utils::multi_passthrough_target_socket<DdrMemory> ports;
 
     DdrMemory(const sc_core::sc_module_name& name, const Params& params);
+    ~DdrMemory() override;  // the storage given back in the background
 
     // Names the next port binding (for the report); call in binding order.
     void name_port(const std::string& name);

@@ -69,6 +69,11 @@ DirectChip::DirectChip(const Config& config, unsigned accelerators)
         pairs_.push_back(std::make_unique<Pair>(*this, IigRegisters::Limits{iig.max_width, iig.max_height}, fhg));
 }
 
+DirectChip::~DirectChip() {
+    worker_.reset();  // its jobs write into memory_
+    release_in_background(std::move(memory_));
+}
+
 bool DirectChip::in_memory(uint64_t address, uint64_t bytes) const { return address + bytes <= memory_size_; }
 
 uint8_t* DirectChip::backdoor(uint64_t address, uint64_t bytes) {

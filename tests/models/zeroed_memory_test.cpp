@@ -4,6 +4,9 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <cerrno>
+#include <chrono>
+#include <thread>
 #include <cstdint>
 #include <sys/mman.h>
 #include <unistd.h>
@@ -59,6 +62,23 @@ TEST(PopulateUntil, FaultsInTheRangeWhileNotStoppedAndNothingOnceStopped) {
     EXPECT_FALSE(resident(p + bytes / 2 + 4096));  // the page after the one holding the end
     EXPECT_EQ(p[5], 9);
     for (size_t i = 0; i < bytes; i += 4093) ASSERT_EQ(p[i], i == 5 ? 9 : 0) << i;
+}
+
+TEST(ReleaseInBackground, TheBlockIsUnmappedWithoutTheCallerWaiting) {
+    const size_t bytes = 4 * kHuge;
+    ZeroedMemory block = zeroed_memory(bytes, "test block");
+    uint8_t* p = block.get();
+    for (size_t i = 0; i < bytes; i += 4096) p[i] = 1;
+    release_in_background(std::move(block));
+    EXPECT_EQ(block.get(), nullptr);
+    unsigned char state = 0;
+    bool unmapped = false;  // mincore fails with ENOMEM on an address that is not mapped
+    for (int tries = 0; tries < 1000 && !unmapped; ++tries) {
+        unmapped = mincore(p, 4096, &state) != 0 && errno == ENOMEM;
+        if (!unmapped) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    }
+    EXPECT_TRUE(unmapped);
+    release_in_background(ZeroedMemory());  // nothing to give back
 }
 
 TEST(ZeroedMemory, BlocksAndFrameBuffersReadZero) {
