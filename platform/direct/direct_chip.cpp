@@ -196,9 +196,9 @@ void DirectChip::run_integral(Pair& p) {
     settle(i.src, source_bytes(i));
     settle(i.dst, integral_bytes(i));
     const bool streams = i.stream && p.fhg.status().busy();
-    const bool matches = p.determinants.width == i.width && p.determinants.height == i.height;
-    if (streams && matches) p.stop_listening();  // a second stream replaces the first
-    FrameBuffer<uint32_t>& integral = streams && matches ? p.lines : p.making;
+    const bool to_fhg = streams && p.determinants.width == i.width && p.determinants.height == i.height;
+    if (to_fhg) p.stop_listening();  // a second stream replaces the first
+    FrameBuffer<uint32_t>& integral = to_fhg ? p.lines : p.making;
     integral.resize(size_t(i.width) * i.height);  // every word is written before it is read
     auto done = std::make_shared<std::atomic<bool>>(true);  // this image's: the stream's rows wait for it
     if (worker_ && IntegralCore(sum_bits_).fits(memory_.get() + i.src, int(i.width), int(i.height), i.src_stride)) {
@@ -212,9 +212,11 @@ void DirectChip::run_integral(Pair& p) {
     } else if (!integrate(i, integral)) {
         return p.iig.end(true, iig::ERR_OVERFLOW, 0);
     }
-    if (streams && matches) p.lines_done = done;
-    if (streams && !matches) p.fhg.status().end(true, f::ERR_PIXELBUS);
-    if (streams && matches) compute_rows(p);
+    if (streams && !to_fhg) p.fhg.status().end(true, f::ERR_PIXELBUS);
+    if (to_fhg) {
+        p.lines_done = done;
+        compute_rows(p);
+    }
     p.iig.end(false, iig::ERR_NONE, 0);  // no time, so no back-pressure: STALL_CYCLES 0
 }
 

@@ -44,6 +44,9 @@ std::set<std::string> files_under(const fs::path& root) {
 
 bool hidden(const fs::path& p) { return p.filename().string().front() == '.'; }
 
+// The first component of an output's name (relative to its folder): its folder there, or itself.
+std::string top_of(const std::string& name) { return name.substr(0, name.find('/')); }
+
 // Whether every file under `dir` (hidden ones too; symbolic links are not followed) is one of
 // `outputs`, named relative to `root`, and nothing there is hidden: a folder that may go
 // whole, or be replaced whole.
@@ -111,7 +114,7 @@ std::set<std::string> OutputFolder::previous_outputs() const {
 void OutputFolder::publish() {
     const std::set<std::string> written = files_under(staging_), previous = previous_outputs();
     const std::set<std::string> whole = move_folders(written, previous);
-    auto in_whole = [&whole](const std::string& f) { return whole.count(f.substr(0, f.find('/'))) > 0; };
+    auto in_whole = [&whole](const std::string& f) { return whole.count(top_of(f)) > 0; };
     std::error_code error;
     for (const std::string& f : written) {
         if (in_whole(f)) continue;
@@ -143,9 +146,9 @@ std::set<std::string> OutputFolder::move_folders(const std::set<std::string>& wr
                                                  const std::set<std::string>& previous) const {
     std::set<std::string> folders;  // the staging folder's, before any leaves it
     for (const std::string& f : written)
-        if (f.find('/') != std::string::npos) folders.insert(f.substr(0, f.find('/')));
+        if (f.find('/') != std::string::npos) folders.insert(top_of(f));
     for (const std::string& f : written)
-        if (fs::path(f).extension() == ".gtkw") folders.erase(f.substr(0, f.find('/')));  // rewritten as they go
+        if (fs::path(f).extension() == ".gtkw") folders.erase(top_of(f));  // rewritten as they go
     std::set<std::string> whole;
     std::error_code error;
     for (const std::string& name : folders) {

@@ -474,7 +474,7 @@ private:
     std::unique_ptr<Worker> writer_;
     std::optional<size_t> last_write_;    // the writer's job number of the last file handed to it
     std::mutex write_mutex_;
-    std::exception_ptr worker_failure_;   // a file the writer failed to write; under write_mutex_
+    std::exception_ptr writer_failure_;   // a file the writer failed to write; under write_mutex_
     sw::ssa2::Driver::Recovery recovery_;
     double budget_fps_ = 0, cpu_hz_ = 0;
     std::vector<sw::ssa2::AcceleratorTime> accelerator_time_;
@@ -705,15 +705,14 @@ void SurfWorkload::write_keypoints(const sw::ssa2::Task& task, const surf::Keypo
         const fs::path file = keypoint_file(out_, task.id);
         written_.push_back(file.lexically_relative(out_).string());
         if (!writer_) return eval::write_keypoint_file(file, keypoints);
-        last_write_ = writer_->submit(
-            [this, file, keypoints] {
-                try {
-                    eval::write_keypoint_file(file, keypoints);
-                } catch (...) {
-                    const std::lock_guard<std::mutex> lock(write_mutex_);
-                    if (!worker_failure_) worker_failure_ = std::current_exception();
-                }
-            });
+        last_write_ = writer_->submit([this, file, keypoints] {
+            try {
+                eval::write_keypoint_file(file, keypoints);
+            } catch (...) {
+                const std::lock_guard<std::mutex> lock(write_mutex_);
+                if (!writer_failure_) writer_failure_ = std::current_exception();
+            }
+        });
     } catch (...) {
         write_failure_ = std::current_exception();
     }
@@ -723,7 +722,7 @@ void SurfWorkload::finish_writes() {
     if (writer_ && last_write_) writer_->wait(*last_write_);
     last_write_.reset();
     const std::lock_guard<std::mutex> lock(write_mutex_);
-    if (worker_failure_ && !write_failure_) write_failure_ = worker_failure_;
+    if (writer_failure_ && !write_failure_) write_failure_ = writer_failure_;
 }
 
 std::vector<std::string> SurfWorkload::files_written() {
