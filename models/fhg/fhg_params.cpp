@@ -37,18 +37,21 @@ const ParamTable<Fhg::Params>& Fhg::parameter_table() {
         field<P>({"fhg.fifo_lines", ParamKind::count, "56", 52, 1024, {}, "Integral lines the MasterController FIFO holds",
            "[S] paper §III-C: 56 lines (52 for the largest filter + refill)"},
                  [](P& p) -> auto& { return p.sequence.fifo_lines; }),
-        field<P>({"fhg.line_ports", ParamKind::count, "2", 1, 8, {},
-           "Reads one block RAM of a line-FIFO line serves per cycle (a quad word takes 2 of each of its 2 lines)",
-           "[A] a RAMB36 in true dual-port mode has 2 ports (Virtex-5 UG190, recalled; PLATFORM_FACTS)",
-           {"2", "2",
-            "a RAMB36 has exactly two ports; more reads per line need more BRAMs (fhg.line_banks)"}},
-                 [](P& p) -> auto& { return p.sequence.line_ports; }),
-        field<P>({"fhg.line_banks", ParamKind::count, "1", 1, 2, {},
-           "Block RAMs each line-FIFO line is interleaved over, by column (each with fhg.line_ports ports)",
-           "[D] 56 lines x 1024 x 32 bit = one RAMB36 per line (PLATFORM_FACTS §5.6); 2 banks double the BRAMs",
-           {"1", "2",
-            "one RAMB36 per line (56 in all), or two (112 of the FX70T's 148)"}},
-                 [](P& p) -> auto& { return p.sequence.line_banks; }),
+        choice<P>({"fhg.line_fifo", ParamKind::choice, "tdp_x2", 0, 0, {},
+           "How each line-FIFO line is held in block RAM: one RAMB36 true dual-port at the FHG clock (2 reads a "
+           "cycle), one clocked at twice the FHG clock (4), two RAMB36 with interleaved columns (2 each), or one "
+           "simple dual-port 512 x 72 (one aligned pair a cycle)",
+           "[A] the one organisation that reproduces the paper's basic script (~11 % over its optimal state) and "
+           "~10 frames/s with the fewest block RAMs: 56 RAMB36 at 2x the FHG clock, within the block RAM's maximum "
+           "clock (docs/correlation.md)",
+           {"tdp", "banked",
+            "two reads per line and cycle (one RAMB36 at the FHG clock: the basic script ~25 % over optimal), or "
+            "four from two RAMB36 per line (112 of the FX70T's 148)"}},
+                  [](P& p) -> auto& { return p.sequence.line_fifo; },
+                  std::vector<std::pair<std::string, fhg::LineFifo>>{{"tdp", fhg::LineFifo::tdp},
+                                                                     {"tdp_x2", fhg::LineFifo::tdp_x2},
+                                                                     {"banked", fhg::LineFifo::banked},
+                                                                     {"sdp72", fhg::LineFifo::sdp72}}),
         choice<P>({"fhg.scheduler", ParamKind::choice, "basic", 0, 0, {},
            "The MasterController sequence the chip runs: the paper's basic script (one greedy pass) or an "
            "improved one (what-if: a better script)",

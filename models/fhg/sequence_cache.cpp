@@ -22,9 +22,9 @@ std::optional<fs::path> sequence_cache_folder() { return cache_folder(); }
 
 std::string sequence_key(const SequenceParams& p) {
     return fmt::format("generator {} read_buses {} triple_macs {} fifo_lines {} x3_cycles {} bus_word {} reuse {} "
-                       "line_ports {} line_banks {} scheduler {} attempts {}",
+                       "line_fifo {} scheduler {} attempts {}",
                        SURFVP_SEQUENCE_FINGERPRINT, p.read_buses, p.triple_macs, p.fifo_lines, p.x3_cycles,
-                       bus_word_name(p.bus_word), p.reuse, p.line_ports, p.line_banks, scheduler_name(p.scheduler),
+                       bus_word_name(p.bus_word), p.reuse, line_fifo_name(p.line_fifo), scheduler_name(p.scheduler),
                        p.attempts);
 }
 
@@ -32,8 +32,8 @@ std::string sequence_key(const SequenceParams& p) {
 // (triple_mac lane coefficient response) fours.
 std::string sequence_text(const std::string& key, const Sequence& s) {
     std::string out = key + "\n";
-    out += fmt::format("{} {} {} {} {} {} {} {} {} {}\n", s.interval, s.span, s.optimal_cycles, s.spread[0], s.spread[1],
-                       s.reads_per_block, s.distinct_reads_per_block, s.words_delivered, s.steps.size(),
+    out += fmt::format("{} {} {} {} {} {} {} {} {} {} {}\n", s.interval, s.span, s.optimal_cycles, s.spread[0], s.spread[1],
+                       s.reads_per_block, s.distinct_reads_per_block, s.words_delivered, s.busy_bus_cycles, s.steps.size(),
                        s.optimal_limit.empty() ? "-" : s.optimal_limit);
     for (const Step& step : s.steps) {
         out += fmt::format("{} {} {} {} {}", step.cycle, step.bus, step.x, step.y, step.taps.size());
@@ -52,7 +52,7 @@ std::optional<Sequence> read_sequence_text(const std::string& text, const std::s
     if (!std::getline(in, line)) return std::nullopt;
     std::istringstream figures(line);
     figures >> s.interval >> s.span >> s.optimal_cycles >> s.spread[0] >> s.spread[1] >> s.reads_per_block >>
-        s.distinct_reads_per_block >> s.words_delivered >> steps;
+        s.distinct_reads_per_block >> s.words_delivered >> s.busy_bus_cycles >> steps;
     std::getline(figures >> std::ws, s.optimal_limit);  // the rest of the line: it may hold spaces
     if (!figures && !figures.eof()) return std::nullopt;
     if (s.optimal_limit == "-") s.optimal_limit.clear();
@@ -94,11 +94,11 @@ Sequence stored_sequence(const SequenceParams& params, const fs::path& folder) {
 }
 
 const Sequence& cached_sequence(const SequenceParams& p) {
-    using Key = std::tuple<unsigned, unsigned, unsigned, unsigned, int, bool, unsigned, unsigned, int, unsigned>;
+    using Key = std::tuple<unsigned, unsigned, unsigned, unsigned, int, bool, int, int, unsigned>;
     static std::map<Key, Sequence> cache;
     static std::mutex mutex;
     const Key key{p.read_buses, p.triple_macs, p.fifo_lines, p.x3_cycles, int(p.bus_word), p.reuse,
-                  p.line_ports, p.line_banks, int(p.scheduler), p.attempts};
+                  int(p.line_fifo), int(p.scheduler), p.attempts};
     std::lock_guard<std::mutex> lock(mutex);
     auto it = cache.find(key);
     if (it == cache.end()) {

@@ -24,11 +24,14 @@ struct Need {
     int cost;
 };
 
+// The reads a word takes from the BRAMs: (BRAM index, reads from it), by BRAM.
+using Ports = std::vector<std::pair<int, int>>;
+
 // A word the buses can deliver: where it sits, whom it can serve, what it costs the BRAMs.
 struct Word {
     int y, x;
-    std::vector<int> needs;                 // reuse: every need with a point in it; else the group's members
-    std::vector<std::pair<int, int>> ports;  // (BRAM index, reads of this word from it)
+    std::vector<int> needs;  // reuse: every need with a point in it; else the group's members
+    Ports ports;             // a group's: the reads of the values its members take
 };
 
 struct Problem {
@@ -42,9 +45,27 @@ struct Problem {
 
 bool in_window(int v) { return v >= -kReachBefore && v <= kReachAfter; }
 
+int floor_div(int a, int b) { return a >= 0 ? a / b : -((-a + b - 1) / b); }
+
 int bram_of(const SequenceParams& p, int y, int x) {
-    const int banks = int(p.line_banks);
+    const int banks = line_fifo_shape(p.line_fifo).banks;
     return (y + kReachBefore) * banks + ((x % banks) + banks) % banks;
+}
+
+// The reads that deliver the values at `points` (y, x): one a value, or with 72-bit reads one
+// an aligned pair, counted per BRAM.
+Ports reads_of(const SequenceParams& p, const std::vector<Point>& points) {
+    const bool pairs = line_fifo_shape(p.line_fifo).aligned_pairs;
+    std::vector<std::pair<int, int>> units;  // (BRAM, the column or aligned pair it reads)
+    for (const auto& [y, x] : points) units.emplace_back(bram_of(p, y, x), pairs ? floor_div(x, 2) : x);
+    std::sort(units.begin(), units.end());
+    units.erase(std::unique(units.begin(), units.end()), units.end());
+    Ports ports;
+    for (const auto& u : units) {
+        if (!ports.empty() && ports.back().first == u.first) ++ports.back().second;
+        else ports.emplace_back(u.first, 1);
+    }
+    return ports;
 }
 
 void validate(const SequenceParams& p) {
@@ -59,29 +80,20 @@ void validate(const SequenceParams& p) {
                                     std::to_string(kWindow) + "-line window of the largest filter (51)");
     if (p.x3_cycles < 1 || p.x3_cycles > 8)
         throw std::invalid_argument("fhg.x3_cycles must be 1 to 8, not " + std::to_string(p.x3_cycles));
-    if (p.line_ports < 1 || p.line_ports > 8)
-        throw std::invalid_argument("fhg.line_ports must be 1 to 8, not " + std::to_string(p.line_ports));
-    // A block is two columns wide, so with one or two banks every block sees the same bank of
-    // each of its columns; more banks would need a sequence per block parity.
-    if (p.line_banks != 1 && p.line_banks != 2)
-        throw std::invalid_argument("fhg.line_banks must be 1 or 2, not " + std::to_string(p.line_banks));
 }
 
-std::vector<std::pair<int, int>> word_ports(const SequenceParams& p, int y, int x) {
-    std::map<int, int> reads;
-    for (const auto& [dy, dx] : word_shape(p.bus_word)) ++reads[bram_of(p, y + dy, x + dx)];
-    return {reads.begin(), reads.end()};
-}
-
-// A word must be readable at all: the reads it takes from one BRAM within its ports.
-void check_word_fits(const SequenceParams& p) {
-    int most = 0;
-    for (int x : {0, 1})
-        for (const auto& [bram, reads] : word_ports(p, 0, x)) most = std::max(most, reads);
-    if (most > int(p.line_ports))
-        throw std::invalid_argument("fhg.line_ports: a " + std::string(bus_word_name(p.bus_word)) + " word reads " +
-                                    std::to_string(most) + " values from one BRAM at once, but it has " +
-                                    std::to_string(p.line_ports) + " port(s); give more fhg.line_ports or fhg.line_banks");
+// Every word the basic script must deliver has to be readable in one cycle: the reads it takes
+// from one BRAM within what that BRAM serves.
+void check_words_fit(const SequenceParams& p, const std::vector<Word>& groups) {
+    const LineFifoShape f = line_fifo_shape(p.line_fifo);
+    for (const Word& g : groups)
+        for (const auto& [bram, reads] : g.ports)
+            if (reads > f.reads)
+                throw std::invalid_argument(
+                    std::string("fhg.line_fifo: ") + line_fifo_name(p.line_fifo) + " serves " + std::to_string(f.reads) +
+                    (f.aligned_pairs ? " aligned pair" : " read") + (f.reads > 1 ? "s" : "") + " of a line's BRAM a cycle, but a " +
+                    bus_word_name(p.bus_word) + " word at column " + std::to_string(g.x) + " needs " + std::to_string(reads) +
+                    "; choose another fhg.line_fifo or fhg.bus_word");
 }
 
 bool word_in_window(const SequenceParams& p, int y, int x) {
@@ -111,7 +123,7 @@ Word group_word(const SequenceParams& p, const Need& need, const BlockDeterminan
 Problem make_problem(const SequenceParams& p) {
     Problem problem;
     problem.work.assign(p.triple_macs, 0);
-    problem.brams = kWindow * int(p.line_banks);
+    problem.brams = kWindow * line_fifo_shape(p.line_fifo).banks;
     std::map<std::tuple<int, int, int>, int> group_of;
     std::map<Point, int> word_of;
     std::set<Point> points;
@@ -138,8 +150,11 @@ Problem make_problem(const SequenceParams& p) {
             }
         }
     }
-    for (Word& w : problem.groups) w.ports = word_ports(p, w.y, w.x);
-    for (Word& w : problem.words) w.ports = word_ports(p, w.y, w.x);
+    for (Word& g : problem.groups) {
+        std::vector<Point> points;
+        for (int i : g.needs) points.emplace_back(problem.needs[size_t(i)].y, problem.needs[size_t(i)].x);
+        g.ports = reads_of(p, points);
+    }
     std::sort(problem.words.begin(), problem.words.end(),
               [](const Word& a, const Word& b) { return std::tie(a.y, a.x) < std::tie(b.y, b.x); });
     problem.distinct = int(points.size());
@@ -156,22 +171,22 @@ std::pair<int, std::string> lower_bound(const Problem& problem, const SequencePa
     const int buses = ceil_div(words, int(p.read_buses));
     std::vector<int> reads(size_t(problem.brams), 0);
     if (p.reuse) {
-        std::set<Point> seen;
-        for (const Need& n : problem.needs)
-            if (seen.insert({n.y, n.x}).second) ++reads[size_t(bram_of(p, n.y, n.x))];
+        std::vector<Point> points;
+        for (const Need& n : problem.needs) points.emplace_back(n.y, n.x);
+        for (const auto& [bram, n] : reads_of(p, points)) reads[size_t(bram)] += n;
     } else {
         for (const Word& g : problem.groups)
             for (const auto& [bram, n] : g.ports) reads[size_t(bram)] += n;
     }
     const auto busiest = std::max_element(reads.begin(), reads.end());
-    const int ports = ceil_div(*busiest, int(p.line_ports));
+    const int ports = ceil_div(*busiest, line_fifo_shape(p.line_fifo).reads);
     const int bound = std::max({tm, buses, ports});
     std::vector<std::string> limits;
     if (tm == bound) limits.push_back("TripleMAC work");
     if (buses == bound) limits.push_back("read buses");
     if (ports == bound) {
         const int bram = int(busiest - reads.begin());
-        limits.push_back("line FIFO ports (line " + std::to_string(bram / int(p.line_banks) - kReachBefore) + ")");
+        limits.push_back("line FIFO ports (line " + std::to_string(bram / line_fifo_shape(p.line_fifo).banks - kReachBefore) + ")");
     }
     std::string limit;
     for (const std::string& l : limits) limit += (limit.empty() ? "" : ", ") + l;
@@ -201,20 +216,21 @@ public:
     bool pending(int need) const { return pending_[size_t(need)]; }
     bool free(int tm, int cycle) const { return claimed_at_[size_t(tm)] != cycle && busy_until_[size_t(tm)] <= cycle; }
     int remaining(int tm) const { return remaining_[size_t(tm)]; }
-    // Cycles the busiest BRAM this word reads still needs for the values waiting on it.
-    int bram_pressure(const Word& w) const {
+    // Cycles the busiest BRAM these reads touch still needs for the values waiting on it.
+    int bram_pressure(const Ports& ports) const {
         int most = 0;
-        for (const auto& [bram, reads] : w.ports) most = std::max(most, bram_left_[size_t(bram)]);
-        return (most + int(p_.line_ports) - 1) / int(p_.line_ports);
+        for (const auto& [bram, reads] : ports) most = std::max(most, bram_left_[size_t(bram)]);
+        return (most + reads_ - 1) / reads_;
     }
-    bool ports_fit(const Word& w, int cycle) const {
-        for (const auto& [bram, n] : w.ports)
-            if ((port_cycle_[size_t(bram)] == cycle ? port_use_[size_t(bram)] : 0) + n > int(p_.line_ports)) return false;
+    bool ports_fit(const Ports& ports, int cycle) const {
+        for (const auto& [bram, n] : ports)
+            if ((port_cycle_[size_t(bram)] == cycle ? port_use_[size_t(bram)] : 0) + n > reads_) return false;
         return true;
     }
 
-    // Delivers `w` on `bus` in `cycle` to the given needs.
-    void deliver(const Word& w, const std::vector<int>& needs, int cycle, int bus, std::vector<Step>& steps) {
+    // Delivers `w` on `bus` in `cycle` to the given needs, taking `ports` from the BRAMs.
+    void deliver(const Word& w, const std::vector<int>& needs, const Ports& ports, int cycle, int bus,
+                 std::vector<Step>& steps) {
         Step step{cycle, bus, w.x, w.y, {}};
         for (int i : needs) {
             const Need& n = problem_.needs[size_t(i)];
@@ -225,7 +241,7 @@ public:
             bram_left_[size_t(bram_of(p_, n.y, n.x))] -= 1;
             step.taps.push_back({n.tm, lane_of(p_, n, w), n.coefficient, n.response});
         }
-        for (const auto& [bram, reads] : w.ports) {
+        for (const auto& [bram, reads] : ports) {
             if (port_cycle_[size_t(bram)] != cycle) port_cycle_[size_t(bram)] = cycle, port_use_[size_t(bram)] = 0;
             port_use_[size_t(bram)] += reads;
         }
@@ -239,6 +255,7 @@ private:
     std::vector<bool> pending_;
     std::vector<int> busy_until_, claimed_at_, remaining_, port_cycle_, port_use_, bram_left_;
     int left_;
+    int reads_ = line_fifo_shape(p_.line_fifo).reads;  // per BRAM and FHG cycle
 };
 
 constexpr int kCycleLimit = 1 << 16;  // far beyond any schedule; a guard against a scheduler bug
@@ -256,6 +273,8 @@ std::vector<Step> schedule_list(const Problem& problem, const SequenceParams& p,
     std::vector<int> alive(candidates.size());
     for (size_t i = 0; i < alive.size(); ++i) alive[i] = int(i);
     std::vector<int> served, best_served, slot(p.triple_macs, -1);
+    std::vector<Point> points;
+    Ports ports, best_ports;
     for (int cycle = 0; !m.done(); ++cycle) {
         if (cycle > kCycleLimit) throw std::logic_error("sequence generator: the list schedule does not end");
         for (unsigned bus = 0; bus < p.read_buses; ++bus) {
@@ -283,23 +302,30 @@ std::vector<Step> schedule_list(const Problem& problem, const SequenceParams& p,
                 }
                 // A group goes whole or not at all.
                 const bool whole = reuse || served.size() == w.needs.size();
-                if (!served.empty() && whole && m.ports_fit(w, cycle)) {
+                if (reuse && !served.empty()) {  // a shared word reads the values it is taken for
+                    points.clear();
+                    for (int tm : served) points.emplace_back(problem.needs[size_t(slot[size_t(tm)])].y, problem.needs[size_t(slot[size_t(tm)])].x);
+                    ports = reads_of(p, points);
+                }
+                const Ports& reads = reuse ? ports : w.ports;
+                if (!served.empty() && whole && m.ports_fit(reads, cycle)) {
                     long most = 0;
                     for (int tm : served) most = std::max<long>(most, m.remaining(tm));
-                    if (port_aware) most = std::max<long>(most, m.bram_pressure(w));
+                    if (port_aware) most = std::max<long>(most, m.bram_pressure(reads));
                     const long score = most * 1000000 + long(served.size()) * 1000 + (seed ? long(rng() % 1000) : 0);
                     if (score > best_score) {
                         best_score = score;
                         best = alive[a];
                         best_served.clear();
                         for (int tm : served) best_served.push_back(slot[size_t(tm)]);
+                        best_ports = reads;
                     }
                 }
                 for (int tm : served) slot[size_t(tm)] = -1;
                 ++a;
             }
             if (best < 0) break;  // nothing any bus could deliver this cycle
-            m.deliver(candidates[size_t(best)], best_served, cycle, int(bus), steps);
+            m.deliver(candidates[size_t(best)], best_served, best_ports, cycle, int(bus), steps);
         }
     }
     return steps;
@@ -397,12 +423,33 @@ const char* bus_word_name(BusWord word) {
 
 const char* scheduler_name(Scheduler scheduler) { return scheduler == Scheduler::basic ? "basic" : "improved"; }
 
+LineFifoShape line_fifo_shape(LineFifo fifo) {
+    switch (fifo) {
+        case LineFifo::tdp: return {1, 2, false, 1};
+        case LineFifo::tdp_x2: return {1, 4, false, 2};
+        case LineFifo::banked: return {2, 2, false, 1};
+        case LineFifo::sdp72: return {1, 1, true, 1};
+    }
+    return {1, 2, false, 1};
+}
+
+const char* line_fifo_name(LineFifo fifo) {
+    switch (fifo) {
+        case LineFifo::tdp: return "tdp";
+        case LineFifo::tdp_x2: return "tdp_x2";
+        case LineFifo::banked: return "banked";
+        case LineFifo::sdp72: return "sdp72";
+    }
+    return "?";
+}
+
 Sequence generate_sequence(const SequenceParams& params) {
     validate(params);
-    check_word_fits(params);
     const Problem problem = make_problem(params);
+    check_words_fit(params, problem.groups);
     Sequence s = params.scheduler == Scheduler::basic ? schedule_basic(problem, params) : schedule_improved(problem, params);
     std::tie(s.optimal_cycles, s.optimal_limit) = lower_bound(problem, params);
+    s.busy_bus_cycles = ceil_div(s.words_delivered, int(params.read_buses));
     return s;
 }
 
@@ -417,6 +464,7 @@ std::string check_sequence(const Sequence& sequence, const SequenceParams& param
     std::vector<Step> steps = sequence.steps;
     std::stable_sort(steps.begin(), steps.end(), [](const Step& a, const Step& b) { return a.cycle < b.cycle; });
     const auto& shape = word_shape(params.bus_word);
+    const LineFifoShape fifo = line_fifo_shape(params.line_fifo);
     std::vector<int> busy_until(params.triple_macs, 0), last_cycle(params.triple_macs, -1), first(params.triple_macs, -1);
     std::map<std::pair<int, int>, int> bus_use, bram_use;  // (cycle, bus) / (cycle, BRAM) -> count
     for (const Step& step : steps) {
@@ -424,13 +472,16 @@ std::string check_sequence(const Sequence& sequence, const SequenceParams& param
         if (step.bus < 0 || step.bus >= int(params.read_buses)) return "a step uses bus " + std::to_string(step.bus);
         if (step.cycle < 0 || step.cycle >= sequence.interval) return "a word outside the block's interval" + where;
         if (++bus_use[{step.cycle, step.bus}] > 1) return "bus " + std::to_string(step.bus) + " carries two words" + where;
-        for (const auto& [dy, dx] : shape) {
+        for (const auto& [dy, dx] : shape)
             if (!in_window(step.y + dy) || !in_window(step.x + dx)) return "a word outside the 52-line window" + where;
-            const int bram = bram_of(params, step.y + dy, step.x + dx);
-            if (++bram_use[{step.cycle, bram}] > int(params.line_ports))
-                return "line " + std::to_string(step.y + dy) + " (BRAM " + std::to_string(bram % int(params.line_banks)) +
-                       ") serves more than " + std::to_string(params.line_ports) + " reads" + where;
-        }
+        std::vector<Point> taken;
+        for (const Tap& tap : step.taps)
+            if (tap.lane >= 0 && tap.lane < int(shape.size()))
+                taken.emplace_back(step.y + shape[size_t(tap.lane)][0], step.x + shape[size_t(tap.lane)][1]);
+        for (const auto& [bram, reads] : reads_of(params, taken))
+            if ((bram_use[{step.cycle, bram}] += reads) > fifo.reads)
+                return "line " + std::to_string(bram / fifo.banks - kReachBefore) + " (BRAM " + std::to_string(bram % fifo.banks) +
+                       ") serves more than " + std::to_string(fifo.reads) + " reads" + where;
         if (!params.reuse) {
             const std::string why = check_one_group(step, params);
             if (!why.empty()) return why + where;

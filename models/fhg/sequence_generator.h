@@ -8,11 +8,11 @@
 // - `read_buses` buses each deliver one bus word per cycle: one 32-bit value (scalar), two
 //   neighbours on one line (pair: (x, y), (x+1, y)), or a 2x2 quad ((x, y), (x+1, y),
 //   (x, y+1), (x+1, y+1)).
-// - The line FIFO holds each integral line in block RAM: `line_banks` BRAMs per line
-//   (columns interleaved, x mod banks), each serving `line_ports` reads per cycle (a RAMB36
-//   has two ports). A word reads every value it carries, so a quad takes two reads of each
-//   of its two lines; the reads all words of one cycle take from one BRAM may not exceed
-//   its ports.
+// - The line FIFO holds each integral line in block RAM, organised as `line_fifo` says
+//   (LineFifo below): how many BRAMs a line is spread over, how many reads each serves in an
+//   FHG cycle, and whether a read returns one value or an aligned pair. A word reads only the
+//   values some TripleMAC takes from it (an octave-2 word carrying one value reads one); the
+//   reads all words of one cycle take from one BRAM may not exceed what it serves.
 // - TripleMAC t forms the three responses of block determinant t (filter_geometry.h): it
 //   snoops every bus, takes at most one value per cycle, and a coefficient of +-3 keeps it
 //   busy `x3_cycles` cycles (three additions; it does not report busy, so the sequence
@@ -48,6 +48,25 @@ namespace surfvp::fhg {
 enum class BusWord { scalar, pair, quad };
 enum class Scheduler { basic, improved };
 
+// How a line of the line FIFO is held in Virtex-5 block RAM (UG190: a RAMB36 has two ports of
+// at most 36 bit in true dual-port mode, or one 72-bit read port and one write port in simple
+// dual-port mode). Writes of incoming lines go to lines outside the 52-line window, so every
+// port of a line in the window is free for the read buses.
+enum class LineFifo {
+    tdp,     // one RAMB36 (1K x 32) per line, true dual-port at the FHG clock: 2 reads a cycle
+    tdp_x2,  // one RAMB36 per line, true dual-port, clocked at twice the FHG clock: 4 reads a cycle
+    banked,  // two RAMB36 per line, columns interleaved (x mod 2), each true dual-port: 2 reads each
+    sdp72,   // one RAMB36 per line, simple dual-port 512 x 72: one read of an aligned pair (2k, 2k+1)
+};
+struct LineFifoShape {
+    int banks;           // BRAMs a line is spread over, by column (x mod banks)
+    int reads;           // reads one of them serves per FHG cycle
+    bool aligned_pairs;  // a read returns the aligned pair holding the value (SDP 72 bit)
+    int clock_multiple;  // the BRAMs' clock as a multiple of the FHG's
+};
+LineFifoShape line_fifo_shape(LineFifo fifo);
+const char* line_fifo_name(LineFifo fifo);
+
 struct SequenceParams {
     unsigned read_buses = 4;
     unsigned triple_macs = 18;
@@ -55,8 +74,7 @@ struct SequenceParams {
     unsigned x3_cycles = 3;
     BusWord bus_word = BusWord::quad;
     bool reuse = true;
-    unsigned line_ports = 2;  // reads one BRAM of a line serves per cycle
-    unsigned line_banks = 1;  // BRAMs a line is interleaved over, by column (1 or 2)
+    LineFifo line_fifo = LineFifo::tdp_x2;
     Scheduler scheduler = Scheduler::basic;
     unsigned attempts = 16;  // passes with different tie-breaks: basic takes their median, improved the shortest
 };
@@ -79,13 +97,19 @@ struct Sequence {
     std::vector<Step> steps;  // sorted by cycle, then bus
     int interval = 0;         // cycles per block in the steady state: when the sequence starts again
     int span = 0;             // from its first cycle until the last TripleMAC's last addition
-    int optimal_cycles = 0;   // lower bound on the interval under the same limits
+    int optimal_cycles = 0;   // lower bound on the interval under the same limits (the structural bound)
     std::string optimal_limit;         // what sets that bound (every limit that reaches it)
+    // The paper's "optimal state" (its note 4): the read buses never idle waiting for a busy
+    // TripleMAC, i.e. every bus carries one of this sequence's words every cycle.
+    int busy_bus_cycles = 0;
     std::array<int, 2> spread{};       // basic: the shortest and longest interval of its passes
     int reads_per_block = 0;           // values the TripleMACs take: 18 x 32
     int distinct_reads_per_block = 0;  // distinct integral points among them
     int words_delivered = 0;           // bus words issued
+    // Over the structural bound (ports, buses, TripleMAC work).
     double overhead() const { return optimal_cycles ? double(interval) / optimal_cycles - 1 : 0; }
+    // Over the paper's optimal state: idle bus cycles only, against the words it carries.
+    double idle_bus_overhead() const { return busy_bus_cycles ? double(interval) / busy_bus_cycles - 1 : 0; }
 };
 
 // With params.scheduler. Throws std::invalid_argument for a configuration that cannot work,
@@ -100,8 +124,8 @@ const char* scheduler_name(Scheduler scheduler);
 // Replays a sequence against every limit of the machine: each TripleMAC gets exactly the
 // reads its determinant needs with the right coefficient and response, at most one value a
 // cycle and never while busy, also across the step to the next block; one word per bus and
-// cycle; no BRAM of a line serves more reads in a cycle than its ports; every word lies in
-// the 52-line window. Returns "" when it holds, otherwise the first violation in words.
+// cycle; no BRAM of a line serves more reads in a cycle than it can (counting only the values
+// the words' taps take); every word lies in the 52-line window. Returns "" when it holds, otherwise the first violation in words.
 std::string check_sequence(const Sequence& sequence, const SequenceParams& params);
 
 }  // namespace surfvp::fhg

@@ -22,8 +22,8 @@ unsigned log2_ceil(unsigned n) {
 // Values one read-bus word carries (scalar 1, pair 2, quad 4).
 unsigned lanes(fhg::BusWord word) { return word == fhg::BusWord::quad ? 4 : word == fhg::BusWord::pair ? 2 : 1; }
 
-// The FHG of one pair. Block RAM: each line-FIFO line holds max_width integral words, over
-// line_banks BRAMs; the maxima FIFO 32-bit words; the MasterController's sequence one control
+// The FHG of one pair. Block RAM: each line-FIFO line holds max_width integral words, in the
+// organisation fhg.line_fifo names (one RAMB36, 1K x 32 or 512 x 72, or two column banks); the maxima FIFO 32-bit words; the MasterController's sequence one control
 // word per cycle of its interval (per bus: line, column, enable; per value: TripleMAC,
 // coefficient, response); each determinant row buffer a block row of records. DSP48E:
 // HessianCalc's three products per determinant (Dxx Dyy, w Dxy, (w Dxy)^2), pipelined at one
@@ -33,7 +33,9 @@ BlockResources fhg_block(const Config& c) {
     const fhg::Sequence& seq = fhg::cached_sequence(p.sequence);
     const auto& s = p.sequence;
     const unsigned integral_bits = 32;  // an integral value travels and is kept as a 32-bit word (iig.sum_bits of it used)
-    const unsigned line = s.line_banks * ramb36_for(ceil_div(p.max_width, s.line_banks), integral_bits);
+    const fhg::LineFifoShape shape = fhg::line_fifo_shape(s.line_fifo);
+    const unsigned line = shape.banks * (shape.aligned_pairs ? ramb36_for(ceil_div(p.max_width, 2), 2 * integral_bits)
+                                                             : ramb36_for(ceil_div(p.max_width, shape.banks), integral_bits));
     const unsigned fifo = s.fifo_lines * line;
     const unsigned maxima = ramb36_for(p.maxima_fifo_depth, 32);
     const unsigned control_bits = s.read_buses * (log2_ceil(s.fifo_lines) + 6 + 1) +
@@ -49,9 +51,9 @@ BlockResources fhg_block(const Config& c) {
     const double luts = s.triple_macs * 4 * acc + 6 * r + 26 * det + 400;
     const double ffs = s.triple_macs * 6 * acc + 8 * r + 27 * det + 400;
     return {"fhg", double(fifo + maxima + sequence + rows), double(dsp), luts, ffs,
-            fmt::format("line FIFO {} x {} RAMB36, maxima FIFO {}, sequence {} ({} cycles x {} bit), determinant rows {} x {}; "
+            fmt::format("line FIFO {} x {} RAMB36 ({}), maxima FIFO {}, sequence {} ({} cycles x {} bit), determinant rows {} x {}; "
                         "DSP48E for Dxx*Dyy, w*Dxy and (w*Dxy)^2 at {} bit",
-                        s.fifo_lines, line, maxima, sequence, seq.interval, control_bits, p.det_row_buffers,
+                        s.fifo_lines, line, fhg::line_fifo_name(s.line_fifo), maxima, sequence, seq.interval, control_bits, p.det_row_buffers,
                         ramb36_for(ceil_div(p.max_width, 2), record_bits), r)};
 }
 

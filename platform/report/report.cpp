@@ -6,6 +6,7 @@
 #include <fstream>
 #include <stdexcept>
 
+#include "platform/correlation/correlation.h"
 #include "platform/report/statistics_json.h"
 
 namespace surfvp {
@@ -61,18 +62,23 @@ std::string memory_section(const nlohmann::ordered_json& mem, double seconds, do
 }
 
 // Per resource: its frame period, busy, each wait, idle, and what it alone would allow.
-std::string time_table(const nlohmann::ordered_json& table, bool budget) {
-    std::string md = "\nWhere each resource's frame goes (ms; an accelerator pair's frame is the frames it takes, "
-                     "pairs x the frame period):\n\n| resource | period | busy | waiting | idle | busy share | alone | " +
-                     std::string(budget ? "slack |\n|---|---:|---:|---|---:|---:|---:|---:|\n" : "\n|---|---:|---:|---|---:|---:|---:|\n");
+std::string time_table(const nlohmann::ordered_json& table, const nlohmann::ordered_json& periods, bool budget) {
+    std::string md = fmt::format(
+        "\nWhere each resource's frame goes, in ms per frame over the whole run: busy (its own work) + each wait + idle = "
+        "its period, the simulated time per frame ({:.2f} ms, filling and draining the pipeline included; an accelerator "
+        "pair's is the frames it takes, pairs x that). Its load is its busy time against the steady-state period "
+        "({:.2f} ms, 1 / frames per second); what it alone would allow is 1 / its busy time per frame.\n\n"
+        "| resource | period | busy | waiting | idle | busy share | load | alone | {}",
+        periods["run"].get<double>(), periods["steady"].get<double>(),
+        budget ? "slack |\n|---|---:|---:|---|---:|---:|---:|---:|---:|\n" : "\n|---|---:|---:|---|---:|---:|---:|---:|\n");
     for (const auto& [name, row] : table.items()) {
         std::string waits;
         for (const auto& [cause, ms] : row["waits_ms"].items())
             if (ms.get<double>() >= 0.005) waits += fmt::format("{}{} {:.2f}", waits.empty() ? "" : "; ", cause, ms.get<double>());
         const std::string alone = row["alone_fps"].is_null() ? "-" : fmt::format("{:.2f} frames/s", row["alone_fps"].get<double>());
-        md += fmt::format("| {} | {:.2f} | {:.2f} | {} | {:.2f} | {} | {} |", name, row["period_ms"].get<double>(),
+        md += fmt::format("| {} | {:.2f} | {:.2f} | {} | {:.2f} | {} | {} | {} |", name, row["period_ms"].get<double>(),
                           row["busy_ms"].get<double>(), waits.empty() ? "-" : waits, row["idle_ms"].get<double>(),
-                          percent(row["busy_share"]), alone);
+                          percent(row["busy_share"]), percent(row["load"]), alone);
         if (budget) md += row.contains("slack") ? fmt::format(" {:+.1f} % |", 100 * row["slack"].get<double>()) : " - |";
         md += "\n";
     }
@@ -126,7 +132,7 @@ std::string frames_section(const nlohmann::ordered_json& r) {
         md += fmt::format("| limited by | **{}** ({}) |\n", r["limit"]["resource"].get<std::string>(),
                           r["limit"]["cause"].get<std::string>());
         md += fmt::format("\n**What limits the frame rate:** {}.\n", r["limit"]["reason"].get<std::string>());
-        md += time_table(r["time_per_frame"], !r["budget"].is_null());
+        md += time_table(r["time_per_frame"], r["time_per_frame_period_ms"], !r["budget"].is_null());
     }
     md += "\nMean phase times (integral image and determinants: from the task's hardware start, in parallel; "
           "descriptors: from the determinants' end to the last descriptor):\n\n| phase | ms |\n|---|---:|\n";
@@ -215,12 +221,17 @@ std::string accelerators_section(const nlohmann::ordered_json& r) {
     if (r.contains("fhg") && r["fhg"].contains("schedules")) {
         const auto& f = r["fhg"];
         const auto& sc = f["schedules"];
+        const auto& basic = sc["basic"];
         md += fmt::format(
-            "\n## SSA FHG\n\n**{} cycles per determinant block** (limited by the {}; schedule `{}`: basic {}, improved {}, "
-            "optimal bound {} by {}). Busy {}: computing {}, waiting for integral lines {}, for the determinant writer {}. "
+            "\n## SSA FHG\n\n**{} cycles per determinant block** (limited by the {}; schedule `{}`, line FIFO `{}`: basic "
+            "{}, improved {}). The basic script is {:+.1f} % over the paper's optimal state (its note 4: the read buses busy "
+            "every cycle with the {} words it carries, {} cycles) and {:+.1f} % over the structural bound ({} cycles, set by "
+            "{}). Holding frames {}: computing (busy) {}, waiting for integral lines {}, for the determinant writer {}. "
             "Line FIFO high-water {} lines; maxima FIFO high-water {} words; {} candidates, {} dropped; {} errors.\n",
             f["cycles_per_block"].get<unsigned>(), f["block_limit"].get<std::string>(), sc["scheduler"].get<std::string>(),
-            sc["basic"]["cycles_per_block"].get<unsigned>(), sc["improved"]["cycles_per_block"].get<unsigned>(),
+            sc["machine"]["line_fifo"].get<std::string>(), basic["cycles_per_block"].get<unsigned>(),
+            sc["improved"]["cycles_per_block"].get<unsigned>(), 100 * basic["idle_bus_overhead"].get<double>(),
+            basic["words"].get<int>(), basic["busy_bus_cycles"].get<int>(), 100 * basic["overhead"].get<double>(),
             sc["optimal"]["cycles_per_block"].get<unsigned>(), sc["optimal"]["limit"].get<std::string>(), ms(f["busy_s"]),
             ms(f["computing_s"]), ms(f["waiting_for_lines_s"]), ms(f["waiting_for_writer_s"]),
             f["line_fifo_high_water"].get<uint64_t>(), f["maxima_fifo_high_water"].get<uint64_t>(),
@@ -229,7 +240,7 @@ std::string accelerators_section(const nlohmann::ordered_json& r) {
     if (r.contains("iig") && r["iig"].contains("computing_s")) {
         const auto& i = r["iig"];
         md += fmt::format(
-            "\n## SSA IIG\n\nBusy {}: computing {}, waiting for the image {}, blocked by its integral write {}, by PixelBus "
+            "\n## SSA IIG\n\nHolding frames {}: computing (busy) {}, waiting for the image {}, blocked by its integral write {}, by PixelBus "
             "back-pressure {} (its sender stalled {}); {} errors.\n",
             ms(i["busy_s"]), ms(i["computing_s"]), ms(i["waiting_for_image_s"]), ms(i["blocked_by_write_s"]),
             ms(i["blocked_by_pixelbus_s"]), ms(i["send_stalled_s"]), i["errors"].get<uint64_t>());
@@ -447,6 +458,7 @@ std::string report_markdown(const nlohmann::ordered_json& r) {
         md += fmt::format("| {} | {} | {} |\n", c["name"].get<std::string>(), c["passed"].get<bool>() ? "pass" : "FAIL",
                           c["detail"].get<std::string>());
     if (r.contains("verdict")) md += verdict_section(r["verdict"]);
+    if (r.contains("correlation")) md += correlation_markdown(r["correlation"]);
     if (r.contains("faults")) md += faults_section(r["faults"]);
     if (r.contains("throughput_fps")) md += frames_section(r);
     md += accelerators_section(r);

@@ -5,6 +5,8 @@
 #include <fmt/format.h>
 #include <vector>
 
+#include "platform/correlation/correlation.h"
+
 namespace surfvp {
 
 std::string xml_escape(const std::string& text) {
@@ -252,6 +254,7 @@ std::string report_html(const Json& r, const std::string& first_frame_svg) {
     std::string body = fmt::format("<h1>surfvp run: {}</h1><p>{}</p><p class=\"verdict\"><b>{}</b></p>", xml_escape(name),
                                    xml_escape(r["scenario"]["description"].get<std::string>()), xml_escape(verdict));
     body += summary(r);
+    if (r.contains("correlation")) body += correlation_html(r["correlation"]);
     auto section = [&](const std::string& svg) {
         if (!svg.empty()) body += "<div class=\"chart\">" + svg + "</div>";
     };

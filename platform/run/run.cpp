@@ -3,6 +3,7 @@
 #include "platform/compare/compare.h"
 #include "platform/cost/fpga_resources.h"
 #include "platform/cost/power.h"
+#include "platform/correlation/correlation.h"
 
 #include <cctype>
 #include <chrono>
@@ -144,6 +145,7 @@ nlohmann::ordered_json build_report(const Config& config, Soc& soc, const Outcom
     r["fpga_resources"] = resources_json(resources);
     r["power"] = power_estimate(config, r, resources);
     r["power"]["band"] = cost_band(config, r);
+    if (config.choice("run.workload") == "surf") r["correlation"] = correlation_json(r);
     r["workload"] = soc.workload().report();
     r["outputs"] = outputs;
     return r;

@@ -129,6 +129,11 @@ void add_surf(std::vector<ParamSpec>& t) {
                  "[A] XC5VFX70T: 128 (recalled from DS100; PLATFORM_FACTS)"});
     t.push_back({"fpga.slices", ParamKind::count, "11200", 1, 10000000, {}, "Logic slices the device has (4 LUT6 and 4 flip-flops each)",
                  "[A] XC5VFX70T: 11,200 (recalled from DS100; PLATFORM_FACTS); 4 LUTs and 4 FFs a slice (UG190, recalled)"});
+    t.push_back({"fpga.bram_fmax", ParamKind::frequency, "450 MHz", 1 * unit::MHz, 2000 * unit::MHz, {},
+                 "Highest clock the device's block RAM runs at (a line FIFO clocked at a multiple of fhg.clock must stay "
+                 "under it)",
+                 "[A] Virtex-5 block RAM in the slowest (-1) speed grade: 450 MHz (data sheet DS202, recalled, not "
+                 "retrieved); faster grades are higher"});
     t.push_back({"fpga.fpu", ParamKind::choice, "double", 0, 0, {"double", "single"},
                  "The APU FPU's precision, for its resources (its latencies are the cpu.* parameters)",
                  "[A] PLATFORM_FACTS: double (the paper says only floating-point co-processor); DS693: 13 DSP48E and 4950 "
@@ -198,6 +203,7 @@ constexpr BandEntry kBands[] = {
     {"fpga.ramb36", "148", "148", "the FX70T's count, recalled, not retrieved"},
     {"fpga.dsp48e", "128", "128", "the FX70T's count, recalled, not retrieved"},
     {"fpga.slices", "11200", "11200", "the FX70T's count, recalled, not retrieved"},
+    {"fpga.bram_fmax", "450 MHz", "550 MHz", "the slowest to the fastest speed grade (DS202, recalled)"},
     {"fpga.fpu", "single", "double", "a single-precision FPU if the software's floats allow it"},
     {"fpga.ip_interface_luts", "400", "1200", "lighter or heavier IPIF options"},
     {"fpga.ip_interface_ffs", "500", "1500", "lighter or heavier IPIF options"},

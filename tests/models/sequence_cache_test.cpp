@@ -70,7 +70,7 @@ TEST(SequenceCache, KeyNamesEveryParameterAndTheGenerator) {
              [](SequenceParams& q) { q.read_buses = 6; }, [](SequenceParams& q) { q.triple_macs = 17; },
              [](SequenceParams& q) { q.fifo_lines = 40; }, [](SequenceParams& q) { q.x3_cycles = 1; },
              [](SequenceParams& q) { q.bus_word = BusWord::pair; }, [](SequenceParams& q) { q.reuse = false; },
-             [](SequenceParams& q) { q.line_ports = 1; }, [](SequenceParams& q) { q.line_banks = 2; },
+             [](SequenceParams& q) { q.line_fifo = LineFifo::tdp; }, [](SequenceParams& q) { q.line_fifo = LineFifo::banked; },
              [](SequenceParams& q) { q.scheduler = Scheduler::improved; }, [](SequenceParams& q) { q.attempts = 3; }}) {
         SequenceParams q = p;
         change(q);

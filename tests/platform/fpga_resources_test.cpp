@@ -48,7 +48,11 @@ TEST(FpgaResources, TheDefaultChipFitsTheFx70t) {
 TEST(FpgaResources, StructureMovesTheEstimate) {
     const double base = fpga_resources(config({})).total.ramb36;
     EXPECT_EQ(fpga_resources(config({"fhg.fifo_lines=64"})).total.ramb36, base + 8);
-    EXPECT_EQ(fpga_resources(config({"fhg.line_banks=2"})).total.ramb36, base + 56);
+    // Two RAMB36 a line for the banked FIFO; one for the others (1K x 32, or 512 x 72 holding 1024 values).
+    EXPECT_EQ(fpga_resources(config({"fhg.line_fifo=banked"})).total.ramb36, base + 56);
+    EXPECT_EQ(fpga_resources(config({"fhg.line_fifo=tdp"})).total.ramb36, base);
+    EXPECT_EQ(fpga_resources(config({"fhg.line_fifo=sdp72", "fhg.bus_word=scalar"})).total.ramb36 -
+                  fpga_resources(config({"fhg.bus_word=scalar"})).total.ramb36, 0);
     EXPECT_EQ(fpga_resources(config({"fhg.response_bits=24 bit"})).total.dsp48e, 2 + 1 + 2 + 13);
     EXPECT_EQ(fpga_resources(config({"fpga.fpu=single"})).total.dsp48e, 3 + 3);
     const FpgaResources two = fpga_resources(config({"soc.accelerators=2"}));

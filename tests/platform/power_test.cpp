@@ -33,7 +33,7 @@ TEST(Power, EachBlockIsItsActivityTimesItsPrice) {
     // determinants of 3 products per 60-cycle block.
     const double cycles = 0.25 * 100e6;
     const double fhg_cells = res.blocks[1].luts + res.blocks[1].ffs;
-    EXPECT_NEAR(b["fhg"]["watts"].get<double>(), fhg_cells * 0.05e-12 * cycles + cycles * 8 * 20e-12 + cycles / 60 * 18 * 3 * 10e-12,
+    EXPECT_NEAR(b["fhg"]["watts"].get<double>(), fhg_cells * 0.05e-12 * cycles + cycles * 8 * 20e-12 + cycles / 53 * 18 * 3 * 10e-12,
                 1e-9);
     double sum = 0;
     for (const auto& [name, block] : b.items()) sum += block["watts"].get<double>();

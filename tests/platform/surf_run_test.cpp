@@ -75,7 +75,7 @@ TEST(SurfRun, TwoTasksInFlightOverlapHardwareAndSoftware) {
     // Pipelined, the rate is the busiest resource's.
     double busiest = 0;
     for (const auto& [name, row] : two["time_per_frame"].items())
-        if (name != "accelerator pair") busiest = std::max(busiest, row["busy_share"].get<double>());
+        if (name != "accelerator pair") busiest = std::max(busiest, row["load"].get<double>());
     EXPECT_GT(busiest, 0.97) << two["time_per_frame"];
 }
 
@@ -85,7 +85,7 @@ TEST(SurfRun, LimitAtTheDefaultsIsTheBusyFhg) {
     const auto r = run("limit_default", " --set surf.frames=4 --set budget.fps=0", 0);
     EXPECT_EQ(r["limit"]["resource"], "fhg") << r["limit"];
     EXPECT_EQ(r["limit"]["cause"], "busy");
-    EXPECT_GT(r["time_per_frame"]["fhg"]["busy_share"].get<double>(), 0.99);
+    EXPECT_GT(r["time_per_frame"]["fhg"]["load"].get<double>(), 0.99);
 }
 
 TEST(SurfRun, LimitWithAFiftyTwoLineFifoIsLineFifoStarvation) {
@@ -94,14 +94,37 @@ TEST(SurfRun, LimitWithAFiftyTwoLineFifoIsLineFifoStarvation) {
     EXPECT_NE(r["limit"]["reason"].get<std::string>().find("starvation"), std::string::npos);
     const auto& fhg = r["time_per_frame"]["fhg"];
     EXPECT_GT(fhg["waits_ms"]["line FIFO empty"].get<double>(), 5.0);  // two lines' wait per block row
-    EXPECT_LT(fhg["busy_share"].get<double>(), 0.95);                  // the FHG alone is not the reason
+    EXPECT_LT(fhg["load"].get<double>(), 0.95);                        // the FHG alone is not the reason
 }
 
 TEST(SurfRun, LimitWithTwoPairsAndTwoTasksIsTheTaskLimit) {
     const auto r = run("limit_tasks", " --set surf.frames=6 --set budget.fps=0 --set soc.accelerators=2 --set surf.tasks_in_flight=2", 0);
     EXPECT_EQ(r["limit"]["resource"], "task slots") << r["limit"];
     EXPECT_GT(r["time_per_frame"]["accelerator pair"]["waits_ms"]["free task slot"].get<double>(), 10.0);
-    EXPECT_LT(r["time_per_frame"]["cpu"]["busy_share"].get<double>(), 0.95);  // not the CPU: it still waits for interrupts
+    EXPECT_LT(r["time_per_frame"]["cpu"]["load"].get<double>(), 0.95);  // not the CPU: it still waits for interrupts
+}
+
+// Every resource's frame adds up: busy + each wait + idle = its period, with no negative idle
+// (the whole run's time per frame), at the defaults, under bus contention and with two pairs.
+TEST(SurfRun, EveryResourcesFrameAddsUpToItsPeriod) {
+    const std::string contention = " --set soc.accelerators=2 --set surf.tasks_in_flight=3 --set 'plb2.width=32 bit'"
+                                   " --set 'memory.clock=100 MHz' --set 'memory.width=32 bit'";
+    for (const auto& [name, sets] : std::vector<std::pair<std::string, std::string>>{
+             {"adds_default", ""}, {"adds_contention", contention}, {"adds_two_pairs", " --set soc.accelerators=2 --set surf.tasks_in_flight=2"}}) {
+        const auto r = run(name, " --set surf.frames=5 --set budget.fps=0" + sets, 0);
+        const double run_period = r["sim_time_s"].get<double>() * 1e3 / r["frames_done"].get<double>();
+        const double pairs = r["iig"].is_array() ? double(r["iig"].size()) : 1.0;
+        ASSERT_TRUE(r.contains("time_per_frame")) << name;
+        for (const auto& [resource, row] : r["time_per_frame"].items()) {
+            double sum = row["busy_ms"].get<double>() + row["idle_ms"].get<double>();
+            for (const auto& [cause, ms] : row["waits_ms"].items()) sum += ms.get<double>();
+            const bool per_pair = resource == "iig" || resource == "fhg" || resource == "accelerator pair";
+            EXPECT_NEAR(row["period_ms"].get<double>(), run_period * (per_pair ? pairs : 1.0), 1e-9) << name << " " << resource;
+            EXPECT_NEAR(sum, row["period_ms"].get<double>(), 1e-6) << name << " " << resource << ": " << row;
+            EXPECT_GE(row["idle_ms"].get<double>(), 0.0) << name << " " << resource;
+            EXPECT_NEAR(row["busy_share"].get<double>(), row["busy_ms"].get<double>() / row["period_ms"].get<double>(), 1e-12);
+        }
+    }
 }
 
 TEST(SurfRun, LimitWithASlowIigIsTheIig) {
