@@ -18,6 +18,17 @@ namespace surfvp {
 
 enum class ParamKind { frequency, duration, bits, bytes, cycles, beats, count, real, choice, address, text };
 
+// What a banded parameter is to a review. Only the unknowns are the verdict's doubt; the others
+// are what a review can change, shown apart.
+enum class ParamRole {
+    unknown,   // what the published chip had and the paper does not say: an assumption with a band
+    design,    // what an RTL or software change sets, pinned for the published chip by its figures
+    workload,  // what the chip is asked to do: keypoints per frame, the threshold
+};
+inline const char* role_name(ParamRole role) {
+    return role == ParamRole::design ? "design" : role == ParamRole::workload ? "workload" : "unknown";
+}
+
 struct ParamSpec {
     std::string key;
     ParamKind kind;
@@ -32,6 +43,7 @@ struct ParamSpec {
     struct Band {
         std::string low, high, why;
     } band{};
+    ParamRole role = ParamRole::unknown;
 };
 
 // Range bounds in base units, for declarations.

@@ -145,56 +145,122 @@ std::string fps_or_dash(const nlohmann::ordered_json& side) {
     return side["fps"].is_null() ? "(current)" : fmt::format("{:.2f}", side["fps"].get<double>());
 }
 
+// A whole-run check: met; relieved, with the rate now held below the budget by the next limit;
+// for a resource with headroom, the rate its step started from kept; or missed.
+std::string check_outcome(const nlohmann::ordered_json& c) {
+    if (!c["met"].get<bool>()) return "MISSED";
+    if (c.value("budget_met", true)) return "met";
+    if (c.value("goal", "") == "keep") return "the rate kept within 0.1 %";
+    return fmt::format("relieved (now held below the budget by {})", c["limit"].is_null() ? "?" : c["limit"].get<std::string>());
+}
+
+// One break-even search as a table row: "up to" or "down to" the value, its rate there, its
+// whole-run check.
+std::string break_even_row(const nlohmann::ordered_json& b) {
+    if (b["value"].is_null())
+        return fmt::format("| `{}` | {} | none | - | {} |\n", b["parameter"].get<std::string>(), b["default"].get<std::string>(),
+                           b["note"].get<std::string>());
+    const auto& c = b["check"];
+    const std::string check = c.is_null() ? "-" : c.contains("error") ? "failed: " + c["error"].get<std::string>()
+                                                : fmt::format("{:.3f} frames/s over {} frames: {}", c["fps"].get<double>(),
+                                                              c["frames"].get<uint64_t>(), check_outcome(c));
+    return fmt::format("| `{}` | {} | **{} {}** | {:.3f} | {} |\n", b["parameter"].get<std::string>(), b["default"].get<std::string>(),
+                       b.value("searched", "up") + " to", b["value"].get<std::string>(), b["fps"].get<double>(), check);
+}
+
+// Each limit in turn: what limits, its headroom, what was relieved to reach it, its break-even.
+std::string chain_section(const nlohmann::ordered_json& chain) {
+    std::string md = "\nThe chain of limits: each limit's break-even (the value that just meets the budget, found by "
+                     "re-simulation and checked by a run of the whole scenario), then the limit relieved at it and the next "
+                     "one named with its headroom (the frame rate it alone would allow against the budget).\n";
+    for (size_t k = 0; k < chain.size(); ++k) {
+        const auto& step = chain[k];
+        std::vector<std::string> relieved;
+        for (const auto& r : step["relieved"])
+            relieved.push_back(fmt::format("`{}` = {}", r["parameter"].get<std::string>(), r["value"].get<std::string>()));
+        const std::string headroom = step["headroom"].is_null()
+                                         ? ""
+                                         : fmt::format(", alone {:.2f} frames/s, headroom {:+.1f} %", step["alone_fps"].get<double>(),
+                                                       100 * step["headroom"].get<double>());
+        md += fmt::format("\n{}. **{}** ({}{}){}:\n\n| parameter | now | break-even | frames/s there | check |\n|---|---|---|---:|---|\n",
+                          k + 1, step["resource"].get<std::string>(), step["cause"].get<std::string>(), headroom,
+                          relieved.empty() ? "" : fmt::format(", with {}", fmt::join(relieved, " and ")));
+        if (step["break_even"].empty()) md += "| - | - | no parameter of this cause to search | - | - |\n";
+        for (const auto& b : step["break_even"]) md += break_even_row(b);
+    }
+    return md;
+}
+
+// One-at-a-time rows (the band's unknowns, or what a review can change): what flips the
+// verdict, what the platform refused, then the twelve largest effects.
+std::string band_rows(const nlohmann::ordered_json& band, const char* what) {
+    std::string md;
+    if (!band["flipping"].empty())
+        md += fmt::format("Values that flip the verdict: {}.\n", fmt::join(band["flipping"].get<std::vector<std::string>>(), ", "));
+    if (!band["failed_points"].empty())
+        md += fmt::format("Values the platform refused (see report.json): {}.\n",
+                          fmt::join(band["failed_points"].get<std::vector<std::string>>(), ", "));
+    md += fmt::format("\n| {} | now | low | frames/s | high | frames/s | effect |\n|---|---|---|---:|---|---:|---:|\n", what);
+    size_t shown = 0;
+    for (const auto& a : band["axes"]) {
+        if (shown++ == 12) break;
+        md += fmt::format("| `{}` | {} | {} | {} | {} | {} | {:.2f} |\n", a["parameter"].get<std::string>(),
+                          a["value"].get<std::string>(), a["low"]["value"].get<std::string>(), fps_or_dash(a["low"]),
+                          a["high"]["value"].get<std::string>(), fps_or_dash(a["high"]), a["effect_fps"].get<double>());
+    }
+    if (band["axes"].size() > 12) md += fmt::format("\n({} more with smaller effects in report.json.)\n", band["axes"].size() - 12);
+    return md;
+}
+
+// The unknowns jointly: the frame rate's percentiles, the chance of meeting the budget, and
+// which unknowns its variance comes from.
+std::string doubt_section(const nlohmann::ordered_json& d) {
+    if (!d.contains("fps"))
+        return fmt::format("\nThe joint sample of the unknowns gave no rate ({} of {} points failed; see report.json).\n",
+                           d["failed_points"].size(), d["points"].get<size_t>());
+    const auto& f = d["fps"];
+    std::string md = fmt::format(
+        "\nThe doubt, jointly: the {} unknowns about the chip sampled together over their bands ({} points, a Latin "
+        "hypercube, {}-frame runs): **{:.2f} frames/s at the 5th percentile, {:.2f} at the median, {:.2f} at the 95th** "
+        "(all points {:.2f} to {:.2f}){}.{}\n",
+        d["unknowns"].get<size_t>(), d["points"].get<size_t>(), d["frames"].get<unsigned>(), f["p5"].get<double>(),
+        f["p50"].get<double>(), f["p95"].get<double>(), f["min"].get<double>(), f["max"].get<double>(),
+        d.contains("probability_met") ? fmt::format("; **the budget is met with probability {:.0f} %**",
+                                                     100 * d["probability_met"].get<double>())
+                                      : "",
+        d["failed_points"].empty() ? "" : fmt::format(" {} points failed (report.json).", d["failed_points"].size()));
+    md += fmt::format("\nWhich unknowns the frame rate's variance comes from (Sobol indices of a surrogate fitted to the points, "
+                      "R^2 = {:.3f}: {}): first-order is the share of the variance an unknown explains alone, total adds "
+                      "its interactions with the others.\n\n| unknown | first-order | total |\n|---|---:|---:|\n",
+                      d["surrogate"]["r2"].get<double>(), d["surrogate"]["method"].get<std::string>());
+    size_t shown = 0;
+    for (const auto& s : d["sensitivity"]) {
+        if (shown++ == 8) break;
+        md += fmt::format("| `{}` | {:.3f} | {:.3f} |\n", s["parameter"].get<std::string>(), s["first_order"].get<double>(),
+                          s["total"].get<double>());
+    }
+    return md;
+}
+
 // The verdict and its doubt: the statement, the break-even values, the assumption band.
 std::string verdict_section(const nlohmann::ordered_json& v) {
     std::string md = "\n## Verdict\n";  // its statement heads the report
     if (v.contains("limit")) md += fmt::format("\nLimited by {}: {}.\n", v["limit"]["resource"].get<std::string>(),
                                                v["limit"]["reason"].get<std::string>());
-    if (v.contains("break_even")) {
-        md += "\nBreak-even (the value that just meets the budget, found by re-simulation; checked by one run of the "
-              "whole scenario):\n\n| parameter | now | break-even | frames/s there | check |\n|---|---|---|---:|---|\n";
-        for (const auto& b : v["break_even"]) {
-            if (b["value"].is_null()) {
-                md += fmt::format("| `{}` | {} | none | - | {} |\n", b["parameter"].get<std::string>(),
-                                  b["default"].get<std::string>(), b["note"].get<std::string>());
-                continue;
-            }
-            const auto& c = b["check"];
-            const std::string check = c.is_null() ? "-" : c.contains("error") ? "failed: " + c["error"].get<std::string>()
-                                                        : fmt::format("{:.3f} frames/s over {} frames: {}", c["fps"].get<double>(),
-                                                                      c["frames"].get<uint64_t>(), c["met"].get<bool>() ? "met" : "MISSED");
-            md += fmt::format("| `{}` | {} | **{}** | {:.3f} | {} |\n", b["parameter"].get<std::string>(),
-                              b["default"].get<std::string>(), b["value"].get<std::string>(), b["fps"].get<double>(), check);
-        }
-    }
+    if (v.contains("chain")) md += chain_section(v["chain"]);
+    if (v.contains("doubt")) md += doubt_section(v["doubt"]);
     if (v.contains("band")) {
         const auto& band = v["band"];
-        md += fmt::format("\nAssumption band: {} assumptions, each at its low and its high, one at a time: **{:.2f} to "
-                          "{:.2f} frames/s** (the run's rate plus each change's effect, measured in {}-frame runs against "
-                          "a reference of {:.3f} frames/s).\n",
+        md += fmt::format("\nThe unknowns one at a time ({} of them, each at its low and its high): **{:.2f} to {:.2f} frames/s** "
+                          "(the run's rate plus each change's effect, measured in {}-frame runs against a reference of {:.3f} "
+                          "frames/s).\n",
                           band["axes"].size(), band["low_fps"].get<double>(), band["high_fps"].get<double>(),
                           band["frames"].get<unsigned>(), band["reference_fps"].get<double>());
-        if (!band["flipping"].empty()) {
-            std::vector<std::string> names;
-            for (const auto& n : band["flipping"]) names.push_back(n.get<std::string>());
-            md += fmt::format("Values that flip the verdict: {}.\n", fmt::join(names, ", "));
-        }
-        if (!band["failed_points"].empty()) {
-            std::vector<std::string> names;
-            for (const auto& n : band["failed_points"]) names.push_back(n.get<std::string>());
-            md += fmt::format("Values the platform refused (see report.json): {}.\n", fmt::join(names, ", "));
-        }
-        md += "\n![tornado](tornado.svg)\n\n| assumption | now | low | frames/s | high | frames/s | effect |\n"
-              "|---|---|---|---:|---|---:|---:|\n";
-        size_t shown = 0;
-        for (const auto& a : band["axes"]) {
-            if (shown++ == 12) break;
-            md += fmt::format("| `{}` | {} | {} | {} | {} | {} | {:.2f} |\n", a["parameter"].get<std::string>(),
-                              a["value"].get<std::string>(), a["low"]["value"].get<std::string>(), fps_or_dash(a["low"]),
-                              a["high"]["value"].get<std::string>(), fps_or_dash(a["high"]), a["effect_fps"].get<double>());
-        }
-        if (band["axes"].size() > 12) md += fmt::format("\n({} more with smaller effects in report.json.)\n", band["axes"].size() - 12);
+        md += band_rows(band, "unknown") + "\n![tornado](tornado.svg)\n";
     }
+    if (v.contains("changes") && !v["changes"]["axes"].empty())
+        md += "\nWhat a review can change (design choices and the workload, each at its low and its high, one at a time; "
+              "not part of the doubt):\n" + band_rows(v["changes"], "setting");
     if (v.contains("software")) {
         md += "\nSoftware settings the CPU's time rests on (each alone, the rest as the scenario; CPU time from the "
               "calibrated PPC440 cost model, sw/cpu_cost/calibration.md):\n\n"

@@ -85,6 +85,8 @@ std::vector<Ineffective> ineffective_parameters(const Config& c) {
                                  c.count("surf.target_keypoints"));
         else if ((key == "verdict.frames" || key == "verdict.jobs") && !verdict)
             reason = "verdict.band, verdict.break_even and verdict.software are all off";
+        else if (key == "verdict.samples" && c.choice("verdict.band") != "on")
+            reason = "verdict.band is off: the joint sample is part of the band";
         else if (key == "verdict.break_even" && e.value == "on" && c.real("budget.fps") <= 0)
             reason = "budget.fps is 0: there is no budget to break even with";
         else if (key == "verdict.frames" && c.count("verdict.frames") > c.count("surf.frames"))

@@ -103,8 +103,10 @@ void add_surf(std::vector<ParamSpec>& t) {
                  "re-simulation, and check it with one more run of the whole scenario",
                  "[-] analysis (DESIGN principle 7)"});
     t.push_back({"verdict.band", ParamKind::choice, "off", 0, 0, {"on", "off"},
-                 "Re-simulate with every banded parameter at its low and at its high, one at a time: the frames/s range, "
-                 "the assumptions that flip the verdict, tornado.svg",
+                 "Re-simulate the unknowns about the chip jointly (verdict.samples points over their bands: the frames/s "
+                 "percentiles, the probability of meeting the budget, each unknown's sensitivity) and each at its low and "
+                 "its high (tornado.svg); and each design choice and workload setting with a band, one at a time (what a "
+                 "review can change)",
                  "[-] analysis (DESIGN principle 7)"});
     t.push_back({"verdict.software", ParamKind::choice, "off", 0, 0, {"on", "off"},
                  "Re-simulate with the software settings that move the CPU's time (surf.haar, surf.upright, "
@@ -114,6 +116,9 @@ void add_surf(std::vector<ParamSpec>& t) {
                  "Frames each of the verdict's re-simulations runs (at least soc.accelerators + 1, at most surf.frames)",
                  "[-] the pipeline is in steady state once each pair has done its first frame (every frame alike in the "
                  "budget scenario: the 2-frame rate equals the 20-frame rate to 0.01 %)"});
+    t.push_back({"verdict.samples", ParamKind::count, "200", 0, 100000, {},
+                 "Points of the joint sample of the unknowns (verdict.band; 0: none, the one-at-a-time band only)",
+                 "[-] analysis: 200 points give the 5th and 95th percentiles to about +-2 points of rank"});
     t.push_back({"verdict.jobs", ParamKind::count, "0", 0, 256, {},
                  "Re-simulations run at once (0: one per core); no figure depends on it",
                  "[-] simulation setting"});
@@ -192,19 +197,20 @@ struct BandEntry {
     const char* low;
     const char* high;
     const char* why;
+    ParamRole role = ParamRole::unknown;
 };
 constexpr BandEntry kBands[] = {
     {"cpu.memory_path", "plb1", "mci", "if the DDR were on PLB1 rather than the PPC440's MCI"},
     {"cpu.dcache_replacement", "round_robin", "lru", "the PPC440 itself is round robin per set"},
-    {"surf.target_keypoints", "80", "140", "~100 descriptors per image (TePRA 2009), ~140 (MVA 2014)"},
-    {"surf.threshold", "400", "600", "used only when surf.target_keypoints is 0"},
-    {"surf.haar", "exact", "rounded", "exact sub-pixel wavelets like the float reference"},
-    {"surf.fifo_irq_level", "64", "512", "the driver drains the maxima FIFO earlier or later"},
+    {"surf.target_keypoints", "80", "140", "~100 descriptors per image (TePRA 2009), ~140 (MVA 2014)", ParamRole::workload},
+    {"surf.threshold", "400", "600", "used only when surf.target_keypoints is 0", ParamRole::workload},
+    {"surf.haar", "exact", "rounded", "exact sub-pixel wavelets like the float reference", ParamRole::design},
+    {"surf.fifo_irq_level", "64", "512", "the driver drains the maxima FIFO earlier or later", ParamRole::design},
     {"fpga.ramb36", "148", "148", "the FX70T's count, recalled, not retrieved"},
     {"fpga.dsp48e", "128", "128", "the FX70T's count, recalled, not retrieved"},
     {"fpga.slices", "11200", "11200", "the FX70T's count, recalled, not retrieved"},
     {"fpga.bram_fmax", "450 MHz", "550 MHz", "the slowest to the fastest speed grade (DS202, recalled)"},
-    {"fpga.fpu", "single", "double", "a single-precision FPU if the software's floats allow it"},
+    {"fpga.fpu", "single", "double", "a single-precision FPU if the software's floats allow it", ParamRole::design},
     {"fpga.ip_interface_luts", "400", "1200", "lighter or heavier IPIF options"},
     {"fpga.ip_interface_ffs", "500", "1500", "lighter or heavier IPIF options"},
     {"fpga.infrastructure_luts", "4000", "9000", "MPMC ports and options"},
@@ -280,6 +286,7 @@ std::vector<ParamSpec> make_table() {
         auto it = std::find_if(t.begin(), t.end(), [&](const ParamSpec& p) { return p.key == b.key; });
         if (it == t.end()) throw std::logic_error(std::string("parameter band for an unknown parameter: ") + b.key);
         it->band = {b.low, b.high, b.why};
+        it->role = b.role;
     }
     return t;
 }
@@ -448,11 +455,15 @@ std::string parameters_markdown() {
                            p.description, p.source);
     }
     out += "\n## Assumption band\n\n"
-           "Every assumed value, and a few uncertain others, with a plausible low and high. The budget\n"
-           "verdict re-simulates with each at its low and at its high, one at a time (`verdict.band`).\n\n"
-           "| key | default | low | high | why |\n|---|---|---|---|---|\n";
+           "Every assumed value, and a few uncertain others, with a plausible low and high, and its role: an\n"
+           "**unknown** about the published chip (the verdict samples the unknowns jointly over their bands,\n"
+           "and re-simulates each at its low and its high for the tornado), a **design** choice an RTL or\n"
+           "software change sets, or the **workload**; the verdict shows design and workload apart, as what a\n"
+           "review can change (`verdict.band`).\n\n"
+           "| key | role | default | low | high | why |\n|---|---|---|---|---|---|\n";
     for (const ParamSpec* p : band_parameters())
-        out += fmt::format("| `{}` | `{}` | `{}` | `{}` | {} |\n", p->key, p->default_value, p->band.low, p->band.high, p->band.why);
+        out += fmt::format("| `{}` | {} | `{}` | `{}` | `{}` | {} |\n", p->key, role_name(p->role), p->default_value, p->band.low,
+                           p->band.high, p->band.why);
     return out;
 }
 

@@ -48,6 +48,13 @@ Json Resimulation::point_summary(const Json& r) {
     if (r.contains("time_per_frame") && r["time_per_frame"].contains("cpu")) {
         s["cpu_ms_per_frame"] = r["time_per_frame"]["cpu"]["busy_ms"];
         s["cpu_alone_fps"] = r["time_per_frame"]["cpu"]["alone_fps"];
+        s["cpu_fill_stall_ms"] = r["cpu"]["memory"]["fill_stall_s"].get<double>() / r["frames_done"].get<double>() * 1e3;
+    }
+    if (r.contains("time_per_frame")) {  // what each resource alone would allow (the verdict's chain and doubt)
+        Json alone = Json::object();
+        for (const auto& [name, row] : r["time_per_frame"].items())
+            if (!row["alone_fps"].is_null()) alone[name] = row["alone_fps"];
+        s["alone_fps"] = alone;
     }
     if (r.contains("failure")) s["failure"] = r["failure"];
     return s;

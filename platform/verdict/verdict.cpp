@@ -15,6 +15,8 @@
 #include "platform/sweep/resimulation.h"
 #include "platform/run/run.h"
 #include "platform/soc.h"
+#include "platform/verdict/doubt.h"
+#include "platform/verdict/limit_chain.h"
 #include "platform/verdict/tornado.h"
 
 namespace surfvp {
@@ -22,129 +24,8 @@ namespace {
 namespace fs = std::filesystem;
 using Json = nlohmann::ordered_json;
 
-// The parameter that moves the limiting resource's time, and how the frame rate follows it:
-// +1 rises with the value, -1 falls; `linear` when the resource's time is proportional to the
-// value (a clock's period, a count of cycles), which gives the search its first guess.
-struct Axis {
-    std::string key;
-    int direction;
-    bool linear;
-};
-
-// By the limit's cause: a busy block's own clock (and the FHG's cycles per block); a buffer
-// coupling its depth; a block waiting on something, the clock of what it waits on.
-std::vector<Axis> break_even_axes(const std::string& resource, const std::string& cause) {
-    if (cause == "busy") {
-        if (resource == "fhg") return {{"fhg.clock", +1, true}, {"fhg.cycles_per_block", -1, true}};
-        if (resource == "iig") return {{"iig.clock", +1, true}};
-        if (resource == "cpu") return {{"cpu.clock", +1, true}};
-        if (resource == "plb2 write" || resource == "plb2 read") return {{"plb2.clock", +1, true}};
-        if (resource == "plb1") return {{"plb1.clock", +1, true}};
-        if (resource == "mci") return {{"mci.clock", +1, true}};
-        if (resource == "ddr") return {{"memory.clock", +1, true}};
-        return {};
-    }
-    if (resource == "line fifo") return {{"fhg.fifo_lines", +1, false}};
-    if (resource == "task slots") return {{"surf.tasks_in_flight", +1, false}};
-    if (cause == "image DMA read" || cause == "integral DMA write" || cause == "determinant DMA write")
-        return {{"plb2.clock", +1, false}};
-    if (cause == "line FIFO empty") return {{"iig.clock", +1, false}};
-    if (cause == "PixelBus back-pressure") return {{"fhg.clock", +1, false}};
-    return {};
-}
-
-// A search value as a scenario writes it: a clock in MHz to the kHz (format_value would pick
-// the unit that makes it whole, "118353 kHz"), a count whole.
-std::string as_text(const ParamSpec& spec, double value) {
-    if (spec.kind == ParamKind::frequency) return fmt::format("{} MHz", std::round(value / 1e3) / 1e3);
-    return format_value(spec, std::round(value));
-}
-
-// The search for the value at which the frame rate just meets the budget: in u = direction x
-// value the frame rate rises, and the answer is the smallest u that meets it. A first guess
-// (the linear model, or one step), then steps that double until the answer is bracketed, then
-// bisection to 0.1 % of the value (a clock) or one step (a count). A value the platform
-// refuses counts as a miss.
-class BreakEven {
-public:
-    BreakEven(const Axis& axis, double start, double start_fps, double budget)
-        : axis_(axis), spec_(*find_parameter(axis.key)), budget_(budget), start_(start) {
-        integer_ = spec_.kind != ParamKind::frequency;
-        const double lowest = std::max(spec_.min, 1.0);  // fhg.cycles_per_block = 0 means "the sequence's"
-        u_min_ = axis.direction > 0 ? lowest : -spec_.max;
-        u_max_ = axis.direction > 0 ? spec_.max : -lowest;
-        double guess = start + (start_fps >= budget ? -axis.direction : axis.direction);
-        if (axis.linear && start_fps > 0)
-            guess = axis.direction > 0 ? start * budget / start_fps : start * start_fps / budget;
-        guess_ = clamp(axis.direction * (integer_ ? (axis.direction > 0 ? std::ceil(guess) : std::floor(guess)) : guess));
-        step_ = integer_ ? 1 : 0.01 * std::abs(guess_);
-    }
-
-    // The next value to simulate, or nothing when the search is over.
-    std::optional<double> next() {
-        if (++runs_ > kMaxRuns) return std::nullopt;
-        if (!lo_ && !hi_) return value(guess_);
-        if (lo_ && hi_) {
-            const double tolerance = integer_ ? 1 : 1e-3 * std::abs(*hi_);
-            if (*hi_ - *lo_ <= tolerance) return std::nullopt;
-            const double mid = integer_ ? std::floor((*lo_ + *hi_) / 2) : (*lo_ + *hi_) / 2;
-            return value(mid);
-        }
-        if (hi_) {  // meets: look lower
-            if (*hi_ <= u_min_) return std::nullopt;
-            const double u = clamp(*hi_ - step_);
-            step_ *= 2;
-            return value(u);
-        }
-        if (*lo_ >= u_max_) return std::nullopt;  // fails even at the range's end
-        const double u = clamp(*lo_ + step_);
-        step_ *= 2;
-        return value(u);
-    }
-
-    void record(double v, double fps) {  // fps < 0: the point failed
-        const double u = axis_.direction * v;
-        if (fps >= budget_) {
-            if (!hi_ || u < *hi_) hi_ = u, hi_fps_ = fps;
-        } else if (!lo_ || u > *lo_) {
-            lo_ = u;
-        }
-    }
-
-    std::optional<double> answer() const { return hi_ ? std::optional<double>(value(*hi_)) : std::nullopt; }
-    const Axis& axis() const { return axis_; }
-    const ParamSpec& spec() const { return spec_; }
-
-    Json result(const Json& check) const {
-        Json r = {{"parameter", axis_.key}, {"default", as_text(spec_, start_)}, {"runs", runs_ - 1}};
-        if (hi_) {
-            r["value"] = as_text(spec_, value(*hi_));
-            r["fps"] = hi_fps_;
-            r["bound"] = !lo_ ? (*hi_ <= u_min_ ? "met at the end of its range" : "") : "";
-            r["check"] = check;
-        } else {
-            r["value"] = nullptr;
-            r["note"] = runs_ > kMaxRuns ? fmt::format("no value found in {} re-simulations", kMaxRuns)
-                                         : fmt::format("not met anywhere in {}'s range (up to {})", axis_.key,
-                                                       as_text(spec_, value(u_max_)));
-        }
-        return r;
-    }
-
-private:
-    static constexpr int kMaxRuns = 24;
-    double clamp(double u) const { return std::min(u_max_, std::max(u_min_, u)); }
-    double value(double u) const { return axis_.direction * u; }
-
-    Axis axis_;
-    const ParamSpec& spec_;
-    double budget_, start_;
-    bool integer_ = false;
-    double u_min_ = 0, u_max_ = 0, guess_ = 0, step_ = 1;
-    std::optional<double> lo_, hi_;
-    double hi_fps_ = 0;
-    int runs_ = 0;
-};
+constexpr uint32_t kJointSeed = 1;
+constexpr size_t kChainDepth = 3;  // limits named, each relieved in turn  // the joint sample's: the same scenario samples the same points
 
 // Whether a banded parameter can change anything in this scenario.
 bool takes_effect(const ParamSpec& p, const Config& c) {
@@ -259,18 +140,23 @@ Json software_json(const std::vector<std::pair<std::string, std::string>>& setti
     return rows;
 }
 
-std::string statement(double fps, double budget, const Json& band) {
+std::string statement(double fps, double budget, const Json& band, const Json& doubt) {
     const double margin = 100 * (fps / budget - 1);
     const bool met = fps >= budget;
     std::string s = met ? fmt::format("met at defaults ({:.2f} frames/s, {:+.1f} % against {:g})", fps, margin, budget)
                         : fmt::format("missed at defaults ({:.2f} frames/s, {:+.1f} % against {:g})", fps, margin, budget);
+    if (!doubt.is_null() && doubt.contains("fps"))
+        s += fmt::format("; over the unknowns jointly {:.2f} to {:.2f} frames/s (5th to 95th percentile), met with "
+                         "probability {:.0f} %",
+                         doubt["fps"]["p5"].get<double>(), doubt["fps"]["p95"].get<double>(),
+                         100 * doubt["probability_met"].get<double>());
     if (band.is_null()) return s;
     std::vector<std::string> names;
     for (const Json& n : band["flipping"]) names.push_back(n.get<std::string>());
     if (names.empty())
-        return s + fmt::format("; {} under every assumption of the band ({:.2f} to {:.2f} frames/s)", met ? "met" : "missed",
+        return s + fmt::format("; {} under every unknown alone ({:.2f} to {:.2f} frames/s)", met ? "met" : "missed",
                                band["low_fps"].get<double>(), band["high_fps"].get<double>());
-    return s + fmt::format("; {} under assumptions {}", met ? "at risk" : "met", fmt::join(names, ", "));
+    return s + fmt::format("; {} with {} alone", met ? "at risk" : "met", fmt::join(names, ", "));
 }
 
 }  // namespace
@@ -288,7 +174,8 @@ int run_with_verdict(const Config& config, const std::string& out, const std::st
                                               config.count("surf.frames")));
     const bool want_band = config.choice("verdict.band") == "on";
     const bool want_break_even = config.choice("verdict.break_even") == "on" && budget > 0;
-    const Config reference = with(config, {{"surf.frames", std::to_string(frames)}});
+    // The re-simulations run one thread each: the jobs share the cores (run.parallel moves no figure).
+    const Config reference = with(config, {{"surf.frames", std::to_string(frames)}, {"run.parallel", "off"}});
 
     // Prepare once what every child needs: the frames, the calibration, the FHG's sequences.
     Resimulation::prepare(config);
@@ -297,56 +184,37 @@ int run_with_verdict(const Config& config, const std::string& out, const std::st
     Resimulation pool(unsigned(config.count("verdict.jobs")),
                       fs::path(out) / fmt::format(".verdict.{}", ::getpid()));
     Json base, reference_point;
-    std::vector<std::unique_ptr<BreakEven>> searches;
-    std::vector<Json> checks;
-    // A break-even search asks for its next value when the last one is in, then for a check
-    // of the whole scenario at the answer.
-    std::function<void(size_t)> step = [&](size_t i) {
-        BreakEven& s = *searches[i];
-        if (const auto v = s.next()) {
-            pool.submit(
-                with(reference, {{s.axis().key, as_text(s.spec(), *v)}}),
-                [&, i, v](const Json& r) {
-                    searches[i]->record(*v, r.contains("error") ? -1.0 : r["fps"].get<double>());
-                    step(i);
-                },
-                Resimulation::point_summary, "", "none", true);
-        } else if (const auto answer = s.answer()) {
-            pool.submit(
-                with(config, {{s.axis().key, as_text(s.spec(), *answer)}}),
-                [&, i](const Json& r) {
-                    checks[i] = r.contains("error") ? r : Json{{"frames", config.count("surf.frames")}, {"fps", r["fps"]},
-                                                                {"met", r["fps"].get<double>() >= budget}};
-                },
-                Resimulation::point_summary, "", "none", true);
-        }
-    };
+    LimitChain chain(config, reference, budget, pool, want_break_even ? kChainDepth : 0);
     // The reference (the scenario at the re-simulations' frame count) first: it names the
-    // limit the searches start from, while the whole run and the band's points go on.
+    // limit the chain starts from, while the whole run and the band's points go on.
     pool.submit(reference, [&](const Json& r) {
         reference_point = r;
-        if (!want_break_even || r.contains("error") || r["limit"].is_null() || r["fps"].get<double>() <= 0) return;
-        for (const Axis& axis : break_even_axes(r["limit"].get<std::string>(), r["limit_cause"].get<std::string>())) {
-            const Fhg::Params fhg = fhg_params(config);
-            const double start = axis.key == "fhg.cycles_per_block"
-                                     ? Fhg::block_cycles(fhg::cached_sequence(fhg.sequence), fhg)
-                                     : config.base_value(axis.key);
-            searches.push_back(std::make_unique<BreakEven>(axis, start, r["fps"].get<double>(), budget));
-            checks.emplace_back();
-            step(searches.size() - 1);
-        }
+        if (want_break_even) chain.start(r);
     });
     pool.submit(config, [&](const Json& r) { base = r; }, Resimulation::whole, out, trace);
 
-    std::vector<BandAxis> band;
+    // The band: the unknowns one at a time (the tornado) and jointly; design choices and the
+    // workload one at a time, apart (what a review can change).
+    std::vector<BandAxis> band, changes;
+    std::vector<const ParamSpec*> effective;
     if (want_band)
         for (const ParamSpec* p : band_parameters())
-            if (takes_effect(*p, config)) band.push_back({p, config.value(p->key), {p->band.low, {}}, {p->band.high, {}}});
-    for (BandAxis& axis : band)
-        for (BandSide* side : {&axis.low, &axis.high}) {
-            if (same_value(*axis.spec, side->value, axis.current)) continue;
-            pool.submit(with(reference, {{axis.spec->key, side->value}}), [side](const Json& r) { side->result = r; });
-        }
+            if (takes_effect(*p, config)) {
+                effective.push_back(p);
+                (p->role == ParamRole::unknown ? band : changes)
+                    .push_back({p, config.value(p->key), {p->band.low, {}}, {p->band.high, {}}});
+            }
+    for (std::vector<BandAxis>* axes : {&band, &changes})
+        for (BandAxis& axis : *axes)
+            for (BandSide* side : {&axis.low, &axis.high}) {
+                if (same_value(*axis.spec, side->value, axis.current)) continue;
+                pool.submit(with(reference, {{axis.spec->key, side->value}}), [side](const Json& r) { side->result = r; });
+            }
+    const std::vector<Unknown> unknowns = unknowns_of(effective, config);
+    const JointDesign joint = joint_design(unknowns, want_band ? size_t(config.count("verdict.samples")) : 0, kJointSeed);
+    std::vector<Json> joint_results(joint.sets.size());
+    for (size_t i = 0; i < joint.sets.size(); ++i)
+        pool.submit(with(reference, joint.sets[i]), [&joint_results, i](const Json& r) { joint_results[i] = r; });
     const bool want_software = config.choice("verdict.software") == "on";
     const auto settings = want_software ? software_settings(config) : std::vector<std::pair<std::string, std::string>>{};
     std::vector<Json> software(settings.size());
@@ -373,19 +241,23 @@ int run_with_verdict(const Config& config, const std::string& out, const std::st
     }
     if (base.contains("limit")) verdict["limit"] = base["limit"];
     if (want_break_even) {
-        Json all = Json::array();
-        for (size_t i = 0; i < searches.size(); ++i) all.push_back(searches[i]->result(checks[i]));
-        verdict["break_even"] = all;
+        verdict["chain"] = chain.json();
+        verdict["break_even"] = verdict["chain"].empty() ? Json::array() : verdict["chain"][0]["break_even"];
     }
-    Json band_result;
+    Json band_result, doubt;
     if (want_band) {
         band_result = band_json(band, reference_point, fps, budget, frames);
         verdict["band"] = band_result;
+        verdict["changes"] = band_json(changes, reference_point, fps, budget, frames);
+        if (!joint.sets.empty()) {
+            doubt = doubt_json(unknowns, joint, joint_results, fps, fps_of(reference_point), budget, frames);
+            verdict["doubt"] = doubt;
+        }
         write_file_atomically((fs::path(out) / "tornado.svg").string(), tornado_svg(band_result, budget));
         base["outputs"].push_back("tornado.svg");
     }
     if (want_software) verdict["software"] = software_json(settings, software, reference_point, fps, budget);
-    if (budget > 0) verdict["statement"] = statement(fps, budget, band_result);
+    if (budget > 0) verdict["statement"] = statement(fps, budget, band_result, doubt);
     base["verdict"] = verdict;
     return write_run(config, out, base);
 }

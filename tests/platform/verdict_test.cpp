@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <map>
+#include <set>
 #include <nlohmann/json.hpp>
 
 #include "cli.h"
@@ -69,12 +70,12 @@ TEST(Verdict, BreakEvenWhenMetIsHowLowTheClockMayGo) {
 TEST(Verdict, BandReSimulatesEveryAssumptionAndNamesWhatFlipsIt) {
     const std::string out = fresh_dir("band");
     const auto run = surfvp("run " + kBudget + " --trace none --quiet --out " + out + kSmall +
-                            " --set budget.fps=40 --set verdict.break_even=off");
+                            " --set budget.fps=40 --set verdict.break_even=off --set verdict.samples=20");
     ASSERT_LE(run.exit_code, 1) << run.err;
     const auto r = nlohmann::json::parse(slurp(out + "/report.json"));
     const auto& band = r["verdict"]["band"];
     EXPECT_EQ(band["frames"], 2);
-    EXPECT_GT(band["axes"].size(), 50u);
+    EXPECT_GT(band["axes"].size(), 40u);  // the unknowns; design choices and the workload are in "changes"
     const double ref = band["reference_fps"].get<double>(), run_fps = r["throughput_fps"].get<double>();
     EXPECT_NEAR(ref, run_fps, 1e-3 * ref);  // 2 frames are the steady state here
     EXPECT_EQ(band["run_fps"].get<double>(), run_fps);
@@ -96,8 +97,8 @@ TEST(Verdict, BandReSimulatesEveryAssumptionAndNamesWhatFlipsIt) {
             EXPECT_EQ(other_side, listed) << name;
         }
     EXPECT_GT(flips, 0u) << "the FHG clock's high alone crosses 40 frames/s from 38.4";
-    // Exact Haar wavelets make the CPU the limit.
-    for (const auto& a : band["axes"]) {
+    // Exact Haar wavelets (a software design choice) make the CPU the limit.
+    for (const auto& a : r["verdict"]["changes"]["axes"]) {
         if (a["parameter"] == "surf.haar") {
             EXPECT_EQ(a["low"]["limit"], "cpu") << a;
         }
@@ -105,7 +106,8 @@ TEST(Verdict, BandReSimulatesEveryAssumptionAndNamesWhatFlipsIt) {
     EXPECT_EQ(band["failed_points"].size(), 0u) << band["failed_points"];
     const std::string svg = slurp(out + "/tornado.svg");
     EXPECT_EQ(svg.rfind("<svg", 0), 0u);
-    EXPECT_NE(svg.find("surf.haar"), std::string::npos);
+    EXPECT_NE(svg.find("fhg.clock"), std::string::npos);
+    EXPECT_EQ(svg.find("surf.haar"), std::string::npos);  // not an unknown
     EXPECT_NE(svg.find("budget 40"), std::string::npos);
     const std::string md = slurp(out + "/report.md");
     EXPECT_NE(md.find("## Verdict"), std::string::npos);
@@ -118,6 +120,76 @@ TEST(Verdict, JobsDoNotChangeTheVerdict) {
     auto one = verdict("one_job", sets + " --set verdict.jobs=1", 1)["verdict"];
     auto two = verdict("two_jobs", sets + " --set verdict.jobs=2", 1)["verdict"];
     EXPECT_EQ(one.dump(), two.dump());
+}
+
+// The band splits by role: the unknowns one at a time (the tornado) and jointly, design choices
+// and the workload apart, as what a review can change.
+TEST(Verdict, TheDoubtIsTheUnknownsJointlyAndTheChangesApart) {
+    const auto r = verdict("doubt", "--set budget.fps=40 --set verdict.break_even=off --set verdict.software=off "
+                                    "--set verdict.samples=40", 1);
+    const auto& v = r["verdict"];
+    std::set<std::string> unknown, change;
+    for (const auto& a : v["band"]["axes"]) unknown.insert(a["parameter"].get<std::string>());
+    for (const auto& a : v["changes"]["axes"]) change.insert(a["parameter"].get<std::string>());
+    EXPECT_TRUE(unknown.count("fhg.clock") && unknown.count("fhg.line_fifo") && unknown.count("apu.overlap"));
+    EXPECT_TRUE(change.count("fhg.bus_word") && change.count("surf.haar") && change.count("surf.target_keypoints"));
+    for (const auto& key : change) EXPECT_FALSE(unknown.count(key)) << key;
+    const auto& d = v["doubt"];
+    EXPECT_EQ(d["points"], 40);
+    EXPECT_EQ(d["failed_points"].size(), 0u) << d["failed_points"];
+    EXPECT_LE(d["fps"]["p5"].get<double>(), d["fps"]["p50"].get<double>());
+    EXPECT_LE(d["fps"]["p50"].get<double>(), d["fps"]["p95"].get<double>());
+    EXPECT_GE(d["probability_met"].get<double>(), 0.0);
+    EXPECT_LE(d["probability_met"].get<double>(), 1.0);
+    EXPECT_EQ(d["sensitivity"].size(), d["unknowns"].get<size_t>());
+    for (const auto& s : d["sensitivity"]) EXPECT_TRUE(unknown.count(s["parameter"].get<std::string>())) << s;
+    EXPECT_NE(v["statement"].get<std::string>().find("over the unknowns jointly"), std::string::npos) << v["statement"];
+    const std::string md = slurp(fresh_path("doubt") + "/report.md");
+    EXPECT_NE(md.find("The doubt, jointly"), std::string::npos);
+    EXPECT_NE(md.find("What a review can change"), std::string::npos);
+}
+
+// The chain of limits: the FHG first, relieved at its break-even; then the CPU, named with its
+// headroom, its clock searched down to where the rate starts to fall.
+TEST(Verdict, TheChainRelievesEachLimitAndNamesTheNext) {
+    const auto r = verdict("chain", "--set budget.fps=40 --set verdict.band=off --set verdict.software=off", 1);
+    const auto& chain = r["verdict"]["chain"];
+    ASSERT_GE(chain.size(), 2u) << chain;
+    EXPECT_EQ(chain[0]["resource"], "fhg");
+    EXPECT_LT(chain[0]["headroom"].get<double>(), 0.0);
+    EXPECT_EQ(chain[0]["break_even"], r["verdict"]["break_even"]);
+    EXPECT_EQ(chain[1]["resource"], "cpu");
+    EXPECT_GT(chain[1]["headroom"].get<double>(), 0.0);
+    ASSERT_EQ(chain[1]["relieved"].size(), 1u);
+    EXPECT_EQ(chain[1]["relieved"][0]["parameter"], "fhg.clock");
+    EXPECT_EQ(chain[1]["relieved"][0]["value"], chain[0]["break_even"][0]["value"]);
+    const auto& cpu = chain[1]["break_even"][0];
+    EXPECT_EQ(cpu["parameter"], "cpu.clock");
+    EXPECT_EQ(cpu["searched"], "down");
+    EXPECT_LT(std::stod(cpu["value"].get<std::string>()), 400.0);
+    for (const auto& step : chain)
+        for (const auto& b : step["break_even"])
+            if (!b["value"].is_null()) {
+                EXPECT_TRUE(b["check"]["met"].get<bool>()) << b;
+            }
+    EXPECT_NE(slurp(fresh_path("chain") + "/report.md").find("**down to "), std::string::npos);
+}
+
+// A CPU stalled on memory latency is not relieved by its clock: the search goes to the
+// latency, down, and its value passes the whole run's check.
+TEST(Verdict, ACpuStalledOnFillsIsRelievedByTheMemory) {
+    const auto r = verdict("stalled", "--set budget.fps=30 --set 'memory.latency=400 cycles' --set verdict.band=off "
+                                      "--set verdict.software=off", 1);
+    const auto& first = r["verdict"]["chain"][0];
+    EXPECT_EQ(first["resource"], "cpu") << first;
+    std::map<std::string, nlohmann::json> by;
+    for (const auto& b : first["break_even"]) by[b["parameter"].get<std::string>()] = b;
+    ASSERT_TRUE(by.count("memory.latency")) << first;
+    const auto& latency = by["memory.latency"];
+    ASSERT_FALSE(latency["value"].is_null()) << latency;
+    EXPECT_EQ(latency["searched"], "down");
+    EXPECT_LT(std::stoi(latency["value"].get<std::string>()), 400);
+    EXPECT_TRUE(latency["check"]["met"].get<bool>()) << latency;
 }
 
 // The software settings the CPU's time rests on, each re-simulated: exact wavelets cost more

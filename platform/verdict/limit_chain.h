@@ -1,0 +1,53 @@
+#pragma once
+// The chain of limits (DESIGN principle 7): the verdict names what limits the frame rate, finds
+// its break-even (the value of a parameter of the limit's cause that just meets the budget, by
+// re-simulation, then checked by a run of the whole scenario), re-simulates with the limit
+// relieved at that value and names the next limit with its headroom, up to `depth` limits.
+// - A busy block's axes are its own clock (and the FHG's cycles per block); a CPU that spends
+//   a tenth of its time or more stalled on line fills also gets the memory latency and the
+//   clock of its path to DDR; a buffer coupling its depth; a wait the clock of what it waits on.
+// - Each search bisects to 0.1 % of a clock (one step of a count) on the re-simulations' frame
+//   count; when the whole-run check misses, the value moves one tolerance further and is
+//   checked again, so the value reported passes its own check.
+// - Once a limit is relieved at its break-even it runs at the budget, so the next limit is the
+//   one the run names if it is another resource, otherwise the resource with the least
+//   headroom (the lowest frame rate it alone would allow) among those not yet relieved.
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "platform/scenario/config.h"
+#include "platform/sweep/resimulation.h"
+
+namespace surfvp {
+
+class LimitChain {
+public:
+    // `config` is the scenario (its whole-run checks), `reference` the re-simulations' version.
+    LimitChain(const Config& config, const Config& reference, double budget, Resimulation& pool, size_t depth);
+    ~LimitChain();
+
+    // Starts from the reference's result (its limit); submits what it needs to `pool`.
+    void start(const nlohmann::ordered_json& reference_point);
+
+    // The steps: each limit, its headroom, what was relieved to reach it, its searches.
+    nlohmann::ordered_json json() const;
+
+private:
+    struct Step;
+    void begin(size_t k, const nlohmann::ordered_json& point);
+    void drive(size_t k, size_t i);
+    void check(size_t k, size_t i, double value);
+    void done(size_t k);
+
+    const Config& config_;
+    const Config& reference_;
+    double budget_;
+    Resimulation& pool_;
+    size_t depth_;
+    std::vector<std::unique_ptr<Step>> steps_;
+};
+
+}  // namespace surfvp
