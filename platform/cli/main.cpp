@@ -16,6 +16,7 @@
 #include "platform/run/run.h"
 #include "platform/scenario/scenario.h"
 #include "platform/compare/compare.h"
+#include "platform/correlation/correlate.h"
 #include "platform/table2/precision_study.h"
 #include "platform/table2/table2.h"
 #include "platform/sweep/sweep.h"
@@ -127,6 +128,15 @@ int dispatch(int argc, char** argv) {
     precision->add_option("--out", precision_options.out, "Output folder (default: traces/precision_<scenario name>)");
     precision->add_option("--jobs", precision_options.jobs, "Points at once (default: one per core)")->check(CLI::Range(0u, 256u));
     precision->add_flag("--quiet,-q", precision_options.quiet, "No progress or summary lines on stderr");
+    CorrelateOptions correlate_options;
+    CLI::App* correlate = app.add_subcommand("correlate", "Where the VP reproduces the paper's figures: the unknowns over their "
+                                                          "bands, the region that agrees, whether the defaults lie in it "
+                                                          "(docs/correlation.md)");
+    correlate->add_option("scenario", correlate_options.scenario, "Scenario file or shipped name")->capture_default_str();
+    correlate->add_option("--set", correlate_options.sets, "Override a parameter (repeatable)")->type_name("KEY=VALUE");
+    correlate->add_option("--out", correlate_options.out, "Output folder (default: traces/correlate_<scenario name>)");
+    correlate->add_option("--jobs", correlate_options.jobs, "Re-simulations at once (default: one per core)")->check(CLI::Range(0u, 256u));
+    correlate->add_flag("--quiet,-q", correlate_options.quiet, "No progress or summary lines on stderr");
     QualityCommands quality(app);
 
     try {
@@ -154,6 +164,7 @@ int dispatch(int argc, char** argv) {
         if (*sweep) return sweep_command(sweep_options);
         if (*compare) return compare_command(compare_options);
         if (*table2) return table2_command(table2_options);
+        if (*correlate) return correlate_command(correlate_options);
         if (*precision) return precision_command(precision_options);
         if (*sweep_merge) return sweep_merge_command(merge_dir);
         if (app.got_subcommand("list")) return list_scenarios();

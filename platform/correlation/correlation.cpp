@@ -10,12 +10,10 @@ namespace surfvp {
 namespace {
 using Json = nlohmann::ordered_json;
 
-// "About", "approximately", "around": within this share of the stated value.
-constexpr double kAbout = 0.10;
-
-// The paper's figures about its chip.
-constexpr double kPaperFps = 10, kPaperDescriptors = 100, kPaperOverhead = 0.11, kPaperWatts = 10;
-constexpr int kPaperWidth = 1024, kPaperHeight = 768;
+using paper::kAbout;
+constexpr double kPaperFps = paper::kFps, kPaperDescriptors = paper::kDescriptors, kPaperOverhead = paper::kOverhead,
+                 kPaperWatts = paper::kWatts;
+constexpr int kPaperWidth = paper::kWidth, kPaperHeight = paper::kHeight;
 
 struct Row {
     std::string figure, paper_says, unit;

@@ -17,6 +17,12 @@
 
 namespace surfvp {
 
+// The paper's figures about its chip, and the share within which "about" holds.
+namespace paper {
+constexpr double kFps = 10, kDescriptors = 100, kOverhead = 0.11, kWatts = 10, kAbout = 0.10;
+constexpr int kWidth = 1024, kHeight = 768;
+}  // namespace paper
+
 // One row per figure: {figure, paper, paper_says, low, high, vp, difference, within, note}.
 // `within` is null where the run cannot be compared (another image size, keypoint count or a
 // figure the run does not measure), and `note` says why. Reads a SURF run's report.
