@@ -19,9 +19,17 @@ void ZeroedMemoryRelease::operator()(uint8_t* p) const {
 // a run's fresh 2 MB pages were mostly faulted in on the host too: 64 MB took 75-150 ms in
 // 2 MB pages and 22-26 ms in 4 KB ones (3 ms in 2 MB pages only when a run just before had
 // freed them). docs/architecture.md gives the runs' figures.
+namespace {
+bool huge_pages = false;
+}  // namespace
+
+void use_huge_pages() { huge_pages = true; }
+
 uint8_t* map_zeroed(size_t bytes) {
     void* p = mmap(nullptr, bytes, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS | MAP_NORESERVE, -1, 0);
-    return p == MAP_FAILED ? nullptr : static_cast<uint8_t*>(p);
+    if (p == MAP_FAILED) return nullptr;
+    if (huge_pages) madvise(p, bytes, MADV_HUGEPAGE);  // a hint: without it, 4 KB pages as usual
+    return static_cast<uint8_t*>(p);
 }
 
 ZeroedMemory zeroed_memory(size_t bytes, const std::string& what) {

@@ -239,9 +239,24 @@ std::string summary(const Json& r) {
     if (r.contains("keypoints_per_frame")) row("keypoints per frame", fmt::format("{:.1f}", r["keypoints_per_frame"].get<double>()));
     if (r.contains("threshold_rule"))
         row("determinant threshold", fmt::format("{:.3f}: {}", r["threshold"].get<double>(), r["threshold_rule"].get<std::string>()));
-    if (r.contains("verdict") && r["verdict"].contains("band"))
-        row("assumption band", fmt::format("{:.2f} to {:.2f} frames/s", r["verdict"]["band"]["low_fps"].get<double>(),
-                                           r["verdict"]["band"]["high_fps"].get<double>()));
+    const Json verdict = r.value("verdict", Json::object());
+    if (verdict.contains("chain") && !verdict["chain"].empty()) {
+        std::string chain;
+        for (const Json& step : verdict["chain"])
+            chain += (chain.empty() ? "" : ", then ") + step["resource"].get<std::string>() +
+                     (step["headroom"].is_null() ? "" : fmt::format(" ({:+.1f} %)", 100 * step["headroom"].get<double>()));
+        row("chain of limits (headroom)", chain);
+    }
+    if (verdict.contains("doubt") && verdict["doubt"].contains("fps")) {
+        const Json& d = verdict["doubt"];
+        row("the unknowns jointly", fmt::format("{:.2f} / {:.2f} / {:.2f} frames/s (5th / 50th / 95th percentile); budget met with "
+                                                "probability {:.0f} %",
+                                                d["fps"]["p5"].get<double>(), d["fps"]["p50"].get<double>(),
+                                                d["fps"]["p95"].get<double>(), 100 * d.value("probability_met", 0.0)));
+    }
+    if (verdict.contains("band"))
+        row("the unknowns one at a time", fmt::format("{:.2f} to {:.2f} frames/s", verdict["band"]["low_fps"].get<double>(),
+                                                      verdict["band"]["high_fps"].get<double>()));
     return "<table id=\"summary\">" + rows + "</table>";
 }
 

@@ -11,6 +11,7 @@
 #include <thread>
 #include <unistd.h>
 
+#include "models/common/zeroed_memory.h"
 #include "platform/run/run.h"
 #include "platform/soc.h"
 #include "platform/tools/seqgen.h"
@@ -80,6 +81,7 @@ void Resimulation::start(Job job) {
     const pid_t pid = fork();
     if (pid < 0) throw std::runtime_error(std::string("cannot fork a re-simulation: ") + std::strerror(errno));
     if (pid == 0) {
+        use_huge_pages();  // the children before this one freed the same blocks (zeroed_memory.h)
         int code = 3;
         Json out;
         try {

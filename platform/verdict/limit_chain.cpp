@@ -252,6 +252,7 @@ void LimitChain::begin(size_t k, const Json& point) {
     if (s.resource.empty()) return;
     const double fps = point["fps"].get<double>(), own = alone(point, s.resource);
     s.goal = {s.resource, budget_, own < 0 ? fps < budget_ : own < budget_, k == 0 ? budget_ : std::min(fps, budget_) * (1 - 1e-3)};
+    if (k + 1 == depth_ && k > 0) return;  // the last limit is named with its headroom; nothing comes after it
     for (const Axis& axis : break_even_axes(s.resource, s.cause, point, s.base)) {
         s.searches.push_back(std::make_unique<BreakEven>(axis, start_value(axis, s.base), point["fps"].get<double>(), budget_));
         s.checks.emplace_back();

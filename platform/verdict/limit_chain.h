@@ -11,7 +11,9 @@
 //   checked again, so the value reported passes its own check.
 // - Once a limit is relieved at its break-even it runs at the budget, so the next limit is the
 //   one the run names if it is another resource, otherwise the resource with the least
-//   headroom (the lowest frame rate it alone would allow) among those not yet relieved.
+//   headroom (the lowest frame rate it alone would allow) among those not yet relieved. The
+//   last limit of the chain is named with its headroom; its break-even is not searched (nothing
+//   would be relieved after it).
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <string>

@@ -33,6 +33,10 @@ bool takes_effect(const ParamSpec& p, const Config& c) {
     // The cost models' parameters (FPGA resources, power) move no simulated figure: their
     // spread is the cost figures', not the frame rate's.
     if (p.key.rfind("fpga.", 0) == 0 || p.key.rfind("power.", 0) == 0) return false;
+    // The FHG's fixed-point formats move the determinants, not the time (their word width,
+    // fhg.det_bits, moves the traffic): `surfvp precision` measures what they cost in quality.
+    if (p.key.rfind("fhg.", 0) == 0 && p.key.find("_bits") != std::string::npos && p.key != "fhg.det_bits") return false;
+    if (p.key == "fhg.recip_shift") return false;
     if (p.key == "surf.threshold") return c.count("surf.target_keypoints") == 0;
     if (p.key == "plb1.arbitration") return c.choice("cpu.memory_path") == "plb1";  // PLB1's only master otherwise
     return true;
