@@ -182,9 +182,13 @@ std::string chain_section(const nlohmann::ordered_json& chain) {
                                          ? ""
                                          : fmt::format(", alone {:.2f} frames/s, headroom {:+.1f} %", step["alone_fps"].get<double>(),
                                                        100 * step["headroom"].get<double>());
-        md += fmt::format("\n{}. **{}** ({}{}){}:\n\n| parameter | now | break-even | frames/s there | check |\n|---|---|---|---:|---|\n",
-                          k + 1, step["resource"].get<std::string>(), step["cause"].get<std::string>(), headroom,
-                          relieved.empty() ? "" : fmt::format(", with {}", fmt::join(relieved, " and ")));
+        md += fmt::format("\n{}. **{}** ({}{}){}:\n\n", k + 1, step["resource"].get<std::string>(), step["cause"].get<std::string>(),
+                          headroom, relieved.empty() ? "" : fmt::format(", with {}", fmt::join(relieved, " and ")));
+        if (step.value("searched", true)) md += "| parameter | now | break-even | frames/s there | check |\n|---|---|---|---:|---|\n";
+        if (!step.value("searched", true)) {
+            md += "The chain ends here: this limit is named with its headroom; its break-even is not searched.\n";
+            continue;
+        }
         if (step["break_even"].empty()) md += "| - | - | no parameter of this cause to search | - | - |\n";
         for (const auto& b : step["break_even"]) md += break_even_row(b);
     }

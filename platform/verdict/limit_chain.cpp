@@ -181,9 +181,9 @@ double alone(const Json& r, const std::string& resource) {
 // What a search asks of a point. A limit below the budget is relieved when the point meets the
 // budget, or when another resource now limits and this one alone would allow the budget (so a
 // second limit below the budget, which the chain's next step names, cannot hide the first
-// one's break-even). A resource with headroom keeps it while the rate stays at the budget (the
-// first step), or, once earlier limits sit at their break-even, at what its step started from
-// (at most the budget) less 0.1 %, the searches' tolerance.
+// one's break-even). A resource with headroom keeps it while the rate meets the budget, or,
+// where the step starts below the budget (an earlier limit relieved while another holds the
+// rate down), while the rate stays within 0.1 % (the searches' tolerance) of where it started.
 struct Goal {
     std::string resource;
     double budget;
@@ -226,6 +226,7 @@ struct LimitChain::Step {
     Json point;                                                 // its re-simulation
     std::string resource, cause;
     Goal goal;
+    bool searched = false;  // its break-even (the last limit's is not)
     std::vector<std::unique_ptr<BreakEven>> searches;
     std::vector<Json> checks;
     size_t pending = 0;
@@ -251,8 +252,9 @@ void LimitChain::begin(size_t k, const Json& point) {
     std::tie(s.resource, s.cause) = next_limit(point, relieved);
     if (s.resource.empty()) return;
     const double fps = point["fps"].get<double>(), own = alone(point, s.resource);
-    s.goal = {s.resource, budget_, own < 0 ? fps < budget_ : own < budget_, k == 0 ? budget_ : std::min(fps, budget_) * (1 - 1e-3)};
+    s.goal = {s.resource, budget_, own < 0 ? fps < budget_ : own < budget_, fps >= budget_ ? budget_ : fps * (1 - 1e-3)};
     if (k + 1 == depth_ && k > 0) return;  // the last limit is named with its headroom; nothing comes after it
+    s.searched = true;
     for (const Axis& axis : break_even_axes(s.resource, s.cause, point, s.base)) {
         s.searches.push_back(std::make_unique<BreakEven>(axis, start_value(axis, s.base), point["fps"].get<double>(), budget_));
         s.checks.emplace_back();
@@ -337,6 +339,7 @@ Json LimitChain::json() const {
         Json searches = Json::array();
         for (size_t i = 0; i < s->searches.size(); ++i) searches.push_back(s->searches[i]->result(s->checks[i]));
         step["break_even"] = searches;
+        step["searched"] = s->searched;
         chain.push_back(step);
     }
     return chain;
