@@ -28,11 +28,7 @@ using Sets = std::vector<std::pair<std::string, std::string>>;
 
 constexpr double kClockStep = 5e6;  // the FHG clock's grid over its band, Hz
 
-Config with(const Config& base, const Sets& sets) {
-    Config c = base;
-    for (const auto& [key, value] : sets) c.set(key, value, "correlate");
-    return c;
-}
+Config with(const Config& base, const Sets& sets) { return base.with(sets, "correlate"); }
 
 // A parameter's low, current and high values (its band), each once.
 std::vector<std::string> band_values(const std::string& key, const Config& c) {

@@ -57,6 +57,12 @@ void Config::note(const std::string& key, const std::string& why) {
         if (e.spec->key == key) e.note = why;
 }
 
+Config Config::with(const std::vector<std::pair<std::string, std::string>>& sets, const std::string& origin) const {
+    Config c = *this;
+    for (const auto& [key, value] : sets) c.set(key, value, origin);
+    return c;
+}
+
 void Config::set_effect(const std::string& key, const std::string& what) {
     for (Entry& e : entries_)
         if (e.spec->key == key) e.effect = what;

@@ -33,6 +33,8 @@ public:
 
     // Throws ConfigError naming `where`, the key and the problem.
     void set(const std::string& key, const std::string& value, const std::string& origin);
+    // A copy with each (key, value) set from `origin` (a re-simulation's point).
+    Config with(const std::vector<std::pair<std::string, std::string>>& sets, const std::string& origin) const;
 
     Frequency frequency(const std::string& key) const override;
     Duration duration(const std::string& key) const override;

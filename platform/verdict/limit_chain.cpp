@@ -16,9 +16,7 @@ namespace {
 using Json = nlohmann::ordered_json;
 
 Config with(const Config& base, const std::vector<std::pair<std::string, std::string>>& sets) {
-    Config c = base;
-    for (const auto& [key, value] : sets) c.set(key, value, "verdict");
-    return c;
+    return base.with(sets, "verdict");
 }
 
 // The parameter that moves the limiting resource's time, and how the frame rate follows it:

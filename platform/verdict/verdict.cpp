@@ -48,9 +48,7 @@ bool same_value(const ParamSpec& p, const std::string& a, const std::string& b) 
 }
 
 Config with(const Config& base, const std::vector<std::pair<std::string, std::string>>& sets) {
-    Config c = base;
-    for (const auto& [key, value] : sets) c.set(key, value, "verdict");
-    return c;
+    return base.with(sets, "verdict");
 }
 
 struct BandSide {
