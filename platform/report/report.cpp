@@ -67,7 +67,8 @@ std::string time_table(const nlohmann::ordered_json& table, const nlohmann::orde
         "\nWhere each resource's frame goes, in ms per frame over the whole run: busy (its own work) + each wait + idle = "
         "its period, the simulated time per frame ({:.2f} ms, filling and draining the pipeline included; an accelerator "
         "pair's is the frames it takes, pairs x that). Its load is its busy time against the steady-state period "
-        "({:.2f} ms, 1 / frames per second); what it alone would allow is 1 / its busy time per frame.\n\n"
+        "({:.2f} ms, 1 / frames per second); what it alone would allow is 1 / its busy time per frame. The blocks' own "
+        "statistics count the same way: `fhg.utilisation` is the FHG's busy share of the run.\n\n"
         "| resource | period | busy | waiting | idle | busy share | load | alone | {}",
         periods["run"].get<double>(), periods["steady"].get<double>(),
         budget ? "slack |\n|---|---:|---:|---|---:|---:|---:|---:|---:|\n" : "\n|---|---:|---:|---|---:|---:|---:|---:|\n");
@@ -126,7 +127,8 @@ std::string frames_section(const nlohmann::ordered_json& r) {
     if (r.contains("threshold_rule"))
         md += fmt::format("| determinant threshold | {:.3f}: {} |\n", r["threshold"].get<double>(),
                           r["threshold_rule"].get<std::string>());
-    md += fmt::format("| software per keypoint | {:.1f} us ({:.0f} cycles) |\n",
+    md += fmt::format("| software per keypoint | {:.1f} us ({:.0f} CPU cycles, its line-fill stalls included; the CPU "
+                      "section's cycles of computation leave them out) |\n",
                       r["software_time_per_keypoint_us"].get<double>(), r["software_cycles_per_keypoint"].get<double>());
     if (r.contains("limit")) {
         md += fmt::format("| limited by | **{}** ({}) |\n", r["limit"]["resource"].get<std::string>(),
