@@ -5,16 +5,12 @@
 #include <cstdio>
 #include <filesystem>
 #include <fmt/format.h>
-#include <limits>
-#include <optional>
 #include <unistd.h>
 
-#include "models/fhg/sequence_cache.h"
 #include "platform/cli/progress_line.h"
 #include "platform/report/report.h"
 #include "platform/sweep/resimulation.h"
 #include "platform/run/run.h"
-#include "platform/soc.h"
 #include "platform/verdict/doubt.h"
 #include "platform/verdict/limit_chain.h"
 #include "platform/verdict/tornado.h"

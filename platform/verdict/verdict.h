@@ -1,12 +1,13 @@
 #pragma once
 // The budget verdict with its doubt (DESIGN principle 7), found by re-simulating the scenario:
 // - margin: frames/s against the budget, and each resource's slack (frame_limits.h);
-// - break-even (`verdict.break_even`): the value of the limiting block's clock (and, for the
-//   FHG, of its cycles per block) that just meets the budget, found by a search of
-//   re-simulations and checked by one more run of the whole scenario at that value;
-// - assumption band (`verdict.band`): every parameter with a band (parameters.h) at its low
-//   and at its high, one at a time: the frames/s range, the assumptions that flip the verdict,
-//   a tornado chart (tornado.svg);
+// - the chain of limits (`verdict.break_even`, limit_chain.h): the limit's break-even on the
+//   parameters of its cause, checked by a run of the whole scenario, then the limit relieved
+//   there and the next one named with its headroom, up to three;
+// - the doubt (`verdict.band`): the unknowns about the chip sampled jointly (doubt.h: the
+//   frames/s percentiles, the probability of meeting the budget, each unknown's Sobol indices)
+//   and each at its low and its high, one at a time (tornado.svg); the design choices and the
+//   workload with a band, one at a time, apart (what a review can change);
 // - software settings (`verdict.software`): the settings the CPU's time rests on (Haar mode,
 //   upright, keypoints per frame), each value other than the scenario's: frames/s, CPU time.
 // Re-simulations run `verdict.frames` frames (the pipeline is in steady state after the
