@@ -40,7 +40,7 @@ std::string tornado_svg(const nlohmann::ordered_json& band, double budget, size_
         "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{0:.0f}\" height=\"{1:.0f}\" viewBox=\"0 0 {0:.0f} {1:.0f}\" "
         "font-family=\"sans-serif\" font-size=\"12\">\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n",
         width, height);
-    svg += "<text x=\"10\" y=\"20\" font-size=\"15\" font-weight=\"bold\">Frames/s under each assumption at its low "
+    svg += "<text x=\"10\" y=\"20\" font-size=\"15\" font-weight=\"bold\">Frames/s under each unknown about the chip at its low "
            "and its high</text>\n";
     svg += fmt::format("<rect x=\"10\" y=\"30\" width=\"12\" height=\"10\" fill=\"#4e79a7\"/><text x=\"27\" y=\"39\">low</text>"
                        "<rect x=\"65\" y=\"30\" width=\"12\" height=\"10\" fill=\"#f28e2b\"/><text x=\"82\" y=\"39\">high</text>"
