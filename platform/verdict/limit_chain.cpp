@@ -94,8 +94,7 @@ public:
         if (++runs_ > kMaxRuns) return std::nullopt;
         if (!lo_ && !hi_) return value(guess_);
         if (lo_ && hi_) {
-            const double tolerance = integer_ ? 1 : 1e-3 * std::abs(*hi_);
-            if (*hi_ - *lo_ <= tolerance) return std::nullopt;
+            if (*hi_ - *lo_ <= tolerance()) return std::nullopt;
             const double mid = integer_ ? std::floor((*lo_ + *hi_) / 2) : (*lo_ + *hi_) / 2;
             return value(mid);
         }
@@ -128,7 +127,7 @@ public:
     // nudges are used up.
     std::optional<double> nudge() {
         if (!hi_ || ++nudges_ > kMaxNudges) return std::nullopt;
-        const double step = (integer_ ? 1 : 1e-3 * std::abs(*hi_)) * double(1 << (nudges_ - 1));
+        const double step = tolerance() * double(1 << (nudges_ - 1));
         const double next = *hi_ + step;
         if (next > u_max_) return std::nullopt;
         hi_ = next;
@@ -157,6 +156,8 @@ public:
 
 private:
     static constexpr int kMaxRuns = 24, kMaxNudges = 5;
+    // How close the search brackets the answer: 0.1 % of a clock, one step of a count.
+    double tolerance() const { return integer_ ? 1 : 1e-3 * std::abs(*hi_); }
     double clamp(double u) const { return std::min(u_max_, std::max(u_min_, u)); }
     double value(double u) const { return axis_.direction * u; }
 
