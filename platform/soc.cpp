@@ -119,6 +119,11 @@ void Soc::build(const Config& c, Tracer& tracer) {
         fhgs_.push_back(std::make_unique<Fhg>(("fhg" + suffix).c_str(), fhg_params(c), tracer));
     }
     Ppc440::Params cpu = Ppc440::parameter_table().make(c);
+    {  // critical word first: the missed word comes with the DRAM's first transfer, the rest after it
+        const DdrMemory::Params ddr = memory_params(c);
+        const double rest = double(cpu.line_bytes) - std::min<double>(cpu.line_bytes, ddr.width_bits / 8.0);
+        cpu.critical_word_lead = Duration{uint64_t(std::llround(rest / DdrMemory::bytes_per_second(ddr) * 1e12))};
+    }
     for (unsigned k = 0; k < pairs; ++k) cpu.markers.push_back(fmt::format("accelerator{}_task", k));
     cpu.markers.push_back("describing_task");
     cpu_ = std::make_unique<Ppc440>("cpu", cpu, workload_->software(), tracer);

@@ -1,13 +1,16 @@
 #pragma once
 // The PPC440's own path to DDR on the Virtex-5 FX: its crossbar and memory controller
-// interface (MCI), wired to the MPMC's PPC440MC port (PLATFORM_FACTS §2: the PPC440 block's
-// PPC440MC interface). One master, the CPU's caches, so no arbitration: an access is timed by
-// annotation from its request time and never waits in the kernel, which lets the CPU hand
-// over a step's line fills at the times the step needs them. An access of B bytes requested
+// interface (MCI), wired to the MPMC's PPC440MC port (the PPC440 block's PPC440MC
+// interface). One master, the CPU's caches, so no arbitration: a read asked for a later time
+// (the CPU hands over a step's line fills at the times the step needs them) waits in the
+// kernel until it reaches the DRAM, so the DDR serves the CPU and the DMA in request order,
+// and returns annotated with its end; a write is posted (annotated, never waits). An access of B bytes requested
 // at r starts when the link is free, s = max(r, free), and ends at
 //   s + latency cycles + max(ceil(B / (width/8)) cycles, DDR time)
 // where the DDR time is the memory's own (its wait for the DRAM, latency and transfer): the
-// DDR sees the CPU's traffic on its own port and it contends there with PLB2's DMA.
+// DDR sees the CPU's traffic on its own port and it contends there with PLB2's DMA. The link
+// is taken for its own cycles only (address phase and data beats): the DRAM's latency of one
+// access overlaps the next request, so the CPU's outstanding fills pipeline through it.
 #include <cstdint>
 #include <systemc>
 #include <tlm>
@@ -33,7 +36,7 @@ public:
     struct Stats {
         uint64_t reads = 0, writes = 0, bytes_read = 0, bytes_written = 0;
         sc_core::sc_time wait;  // requests waiting for the link behind earlier ones
-        sc_core::sc_time busy;
+        sc_core::sc_time busy;  // the link's own cycles: address phases and data beats
     };
 
     tlm_utils::simple_target_socket<MciLink> cpu;

@@ -143,17 +143,45 @@ const uint8_t* Ppc440::map(uint32_t address, size_t bytes) {
     return dmi_.get_dmi_ptr() + (address - dmi_.get_start_address());
 }
 
-// The step starts at the kernel's time (synchronised), so that its fills meet the other
-// masters' traffic in order whatever the quantum. A write-back carries the line's current
-// contents (the model keeps no dirty data of its own, so memory is unchanged); it is posted
-// over the MCI link, while over PLB1 (a synchronising bus) the CPU waits for its grant.
+// The fills asked at the same cycle of work, from lines[i] on (a burst: loads issued before
+// any of them is used): each takes a free fill slot (waiting for the oldest outstanding fill
+// when all are taken) and is asked at its own time; returns when the CPU has the data of all
+// of them (their critical words, or whole lines).
+sc_time Ppc440::fill_burst(const std::vector<sw::LineTransfer>& lines, size_t& i, sc_time at) {
+    const sc_time lead = params_.critical_word_first ? sc_time(double(params_.critical_word_lead.ps), sc_core::SC_PS)
+                                                     : sc_core::SC_ZERO_TIME;
+    sc_time data = at;
+    const uint64_t cycle = lines[i].at_cycle;
+    for (; i < lines.size() && !lines[i].write_back && lines[i].at_cycle == cycle; ++i) {
+        in_flight_.erase(std::remove_if(in_flight_.begin(), in_flight_.end(), [&](const sc_time& t) { return t <= at; }),
+                         in_flight_.end());
+        if (in_flight_.size() >= params_.outstanding_fills) {
+            const auto oldest = std::min_element(in_flight_.begin(), in_flight_.end());
+            at = *oldest;
+            in_flight_.erase(oldest);
+            ++stats_.fill_slot_waits;
+        }
+        const sc_time line = line_access(tlm::TLM_READ_COMMAND, lines[i].address, line_.data(), line_.size(), at);
+        in_flight_.push_back(line);
+        data = std::max(data, std::max(at, line - lead));
+        ++stats_.fills;
+    }
+    return std::max(data, at);
+}
+
+// The step starts at the kernel's time (synchronised) and hands each line to the memory path
+// with its own time; the memory path reaches the DRAM in the kernel at that time, so the
+// fills meet the other masters' traffic in request order whatever the quantum. A write-back carries the line's current contents (the
+// model keeps no dirty data of its own, so memory is unchanged); it is posted over the MCI
+// link, while over PLB1 (a synchronising bus) the CPU waits for its grant.
 uint64_t Ppc440::compute(uint64_t count, const std::vector<sw::LineTransfer>& lines, uint64_t untimed_fills) {
     if (untimed_fills) throw std::logic_error("cpu: every line fill is timed here: give it as a line");
     keeper_.sync();
     const sc_time start = sc_core::sc_time_stamp();
     sc_time at = start;  // where the step has got to
     uint64_t done = 0;   // cycles of work so far
-    for (const sw::LineTransfer& line : lines) {
+    for (size_t i = 0; i < lines.size();) {
+        const sw::LineTransfer& line = lines[i];
         const uint64_t cycle = std::min(std::max(line.at_cycle, done), count);
         at += cycles(params_.clock, double(cycle - done));
         done = cycle;
@@ -162,11 +190,11 @@ uint64_t Ppc440::compute(uint64_t count, const std::vector<sw::LineTransfer>& li
             line_access(tlm::TLM_WRITE_COMMAND, line.address, line_.data(), line_.size(), at);
             at = std::max(at, sc_core::sc_time_stamp());
             ++stats_.write_backs;
+            ++i;
         } else {
-            const sc_time filled = line_access(tlm::TLM_READ_COMMAND, line.address, line_.data(), line_.size(), at);
-            stats_.fill_stall += filled - at;
-            at = filled;
-            ++stats_.fills;
+            const sc_time data = fill_burst(lines, i, at);
+            stats_.fill_stall += data - at;
+            at = data;
         }
     }
     at = std::max(at, sc_core::sc_time_stamp()) + cycles(params_.clock, double(count - done));
@@ -228,6 +256,8 @@ void Ppc440::register_statistics(Statistics::Scope s) const {
     m.count("line_fills", [this] { return stats_.fills; }, "lines", "L1 line fills");
     m.count("write_backs", [this] { return stats_.write_backs; }, "lines", "L1 write-backs");
     m.time("fill_stall_s", [this] { return stats_.fill_stall; }, "the CPU waiting for its line fills");
+    m.count("fill_slot_waits", [this] { return stats_.fill_slot_waits; }, "fills",
+            "fills that waited for one of the outstanding ones to finish");
     s.count("cycles_consumed", [this] { return stats_.cycles_consumed; }, "cycles", "work, without the stalls");
     s.count("irq_waits", [this] { return stats_.irq_waits; }, "waits", "times the software slept on the interrupt");
     s.time("irq_wait_s", [this] { return stats_.irq_wait_time; }, "asleep on the interrupt");

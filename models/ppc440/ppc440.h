@@ -4,7 +4,10 @@
 // from what the software does: MMIO is a timed PLB1 transaction; memory goes line by line
 // over the CPU's memory path (`mem`: the MCI link to DDR, or PLB1), and so do the L1 fills
 // and write-backs the software's counted work reports (compute()), each at the time the work
-// needs it, a fill stalling the CPU until it is in; computation is charged at the CPU clock.
+// asks for it (the memory path reaches the DRAM at that time in the kernel, so the DDR grants
+// the CPU and the DMA in request order). Fills asked together (a burst: the loads of one sample, issued
+// before any is used) overlap up to `outstanding_fills`; the CPU waits for each burst's data,
+// the critical word first; computation is charged at the CPU clock.
 // Local time runs ahead of the kernel up to the global quantum (TLM-2.0 temporal
 // decoupling); it is synchronised at every register access, interrupt wait and compute step,
 // so what the CPU puts on the memory path does not depend on the quantum.
@@ -31,6 +34,9 @@ public:
         Frequency clock{400e6};
         Duration quantum{1000000};  // 1 us
         unsigned line_bytes = 32;   // the L1 line: memory goes in lines of this size
+        unsigned outstanding_fills = 3;  // line fills in flight at once
+        bool critical_word_first = true;
+        Duration critical_word_lead{0};  // how much sooner than the whole line the missed word arrives (the wiring's)
         std::vector<std::string> markers;  // names of the software's markers (HAL mark())
     };
     // Its scenario parameters with the Params field each sets (ppc440_params.cpp).
@@ -42,6 +48,7 @@ public:
         uint64_t bytes_read = 0, bytes_written = 0;  // on the memory path: copies, fills, write-backs
         uint64_t fills = 0, write_backs = 0;
         sc_core::sc_time fill_stall;  // the CPU waiting for its line fills
+        uint64_t fill_slot_waits = 0;  // fills that waited for one of the outstanding ones to finish
         uint64_t cycles_consumed = 0;  // work, without the stalls
         uint64_t irq_waits = 0;
         sc_core::sc_time irq_wait_time;
@@ -84,6 +91,7 @@ private:
     void memory(tlm::tlm_command command, uint32_t address, uint8_t* data, size_t bytes);
     sc_core::sc_time line_access(tlm::tlm_command command, uint32_t address, uint8_t* data, size_t bytes,
                                  const sc_core::sc_time& at);
+    sc_core::sc_time fill_burst(const std::vector<sw::LineTransfer>& lines, size_t& i, sc_core::sc_time at);
     bool dmi_covers(uint32_t address, size_t bytes);
     void invalidate_dmi(sc_dt::uint64 start, sc_dt::uint64 end);
     sc_core::sc_time now() const;
@@ -95,6 +103,7 @@ private:
     tlm::tlm_dmi dmi_;  // for map(): reading memory in place
     bool dmi_valid_ = false;
     std::vector<uint8_t> line_;  // a fill's data (the software reads in place) or a write-back's
+    std::vector<sc_core::sc_time> in_flight_;  // when each outstanding fill's whole line is in
     tlm::tlm_generic_payload line_tx_;  // every line access's (a payload allocates on construction)
     bool finished_ = false;
     sc_core::sc_event done_;

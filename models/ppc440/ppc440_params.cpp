@@ -18,7 +18,17 @@ const ParamTable<Ppc440::Params>& Ppc440::parameter_table() {
                  &P::quantum),
         field<P>({"cpu.cache_line", ParamKind::bytes, "32 B", 4, 256, {}, "L1 cache line: the CPU's memory traffic goes in lines",
            "[S] ML507 DTS: 32-byte L1 lines"},
-                 &P::line_bytes)
+                 &P::line_bytes),
+        field<P>({"cpu.outstanding_fills", ParamKind::count, "3", 1, 16, {},
+           "L1 line fills the CPU has in flight at once: a miss beyond them waits for the oldest",
+           "[S] PPC440x5 CPU core user's manual: up to three outstanding line fills (and four load misses)",
+           {"1", "3", "a blocking cache, one fill at a time"}},
+                 &P::outstanding_fills),
+        field<P>({"cpu.critical_word_first", ParamKind::choice, "on", 0, 0, {"on", "off"},
+           "A fill hands the CPU the word it missed on first (on), or only the whole line (off)",
+           "[S] PPC440x5 CPU core user's manual: line fills deliver the critical word first",
+           {"off", "on", "the CPU waits for the whole line"}},
+                 &P::critical_word_first)
     });
     return table;
 }

@@ -21,6 +21,7 @@ CostCounter::CostCounter(const CostParams& params) : params_(params), cache_(par
         if (!std::isfinite(c) || c < 0) throw std::invalid_argument("cpu cost: every unit's cycles must be >= 0");
     if (!std::isfinite(params_.miss_cycles) || params_.miss_cycles < 0)
         throw std::invalid_argument("cpu cost: miss_cycles must be >= 0");
+    if (params_.reads_per_burst < 1) throw std::invalid_argument("cpu cost: reads_per_burst must be >= 1");
 }
 
 void CostCounter::count(Unit u, uint64_t n) {
@@ -42,7 +43,7 @@ void CostCounter::charge_misses(uint32_t misses, size_t logged_from) {
         Miss& m = misses_.emplace_back();
         m.line = missed_[i];
         m.cycle = cycles_;
-        miss_read_.push_back(step_reads_ - 1);
+        miss_read_.push_back(burst_start_);
     }
     missed_.clear();
 }
@@ -54,7 +55,7 @@ void CostCounter::close_step() {
     miss_read_.clear();
     step_first_miss_ = misses_.size();
     step_start_ = cycles_;
-    step_reads_ = 0;
+    step_reads_ = step_integral_reads_ = burst_start_ = 0;
 }
 
 uint64_t CostCounter::cycles() const { return uint64_t(std::llround(cycles_)); }
@@ -90,7 +91,7 @@ void CostCounter::clear_misses() {
 void CostCounter::reset() {
     clear_misses();
     step_start_ = 0;
-    step_reads_ = 0;
+    step_reads_ = step_integral_reads_ = burst_start_ = 0;
     units_.fill(0);
     reads_.fill(0);
     steps_.fill(0);

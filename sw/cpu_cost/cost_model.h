@@ -21,6 +21,11 @@ namespace surfvp::sw {
 struct CostParams {
     std::array<double, kUnits> unit_cycles{};  // CPU cycles per unit (calibration.h: unit_prices)
     double miss_cycles = 60;  // [D/A] one 32-byte line fill from DDR; the platform passes 0 and times the fills
+    // Integral-image reads the code issues together before it uses any (a burst: their fills
+    // overlap on the platform): [A] from sw/surf/haar.h, a rounded Haar sample loads its 8
+    // corners at once, an exact one uses each corner's 4 reads right away. Determinant reads
+    // are compared as they come (1).
+    unsigned reads_per_burst = 1;
     CacheParams cache;
 };
 
@@ -60,6 +65,7 @@ public:
     void count(Unit u, uint64_t n = 1);
     void load(Read kind, uint32_t address, unsigned bytes) {
         ++reads_[static_cast<size_t>(kind)];
+        if (kind == Read::determinant || step_integral_reads_++ % params_.reads_per_burst == 0) burst_start_ = step_reads_;
         ++step_reads_;
         const size_t before = missed_.size();
         const CacheModel::Result r = cache_.access(address, bytes, log_misses_ ? &missed_ : nullptr);
@@ -70,7 +76,9 @@ public:
     // With a log, every line fill is also recorded with the cycle it was needed at, so that a
     // platform can time the fills itself (then give miss_cycles = 0). A step's price is charged
     // whole, so when the step ends its fills are spread over its cycles in the order of its
-    // reads: a fill needed by the step's k-th of n reads is stamped k/n of the way through.
+    // reads: a fill needed by the step's k-th of n reads is stamped k/n of the way through, k
+    // being the first read of its burst (CostParams::reads_per_burst), so a burst's fills share
+    // one stamp.
     struct Miss {
         uint32_t line;  // bus address of the line
         double cycle;   // when it was needed (exact cycles)
@@ -118,6 +126,8 @@ private:
     std::vector<uint64_t> miss_read_;  // for the current step's misses: which of its reads
     double step_start_ = 0;            // cycles when the current step began
     uint64_t step_reads_ = 0;
+    uint64_t step_integral_reads_ = 0;
+    uint64_t burst_start_ = 0;  // the step's read that began the current burst
     size_t step_first_miss_ = 0;
 };
 

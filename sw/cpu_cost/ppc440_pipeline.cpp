@@ -113,7 +113,7 @@ InsnClass fp_class(const std::string& m) {
     if (one_of(b, {"fsqrt", "frsqrte"})) return InsnClass::fsqrt;
     if (one_of(b, {"fcmpu", "fcmpo"})) return InsnClass::fcmp;
     if (one_of(m, {"fmr", "fabs", "fneg", "fnabs", "fsel"})) return InsnClass::fmove;
-    if (one_of(m, {"fctiw", "fctiwz", "frsp"})) return InsnClass::fconvert;
+    if (one_of(m, {"fctiw", "fctiwz", "frsp", "fcfid"})) return InsnClass::fconvert;
     return InsnClass::system;
 }
 
@@ -185,6 +185,7 @@ Insn decode(const std::string& mnemonic, const std::string& operands) {
     }
     if (m[0] == 'f') {
         in.cls = fp_class(m);
+        in.round_to_single = m == "frsp";
         if (in.cls == InsnClass::system) return in;
         first_dst();
         if (record) add_dst(in, kCr + 1);
@@ -263,34 +264,66 @@ const std::vector<PipelineKnob>& pipeline_knobs() {
          "[A] not retrieved: the 7-stage pipeline resolves branches late", "an early or a late branch resolution"},
         {"cpu.fpu_ratio", &P::fpu_ratio, 2, 3, true, "count", "CPU cycles per FPU cycle",
          "[S] DS693: optimised for 2:1 and 3:1", "the other ratio DS693 supports"},
-        {"apu.issue", &P::apu_issue, 1, 4, true, "cycles", "CPU cycles to hand one instruction to the APU FPU",
-         "[A] proxy: GCC xfpu.md (Xilinx APU FPU of the PPC405): 2",
-         "the Virtex-5 APU may be faster or slower than the PPC405's (DS693's table not retrieved)"},
+        {"fpu.precision", &P::double_precision, 0, 1, true, "precision",
+         "The APU FPU's precision: the latency column the stream is timed with (and frsp, which only the double FPU has)",
+         "[A] single: the FPU Xilinx offers for float code (DS693: 2620 LUT-FF pairs and 3 DSP48E against 4950 and 13); "
+         "the firmware is built for the double FPU, the only one Debian's GCC targets (sw/cpu_cost/README.md)",
+         "the paper says only \"FPU\": DS693 offers both"},
+        {"apu.issue", &P::apu_issue, 1, 4, true, "cycles",
+         "CPU cycles an FP add, multiply or multiply-add holds the APU's issue",
+         "[S/proxy] GCC xfpu.md (Xilinx APU FPU): Xfpu_issue*2",
+         "the Virtex-4 APU FPU sheet's one instruction every 4 CPU cycles; 1 if the Virtex-5 APU issues faster"},
+        {"apu.load_issue", &P::apu_load_issue, 2, 14, true, "cycles", "CPU cycles an FP load holds the APU's issue",
+         "[S/proxy] xfpu.md: Xfpu_issue*10 (issue 2 + 4 FPU cycles x 2); the Virtex-4 sheet: issue 4 + at least 3 FPU "
+         "cycles, one load at a time",
+         "2: a Virtex-5 APU that frees the issue after 2 cycles (DS693's autonomous issue); 14: a double load (2 + 6 x 2)"},
+        {"apu.store_issue", &P::apu_store_issue, 2, 8, true, "cycles", "CPU cycles an FP store holds the APU's issue",
+         "[S/proxy] xfpu.md: Xfpu_issue*4", "2: the issue alone; 8: the Virtex-4 sheet's 4 FPU cycles a store"},
+        {"apu.move_issue", &P::apu_move_issue, 1, 4, true, "cycles",
+         "CPU cycles an FP move, abs, negate or FPSCR access holds the APU's issue", "[S/proxy] xfpu.md: fp-default, Xfpu_issue*2",
+         "as apu.issue"},
+        {"apu.compare_issue", &P::apu_compare_issue, 1, 4, true, "cycles", "CPU cycles an FP compare holds the APU's issue",
+         "[S/proxy] xfpu.md: fp-compare, Xfpu_issue*2", "as apu.issue"},
+        {"apu.convert_issue", &P::apu_convert_issue, 1, 4, true, "cycles",
+         "CPU cycles an FP conversion (fctiwz, frsp) holds the APU's issue", "[S/proxy] xfpu.md: fp-default, Xfpu_issue*2",
+         "as apu.issue"},
+        {"apu.divide_issue", &P::apu_divide_issue, 1, 4, true, "cycles",
+         "CPU cycles an FP divide or square root holds the APU's issue (the unpipelined divider stays busy for its whole "
+         "latency: the next divide waits)",
+         "[S/proxy] xfpu.md: Xfpu_issue*2 then Xfpu_div (unpipelined); the Virtex-4 sheet: divide and square root not "
+         "pipelined",
+         "as apu.issue"},
+        {"apu.outstanding_loads", &P::apu_outstanding_loads, 1, 2, true, "count",
+         "FP loads in flight at once: a load waits while this many have not delivered their data",
+         "[S/proxy] Virtex-4 APU FPU sheet: the APU controller cannot process more than one outstanding load",
+         "2: a Virtex-5 APU controller that takes a second (DS693 says nothing)"},
         {"apu.overhead", &P::apu_overhead, 1, 4, true, "cycles",
-         "CPU cycles of the APU's register file access and write back", "[A] proxy: xfpu.md: 2", "as apu.issue"},
+         "CPU cycles of the APU's register file access and write back", "[A] proxy: xfpu.md: 2",
+         "the Virtex-5 APU may be faster or slower than the PPC405's (DS693's table not retrieved)"},
         {"fpu.fadd", &P::fadd, 5, 7, true, "fpu_cycles", "FPU cycles of an add or subtract",
-         "[A] proxy: xfpu.md single precision: 5", "double-precision timing (xfpu.md: 7) if the FPU runs floats so"},
-        {"fpu.fmul", &P::fmul, 4, 11, true, "fpu_cycles", "FPU cycles of a multiply", "[A] proxy: xfpu.md: 4",
-         "as fpu.fadd (double: 11)"},
+         "[A] proxy: xfpu.md, the precision's column: single 5, double 7; the Virtex-4 sheet: 6", "the columns and the sheet"},
+        {"fpu.fmul", &P::fmul, 4, 11, true, "fpu_cycles", "FPU cycles of a multiply",
+         "[A] proxy: xfpu.md: single 4, double 11; the Virtex-4 sheet: 5", "the columns and the sheet"},
         {"fpu.fmadd", &P::fmadd, 10, 19, true, "fpu_cycles", "FPU cycles of a fused multiply-add",
-         "[A] proxy: xfpu.md: 10", "as fpu.fadd (double: 19)"},
-        {"fpu.fdiv", &P::fdiv, 17, 56, true, "fpu_cycles", "FPU cycles of a divide (blocks the FPU)",
-         "[A] proxy: xfpu.md: 27", "the Virtex-4 APU FPU's 17, or double-precision timing (56)"},
-        {"fpu.fsqrt", &P::fsqrt, 17, 56, true, "fpu_cycles", "FPU cycles of a square root (blocks the FPU)",
-         "[A] proxy: xfpu.md: 27", "as fpu.fdiv"},
-        {"fpu.fcmp", &P::fcmp, 1, 3, true, "fpu_cycles", "FPU cycles of a compare", "[A] proxy: xfpu.md: 1",
-         "the Virtex-4 APU FPU's 3"},
+         "[A] proxy: xfpu.md: single 10, double 19; the Virtex-4 sheet: 10", "the columns and the sheet"},
+        {"fpu.fdiv", &P::fdiv, 17, 56, true, "fpu_cycles", "FPU cycles of a divide (the divider is unpipelined)",
+         "[A] proxy: xfpu.md: single 27, double 56; the Virtex-4 sheet: 17", "the columns and the sheet"},
+        {"fpu.fsqrt", &P::fsqrt, 17, 56, true, "fpu_cycles", "FPU cycles of a square root (the divider is unpipelined)",
+         "[A] proxy: xfpu.md: single 27, double 56; the Virtex-4 sheet: 17", "the columns and the sheet"},
+        {"fpu.fcmp", &P::fcmp, 1, 3, true, "fpu_cycles", "FPU cycles of a compare",
+         "[A] proxy: xfpu.md: single 1, double 2; the Virtex-4 sheet: 3", "the columns and the sheet"},
         {"fpu.fmove", &P::fmove, 1, 2, true, "fpu_cycles", "FPU cycles of a move, abs or negate",
-         "[A] proxy: xfpu.md: 1", "the Virtex-4 APU FPU's 2"},
+         "[A] proxy: xfpu.md: 1 in both; the Virtex-4 sheet: 2", "the sheet"},
         {"fpu.fconvert", &P::fconvert, 4, 6, true, "fpu_cycles", "FPU cycles of a conversion (fctiwz, frsp)",
-         "[A] proxy: xfpu.md: 4", "double-precision timing (6)"},
+         "[A] proxy: xfpu.md: single 4, double 6; the Virtex-4 sheet: 6", "the columns"},
         {"fpu.fload", &P::fload, 3, 6, true, "fpu_cycles", "FPU cycles of a load into the FPU (L1 hit)",
-         "[A] proxy: xfpu.md: 4", "the Virtex-4 APU FPU's 3, or double (6)"},
+         "[A] proxy: xfpu.md: single 4, double 6; the Virtex-4 sheet: at least 3", "the columns and the sheet"},
         {"fpu.fstore", &P::fstore, 1, 4, true, "fpu_cycles", "FPU cycles of a store from the FPU",
-         "[A] proxy: xfpu.md: 1", "the Virtex-4 APU FPU's 4"},
+         "[A] proxy: xfpu.md: single 1, double 2 (from the data's availability); the Virtex-4 sheet: 4",
+         "the columns and the sheet"},
         {"apu.overlap", &P::fpu_overlap, 0, 1, true, "switch",
          "Whether integer work issues while the FPU computes (on), or the CPU waits for each FPU result (off)",
-         "[A] the APU decouples the FPU from the integer pipeline (DS693 not retrieved)",
+         "[S] DS693: the FPU is autonomous, the PowerPC pipeline goes on with integer instructions meanwhile",
          "a CPU that waits for every FPU result"},
     };
     return knobs;
@@ -298,9 +331,46 @@ const std::vector<PipelineKnob>& pipeline_knobs() {
 
 Ppc440Pipeline::Ppc440Pipeline(const PipelineParams& params) : p_(params) {
     if (!(p_.issue_width >= 1)) throw std::invalid_argument("ppc440 pipeline: issue_width must be >= 1");
+    if (!(p_.apu_outstanding_loads >= 1))
+        throw std::invalid_argument("ppc440 pipeline: apu.outstanding_loads must be >= 1");
     for (const PipelineKnob& k : pipeline_knobs())
         if (!std::isfinite(p_.*k.field) || p_.*k.field < 0)
             throw std::invalid_argument(std::string("ppc440 pipeline: ") + k.key + " must be >= 0");
+}
+
+FpuColumn fpu_column(bool double_precision) {
+    // xfpu.md's latency table (FCB cycles): SP and DP columns.
+    return double_precision ? FpuColumn{7, 11, 19, 56, 56, 2, 1, 6, 6, 2} : FpuColumn{5, 4, 10, 27, 27, 1, 1, 4, 4, 1};
+}
+
+PipelineParams PipelineParams::for_precision(bool double_precision) {
+    PipelineParams p;
+    p.double_precision = double_precision ? 1 : 0;
+    const FpuColumn c = fpu_column(double_precision);
+    p.fadd = c.fadd, p.fmul = c.fmul, p.fmadd = c.fmadd, p.fdiv = c.fdiv, p.fsqrt = c.fsqrt;
+    p.fcmp = c.fcmp, p.fmove = c.fmove, p.fconvert = c.fconvert, p.fload = c.fload, p.fstore = c.fstore;
+    return p;
+}
+
+const char* knob_choice(const PipelineKnob& k, double value) {
+    const std::string unit = k.unit;
+    if (unit == "switch") return value > 0.5 ? "on" : "off";
+    if (unit == "precision") return value > 0.5 ? "double" : "single";
+    return nullptr;
+}
+
+double Ppc440Pipeline::occupancy(InsnClass c) const {
+    switch (c) {
+        case InsnClass::fload: return p_.apu_load_issue;
+        case InsnClass::fstore: return p_.apu_store_issue;
+        case InsnClass::fmove:
+        case InsnClass::fstatus: return p_.apu_move_issue;
+        case InsnClass::fcmp: return p_.apu_compare_issue;
+        case InsnClass::fconvert: return p_.apu_convert_issue;
+        case InsnClass::fdiv:
+        case InsnClass::fsqrt: return p_.apu_divide_issue;
+        default: return p_.apu_issue;
+    }
 }
 
 double Ppc440Pipeline::result_latency(InsnClass c) const {
@@ -340,10 +410,24 @@ Ppc440Pipeline::Pipe Ppc440Pipeline::pick_pipe(InsnClass c, uint64_t at) const {
 uint64_t Ppc440Pipeline::issue(const Insn& in, uint32_t pc, bool taken) {
     const auto ceil = [](double v) { return uint64_t(std::ceil(v - 1e-9)); };
     const bool fpu = is_fpu_arithmetic(in.cls) || in.cls == InsnClass::fload || in.cls == InsnClass::fstore;
+    if (in.round_to_single && p_.double_precision < 0.5) {
+        // Code for the single-precision FPU has nothing to round (DS693: that FPU has no frsp).
+        if (in.ndst && in.nsrc) ready_[in.dst[0]] = ready_[in.src[0]];
+        return cycle_;
+    }
     uint64_t t = std::max(cycle_, next_);
     if (t == cycle_ && issued_now_ >= unsigned(p_.issue_width)) ++t;
     for (uint8_t i = 0; i < in.nsrc; ++i) t = std::max(t, ready_[in.src[i]]);
     if (fpu) t = std::max(t, fpu_free_);
+    const bool divider = in.cls == InsnClass::fdiv || in.cls == InsnClass::fsqrt;
+    if (divider) t = std::max(t, divider_free_);
+    if (in.cls == InsnClass::fload) {  // in-order issue: the oldest outstanding load delivers first
+        while (!loads_.empty() && loads_.front() <= t) loads_.erase(loads_.begin());
+        while (double(loads_.size()) >= p_.apu_outstanding_loads) {
+            t = std::max(t, loads_.front());
+            loads_.erase(loads_.begin());
+        }
+    }
     if (in.cls != InsnClass::integer && pick_pipe(in.cls, t) == kPipeI) t = std::max(t, i_pipe_free_);
     const Pipe pipe0 = pick_pipe(in.cls, t);
     if (used(pipe0, t) || (pipe0 == kPipeI && in.cls == InsnClass::integer && t < i_pipe_free_)) ++t;
@@ -372,8 +456,9 @@ uint64_t Ppc440Pipeline::issue(const Insn& in, uint32_t pc, bool taken) {
                                 : done;
     last_ = std::max(last_, done);
     if (fpu) {
-        const bool blocking = in.cls == InsnClass::fdiv || in.cls == InsnClass::fsqrt;
-        fpu_free_ = blocking ? done : cycle_ + ceil(p_.apu_issue);
+        fpu_free_ = cycle_ + ceil(occupancy(in.cls));
+        if (divider) divider_free_ = done;
+        if (in.cls == InsnClass::fload) loads_.push_back(done);
         if (p_.fpu_overlap < 0.5) next_ = std::max(next_, done);
     }
     if (in.cls == InsnClass::divide) i_pipe_free_ = cycle_ + ceil(p_.divide_latency) - 1;
@@ -401,7 +486,8 @@ void Ppc440Pipeline::reset() {
     issued_now_ = 0;
     std::fill(std::begin(pipe_used_), std::end(pipe_used_), 0);
     std::fill(std::begin(ready_), std::end(ready_), 0);
-    fpu_free_ = i_pipe_free_ = next_ = last_ = 0;
+    fpu_free_ = divider_free_ = i_pipe_free_ = next_ = last_ = 0;
+    loads_.clear();
     bht_.clear();
 }
 

@@ -6,10 +6,12 @@
 //
 // What it models: two issue slots per cycle, one instruction per pipe per cycle (i: complex
 // integer, compare, branch, SPR moves; j: simple integer; l: loads and stores; f: the APU FPU),
-// a source operand waits for its producer's latency, the APU takes a new instruction every
-// `apu_issue` cycles (divide and square root block it for their whole latency), conditional
-// branches are predicted by a 2-bit counter per branch, and a taken branch the BTAC does not
-// hold costs a bubble. What it does not: cache misses (every access hits; the L1 model and the
+// a source operand waits for its producer's latency, each class of APU instruction holds the
+// APU's issue for its own occupancy (an FP load 10 cycles, a store 4, arithmetic 2: xfpu.md),
+// FP loads wait for the ones still outstanding (one, the Virtex-4 APU FPU sheet), divides and
+// square roots share one unpipelined unit, the FPU's latencies are the configured precision's
+// column, conditional branches are predicted by a 2-bit counter per branch, and a taken branch
+// the BTAC does not hold costs a bubble. What it does not: cache misses (every access hits; the L1 model and the
 // platform's memory path add the fills), the instruction cache, TLB misses, interrupts.
 // README.md lists each parameter with its source.
 #include <cstddef>
@@ -60,11 +62,19 @@ struct Insn {
     bool conditional = false;   // a conditional branch (predicted)
     bool btac = false;          // a branch the BTAC predicts: unconditional or bdnz
     bool backward = false;      // a conditional branch to a lower address (statically predicted taken)
+    bool round_to_single = false;  // frsp: a double-precision FPU's rounding, which code for the single one has none of
 };
 
 // Decodes qemu's disassembly of one instruction ("lwzu r13, -0x480(r8)"); unknown mnemonics
 // are InsnClass::system with no operands (the trace tool lists them).
 Insn decode(const std::string& mnemonic, const std::string& operands);
+
+// FPU cycles of each operation in one precision: GCC's xfpu.md (the Xilinx APU FPU), its
+// single- and double-precision columns.
+struct FpuColumn {
+    double fadd, fmul, fmadd, fdiv, fsqrt, fcmp, fmove, fconvert, fload, fstore;
+};
+FpuColumn fpu_column(bool double_precision);
 
 struct PipelineParams {
     double issue_width = 2;           // [S] PPC440 core datasheet: dual issue
@@ -77,12 +87,21 @@ struct PipelineParams {
     double taken_bubble = 1;          // [S] PPC440 datasheet: the BTAC "avoids a one cycle penalty"
     double mispredict_cycles = 4;     // [A] not retrieved: a 7-stage pipeline resolving in EX
     double fpu_ratio = 2;             // [S] DS693: CPU cycles per FPU cycle (2:1 or 3:1)
-    double apu_issue = 2;             // [S/proxy] GCC xfpu.md (Xilinx APU FPU): 2 CPU cycles to issue
+    double double_precision = 0;      // fpu.precision: 0 single, 1 double (the column below, frsp)
+    // CPU cycles each class of APU instruction holds the APU's issue (no other FPU instruction
+    // issues meanwhile): xfpu.md's reservations (Xfpu_issue*2, *10, *4).
+    double apu_issue = 2;             // arithmetic: add, multiply, multiply-add
+    double apu_load_issue = 10, apu_store_issue = 4, apu_move_issue = 2, apu_compare_issue = 2,
+           apu_convert_issue = 2, apu_divide_issue = 2;
+    double apu_outstanding_loads = 1;  // [S] Virtex-4 APU FPU sheet: one outstanding FP load
     double apu_overhead = 2;          // [S/proxy] xfpu.md: 2 CPU cycles for register file access and write back
-    // FPU cycles, single precision (xfpu.md's table for the Xilinx APU FPU).
+    // FPU cycles, the precision's column (xfpu.md; fpu_column()).
     double fadd = 5, fmul = 4, fmadd = 10, fdiv = 27, fsqrt = 27, fcmp = 1, fmove = 1, fconvert = 4, fload = 4,
            fstore = 1;
-    double fpu_overlap = 1;  // [A] 1: integer work issues while the FPU computes; 0: the CPU waits for each result
+    double fpu_overlap = 1;  // [S] DS693: integer work issues while the FPU computes; 0: the CPU waits for each result
+
+    // The defaults with the FPU of this precision (its latency column).
+    static PipelineParams for_precision(bool double_precision);
 };
 
 // A knob of the pipeline: a scenario parameter, its field, and the two values the
@@ -93,12 +112,14 @@ struct PipelineKnob {
     double PipelineParams::*field;
     double low, high;
     bool band;
-    const char* unit;   // cycles, fpu_cycles, count, switch
+    const char* unit;   // cycles, fpu_cycles, count, switch (off/on), precision (single/double)
     const char* help;
     const char* source;
     const char* why;    // the band's reason (or why the probe points)
 };
 const std::vector<PipelineKnob>& pipeline_knobs();
+// A choice knob's value as the scenario writes it ("on", "double"); nullptr for a number.
+const char* knob_choice(const PipelineKnob& k, double value);
 
 class Ppc440Pipeline {
 public:
@@ -114,6 +135,7 @@ public:
 private:
     enum Pipe { kPipeI, kPipeJ, kPipeL, kPipeF, kPipes };
     double result_latency(InsnClass c) const;
+    double occupancy(InsnClass c) const;  // CPU cycles the instruction holds the APU's issue
     Pipe pick_pipe(InsnClass c, uint64_t at) const;
     bool used(Pipe p, uint64_t at) const { return pipe_used_[p] == at + 1; }
 
@@ -123,6 +145,8 @@ private:
     uint64_t pipe_used_[kPipes] = {};  // cycle + 1 when the pipe was used last
     uint64_t ready_[kRegisters] = {};  // when each register's value is available
     uint64_t fpu_free_ = 0;      // when the APU takes its next instruction
+    uint64_t divider_free_ = 0;  // when the unpipelined divide / square-root unit takes the next
+    std::vector<uint64_t> loads_;  // when each outstanding FP load's data is in (oldest first)
     uint64_t i_pipe_free_ = 0;   // after a divide
     uint64_t next_ = 0;          // no instruction issues before this (after a branch, or a waited-for FPU result)
     uint64_t last_ = 0;          // latest result

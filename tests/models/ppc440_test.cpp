@@ -25,7 +25,8 @@ struct Bench {
     sc_core::sc_signal<bool> irq;
     Ppc440 cpu;
 
-    explicit Bench(Ppc440::Software software) : cpu("cpu", Ppc440::Params{}, std::move(software), tracer) {
+    explicit Bench(Ppc440::Software software, const Ppc440::Params& params = {})
+        : cpu("cpu", params, std::move(software), tracer) {
         bus.connect_master(cpu.bus, "cpu");
         bus.slaves.bind(regs.socket);
         bus.map(kRegs, 0x100, 0, "regs");
@@ -94,7 +95,8 @@ TEST(Ppc440, TimeIsMmioPlusMemoryPlusConsumedCycles) {
 }
 
 // A step of work with its L1 traffic: every fill stalls the CPU for the line's way to DDR
-// and back; a write-back does not.
+// and back (two asked at one cycle overlap, the second 30 ns behind on the link); a
+// write-back does not.
 TEST(Ppc440, ComputeStallsForEachFillAndPostsWriteBacks) {
     uint64_t spent = 0;
     Bench bench([&](sw::Hal& hal) {
@@ -103,13 +105,61 @@ TEST(Ppc440, ComputeStallsForEachFillAndPostsWriteBacks) {
     sc_core::sc_start();
     const sc_core::sc_time fill = bench.line(32, bench.memory.access_time(32));  // 20 ns + 125 ns + 12.5 ns
     EXPECT_EQ(fill, ns(157.5));
-    EXPECT_EQ(bench.cpu.finish_time(), ns(2500) + 3 * fill);  // 1000 cycles at 400 MHz, three stalls
-    EXPECT_EQ(spent, 1000u + 3 * 63);                        // 157.5 ns = 63 cycles
+    EXPECT_EQ(bench.cpu.finish_time(), ns(2500) + 2 * fill + ns(30));  // 1000 cycles at 400 MHz and the stalls
+    EXPECT_EQ(spent, 1000u + 138);                                     // 345 ns = 138 cycles
     EXPECT_EQ(bench.cpu.stats().fills, 3u);
     EXPECT_EQ(bench.cpu.stats().write_backs, 1u);
-    EXPECT_EQ(bench.cpu.stats().fill_stall, 3 * fill);
+    EXPECT_EQ(bench.cpu.stats().fill_stall, 2 * fill + ns(30));
     EXPECT_EQ(bench.cpu.stats().bytes_read, 96u);
     EXPECT_EQ(bench.cpu.stats().bytes_written, 32u);
+}
+
+// Fills asked at one cycle (a burst) overlap up to cpu.outstanding_fills: the MCI link
+// pipelines them (its address phase and beats only, 30 ns each), the DRAM's latency overlaps;
+// a fourth waits for the oldest; the CPU goes on when the last critical word is in.
+// Returns the stall and the fills that waited for a slot.
+std::pair<sc_core::sc_time, uint64_t> burst_of_four(unsigned outstanding, double lead_ns) {
+    Ppc440::Params p;
+    p.outstanding_fills = outstanding;
+    p.critical_word_lead = Duration{uint64_t(lead_ns * 1000)};
+    Bench bench(
+        [](sw::Hal& hal) {
+            hal.compute(1000, {{0x2000, 100, false}, {0x2100, 100, false}, {0x2200, 100, false}, {0x2300, 100, false}}, 0);
+        },
+        p);
+    sc_core::sc_start();
+    return {bench.cpu.stats().fill_stall, bench.cpu.stats().fill_slot_waits};
+}
+
+// Asked at 250 ns: lines end at 407.5, 437.5, 467.5 (30 ns apart on the link); the fourth asks
+// when the first is in (407.5) and ends 157.5 later, at 565: 315 ns of stall.
+TEST(Ppc440, ABurstOfFillsOverlapsUpToThree) { EXPECT_EQ(burst_of_four(3, 0), std::pair(ns(315), uint64_t{1})); }
+
+// Critical word first: the CPU has the fourth line's word 7.5 ns before its end.
+TEST(Ppc440, ABurstEndsAtItsLastCriticalWord) { EXPECT_EQ(burst_of_four(3, 7.5).first, ns(307.5)); }
+
+// A blocking cache: one line after the other, 4 x 157.5 ns.
+TEST(Ppc440, OneOutstandingFillIsABlockingCache) { EXPECT_EQ(burst_of_four(1, 0), std::pair(ns(630), uint64_t{3})); }
+
+// The DDR serves the CPU's fill and a DMA burst in the order they were asked, whenever the
+// CPU handed its fill over: the CPU computes from 0 and needs a line at 1 us (it reaches the
+// DRAM at 1020 ns, after the link's address phase); a DMA asks 128 bytes at 1015 ns and gets
+// the DRAM at once (50 ns), the fill waits behind it.
+TEST(Ppc440, DdrGrantsTheCpusFillsAndTheDmaInRequestOrder) {
+    Bench bench([](sw::Hal& hal) { hal.compute(2000, {{0x2000, 400, false}}, 0); });
+    uint8_t data[128];
+    test::Initiator dma("dma", [&](test::Initiator& i) {
+        sc_core::wait(ns(1015));
+        i.transact(tlm::TLM_READ_COMMAND, 0x8000, data, sizeof data);
+    });
+    dma.socket.bind(bench.memory.ports);
+    bench.memory.name_port("cpu");
+    bench.memory.name_port("dma");
+    sc_core::sc_start();
+    ASSERT_EQ(bench.memory.port_stats().size(), 2u);
+    EXPECT_EQ(bench.memory.port_stats()[1].wait, sc_core::SC_ZERO_TIME);  // the DMA asked first
+    EXPECT_EQ(bench.memory.port_stats()[0].wait, ns(45));                // 1020 -> 1065
+    EXPECT_EQ(bench.cpu.stats().fill_stall, ns(157.5 + 45));
 }
 
 // Over PLB1 (a bus that synchronises) the CPU waits for each line's grant: write-backs

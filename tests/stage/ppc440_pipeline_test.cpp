@@ -77,14 +77,46 @@ TEST(Ppc440Pipeline, ApuLatencyAndIssueRate) {
     EXPECT_EQ(run({"fadds|f1, f2, f3", "fadds|f4, f1, f1"}, ratio3), 38u);  // 2 + 15 + 2, twice
 }
 
-TEST(Ppc440Pipeline, DivideBlocksTheFpuAndOverlapCanBeOff) {
-    // fdivs at 0 busy until 2 + 54 + 2 = 58; an independent fadds waits for it: 58 + 14.
-    EXPECT_EQ(run({"fdivs|f1, f2, f3", "fadds|f4, f5, f6"}), 72u);
+TEST(Ppc440Pipeline, DividesShareOneUnpipelinedUnitAndOverlapCanBeOff) {
+    // fdivs at 0 done at 2 + 27 x 2 + 2 = 58; an independent fadds issues once the divide has
+    // left the issue (2): done 2 + 14; the last result is the divide's.
+    EXPECT_EQ(run({"fdivs|f1, f2, f3", "fadds|f4, f5, f6"}), 58u);
+    // A second divide waits for the unit: 58 + 58.
+    EXPECT_EQ(run({"fdivs|f1, f2, f3", "fdivs|f4, f5, f6"}), 116u);
     // Integer work after an FPU op: overlapped it issues at once, else it waits for the result.
     EXPECT_EQ(run({"fadds|f1, f2, f3", "add|r3, r4, r5"}), 14u);
     PipelineParams serial;
     serial.fpu_overlap = 0;
     EXPECT_EQ(run({"fadds|f1, f2, f3", "add|r3, r4, r5"}, serial), 15u);
+}
+
+TEST(Ppc440Pipeline, LoadsAndStoresHoldTheApuIssue) {
+    // An FP load holds the issue 10 cycles (xfpu.md) and is the one outstanding load: the
+    // second issues at 10, its data at 10 + 2 + 4 x 2 = 20.
+    EXPECT_EQ(run({"lfs|f1, 0(r1)", "lfs|f2, 4(r1)"}), 20u);
+    // Freed after 2 cycles, the second still waits for the first's data (one outstanding) ...
+    PipelineParams quick;
+    quick.apu_load_issue = 2;
+    EXPECT_EQ(run({"lfs|f1, 0(r1)", "lfs|f2, 4(r1)"}, quick), 20u);
+    // ... unless two may be outstanding: issued at 2, data at 12.
+    quick.apu_outstanding_loads = 2;
+    EXPECT_EQ(run({"lfs|f1, 0(r1)", "lfs|f2, 4(r1)"}, quick), 12u);
+    // A store holds the issue 4 cycles: the next add issues at 4, done at 4 + 14.
+    EXPECT_EQ(run({"stfs|f1, 0(r1)", "fadds|f2, f3, f4"}), 18u);
+    // Integer loads do not wait for the APU.
+    EXPECT_EQ(run({"lfs|f1, 0(r1)", "lwz|r3, 4(r1)"}), 10u);
+}
+
+TEST(Ppc440Pipeline, PrecisionSelectsTheColumnAndFrsp) {
+    // Single: frsp is not there (code for the single FPU has nothing to round); the fadds waits
+    // only for the fsub: 14 + 14.
+    const std::vector<std::string> code = {"fsub|f1, f2, f3", "frsp|f4, f1", "fadds|f5, f4, f4"};
+    EXPECT_EQ(run(code), 28u);
+    // Double: fsub 2 + 7 x 2 + 2 = 18, frsp 2 + 6 x 2 + 2 = 16, fadds 18 again.
+    EXPECT_EQ(run(code, PipelineParams::for_precision(true)), 52u);
+    EXPECT_TRUE(decode("frsp", "f4, f1").round_to_single);
+    EXPECT_EQ(fpu_column(true).fmadd, 19);
+    EXPECT_EQ(fpu_column(false).fload, 4);
 }
 
 TEST(Ppc440Pipeline, MispredictedBranchesCostThePenalty) {
@@ -103,11 +135,12 @@ TEST(Ppc440Pipeline, MispredictedBranchesCostThePenalty) {
 }
 
 TEST(Ppc440Pipeline, KnobsAreTheParametersFields) {
-    for (const PipelineKnob& k : pipeline_knobs()) {
-        EXPECT_LE(k.low, PipelineParams{}.*k.field) << k.key;
-        EXPECT_GE(k.high, PipelineParams{}.*k.field) << k.key;
-        EXPECT_LT(k.low, k.high) << k.key;
-    }
+    for (bool dp : {false, true})
+        for (const PipelineKnob& k : pipeline_knobs()) {
+            EXPECT_LE(k.low, PipelineParams::for_precision(dp).*k.field) << k.key;
+            EXPECT_GE(k.high, PipelineParams::for_precision(dp).*k.field) << k.key;
+            EXPECT_LT(k.low, k.high) << k.key;
+        }
     PipelineParams bad;
     bad.load_latency = -1;
     EXPECT_THROW(Ppc440Pipeline{bad}, std::invalid_argument);
