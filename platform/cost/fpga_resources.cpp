@@ -99,9 +99,9 @@ FpgaResources fpga_resources(const Config& c) {
         b.block = pairs > 1 ? fmt::format("{} (x{})", b.block, pairs) : b.block;
         r.blocks.push_back(b);
     }
-    const bool dp = c.choice("fpga.fpu") == "double";
+    const bool dp = c.choice("fpu.precision") == "double";
     r.blocks.push_back({"apu fpu", 0, dp ? 13.0 : 3.0, dp ? 4950.0 : 2620.0, dp ? 4950.0 : 2620.0,
-                        fmt::format("DS693, {} precision (LUT-FF pairs)", c.choice("fpga.fpu"))});
+                        fmt::format("DS693, {} precision (LUT-FF pairs)", c.choice("fpu.precision"))});
     r.blocks.push_back({"infrastructure", double(c.count("fpga.infrastructure_ramb36")), 0,
                         double(c.count("fpga.infrastructure_luts")), double(c.count("fpga.infrastructure_ffs")),
                         "MPMC, two PLBs, INTC and the rest of an EDK system (fpga.infrastructure_*)"});

@@ -268,7 +268,7 @@ std::string verdict_section(const nlohmann::ordered_json& v) {
         md += "\nWhat a review can change (design choices and the workload, each at its low and its high, one at a time; "
               "not part of the doubt):\n" + band_rows(v["changes"], "setting");
     if (v.contains("software")) {
-        md += "\nSoftware settings the CPU's time rests on (each alone, the rest as the scenario; CPU time from the "
+        md += "\nSettings the CPU's time rests on, the software's and the FPU's (each alone, the rest as the scenario; CPU time from the "
               "calibrated PPC440 cost model, sw/cpu_cost/calibration.md):\n\n"
               "| setting | frames/s | CPU ms per frame | CPU alone, frames/s | keypoints per frame | limit |\n"
               "|---|---:|---:|---:|---:|---|\n";
@@ -350,6 +350,15 @@ std::string software_stage_section(const nlohmann::ordered_json& st) {
         st["instructions"].get<uint64_t>(), st["instructions"].get<double>() / keypoints, classes,
         st["libm_calls"].get<uint64_t>(), cal.value("toolchain", "?"), cal.value("flags", "?"), cal.value("iss", "?"),
         cal.value("fitted_on", "?"), l1["accesses"].get<uint64_t>(), percent(l1["hit_rate"]), l1["misses"].get<uint64_t>());
+    if (st.contains("fpu")) {
+        const auto& fpu = st["fpu"];
+        const double work = fpu["work_cycles_per_keypoint"], other = fpu["other_work_cycles_per_keypoint"];
+        md += fmt::format(
+            "\nFPU: the {}-precision APU FPU (`fpu.precision`). The {}-precision one would take {:.0f} cycles of work a "
+            "keypoint against {:.0f} ({:+.1f} %), fills aside (sw/cpu_cost/README.md: one stream, two FPUs).\n",
+            fpu["precision"].get<std::string>(), fpu["other_precision"].get<std::string>(), other, work,
+            work > 0 ? 100 * (other / work - 1) : 0.0);
+    }
     return md;
 }
 

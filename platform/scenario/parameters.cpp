@@ -39,12 +39,13 @@ void add_cpu_cost(std::vector<ParamSpec>& t) {
     for (const sw::PipelineKnob& k : sw::pipeline_knobs()) {
         const std::string unit = k.unit;
         auto text = [&](double v) {
-            if (unit == "switch") return std::string(v > 0.5 ? "on" : "off");
+            if (const char* choice = sw::knob_choice(k, v)) return std::string(choice);
             if (unit == "count") return fmt::format("{}", v);
             return fmt::format("{} {}", v, v == 1 ? "cycle" : "cycles");
         };
         ParamSpec spec{k.key, ParamKind::cycles, text(sw::PipelineParams{}.*k.field), 0, 1000, {}, k.help, k.source};
         if (unit == "switch") spec.kind = ParamKind::choice, spec.choices = {"on", "off"};
+        if (unit == "precision") spec.kind = ParamKind::choice, spec.choices = {"single", "double"};
         if (unit == "count") spec.kind = ParamKind::count, spec.min = 1, spec.max = 8;
         if (k.band) spec.band = {text(k.low), text(k.high), k.why};
         t.push_back(spec);
@@ -139,10 +140,6 @@ void add_surf(std::vector<ParamSpec>& t) {
                  "under it)",
                  "[A] Virtex-5 block RAM in the slowest (-1) speed grade: 450 MHz (data sheet DS202, recalled, not "
                  "retrieved); faster grades are higher"});
-    t.push_back({"fpga.fpu", ParamKind::choice, "double", 0, 0, {"double", "single"},
-                 "The APU FPU's precision, for its resources (its latencies are the cpu.* parameters)",
-                 "[A] PLATFORM_FACTS: double (the paper says only floating-point co-processor); DS693: 13 DSP48E and 4950 "
-                 "LUT-FF pairs double, 3 and 2620 single"});
     t.push_back({"fpga.ip_interface_luts", ParamKind::count, "700", 0, 1000000, {},
                  "LUTs of one IP block's PLB interfaces (a slave for its registers, a master for its DMA)",
                  "[A] order of magnitude of Xilinx's PLBv46 slave and master-burst IPIF (not retrieved)"});
@@ -210,7 +207,7 @@ constexpr BandEntry kBands[] = {
     {"fpga.dsp48e", "128", "128", "the FX70T's count, recalled, not retrieved"},
     {"fpga.slices", "11200", "11200", "the FX70T's count, recalled, not retrieved"},
     {"fpga.bram_fmax", "450 MHz", "550 MHz", "the slowest to the fastest speed grade (DS202, recalled)"},
-    {"fpga.fpu", "single", "double", "a single-precision FPU if the software's floats allow it", ParamRole::design},
+    {"fpu.precision", "single", "double", "the other FPU DS693 offers: its latencies, size and DSP48E", ParamRole::design},
     {"fpga.ip_interface_luts", "400", "1200", "lighter or heavier IPIF options"},
     {"fpga.ip_interface_ffs", "500", "1500", "lighter or heavier IPIF options"},
     {"fpga.infrastructure_luts", "4000", "9000", "MPMC ports and options"},

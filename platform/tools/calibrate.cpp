@@ -113,10 +113,18 @@ Json compare_results(const std::vector<sw::calibration_dump::Result>& vp,
             {"tolerance", kTolerance}, {"mismatched", mismatched}, {"agree", mismatched == 0}};
 }
 
-sw::TraceReplay run_firmware(const CalibrateOptions& o, const fs::path& dir, const std::vector<sw::PipelineParams>& sets) {
+// The stream sample the table keeps (unit_prices re-times it): runs of candidates to a
+// keypoint, one from every 100th candidate of the first fitting run; 6 with rounded Haar, 2
+// with exact (4 times the instructions a keypoint): a few MB of table, ~20 ms to re-time.
+constexpr size_t kSampleStride = 100;
+size_t sample_keypoints(const std::string& haar) { return haar == "rounded" ? 6 : 2; }
+
+sw::TraceReplay run_firmware(const CalibrateOptions& o, const fs::path& dir, const std::vector<sw::PipelineParams>& sets,
+                             size_t sample) {
     std::ifstream map(o.firmware + ".map");
     if (!map) throw ConfigError("calibrate: no link map " + o.firmware + ".map beside the firmware");
     sw::TraceReplay replay(sw::read_link_map(map), sets);
+    if (sample) replay.keep_sample(sample, kSampleStride);
     const std::string command =
         fmt::format("{} -cpu {} -d in_asm,exec,nochain -D /dev/stdout '{}' '{}' '{}'", kQemu, kQemuCpu, o.firmware,
                     (dir / "inputs.bin").string(), (dir / "iss_results.bin").string());
@@ -132,7 +140,7 @@ sw::TraceReplay run_firmware(const CalibrateOptions& o, const fs::path& dir, con
 
 // The stream's cycles per step (at the defaults) beside what the table prices the same units at.
 Json agreement(const std::vector<sw::CandidateStream>& stream_of, const std::vector<std::array<uint64_t, sw::kUnits>>& units,
-               const std::array<double, sw::kUnits>& prices, uint64_t keypoints) {
+               const std::array<double, sw::kUnits>& prices, uint64_t keypoints, size_t set) {
     std::array<double, sw::kSteps> stream{}, model{}, instructions{}, libm{};
     std::array<std::array<double, sw::kInsnClasses>, sw::kSteps> mix{};
     std::array<double, sw::kUnits> per_unit{};
@@ -143,7 +151,7 @@ Json agreement(const std::vector<sw::CandidateStream>& stream_of, const std::vec
         }
     for (const sw::CandidateStream& c : stream_of)
         for (size_t s = 0; s < sw::kSteps; ++s) {
-            stream[s] += c[s].cycles[0];
+            stream[s] += c[s].cycles[set];
             instructions[s] += double(c[s].instructions);
             libm[s] += double(c[s].libm_calls);
             for (size_t k = 0; k < sw::kInsnClasses; ++k) mix[s][k] += double(c[s].mix[k]);
@@ -180,11 +188,12 @@ Json agreement(const std::vector<sw::CandidateStream>& stream_of, const std::vec
 struct RunResult {
     std::vector<std::array<uint64_t, sw::kUnits>> units;
     std::vector<sw::CandidateStream> stream;
+    sw::StreamSample sample;
     Json record;
 };
 
 RunResult calibration_run(const CalibrateOptions& o, const std::string& scenario, const std::string& haar,
-                          const std::vector<sw::PipelineParams>& sets) {
+                          const std::vector<sw::PipelineParams>& sets, bool sample = false) {
     const fs::path dir = fs::path(o.out) / fmt::format("{}_{}", fs::path(scenario).stem().string(), haar);
     fs::create_directories(dir);
     for (const char* f : {"inputs.bin", "vp_results.bin", "iss_results.bin"}) fs::remove(dir / f);
@@ -212,11 +221,12 @@ RunResult calibration_run(const CalibrateOptions& o, const std::string& scenario
     if (!o.quiet)
         std::fprintf(stderr, "calibrate: %s, %s Haar: %zu candidates under qemu-ppc, %zu parameter sets\n",
                      scenario.c_str(), haar.c_str(), run.units.size(), sets.size());
-    const sw::TraceReplay replay = run_firmware(o, dir, sets);
+    const sw::TraceReplay replay = run_firmware(o, dir, sets, sample ? sample_keypoints(haar) : 0);
     const Json results = compare_results(read_results(dir / "vp_results.bin"), read_results(dir / "iss_results.bin"));
     if (!results["agree"].get<bool>())
         throw std::runtime_error("calibrate: the PPC440 build's keypoints differ from the VP's: " + results.dump());
     run.stream = replay.candidates();
+    run.sample = replay.sample();
     fs::remove_all(dir);  // tens of MB of buffers, reproducible from the scenario
     Json unknown = Json::object();
     for (const auto& [m, n] : replay.unknown_mnemonics()) unknown[m] = n;
@@ -258,10 +268,13 @@ std::string calibration_markdown(const Json& out) {
           "within the tolerance). Cycles per keypoint are all candidates' work divided by the keypoints; "
           "the stream's are the pipeline model on qemu's instruction stream, every access an L1 hit (the fills "
           "are timed by the platform).\n\n";
-    for (const Json& r : out["runs"]) {
-        const Json& a = r["agreement"];
-        md += fmt::format("## {}, {} Haar ({}; {} frames, {} candidates, {} keypoints)\n\n", r["scenario"].get<std::string>(),
-                          r["haar"].get<std::string>(), r.value("fitted", false) ? "fitted" : "held out", r["frames"].get<int>(), a["candidates"].get<size_t>(),
+    for (const Json& r : out["runs"])
+      for (const char* which : {"agreement", "agreement_double"}) {
+        const Json& a = r[which];
+        md += fmt::format("## {}, {} Haar, {} precision ({}; {} frames, {} candidates, {} keypoints)\n\n",
+                          r["scenario"].get<std::string>(), r["haar"].get<std::string>(),
+                          std::string(which) == "agreement" ? "single" : "double",
+                          r.value("fitted", false) ? "fitted" : "held out", r["frames"].get<int>(), a["candidates"].get<size_t>(),
                           a["keypoints"].get<uint64_t>());
         md += fmt::format("Keypoints: {} of {} words, {} bit-exact, largest difference {:.2g} (tolerance {:.0e}).\n\n",
                           r["results"]["keypoints"].get<size_t>(), r["results"]["words"].get<size_t>(),
@@ -277,9 +290,25 @@ std::string calibration_markdown(const Json& out) {
                           a["stream_cycles"].get<double>() / std::max<double>(1, a["keypoints"].get<double>()),
                           a["model_cycles"].get<double>() / std::max<double>(1, a["keypoints"].get<double>()),
                           100 * a["total_error"].get<double>());
+      }
+    const Json& checks = out["calibration"]["checks"];
+    if (!checks.empty()) {
+        md += "## Several knobs at once: the prices against the stream re-timed\n\n"
+              "Each point moves every knob of the band at once (a Latin hypercube, precision alternating); the "
+              "whole stream is timed there. The model scales the table by the stream sample re-timed at the point; "
+              "the linear column is the sum of the one-knob probes' changes (not used: the knobs interact).\n\n"
+              "| scenario | Haar | point | precision | stream cycles / keypoint | model cycles / keypoint | model vs stream | "
+              "linear vs stream |\n|---|---|---:|---|---:|---:|---:|---:|\n";
+        for (const Json& c : checks)
+            md += fmt::format("| {} | {} | {} | {} | {:.0f} | {:.0f} | {:+.2f} % | {:+.2f} % |\n",
+                              c["scenario"].get<std::string>(), c["haar"].get<std::string>(), c["point"].get<int>(),
+                              c["knobs"]["fpu.precision"].get<double>() > 0.5 ? "double" : "single",
+                              c["stream_cycles_per_keypoint"].get<double>(), c["model_cycles_per_keypoint"].get<double>(),
+                              100 * c["error"].get<double>(), 100 * c["linear_error"].get<double>());
+        md += "\n";
     }
-    for (const auto& [haar, units] : out["calibration"]["haar"].items()) {
-        md += fmt::format("## Instructions per unit of work, {} Haar\n\n| unit | cycles | instructions | IPC | libm calls | mix |\n|---|---:|---:|---:|---:|---|\n", haar);
+    for (const auto& [haar, units] : out["calibration"]["single"]["haar"].items()) {
+        md += fmt::format("## Instructions per unit of work, {} Haar (cycles: single precision)\n\n| unit | cycles | instructions | IPC | libm calls | mix |\n|---|---:|---:|---:|---:|---|\n", haar);
         for (const auto& [unit, u] : units.items()) {
             const std::string mix = mix_text(u["mix"]);
             const double cycles = u["cycles"].get<double>();
@@ -290,6 +319,48 @@ std::string calibration_markdown(const Json& out) {
     }
     return md;
 }
+
+
+// The pipeline a table is measured at: the fitting scenario's with the caller's --set, in
+// each precision (its latency column unless the caller set a latency).
+std::array<sw::PipelineParams, 2> table_bases(const CalibrateOptions& o) {
+    std::array<sw::PipelineParams, 2> bases;
+    for (int p = 0; p < 2; ++p) {
+        std::vector<std::string> sets = o.sets;
+        sets.push_back(std::string("fpu.precision=") + (p ? "double" : "single"));
+        bases[size_t(p)] = pipeline_params(load_scenario(resolve_scenario(o.fit.front()), sets));
+    }
+    return bases;
+}
+
+// Points where every knob of the band moves at once: a Latin hypercube over the knobs' probe
+// ranges (each knob's values in n strata, the strata shuffled by a fixed rule), precision
+// alternating. Deterministic, so a recalibration re-times the same points.
+std::vector<sw::PipelineParams> check_points(const std::array<sw::PipelineParams, 2>& bases, size_t n) {
+    std::vector<sw::PipelineParams> points;
+    const auto& knobs = sw::pipeline_knobs();
+    for (size_t i = 0; i < n; ++i) {
+        sw::PipelineParams p = bases[i % 2];
+        for (size_t k = 0; k < knobs.size(); ++k) {
+            const sw::PipelineKnob& knob = knobs[k];
+            if (!knob.band || std::string(knob.key) == "fpu.precision") continue;
+            const size_t stratum = (i * (2 * k + 3) + k) % n;  // a permutation of 0..n-1 for odd multipliers coprime to n
+            const double f = (double(stratum) + 0.5) / double(n);
+            const double v = knob.low + f * (knob.high - knob.low);
+            p.*knob.field = sw::knob_choice(knob, 0) || std::string(knob.unit) == "count" ? std::round(v) : v;
+        }
+        points.push_back(p);
+    }
+    return points;
+}
+
+Json knob_values(const sw::PipelineParams& p) {
+    Json j = Json::object();
+    for (const sw::PipelineKnob& k : sw::pipeline_knobs()) j[k.key] = p.*k.field;
+    return j;
+}
+
+constexpr size_t kCheckPoints = 6;
 
 }  // namespace
 
@@ -302,50 +373,89 @@ int calibrate_command(const CalibrateOptions& options) {
     if (std::system((std::string("command -v ") + kQemu + " > /dev/null").c_str()) != 0)
         throw ConfigError(std::string("calibrate: no ") + kQemu + ": install qemu-user (./scripts/bootstrap.sh does)");
     if (o.frames < 1) throw ConfigError("calibrate: --frames must be at least 1");
+    if (o.fit.empty()) throw ConfigError("calibrate: --fit needs at least one scenario");
     cv::setNumThreads(0);
     fs::create_directories(o.out);
-    const std::vector<sw::PipelineParams> sets =
-        o.probes ? sw::calibration_parameter_sets() : std::vector<sw::PipelineParams>{sw::PipelineParams{}};
 
-    sw::Calibration table = sw::recorded_calibration();
-    table.agreement = Json::array();
-    table.defaults.clear();
-    for (const sw::PipelineKnob& k : sw::pipeline_knobs()) table.defaults.push_back(sw::PipelineParams{}.*k.field);
+    // Every parameter set the stream is timed at, in one pass: per precision its base and
+    // each knob's probes (the table), then the multi-knob check points.
+    const std::array<sw::PipelineParams, 2> bases = table_bases(o);
+    std::vector<sw::PipelineParams> sets;
+    std::array<size_t, 2> first{};
+    for (size_t p = 0; p < 2; ++p) {
+        first[p] = sets.size();
+        const auto table_sets = o.probes ? sw::calibration_parameter_sets(bases[p]) : std::vector{bases[p]};
+        sets.insert(sets.end(), table_sets.begin(), table_sets.end());
+    }
+    const size_t first_check = sets.size();
+    const std::vector<sw::PipelineParams> checks = o.probes ? check_points(bases, kCheckPoints) : std::vector<sw::PipelineParams>{};
+    sets.insert(sets.end(), checks.begin(), checks.end());
+
+    sw::Calibration table;
+    for (size_t p = 0; p < 2; ++p) {
+        sw::PrecisionTable& t = table.precision[p];
+        for (const sw::PipelineKnob& k : sw::pipeline_knobs()) {
+            t.defaults.push_back(bases[p].*k.field);
+            const double base = bases[p].*k.field;
+            const auto [low, high] = o.probes ? sw::probe_values(k, base) : std::pair{base, base};
+            t.low_at.push_back(low);
+            t.high_at.push_back(high);
+        }
+    }
     Json runs = Json::array();
     std::vector<std::pair<RunResult, int>> done;
     const char* modes[2] = {"exact", "rounded"};
     for (int h = 0; h < 2; ++h) {
         RunResult pooled;
         for (const std::string& scenario : o.fit) {
-            RunResult fit = calibration_run(o, scenario, modes[h], sets);
+            RunResult fit = calibration_run(o, scenario, modes[h], sets, scenario == o.fit.front());
+            if (scenario == o.fit.front()) table.sample[size_t(h)] = fit.sample;
             pooled.stream.insert(pooled.stream.end(), fit.stream.begin(), fit.stream.end());
             pooled.units.insert(pooled.units.end(), fit.units.begin(), fit.units.end());
             fit.record["fitted"] = true;
             done.emplace_back(std::move(fit), h);
         }
-        table.haar[size_t(h)] = sw::fit_units(pooled.stream, pooled.units);
-        if (!o.probes)  // no probes: the knobs' recorded sensitivities stay as they were
-            for (size_t u = 0; u < sw::kUnits; ++u) {
-                table.haar[size_t(h)][u].low = sw::recorded_calibration().haar[size_t(h)][u].low;
-                table.haar[size_t(h)][u].high = sw::recorded_calibration().haar[size_t(h)][u].high;
-            }
+        for (size_t p = 0; p < 2; ++p) {
+            sw::UnitTable fitted = sw::fit_units(pooled.stream, pooled.units, first[p], o.probes);
+            if (!o.probes)  // not probed: no sensitivity (the probes sit at the defaults)
+                for (sw::UnitCalibration& u : fitted) u.low = u.high = std::vector<double>(sw::pipeline_knobs().size(), u.cycles);
+            table.precision[p].haar[size_t(h)] = fitted;
+        }
         for (const std::string& check : o.check)
             if (check != "none") done.emplace_back(calibration_run(o, check, modes[h], sets), h);
     }
     table.provenance = {{"toolchain", first_line("powerpc-linux-gnu-g++ --version")},
                         {"flags", SURFVP_FIRMWARE_FLAGS},
                         {"iss", fmt::format("{} -cpu {}", kQemu, kQemuCpu)},
-                        {"fitted_on", fmt::format("{}, {} frames each per Haar mode", fmt::join(o.fit, " + "), o.frames)}};
+                        {"fitted_on", fmt::format("{}, {} frames each per Haar mode", fmt::join(o.fit, " + "), o.frames)},
+                        {"set", o.sets}};
     for (auto& [run, h] : done) {
         uint64_t keypoints = 0;
         for (const auto& n : run.units) keypoints += n[size_t(sw::Unit::descriptor)];
-        const auto prices = sw::unit_prices(h ? surf::HaarMode::rounded : surf::HaarMode::exact, sw::PipelineParams{}, table);
-        run.record["agreement"] = agreement(run.stream, run.units, prices, keypoints);
+        const surf::HaarMode haar = h ? surf::HaarMode::rounded : surf::HaarMode::exact;
+        for (size_t p = 0; p < 2; ++p) {
+            const Json a = agreement(run.stream, run.units, sw::unit_prices(haar, bases[p], table), keypoints, first[p]);
+            run.record[p ? "agreement_double" : "agreement"] = a;
+            Json summary = {{"scenario", run.record["scenario"]}, {"haar", run.record["haar"]},
+                            {"precision", p ? "double" : "single"}, {"fitted", run.record.value("fitted", false)}};
+            summary.update(a);
+            table.agreement.push_back(summary);
+        }
+        const double per = double(std::max<uint64_t>(1, keypoints));
+        for (size_t i = 0; i < checks.size(); ++i) {
+            const Json a = agreement(run.stream, run.units, sw::unit_prices(haar, checks[i], table), keypoints, first_check + i);
+            const Json linear =
+                agreement(run.stream, run.units, sw::linear_unit_prices(haar, checks[i], table), keypoints, first_check + i);
+            table.checks.push_back({{"scenario", run.record["scenario"]}, {"haar", run.record["haar"]},
+                                    {"point", i}, {"knobs", knob_values(checks[i])},
+                                    {"units_per_keypoint", a["units_per_keypoint"]},
+                                    {"stream_cycles_per_keypoint", a["stream_cycles"].get<double>() / per},
+                                    {"model_cycles_per_keypoint", a["model_cycles"].get<double>() / per},
+                                    {"error", a["total_error"]},
+                                    {"linear_cycles_per_keypoint", linear["model_cycles"].get<double>() / per},
+                                    {"linear_error", linear["total_error"]}});
+        }
         runs.push_back(run.record);
-        Json summary = {{"scenario", run.record["scenario"]}, {"haar", run.record["haar"]},
-                        {"fitted", run.record.value("fitted", false)}};
-        summary.update(run.record["agreement"]);
-        table.agreement.push_back(summary);
     }
     const Json out = {{"calibration", sw::calibration_to_json(table)}, {"runs", runs}};
     const std::string table_json = sw::calibration_to_json(table).dump(1) + "\n";

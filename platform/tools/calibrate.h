@@ -20,7 +20,7 @@ struct CalibrateOptions {
     int frames = 2;                 // per scenario
     std::string out = "traces/calibration";
     std::string table;              // also write the fitted table here (sw/cpu_cost/calibration.json)
-    bool probes = true;             // time the stream under every knob's probes too (the table needs them)
+    bool probes = true;             // time the stream under every knob's probes and the check points too
     bool quiet = false;
     std::string firmware;           // default: the build's
 };

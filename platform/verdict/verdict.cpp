@@ -103,9 +103,11 @@ Json band_json(const std::vector<BandAxis>& axes, const Json& reference, double 
             {"flipping", at_risk}, {"failed_points", failed}, {"axes", rows}};
 }
 
-// The software settings that move the CPU's time, each value other than the scenario's.
+// The settings that move the CPU's time, each value other than the scenario's: the software's
+// and the FPU's precision.
 std::vector<std::pair<std::string, std::string>> software_settings(const Config& c) {
     std::vector<std::pair<std::string, std::string>> points;
+    points.emplace_back("fpu.precision", c.choice("fpu.precision") == "double" ? "single" : "double");
     points.emplace_back("surf.haar", c.choice("surf.haar") == "exact" ? "rounded" : "exact");
     points.emplace_back("surf.upright", c.choice("surf.upright") == "on" ? "off" : "on");
     const int64_t target = c.count("surf.target_keypoints");

@@ -22,22 +22,26 @@
 #include "sw/stage/software_stage.h"
 
 namespace surfvp {
-namespace {
 
 sw::PipelineParams pipeline_params(const Config& c) {
-    sw::PipelineParams p;
+    sw::PipelineParams p = sw::PipelineParams::for_precision(c.choice("fpu.precision") == "double");
     for (const sw::PipelineKnob& k : sw::pipeline_knobs()) {
         const std::string unit = k.unit;
-        p.*k.field = unit == "switch" ? (c.choice(k.key) == "on" ? 1.0 : 0.0)
-                     : unit == "count" ? double(c.count(k.key))
-                                       : double(c.cycles(k.key));
+        if (unit == "fpu_cycles" && c.origin(k.key) == "default") continue;  // the precision's column
+        p.*k.field = unit == "switch"      ? (c.choice(k.key) == "on" ? 1.0 : 0.0)
+                     : unit == "precision" ? (c.choice(k.key) == "double" ? 1.0 : 0.0)
+                     : unit == "count"     ? double(c.count(k.key))
+                                           : double(c.cycles(k.key));
     }
     return p;
 }
 
+namespace {
+
 sw::CostParams cost_params(const Config& c, surf::HaarMode haar) {
     sw::CostParams p = sw::calibrated_cost_params(haar, pipeline_params(c));
     p.miss_cycles = 0;  // the platform times each fill on the memory path (Hal::compute)
+    p.reads_per_burst = haar == surf::HaarMode::rounded ? 8 : 4;  // sw/surf/haar.h (CostParams)
     p.cache.size_bytes = uint32_t(c.bytes("cpu.dcache_size").n);
     p.cache.line_bytes = uint32_t(c.bytes("cpu.cache_line").n);
     p.cache.ways = uint32_t(c.count("cpu.dcache_ways"));
@@ -283,6 +287,13 @@ private:
     sw::StageParams params_;
     sw::SoftwareStage stage_;
     unsigned line_bytes_;
+
+public:
+    // The chip's APU FPU and what the other precision's prices would make of the same work.
+    bool double_precision = false;
+    std::array<double, sw::kUnits> other_precision_prices{};
+
+private:
     std::unique_ptr<InputRecorder> recorder_;
     int recorded_task_ = -1;
     int task_ = -1;
@@ -307,6 +318,23 @@ void share_worker(sw::ssa2::Describer& describer, Worker* worker) {
     if (auto* stage = dynamic_cast<StageDescriber*>(&describer)) stage->share_worker(worker);
 }
 
+namespace {
+
+// The chip's FPU and the other precision's cycles for the same units of work (fills aside).
+nlohmann::ordered_json fpu_report(const StageDescriber& stage, const sw::CostTotals& totals, double keypoints) {
+    double work = 0, other = 0;
+    for (size_t u = 0; u < sw::kUnits; ++u) {
+        work += double(totals.units[u]) * stage.stage().cost().unit_cycles(sw::Unit(u));
+        other += double(totals.units[u]) * stage.other_precision_prices[u];
+    }
+    return {{"precision", stage.double_precision ? "double" : "single"},
+            {"work_cycles_per_keypoint", work / keypoints},
+            {"other_precision", stage.double_precision ? "single" : "double"},
+            {"other_work_cycles_per_keypoint", other / keypoints}};
+}
+
+}  // namespace
+
 nlohmann::ordered_json describer_report(const sw::ssa2::Describer& describer) {
     const auto* stage = dynamic_cast<const StageDescriber*>(&describer);
     if (!stage) return nullptr;
@@ -323,8 +351,9 @@ nlohmann::ordered_json describer_report(const sw::ssa2::Describer& describer) {
     nlohmann::ordered_json units = nlohmann::ordered_json::object();
     for (const sw::CostLine& line : b.lines)
         if (line.count) units[line.name] = {{"count", line.count}, {"cycles", line.cycles}};
-    // What the PPC440 executed for this work, by the calibration's instructions per unit.
-    const sw::UnitTable& table = sw::recorded_calibration().haar[stage->rounded()];
+    // What the PPC440 executed for this work, by the calibration's instructions per unit (one
+    // stream: both precisions run the same code).
+    const sw::UnitTable& table = sw::recorded_calibration().precision[0].haar[stage->rounded()];
     std::array<double, sw::kInsnClasses> mix{};
     double instructions = 0, libm_calls = 0;
     for (size_t u = 0; u < sw::kUnits; ++u) {
@@ -348,6 +377,7 @@ nlohmann::ordered_json describer_report(const sw::ssa2::Describer& describer) {
             {"instructions_by_class", classes},
             {"libm_calls", std::llround(libm_calls)},
             {"calibration", sw::recorded_calibration().provenance},
+            {"fpu", fpu_report(*stage, totals, keypoints)},
             {"dcache", {{"accesses", b.cache_accesses}, {"hits", b.cache_hits}, {"misses", b.cache_misses},
                         {"hit_rate", b.hit_rate}}}};
 }
@@ -360,8 +390,13 @@ std::unique_ptr<sw::ssa2::Describer> make_describer(const Config& config, float 
     params.threshold = threshold;
     params.max_offset = chip.max_offset;
     try {
-        return std::make_unique<StageDescriber>(params, cost_params(config, params.haar),
-                                                unsigned(config.bytes("cpu.cache_line").n));
+        auto describer = std::make_unique<StageDescriber>(params, cost_params(config, params.haar),
+                                                          unsigned(config.bytes("cpu.cache_line").n));
+        const sw::PipelineParams pipeline = pipeline_params(config);
+        describer->double_precision = pipeline.double_precision > 0.5;
+        describer->other_precision_prices =
+            sw::unit_prices(params.haar, pipeline_params(config.with({{"fpu.precision", describer->double_precision ? "single" : "double"}}, "the other FPU")));
+        return describer;
     } catch (const std::invalid_argument& e) {
         throw ConfigError(e.what());
     }

@@ -5,11 +5,16 @@
 #include <nlohmann/json.hpp>
 
 #include "platform/scenario/config.h"
+#include "sw/cpu_cost/ppc440_pipeline.h"
 #include "sw/libssa2/libssa2.h"
 
 namespace surfvp {
 
 class Worker;
+
+// The PPC440 pipeline the configuration describes: fpu.precision's latency column unless a
+// scenario sets an fpu.* latency itself, and every other knob as set.
+sw::PipelineParams pipeline_params(const Config& config);
 
 std::unique_ptr<sw::ssa2::Describer> make_describer(const Config& config, float threshold);
 

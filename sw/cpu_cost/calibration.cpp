@@ -1,6 +1,7 @@
 #include "sw/cpu_cost/calibration.h"
 
 #include <cmath>
+#include <string>
 
 #include <Eigen/Dense>
 #include <stdexcept>
@@ -41,6 +42,25 @@ UnitCalibration unit_from_json(const nlohmann::ordered_json& j) {
 }
 
 constexpr const char* kHaarNames[2] = {"exact", "rounded"};
+constexpr const char* kPrecisionNames[2] = {"single", "double"};
+
+nlohmann::ordered_json sample_to_json(const StreamSample& s) {
+    nlohmann::ordered_json blocks = nlohmann::ordered_json::array();
+    for (const StreamSample::Block& b : s.blocks)
+        blocks.push_back({{"pc", b.pc}, {"marker", b.marker}, {"libm", b.libm}, {"code", b.code}});
+    return {{"blocks", blocks}, {"sequence", s.sequence}};
+}
+
+StreamSample sample_from_json(const nlohmann::ordered_json& j) {
+    StreamSample s;
+    for (const auto& b : j.at("blocks"))
+        s.blocks.push_back({b.at("pc").get<uint32_t>(), b.at("marker").get<int>(), b.at("libm").get<bool>(),
+                            b.at("code").get<std::vector<std::string>>()});
+    s.sequence = j.at("sequence").get<std::vector<uint32_t>>();
+    for (uint32_t i : s.sequence)
+        if (i >= s.blocks.size()) throw std::runtime_error("calibration table: the sample runs a block it does not have");
+    return s;
+}
 
 // Least squares of y over a step's units (the columns of x), over the candidates; a unit no
 // candidate did costs 0.
@@ -66,15 +86,28 @@ const Calibration& recorded_calibration() {
 }
 
 nlohmann::ordered_json calibration_to_json(const Calibration& c) {
-    nlohmann::ordered_json defaults = nlohmann::ordered_json::object();
-    for (size_t k = 0; k < knobs(); ++k) defaults[pipeline_knobs()[k].key] = c.defaults[k];
-    nlohmann::ordered_json haar = nlohmann::ordered_json::object();
-    for (size_t h = 0; h < 2; ++h) {
-        nlohmann::ordered_json units = nlohmann::ordered_json::object();
-        for (size_t u = 0; u < kUnits; ++u) units[unit_name(Unit(u))] = unit_to_json(c.haar[h][u]);
-        haar[kHaarNames[h]] = units;
+    nlohmann::ordered_json out = {{"provenance", c.provenance}};
+    for (size_t p = 0; p < 2; ++p) {
+        const PrecisionTable& t = c.precision[p];
+        nlohmann::ordered_json defaults = nlohmann::ordered_json::object(), probes = nlohmann::ordered_json::object();
+        for (size_t k = 0; k < knobs(); ++k) {
+            defaults[pipeline_knobs()[k].key] = t.defaults[k];
+            probes[pipeline_knobs()[k].key] = {t.low_at[k], t.high_at[k]};
+        }
+        nlohmann::ordered_json haar = nlohmann::ordered_json::object();
+        for (size_t h = 0; h < 2; ++h) {
+            nlohmann::ordered_json units = nlohmann::ordered_json::object();
+            for (size_t u = 0; u < kUnits; ++u) units[unit_name(Unit(u))] = unit_to_json(t.haar[h][u]);
+            haar[kHaarNames[h]] = units;
+        }
+        out[kPrecisionNames[p]] = {{"defaults", defaults}, {"probes", probes}, {"haar", haar}};
     }
-    return {{"provenance", c.provenance}, {"defaults", defaults}, {"haar", haar}, {"agreement", c.agreement}};
+    out["agreement"] = c.agreement;
+    out["checks"] = c.checks;
+    nlohmann::ordered_json samples = nlohmann::ordered_json::object();
+    for (size_t h = 0; h < 2; ++h) samples[kHaarNames[h]] = sample_to_json(c.sample[h]);
+    out["sample"] = samples;
+    return out;
 }
 
 Calibration calibration_from_json(const nlohmann::ordered_json& j) {
@@ -82,45 +115,98 @@ Calibration calibration_from_json(const nlohmann::ordered_json& j) {
         Calibration c;
         c.provenance = j.at("provenance");
         c.agreement = j.value("agreement", nlohmann::ordered_json::array());
-        for (const PipelineKnob& k : pipeline_knobs()) c.defaults.push_back(j.at("defaults").at(k.key).get<double>());
-        for (size_t h = 0; h < 2; ++h)
-            for (size_t u = 0; u < kUnits; ++u)
-                c.haar[h][u] = unit_from_json(j.at("haar").at(kHaarNames[h]).at(unit_name(Unit(u))));
+        c.checks = j.value("checks", nlohmann::ordered_json::array());
+        if (j.contains("sample"))
+            for (size_t h = 0; h < 2; ++h) c.sample[h] = sample_from_json(j.at("sample").at(kHaarNames[h]));
+        for (size_t p = 0; p < 2; ++p) {
+            const nlohmann::ordered_json& in = j.at(kPrecisionNames[p]);
+            PrecisionTable& t = c.precision[p];
+            for (const PipelineKnob& k : pipeline_knobs()) {
+                t.defaults.push_back(in.at("defaults").at(k.key).get<double>());
+                t.low_at.push_back(in.at("probes").at(k.key).at(0).get<double>());
+                t.high_at.push_back(in.at("probes").at(k.key).at(1).get<double>());
+            }
+            for (size_t h = 0; h < 2; ++h)
+                for (size_t u = 0; u < kUnits; ++u)
+                    t.haar[h][u] = unit_from_json(in.at("haar").at(kHaarNames[h]).at(unit_name(Unit(u))));
+        }
         return c;
     } catch (const nlohmann::json::exception& e) {
         throw std::runtime_error(std::string("calibration table: ") + e.what());
     }
 }
 
+std::vector<std::array<double, kSteps>> sample_cycles(const StreamSample& sample, const std::vector<PipelineParams>& sets) {
+    FirmwareLayout none;
+    TraceReplay replay(none, sets);
+    replay.replay(sample);
+    std::vector<std::array<double, kSteps>> out(sets.size(), std::array<double, kSteps>{});
+    for (const CandidateStream& c : replay.candidates())
+        for (size_t st = 0; st < kSteps; ++st)
+            for (size_t k = 0; k < sets.size(); ++k) out[k][st] += c[st].cycles[k];
+    return out;
+}
+
 std::array<double, kUnits> unit_prices(surf::HaarMode haar, const PipelineParams& params, const Calibration& c) {
-    const UnitTable& table = c.haar[haar == surf::HaarMode::rounded ? 1 : 0];
+    const size_t h = haar == surf::HaarMode::rounded ? 1 : 0;
+    const PrecisionTable& t = c.precision[params.double_precision > 0.5 ? 1 : 0];
+    PipelineParams defaults = params;
+    for (size_t k = 0; k < knobs(); ++k) defaults.*pipeline_knobs()[k].field = t.defaults[k];
+    std::array<double, kUnits> prices{};
+    for (size_t u = 0; u < kUnits; ++u) prices[u] = t.haar[h][u].cycles;
+    bool moved = false;
+    for (size_t k = 0; k < knobs(); ++k) moved |= params.*pipeline_knobs()[k].field != t.defaults[k];
+    if (!moved) return prices;
+    if (c.sample[h].empty()) throw std::runtime_error("calibration table: no stream sample to re-time");
+    const auto cycles = sample_cycles(c.sample[h], {defaults, params});
+    for (size_t u = 0; u < kUnits; ++u) {
+        const size_t st = size_t(step_of(Unit(u)));
+        if (cycles[0][st] > 0) prices[u] *= cycles[1][st] / cycles[0][st];
+    }
+    return prices;
+}
+
+std::array<double, kUnits> linear_unit_prices(surf::HaarMode haar, const PipelineParams& params, const Calibration& c) {
+    const PrecisionTable& t = c.precision[params.double_precision > 0.5 ? 1 : 0];
+    const UnitTable& table = t.haar[haar == surf::HaarMode::rounded ? 1 : 0];
     std::array<double, kUnits> prices{};
     for (size_t u = 0; u < kUnits; ++u) {
         const UnitCalibration& unit = table[u];
         double cycles = unit.cycles;
         for (size_t k = 0; k < knobs(); ++k) {
-            const PipelineKnob& knob = pipeline_knobs()[k];
-            const double v = params.*knob.field, d = c.defaults[k];
-            if (v > d && knob.high > d) cycles += (unit.high[k] - unit.cycles) * (v - d) / (knob.high - d);
-            if (v < d && knob.low < d) cycles += (unit.low[k] - unit.cycles) * (d - v) / (d - knob.low);
+            const double v = params.*pipeline_knobs()[k].field, d = t.defaults[k];
+            if (v > d && t.high_at[k] > d) cycles += (unit.high[k] - unit.cycles) * (v - d) / (t.high_at[k] - d);
+            if (v < d && t.low_at[k] < d) cycles += (unit.low[k] - unit.cycles) * (d - v) / (d - t.low_at[k]);
         }
         prices[u] = std::max(0.0, cycles);
     }
     return prices;
 }
 
-std::vector<PipelineParams> calibration_parameter_sets() {
-    std::vector<PipelineParams> sets{PipelineParams{}};
-    for (const PipelineKnob& k : pipeline_knobs())
-        for (double v : {k.low, k.high}) {
-            PipelineParams p;
+std::pair<double, double> probe_values(const PipelineKnob& knob, double base) {
+    if (std::string(knob.key) == "fpu.precision") return {base, base};
+    if (knob_choice(knob, base)) return base > 0.5 ? std::pair{0.0, base} : std::pair{base, 1.0};
+    const double span = knob.high - knob.low;
+    const double low = knob.low < base ? knob.low : std::max(std::string(knob.unit) == "count" ? 1.0 : 0.0, base - span);
+    const double high = knob.high > base ? knob.high : base + span;
+    return {low, high};
+}
+
+std::vector<PipelineParams> calibration_parameter_sets(const PipelineParams& base) {
+    std::vector<PipelineParams> sets{base};
+    for (const PipelineKnob& k : pipeline_knobs()) {
+        const auto [low, high] = probe_values(k, base.*k.field);
+        for (double v : {low, high}) {
+            PipelineParams p = base;
             p.*k.field = v;
             sets.push_back(p);
         }
+    }
     return sets;
 }
 
-UnitTable fit_units(const std::vector<CandidateStream>& stream, const std::vector<std::array<uint64_t, kUnits>>& units) {
+UnitTable fit_units(const std::vector<CandidateStream>& stream, const std::vector<std::array<uint64_t, kUnits>>& units,
+                    size_t first_set, bool probed) {
     if (stream.size() != units.size())
         throw std::runtime_error("calibration: the trace has " + std::to_string(stream.size()) +
                                  " candidates, the native stage " + std::to_string(units.size()));
@@ -139,13 +225,14 @@ UnitTable fit_units(const std::vector<CandidateStream>& stream, const std::vecto
             const std::vector<double> per = solve(x, y);
             for (size_t i = 0; i < own.size(); ++i) store(table[size_t(own[i])], per[i]);
         };
-        fit([](const StepStream& st) { return st.cycles[0]; }, [](UnitCalibration& u, double v) { u.cycles = v; });
+        fit([&](const StepStream& st) { return st.cycles[first_set]; }, [](UnitCalibration& u, double v) { u.cycles = v; });
         // The knobs' sensitivities only from a stream timed at their probes too (the caller
         // keeps the recorded ones otherwise).
-        const bool probed = !stream.empty() && stream.front()[s].cycles.size() >= 1 + 2 * knobs();
         for (size_t k = 0; probed && k < knobs(); ++k) {
-            fit([&](const StepStream& st) { return st.cycles[1 + 2 * k]; }, [&](UnitCalibration& u, double v) { u.low[k] = v; });
-            fit([&](const StepStream& st) { return st.cycles[2 + 2 * k]; }, [&](UnitCalibration& u, double v) { u.high[k] = v; });
+            fit([&](const StepStream& st) { return st.cycles[first_set + 1 + 2 * k]; },
+                [&](UnitCalibration& u, double v) { u.low[k] = v; });
+            fit([&](const StepStream& st) { return st.cycles[first_set + 2 + 2 * k]; },
+                [&](UnitCalibration& u, double v) { u.high[k] = v; });
         }
         fit([](const StepStream& st) { return double(st.instructions); },
             [](UnitCalibration& u, double v) { u.instructions = v; });

@@ -60,8 +60,11 @@ void TraceReplay::parse_instruction(const std::string& line, Block& block) {
     const size_t end = line.find(' ', i);
     const std::string mnemonic = line.substr(i, end == std::string::npos ? std::string::npos : end - i);
     const std::string operands = end == std::string::npos ? "" : line.substr(end);
+    add_instruction(hex(line.substr(2, colon - 2)), mnemonic, operands, block);
+}
+
+void TraceReplay::add_instruction(uint32_t pc, const std::string& mnemonic, const std::string& operands, Block& block) {
     Insn in = decode(mnemonic, operands);
-    const uint32_t pc = hex(line.substr(2, colon - 2));
     if (in.cls == InsnClass::system && mnemonic != "sc" && mnemonic != "sync" && mnemonic != "isync")
         ++unknown_[mnemonic];
     if (in.conditional) {
@@ -72,9 +75,43 @@ void TraceReplay::parse_instruction(const std::string& line, Block& block) {
     }
     if (block.insns.empty()) block.pc = pc;
     block.insns.push_back(in);
+    block.code.push_back(mnemonic + "|" + operands);
+}
+
+// A run of the sample starts at every sample_stride_-th candidate and ends at the first
+// candidate after a keypoint's descriptor, until sample_keypoints_ runs are kept.
+void TraceReplay::sample(const Block& b) {
+    if (b.marker == int(Step::check)) {
+        if (sampling_ && described_in_run_) sampling_ = false;
+        if (!sampling_ && sampled_keypoints_ < sample_keypoints_ && sample_candidates_ % sample_stride_ == 0)
+            sampling_ = true, described_in_run_ = false;
+        ++sample_candidates_;
+    }
+    if (!sampling_) return;
+    if (b.marker == int(Step::descriptor) && !described_in_run_) ++sampled_keypoints_, described_in_run_ = true;
+    auto [it, added] = sample_index_.try_emplace(b.pc, uint32_t(sample_.blocks.size()));
+    if (added) sample_.blocks.push_back({b.pc, b.marker, b.libm, b.code});
+    sample_.sequence.push_back(it->second);
+}
+
+void TraceReplay::replay(const StreamSample& s) {
+    std::vector<Block> blocks;
+    for (const StreamSample::Block& in : s.blocks) {
+        Block b;
+        for (const std::string& text : in.code) {
+            const size_t bar = text.find('|');
+            add_instruction(in.pc + 4 * uint32_t(b.insns.size()), text.substr(0, bar),
+                            bar == std::string::npos ? "" : text.substr(bar + 1), b);
+        }
+        b.pc = in.pc, b.marker = in.marker, b.libm = in.libm;
+        blocks.push_back(std::move(b));
+    }
+    for (size_t i = 0; i < s.sequence.size(); ++i)
+        execute(blocks.at(s.sequence[i]), i + 1 < s.sequence.size() ? blocks.at(s.sequence[i + 1]).pc : 0);
 }
 
 void TraceReplay::execute(const Block& b, uint32_t next_pc) {
+    if (sample_keypoints_) sample(b);
     if (b.marker != kNoMarker) {
         step_ = b.marker;
         if (b.marker == int(Step::check)) {

@@ -35,12 +35,38 @@ struct StepStream {
 };
 using CandidateStream = std::array<StepStream, kSteps>;
 
+// A few whole candidates of the stream, kept so that the native model can re-time them under
+// any parameter set (calibration.h: unit_prices): the blocks they ran (qemu's disassembly,
+// "mnemonic|operands" per instruction) and the order they ran in.
+struct StreamSample {
+    struct Block {
+        uint32_t pc = 0;
+        int marker = -2;  // the step it begins (-1: idle), -2: none
+        bool libm = false;
+        std::vector<std::string> code;
+    };
+    std::vector<Block> blocks;
+    std::vector<uint32_t> sequence;  // indices into blocks
+    bool empty() const { return sequence.empty(); }
+};
+
 class TraceReplay {
 public:
     TraceReplay(const FirmwareLayout& layout, const std::vector<PipelineParams>& parameter_sets);
 
     // Consumes qemu's log. Throws std::runtime_error on a line it cannot read.
     void read(std::istream& log);
+    // Times a kept sample as if qemu had run it (its candidates are appended to candidates()).
+    void replay(const StreamSample& sample);
+
+    // Keeps `keypoints` runs of candidates, one starting at every `stride`-th candidate and
+    // ending when a keypoint of it has been described (spread over the stream: its first
+    // keypoints alone are not typical).
+    void keep_sample(size_t keypoints, size_t stride) {
+        sample_keypoints_ = keypoints;
+        sample_stride_ = stride;
+    }
+    const StreamSample& sample() const { return sample_; }
 
     const std::vector<CandidateStream>& candidates() const { return candidates_; }
     uint64_t instructions() const { return instructions_; }  // all of them, the harness's too
@@ -50,11 +76,14 @@ private:
     struct Block {
         uint32_t pc = 0;
         std::vector<Insn> insns;
+        std::vector<std::string> code;  // "mnemonic|operands", for a sample
         int marker = -2;  // -2: none
         bool libm = false;
     };
     void parse_instruction(const std::string& line, Block& block);
+    void add_instruction(uint32_t pc, const std::string& mnemonic, const std::string& operands, Block& block);
     void execute(const Block& block, uint32_t next_pc);
+    void sample(const Block& block);
 
     FirmwareLayout layout_;
     std::vector<Ppc440Pipeline> pipelines_;
@@ -65,6 +94,10 @@ private:
     int step_ = -1;  // current step, -1 outside a candidate
     bool was_libm_ = false;
     uint64_t instructions_ = 0;
+    size_t sample_keypoints_ = 0, sampled_keypoints_ = 0, sample_stride_ = 1, sample_candidates_ = 0;
+    bool sampling_ = false, described_in_run_ = false;
+    StreamSample sample_;
+    std::unordered_map<uint32_t, uint32_t> sample_index_;  // block pc -> index in sample_.blocks
 };
 
 }  // namespace surfvp::sw

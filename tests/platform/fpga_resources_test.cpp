@@ -54,7 +54,7 @@ TEST(FpgaResources, StructureMovesTheEstimate) {
     EXPECT_EQ(fpga_resources(config({"fhg.line_fifo=sdp72", "fhg.bus_word=scalar"})).total.ramb36 -
                   fpga_resources(config({"fhg.bus_word=scalar"})).total.ramb36, 0);
     EXPECT_EQ(fpga_resources(config({"fhg.response_bits=24 bit"})).total.dsp48e, 2 + 1 + 2 + 13);
-    EXPECT_EQ(fpga_resources(config({"fpga.fpu=single"})).total.dsp48e, 3 + 3);
+    EXPECT_EQ(fpga_resources(config({"fpu.precision=single"})).total.dsp48e, 3 + 3);
     const FpgaResources two = fpga_resources(config({"soc.accelerators=2"}));
     EXPECT_EQ(two.total.ramb36, 2 * 78 + 6);
     EXPECT_FALSE(two.fits());

@@ -2,6 +2,8 @@
 // stream over its units, the prices from the recorded table, and the recorded agreement.
 #include <gtest/gtest.h>
 
+#include <set>
+
 #include <cmath>
 #include <iomanip>
 #include <sstream>
@@ -76,7 +78,7 @@ TEST(InstructionTrace, CutsTheStreamIntoCandidatesAndSteps) {
 TEST(Calibration, FitRecoversEachUnitsPrice) {
     std::vector<CandidateStream> stream;
     std::vector<std::array<uint64_t, kUnits>> units;
-    const size_t sets = calibration_parameter_sets().size();
+    const size_t sets = calibration_parameter_sets(PipelineParams{}).size();
     for (int c = 0; c < 40; ++c) {
         std::array<uint64_t, kUnits> n{};
         n[size_t(Unit::candidate)] = 1;
@@ -100,32 +102,60 @@ TEST(Calibration, FitRecoversEachUnitsPrice) {
     EXPECT_THROW(fit_units(stream, units), std::runtime_error);
 }
 
-// The table the build embeds was measured with today's pipeline defaults (else it is stale:
-// rerun `surfvp calibrate --table sw/cpu_cost/calibration.json`), and prices from it are its
-// cycles at the defaults, its probes at the probe values, linear between.
+// The table the build embeds was measured with today's pipeline defaults in each precision
+// (else it is stale: rerun `./scripts/bootstrap.sh calibrate`); prices from it are its cycles
+// at the defaults, and the linear extrapolation its probes at the probe values, linear between.
 TEST(Calibration, RecordedTableMatchesTheModelAndPricesLinearly) {
     const Calibration& c = recorded_calibration();
-    ASSERT_EQ(c.defaults.size(), pipeline_knobs().size());
-    for (size_t k = 0; k < pipeline_knobs().size(); ++k)
-        EXPECT_EQ(c.defaults[k], PipelineParams{}.*pipeline_knobs()[k].field) << pipeline_knobs()[k].key;
-    const auto base = unit_prices(surf::HaarMode::rounded, PipelineParams{});
-    const size_t d = size_t(Unit::descriptor);
-    EXPECT_DOUBLE_EQ(base[d], c.haar[1][d].cycles);
-    EXPECT_GT(base[d], 50000);  // a descriptor is tens of thousands of instructions
-    for (size_t k = 0; k < pipeline_knobs().size(); ++k) {
-        const PipelineKnob& knob = pipeline_knobs()[k];
-        PipelineParams high, mid;
-        high.*knob.field = knob.high;
-        mid.*knob.field = (knob.high + PipelineParams{}.*knob.field) / 2;
-        EXPECT_NEAR(unit_prices(surf::HaarMode::rounded, high)[d], c.haar[1][d].high[k], 1e-6) << knob.key;
-        EXPECT_NEAR(unit_prices(surf::HaarMode::rounded, mid)[d], (c.haar[1][d].high[k] + base[d]) / 2, 1e-6)
-            << knob.key;
+    for (int precision = 0; precision < 2; ++precision) {
+        const PrecisionTable& t = c.precision[size_t(precision)];
+        const PipelineParams defaults = PipelineParams::for_precision(precision);
+        ASSERT_EQ(t.defaults.size(), pipeline_knobs().size());
+        for (size_t k = 0; k < pipeline_knobs().size(); ++k)
+            EXPECT_EQ(t.defaults[k], defaults.*pipeline_knobs()[k].field) << pipeline_knobs()[k].key;
+        const auto base = unit_prices(surf::HaarMode::rounded, defaults);
+        const size_t d = size_t(Unit::descriptor);
+        EXPECT_DOUBLE_EQ(base[d], t.haar[1][d].cycles);
+        EXPECT_GT(base[d], 50000);  // a descriptor is tens of thousands of instructions
+        for (size_t k = 0; k < pipeline_knobs().size(); ++k) {
+            const PipelineKnob& knob = pipeline_knobs()[k];
+            if (t.high_at[k] == t.defaults[k]) continue;  // not probed upward (fpu.precision; a switch that is on)
+            PipelineParams high = defaults, mid = defaults;
+            high.*knob.field = t.high_at[k];
+            mid.*knob.field = (t.high_at[k] + t.defaults[k]) / 2;
+            EXPECT_NEAR(linear_unit_prices(surf::HaarMode::rounded, high)[d], t.haar[1][d].high[k], 1e-6) << knob.key;
+            EXPECT_NEAR(linear_unit_prices(surf::HaarMode::rounded, mid)[d], (t.haar[1][d].high[k] + base[d]) / 2, 1e-6)
+                << knob.key;
+        }
+        // Exact wavelets cost more than rounded ones, a slower FPU more than the default.
+        EXPECT_GT(unit_prices(surf::HaarMode::exact, defaults)[d], 3 * base[d]);
+        PipelineParams slow = defaults;
+        slow.fpu_ratio = 3;
+        EXPECT_GT(unit_prices(surf::HaarMode::rounded, slow)[d], 1.15 * base[d]);
     }
-    // Exact wavelets cost more than rounded ones, a slower FPU more than the default.
-    EXPECT_GT(unit_prices(surf::HaarMode::exact, PipelineParams{})[d], 3 * base[d]);
-    PipelineParams slow;
-    slow.fpu_ratio = 3;
-    EXPECT_GT(unit_prices(surf::HaarMode::rounded, slow)[d], 1.2 * base[d]);
+    // The double-precision FPU's column is slower than the single one's.
+    const size_t d = size_t(Unit::descriptor);
+    EXPECT_GT(unit_prices(surf::HaarMode::rounded, PipelineParams::for_precision(true))[d],
+              1.05 * unit_prices(surf::HaarMode::rounded, PipelineParams::for_precision(false))[d]);
+}
+
+// Several knobs at once: at every recorded check point (all the band's knobs moved together,
+// the stream re-timed there), the prices from the one-knob probes are within 2 % of the
+// stream, per run and Haar mode.
+TEST(Calibration, PricesHoldWhereSeveralKnobsMove) {
+    const Calibration& c = recorded_calibration();
+    std::set<int> points;
+    for (const auto& check : c.checks) {
+        PipelineParams p;
+        for (const PipelineKnob& k : pipeline_knobs()) p.*k.field = check["knobs"][k.key].get<double>();
+        const auto prices = unit_prices(check["haar"] == "rounded" ? surf::HaarMode::rounded : surf::HaarMode::exact, p);
+        double model = 0;
+        for (size_t u = 0; u < kUnits; ++u) model += check["units_per_keypoint"][unit_name(Unit(u))].get<double>() * prices[u];
+        const double stream = check["stream_cycles_per_keypoint"];
+        EXPECT_NEAR(model / stream, 1.0, 0.02) << check["scenario"] << " " << check["haar"] << " point " << check["point"];
+        points.insert(check["point"].get<int>());
+    }
+    EXPECT_GE(points.size(), 5u);
 }
 
 // The recorded agreement: on the budget scenario and on castle, in both Haar modes, the
@@ -137,7 +167,9 @@ TEST(Calibration, RecordedAgreementWithTheInstructionStream) {
     for (const auto& run : c.agreement) {
         const std::string scenario = run["scenario"];
         if (scenario != "budget_1024x768" && scenario != "castle_sequence") continue;
-        const auto prices = unit_prices(run["haar"] == "rounded" ? surf::HaarMode::rounded : surf::HaarMode::exact, {});
+        const PipelineParams defaults = PipelineParams::for_precision(run["precision"] == "double");
+        const auto prices =
+            unit_prices(run["haar"] == "rounded" ? surf::HaarMode::rounded : surf::HaarMode::exact, defaults);
         std::array<double, kSteps> model{};
         for (size_t u = 0; u < kUnits; ++u)
             model[size_t(step_of(Unit(u)))] += run["units_per_keypoint"][unit_name(Unit(u))].get<double>() * prices[u];
@@ -153,7 +185,7 @@ TEST(Calibration, RecordedAgreementWithTheInstructionStream) {
         EXPECT_NEAR(model_total / stream_total, 1.0, 0.05) << scenario << " " << run["haar"];
         ++held;
     }
-    EXPECT_EQ(held, 4);  // budget and castle, exact and rounded
+    EXPECT_EQ(held, 8);  // budget and castle, exact and rounded, single and double
 }
 
 }  // namespace
