@@ -59,11 +59,37 @@ std::vector<MappedRegisters> chip_registers() {
             {&dma::table(), at(map::dma, "PLB1")}};
 }
 
-sc_core::sc_time uncontended_fill(const Config& c) {
+FillTiming uncontended_fills(const Config& c) {
     const uint64_t line = c.bytes("cpu.cache_line").n;
-    const sc_core::sc_time ddr = DdrMemory::read_time(memory_params(c), line);
-    return cpu_memory_on_plb1(c) ? PlbBus::burst_time(plb_params(c, "plb1"), line, ddr)
-                                 : MciLink::access_time(mci_params(c), line, ddr);
+    const DdrMemory::Params memory = memory_params(c);
+    const sc_core::sc_time ddr = DdrMemory::read_time(memory, line);
+    FillTiming t;
+    if (cpu_memory_on_plb1(c)) {
+        t.fill = t.spacing = PlbBus::burst_time(plb_params(c, "plb1"), line, ddr);  // PLB1 takes one at a time
+    } else {
+        const MciLink::Params mci = mci_params(c);
+        t.fill = MciLink::access_time(mci, line, ddr);
+        t.spacing = cycles(mci.clock, mci.latency_cycles + double((line + mci.width_bits / 8 - 1) / (mci.width_bits / 8)));
+    }
+    const Ppc440::Params cpu = Ppc440::parameter_table().make(c);
+    t.outstanding = cpu.outstanding_fills;
+    if (cpu.critical_word_first) {  // the missed word comes with the DRAM's first transfer, the rest after it
+        const double rest = double(line) - std::min<double>(double(line), memory.width_bits / 8.0);
+        t.critical_word_lead = sc_core::sc_time(rest / DdrMemory::bytes_per_second(memory), sc_core::SC_SEC);
+    }
+    return t;
+}
+
+sc_core::sc_time FillTiming::burst_stall(size_t n) const {
+    std::vector<sc_core::sc_time> start(n), end(n);
+    sc_core::sc_time data = sc_core::SC_ZERO_TIME;
+    for (size_t k = 0; k < n; ++k) {
+        start[k] = k ? start[k - 1] + spacing : sc_core::SC_ZERO_TIME;
+        if (k >= outstanding) start[k] = std::max(start[k], end[k - outstanding]);
+        end[k] = start[k] + fill;
+        data = std::max(data, end[k] - critical_word_lead);
+    }
+    return data;
 }
 
 // A block's own parameters from its declarations; the wiring adds the bus it is on and the
@@ -119,11 +145,7 @@ void Soc::build(const Config& c, Tracer& tracer) {
         fhgs_.push_back(std::make_unique<Fhg>(("fhg" + suffix).c_str(), fhg_params(c), tracer));
     }
     Ppc440::Params cpu = Ppc440::parameter_table().make(c);
-    {  // critical word first: the missed word comes with the DRAM's first transfer, the rest after it
-        const DdrMemory::Params ddr = memory_params(c);
-        const double rest = double(cpu.line_bytes) - std::min<double>(cpu.line_bytes, ddr.width_bits / 8.0);
-        cpu.critical_word_lead = Duration{uint64_t(std::llround(rest / DdrMemory::bytes_per_second(ddr) * 1e12))};
-    }
+    cpu.critical_word_lead = Duration{uncontended_fills(c).critical_word_lead.value()};
     for (unsigned k = 0; k < pairs; ++k) cpu.markers.push_back(fmt::format("accelerator{}_task", k));
     cpu.markers.push_back("describing_task");
     cpu_ = std::make_unique<Ppc440>("cpu", cpu, workload_->software(), tracer);

@@ -30,9 +30,17 @@ Fhg::Params fhg_params(const Config& config);
 // docs/registers.md (`surfvp registers`).
 std::vector<MappedRegisters> chip_registers();
 
-// One line fill on the CPU's memory path with nothing else on it: the MCI link (or PLB1) and
-// the DDR's read, by the models' own formulas (direct mode charges this per fill).
-sc_core::sc_time uncontended_fill(const Config& config);
+// Line fills on the CPU's memory path with nothing else on it, by the models' own formulas
+// (direct mode charges these): one fill (the MCI link, or PLB1, and the DDR's read), how far
+// apart the path takes fills in flight together, how much sooner the missed word comes than
+// the whole line, and how many fills may be in flight.
+struct FillTiming {
+    sc_core::sc_time fill, spacing, critical_word_lead;
+    unsigned outstanding = 1;
+    // The CPU's wait for a burst of n fills asked at once (Ppc440::compute's rule).
+    sc_core::sc_time burst_stall(size_t n) const;
+};
+FillTiming uncontended_fills(const Config& config);
 
 class Soc {
 public:

@@ -58,7 +58,8 @@ DirectChip::DirectChip(const Config& config, unsigned accelerators)
       intc_(unsigned(config.count("intc.inputs")), [this] { return levels(); }),
       sum_bits_(config.bits("iig.sum_bits")),
       core_(fhg_params(config).precision),
-      fill_cycles_(uncontended_fill(config).to_seconds() * config.frequency("cpu.clock").hz),
+      fills_(uncontended_fills(config)),
+      cpu_hz_(config.frequency("cpu.clock").hz),
       // The software's thread waits for rows only when it has nothing else to do.
       worker_(config.choice("run.parallel") == "on"
                   ? std::make_unique<Worker>(std::chrono::microseconds(200), Worker::Waiter::runs_any)
@@ -101,9 +102,16 @@ const uint8_t* DirectChip::map(uint32_t address, size_t bytes) {
 }
 
 uint64_t DirectChip::compute(uint64_t cycles, const std::vector<sw::LineTransfer>& lines, uint64_t untimed_fills) {
-    uint64_t fills = untimed_fills;
-    for (const sw::LineTransfer& line : lines) fills += !line.write_back;
-    const uint64_t spent = cycles + uint64_t(std::llround(double(fills) * fill_cycles_));
+    // Each burst (fills asked at one cycle) as the VP's CPU waits for it, uncontended.
+    double stall = double(untimed_fills) * fills_.burst_stall(1).to_seconds();
+    for (size_t i = 0; i < lines.size();) {
+        size_t n = 0;
+        const uint64_t at = lines[i].at_cycle;
+        for (; i < lines.size() && lines[i].at_cycle == at && !lines[i].write_back; ++i) ++n;
+        if (n) stall += fills_.burst_stall(n).to_seconds();
+        else ++i;  // a write-back: posted
+    }
+    const uint64_t spent = cycles + uint64_t(std::llround(stall * cpu_hz_));
     cycles_ += spent;
     return spent;
 }

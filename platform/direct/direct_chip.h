@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "platform/scenario/config.h"
+#include "platform/soc.h"
 #include "models/common/hal.h"
 #include "models/common/worker.h"
 #include "models/common/zeroed_memory.h"
@@ -52,10 +53,9 @@ public:
     bool irq_pending() override;
     uint64_t time_ps() override { return 0; }
     void consume(uint64_t cycles) override { cycles_ += cycles; }
-    // No time here: each fill costs what an uncontended one costs on the chip's memory path,
-    // so the software need not stamp its fills (times_fills()).
+    // No time here: each burst of fills (those stamped at one cycle) costs what it costs the
+    // CPU on the chip's memory path with nothing else on it (FillTiming::burst_stall).
     uint64_t compute(uint64_t cycles, const std::vector<sw::LineTransfer>& lines, uint64_t untimed_fills) override;
-    bool times_fills() const override { return false; }
     void begin(const char*) override {}
     void end() override {}
     void mark(unsigned, int) override {}
@@ -111,7 +111,8 @@ private:
     IntcRegisters intc_;
     unsigned sum_bits_;
     fhg::HessianCore core_;
-    double fill_cycles_;  // an uncontended line fill, in CPU cycles
+    FillTiming fills_;  // line fills, uncontended
+    double cpu_hz_;
     uint64_t cycles_ = 0;
     std::unique_ptr<Worker> worker_;  // with run.parallel; last, so it stops before the rest goes
 };

@@ -11,7 +11,7 @@
 //   - the configuration as config.yaml writes it (Config::to_yaml) loads again as a scenario,
 //     with the same values, name and description;
 //   - the blocks' parameters come from it (iig_params, fhg_params, Fhg::register_limits,
-//     uncontended_fill, what direct mode builds), or a ConfigError says why not.
+//     uncontended_fills, what direct mode builds), or a ConfigError says why not.
 #include <string>
 #include <vector>
 
@@ -58,7 +58,7 @@ void check_loaded(const Config& config) {
                       "' to '" + again.entries()[k].value + "'");
     iig_params(config);
     Fhg::register_limits(fhg_params(config));
-    uncontended_fill(config);
+    uncontended_fills(config);
 }
 
 }  // namespace

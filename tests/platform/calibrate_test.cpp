@@ -18,7 +18,7 @@ namespace {
 TEST(Calibrate, RunsTheStageUnderTheIssAndFitsItsPrices) {
     const std::string dir = fresh_dir("calibrate");
     const Cli r = surfvp("calibrate --fit budget_1024x768 --check none --frames 1 --no-probes --set surf.width=256 "
-                         "--set surf.height=192 --set apu.load_issue=2 --set apu.outstanding_loads=2 --quiet --out " + dir);
+                         "--set surf.height=192 --set apu.load_issue=2cycles --set apu.outstanding_loads=2 --quiet --out " + dir);
     ASSERT_EQ(r.exit_code, 0) << r.err;
     EXPECT_NE(r.out.find("| descriptor |"), std::string::npos) << r.out;
     const auto report = nlohmann::json::parse(slurp(dir + "/calibration_report.json"));

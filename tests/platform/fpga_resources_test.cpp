@@ -41,7 +41,7 @@ TEST(FpgaResources, TheDefaultChipFitsTheFx70t) {
     EXPECT_EQ(r.blocks[1].ramb36, 56 + 1 + 3 + 2 * 8);  // line FIFO, maxima FIFO, sequence, row buffers
     EXPECT_EQ(r.blocks[1].dsp48e, 3);
     EXPECT_EQ(r.total.ramb36, 84);
-    EXPECT_EQ(r.total.dsp48e, 16);  // HessianCalc's 3 and the double FPU's 13
+    EXPECT_EQ(r.total.dsp48e, 6);  // HessianCalc's 3 and the single-precision FPU's 3
     EXPECT_TRUE(r.fits());
 }
 
@@ -53,8 +53,8 @@ TEST(FpgaResources, StructureMovesTheEstimate) {
     EXPECT_EQ(fpga_resources(config({"fhg.line_fifo=tdp"})).total.ramb36, base);
     EXPECT_EQ(fpga_resources(config({"fhg.line_fifo=sdp72", "fhg.bus_word=scalar"})).total.ramb36 -
                   fpga_resources(config({"fhg.bus_word=scalar"})).total.ramb36, 0);
-    EXPECT_EQ(fpga_resources(config({"fhg.response_bits=24 bit"})).total.dsp48e, 2 + 1 + 2 + 13);
-    EXPECT_EQ(fpga_resources(config({"fpu.precision=single"})).total.dsp48e, 3 + 3);
+    EXPECT_EQ(fpga_resources(config({"fhg.response_bits=24 bit"})).total.dsp48e, 2 + 1 + 2 + 3);
+    EXPECT_EQ(fpga_resources(config({"fpu.precision=double"})).total.dsp48e, 3 + 13);
     const FpgaResources two = fpga_resources(config({"soc.accelerators=2"}));
     EXPECT_EQ(two.total.ramb36, 2 * 78 + 6);
     EXPECT_FALSE(two.fits());
