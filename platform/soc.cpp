@@ -69,7 +69,7 @@ FillTiming uncontended_fills(const Config& c) {
     } else {
         const MciLink::Params mci = mci_params(c);
         t.fill = MciLink::access_time(mci, line, ddr);
-        t.spacing = cycles(mci.clock, mci.latency_cycles + double((line + mci.width_bits / 8 - 1) / (mci.width_bits / 8)));
+        t.spacing = MciLink::own_time(mci, line);
     }
     const Ppc440::Params cpu = Ppc440::parameter_table().make(c);
     t.outstanding = cpu.outstanding_fills;

@@ -18,10 +18,19 @@ MciLink::MciLink(const sc_core::sc_module_name& name, const Params& params)
     cpu.register_transport_dbg(this, &MciLink::transport_dbg);
 }
 
-sc_time MciLink::access_time(const Params& p, uint64_t bytes, const sc_time& memory_time) {
+namespace {
+double beats(const MciLink::Params& p, uint64_t bytes) {
     const uint64_t width = p.width_bits / 8;
-    const double beats = double(std::max<uint64_t>(1, (bytes + width - 1) / width));
-    return cycles(p.clock, p.latency_cycles) + std::max(cycles(p.clock, beats), memory_time);
+    return double(std::max<uint64_t>(1, (bytes + width - 1) / width));
+}
+}  // namespace
+
+sc_time MciLink::access_time(const Params& p, uint64_t bytes, const sc_time& memory_time) {
+    return cycles(p.clock, p.latency_cycles) + std::max(cycles(p.clock, beats(p, bytes)), memory_time);
+}
+
+sc_time MciLink::own_time(const Params& p, uint64_t bytes) {
+    return cycles(p.clock, p.latency_cycles + beats(p, bytes));
 }
 
 // A read reaches the DRAM after the link's address phase; the link waits in the kernel until
@@ -32,8 +41,7 @@ void MciLink::b_transport(tlm::tlm_generic_payload& tx, sc_time& delay) {
     const sc_time request = sc_core::sc_time_stamp() + delay;
     const sc_time start = std::max(request, free_at_);
     const sc_time overhead = cycles(params_.clock, params_.latency_cycles);
-    const uint64_t width = params_.width_bits / 8;
-    const sc_time own = overhead + cycles(params_.clock, double(std::max<uint64_t>(1, (tx.get_data_length() + width - 1) / width)));
+    const sc_time own = own_time(params_, tx.get_data_length());
     free_at_ = start + own;
     if (tx.is_read() && start + overhead > sc_core::sc_time_stamp()) sc_core::wait(start + overhead - sc_core::sc_time_stamp());
     sc_time memory_time = start + overhead - sc_core::sc_time_stamp();  // the DDR sees it after the address phase

@@ -46,6 +46,8 @@ public:
 
     // An uncontended access of `bytes` whose DDR time is `memory_time`.
     static sc_core::sc_time access_time(const Params& params, uint64_t bytes, const sc_core::sc_time& memory_time);
+    // What an access of `bytes` takes the link for: its address phase and data beats.
+    static sc_core::sc_time own_time(const Params& params, uint64_t bytes);
 
     const Stats& stats() const { return stats_; }
     const Params& params() const { return params_; }

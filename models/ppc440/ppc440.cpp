@@ -148,8 +148,7 @@ const uint8_t* Ppc440::map(uint32_t address, size_t bytes) {
 // when all are taken) and is asked at its own time; returns when the CPU has the data of all
 // of them (their critical words, or whole lines).
 sc_time Ppc440::fill_burst(const std::vector<sw::LineTransfer>& lines, size_t& i, sc_time at) {
-    const sc_time lead = params_.critical_word_first ? sc_time(double(params_.critical_word_lead.ps), sc_core::SC_PS)
-                                                     : sc_core::SC_ZERO_TIME;
+    const sc_time lead(double(params_.critical_word_lead.ps), sc_core::SC_PS);
     sc_time data = at;
     const uint64_t cycle = lines[i].at_cycle;
     for (; i < lines.size() && !lines[i].write_back && lines[i].at_cycle == cycle; ++i) {

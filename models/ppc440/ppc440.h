@@ -35,8 +35,8 @@ public:
         Duration quantum{1000000};  // 1 us
         unsigned line_bytes = 32;   // the L1 line: memory goes in lines of this size
         unsigned outstanding_fills = 3;  // line fills in flight at once
-        bool critical_word_first = true;
-        Duration critical_word_lead{0};  // how much sooner than the whole line the missed word arrives (the wiring's)
+        bool critical_word_first = true;  // read by the wiring, which sets the lead
+        Duration critical_word_lead{0};  // how much sooner than the whole line the missed word arrives (0: off)
         std::vector<std::string> markers;  // names of the software's markers (HAL mark())
     };
     // Its scenario parameters with the Params field each sets (ppc440_params.cpp).

@@ -294,7 +294,7 @@ std::string calibration_markdown(const Json& out) {
     const Json& checks = out["calibration"]["checks"];
     if (!checks.empty()) {
         md += "## Several knobs at once: the prices against the stream re-timed\n\n"
-              "Each point moves every knob of the band at once (a Latin hypercube, precision alternating); the "
+              "Each point moves every knob of the band at once (spread over the band by a fixed rule, precision alternating); the "
               "whole stream is timed there. The model scales the table by the stream sample re-timed at the point; "
               "the linear column is the sum of the one-knob probes' changes (not used: the knobs interact).\n\n"
               "| scenario | Haar | point | precision | stream cycles / keypoint | model cycles / keypoint | model vs stream | "
@@ -333,9 +333,11 @@ std::array<sw::PipelineParams, 2> table_bases(const CalibrateOptions& o) {
     return bases;
 }
 
-// Points where every knob of the band moves at once: a Latin hypercube over the knobs' probe
-// ranges (each knob's values in n strata, the strata shuffled by a fixed rule), precision
-// alternating. Deterministic, so a recalibration re-times the same points.
+// Points where every knob of the band moves at once: each knob's band in n strata, point i
+// taking stratum (i (2k + 3) + k) mod n of knob k, precision alternating. A Latin hypercube
+// only for the knobs whose multiplier 2k + 3 is coprime to n (with n = 6, those not a
+// multiple of 3); the others repeat strata. Deterministic, so a recalibration re-times the
+// same points.
 std::vector<sw::PipelineParams> check_points(const std::array<sw::PipelineParams, 2>& bases, size_t n) {
     std::vector<sw::PipelineParams> points;
     const auto& knobs = sw::pipeline_knobs();
@@ -344,7 +346,7 @@ std::vector<sw::PipelineParams> check_points(const std::array<sw::PipelineParams
         for (size_t k = 0; k < knobs.size(); ++k) {
             const sw::PipelineKnob& knob = knobs[k];
             if (!knob.band || std::string(knob.key) == "fpu.precision") continue;
-            const size_t stratum = (i * (2 * k + 3) + k) % n;  // a permutation of 0..n-1 for odd multipliers coprime to n
+            const size_t stratum = (i * (2 * k + 3) + k) % n;
             const double f = (double(stratum) + 0.5) / double(n);
             const double v = knob.low + f * (knob.high - knob.low);
             p.*knob.field = sw::knob_choice(knob, 0) || std::string(knob.unit) == "count" ? std::round(v) : v;

@@ -151,11 +151,13 @@ std::array<double, kUnits> unit_prices(surf::HaarMode haar, const PipelineParams
     const size_t h = haar == surf::HaarMode::rounded ? 1 : 0;
     const PrecisionTable& t = c.precision[params.double_precision > 0.5 ? 1 : 0];
     PipelineParams defaults = params;
-    for (size_t k = 0; k < knobs(); ++k) defaults.*pipeline_knobs()[k].field = t.defaults[k];
+    bool moved = false;
+    for (size_t k = 0; k < knobs(); ++k) {
+        moved |= params.*pipeline_knobs()[k].field != t.defaults[k];
+        defaults.*pipeline_knobs()[k].field = t.defaults[k];
+    }
     std::array<double, kUnits> prices{};
     for (size_t u = 0; u < kUnits; ++u) prices[u] = t.haar[h][u].cycles;
-    bool moved = false;
-    for (size_t k = 0; k < knobs(); ++k) moved |= params.*pipeline_knobs()[k].field != t.defaults[k];
     if (!moved) return prices;
     if (c.sample[h].empty()) throw std::runtime_error("calibration table: no stream sample to re-time");
     const auto cycles = sample_cycles(c.sample[h], {defaults, params});
