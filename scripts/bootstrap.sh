@@ -15,6 +15,7 @@ readonly PACKAGES=(
   libsystemc-dev libyaml-cpp-dev libcli11-dev nlohmann-json3-dev libfmt-dev
   libopencv-dev libeigen3-dev libgtest-dev libbenchmark-dev
   libxml2-dev                   # tests read report.html as XML
+  zlib1g-dev                    # CRC-32 of the cache folder's entries
   libsqlite3-dev                # surfvp sweep: one row per point in the sweep folder's database
   opencv-doc visp-images-data   # real images for tests and scenarios
   g++-powerpc-linux-gnu qemu-user  # surfvp calibrate: the software stage built for the PPC440, run on an ISS

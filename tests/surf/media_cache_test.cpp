@@ -9,6 +9,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <unistd.h>
 
 #include <fmt/format.h>
@@ -39,6 +40,18 @@ size_t entries(const fs::path& dir, const std::string& kind) {
     return n;
 }
 
+// Changes an entry's data; `reseal` writes it as the cache would (a new checksum), else only the
+// bytes change, as a flipped bit or a foreign writer would.
+void doctor(const fs::path& entry, const std::function<void(std::string&)>& change, bool reseal) {
+    std::ifstream in(entry, std::ios::binary);
+    const std::string text((std::istreambuf_iterator<char>(in)), {});
+    const size_t key_end = text.find('\n'), seal_end = text.find('\n', key_end + 1);
+    std::string data = text.substr(seal_end + 1);
+    change(data);
+    std::ofstream(entry, std::ios::binary | std::ios::trunc)
+        << (reseal ? cache_entry(text.substr(0, key_end), data) : text.substr(0, seal_end + 1) + data);
+}
+
 TEST(MediaCache, ADecodedImageIsKeptAndReadBackAsDecoded) {
     const fs::path cache = fresh_cache("image");
     const std::string graf = surf::test::opencv_data("graf1.png");
@@ -63,13 +76,9 @@ TEST(MediaCache, TheCacheFileIsReadAndAChangedImageIsDecodedAgain) {
     // Doctor the entry: the next read returns it, so the cache is really used.
     ASSERT_EQ(entries(cache, "image"), 1u);
     const fs::path entry = fs::directory_iterator(cache)->path();
-    std::string text;
-    {
-        std::ifstream in(entry, std::ios::binary);
-        text.assign(std::istreambuf_iterator<char>(in), {});
-    }
-    text.back() = char(77);  // the last pixel
-    std::ofstream(entry, std::ios::binary) << text;
+    doctor(entry, [](std::string& data) { data.back() = char(77); }, false);  // the last pixel, checksum left
+    EXPECT_EQ(media::read_image(image.string(), cv::IMREAD_GRAYSCALE).at<uchar>(39, 49), 10);  // a miss, decoded again
+    doctor(entry, [](std::string& data) { data.back() = char(77); }, true);
     EXPECT_EQ(media::read_image(image.string(), cv::IMREAD_GRAYSCALE).at<uchar>(39, 49), 77);
     // A new file under the same name (another size, a later time) is decoded again.
     ASSERT_TRUE(cv::imwrite(image.string(), cv::Mat(30, 50, CV_8UC1, cv::Scalar(20))));
@@ -122,19 +131,16 @@ TEST(MediaCache, StoredResponsesAreTheDetectorsAndAreRead) {
     EXPECT_EQ(surf::stored_ranked_responses(graf, p), ranked);  // from the file
     // Another image, other parameters: other entries.
     p.max_offset = 1;
-    EXPECT_EQ(surf::stored_ranked_responses(graf, p), surf::ranked_responses(graf, p));
+    const std::vector<float> other = surf::ranked_responses(graf, p);
+    EXPECT_EQ(surf::stored_ranked_responses(graf, p), other);
     EXPECT_EQ(entries(cache, "ranked"), 2u);
     // Doctored: the file is what is read.
-    for (const auto& e : fs::directory_iterator(cache)) {
-        std::string text;
-        {
-            std::ifstream in(e.path(), std::ios::binary);
-            text.assign(std::istreambuf_iterator<char>(in), {});
-        }
-        const float doctored = 12345.0f;
-        std::memcpy(text.data() + text.size() - sizeof(float), &doctored, sizeof(float));
-        std::ofstream(e.path(), std::ios::binary) << text;
-    }
+    auto last_to = [](float value) {
+        return [value](std::string& data) { std::memcpy(data.data() + data.size() - sizeof(float), &value, sizeof(float)); };
+    };
+    for (const auto& e : fs::directory_iterator(cache)) doctor(e.path(), last_to(12345.0f), false);
+    EXPECT_EQ(surf::stored_ranked_responses(graf, p), other);  // flipped bytes: a miss, computed again
+    for (const auto& e : fs::directory_iterator(cache)) doctor(e.path(), last_to(12345.0f), true);
     EXPECT_EQ(surf::stored_ranked_responses(graf, p).back(), 12345.0f);
 }
 
