@@ -1,62 +1,151 @@
 #include "platform/run/output_folder.h"
 
 #include <cerrno>
+#include <chrono>
 #include <cstdio>
 #include <cstring>
 #include <fcntl.h>
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <fstream>
+#include <regex>
+#include <sstream>
+#include <csignal>
 #include <sys/file.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include "models/common/atomic_file.h"
+#include "platform/scenario/config.h"
 
 namespace surfvp {
 namespace fs = std::filesystem;
 namespace {
 
 constexpr const char* kLock = ".surfvp.lock";
-constexpr const char* kManifest = ".surfvp-outputs";
-constexpr const char* kStagingPrefix = ".partial-";
+constexpr const char* kRuns = ".surfvp-runs";
+constexpr const char* kCurrent = ".surfvp-current";
+constexpr const char* kRunList = ".surfvp-files";  // in a run folder: the files the run wrote
 
-// What surfvp writes into a folder, for one written before the manifest existed.
-const std::set<std::string> kKnownOutputs = {"report.json", "report.md",        "report.html",          "config.yaml",
-                                             "frames.csv",  "tornado.svg",      "trace.vcd",            "trace.perfetto.json",
-                                             "trace.gtkw",  "trace.tasks.txt"};
+// What an older surfvp (before the run folders) wrote at the folder's top, by fixed names: a
+// folder it left is replaced once by the links. Its manifest's names are never acted on.
+const std::set<std::string> kLegacyOutputs = {"report.json", "report.md",   "report.html", "config.yaml",
+                                              "frames.csv",  "tornado.svg", "trace.vcd",   "trace.perfetto.json",
+                                              "trace.gtkw",  "trace.tasks.txt", ".surfvp-outputs"};
+constexpr const char* kLegacyStagingPrefix = ".partial-";
 
 [[noreturn]] void refuse(const fs::path& folder, const std::string& why) {
     throw EnvironmentError(fmt::format("--out {}: {}", folder.string(), why));
 }
 
-// Every regular file under `root`, as paths relative to it; hidden folders (a verdict's
-// scratch) are not outputs.
-std::set<std::string> files_under(const fs::path& root) {
-    std::set<std::string> files;
-    for (auto it = fs::recursive_directory_iterator(root); it != fs::recursive_directory_iterator(); ++it) {
-        if (it->is_directory() && it->path().filename().string().front() == '.') {
-            it.disable_recursion_pending();
-            continue;
-        }
-        if (it->is_regular_file()) files.insert(it->path().lexically_relative(root).string());  // no system calls
-    }
-    return files;
-}
-
 bool hidden(const fs::path& p) { return p.filename().string().front() == '.'; }
 
-// The first component of an output's name (relative to its folder): its folder there, or itself.
-std::string top_of(const std::string& name) { return name.substr(0, name.find('/')); }
+fs::file_type type_of(const fs::path& p) {
+    std::error_code ignored;
+    return fs::symlink_status(p, ignored).type();
+}
 
-// Whether every file under `dir` (hidden ones too; symbolic links are not followed) is one of
-// `outputs`, named relative to `root`, and nothing there is hidden: a folder that may go
-// whole, or be replaced whole.
-bool holds_only(const fs::path& root, const fs::path& dir, const std::set<std::string>& outputs) {
+// What an output's link in the folder points to.
+fs::path link_target(const std::string& name) { return fs::path(kCurrent) / name; }
+
+// The output a link of ours stands for, or "" for anything else (a file, a foreign link).
+std::string output_of_link(const fs::path& p) {
+    if (type_of(p) != fs::file_type::symlink) return "";
     std::error_code error;
+    const fs::path target = fs::read_symlink(p, error);
+    return !error && target == link_target(p.filename().string()) ? p.filename().string() : "";
+}
+
+// The run folder .surfvp-current names (its name in .surfvp-runs), or "" when it names
+// anything else: a link someone else made is replaced, never followed.
+std::string current_run(const fs::path& folder) {
+    std::error_code error;
+    const fs::path target = fs::read_symlink(folder / kCurrent, error);
+    if (error || target.parent_path() != kRuns) return "";
+    const std::string run = target.filename().string();
+    return run.empty() || run == "." || run == ".." ? "" : run;
+}
+
+// Removes every hidden entry under `dir` (a verdict's scratch): not outputs.
+void remove_hidden(const fs::path& dir) {
+    std::error_code error;
+    std::vector<fs::path> gone;
     for (auto it = fs::recursive_directory_iterator(dir, error); !error && it != fs::recursive_directory_iterator();
-         it.increment(error)) {
-        const fs::file_type type = it->symlink_status(error).type();
-        if (hidden(it->path()) || (type != fs::file_type::directory &&
-                                   (type != fs::file_type::regular || !outputs.count(it->path().lexically_relative(root).string()))))
+         it.increment(error))
+        if (hidden(it->path())) {
+            gone.push_back(it->path());
+            it.disable_recursion_pending();
+        }
+    for (const fs::path& p : gone) fs::remove_all(p, error);
+}
+
+// Whether a process with this pid runs (one of another user's counts).
+bool alive(const std::string& pid) {
+    char* end = nullptr;
+    const long n = std::strtol(pid.c_str(), &end, 10);
+    return n > 0 && *end == '\0' && (::kill(pid_t(n), 0) == 0 || errno == EPERM);
+}
+
+std::string first_line(const fs::path& file) {
+    std::string line;
+    std::ifstream in(file);
+    std::getline(in, line);
+    return line.substr(0, 32);
+}
+
+// Every regular file under `dir` but its list, relative to it, one a line.
+std::string list_of_files(const fs::path& dir) {
+    std::set<std::string> files;
+    std::error_code error;
+    for (auto it = fs::recursive_directory_iterator(dir, error); !error && it != fs::recursive_directory_iterator(); it.increment(error))
+        if (type_of(it->path()) == fs::file_type::regular && it->path().filename() != kRunList)
+            files.insert(it->path().lexically_relative(dir).string());
+    std::string text;
+    for (const std::string& f : files) text += f + "\n";
+    return text;
+}
+
+// Removes a run folder that is not the current one, unless someone put files into it through
+// the links (a note beside the keypoints): then it stays, and the warning names them. A run
+// folder without its list is a killed run's staging, which only that run wrote into.
+void remove_run(const fs::path& run) {
+    std::ifstream in(run / kRunList);
+    const std::string listed((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    if (in.is_open()) {
+        std::set<std::string> ours;
+        for (size_t at = 0, end; (end = listed.find('\n', at)) != std::string::npos; at = end + 1) ours.insert(listed.substr(at, end - at));
+        std::vector<std::string> theirs;
+        std::istringstream now(list_of_files(run));
+        for (std::string f; std::getline(now, f);)
+            if (!ours.count(f)) theirs.push_back(f);
+        if (!theirs.empty()) {
+            std::fprintf(stderr, "surfvp: warning: kept %s: it holds files surfvp did not write (%s)\n", run.c_str(),
+                         fmt::format("{}", fmt::join(theirs, ", ")).c_str());
+            return;
+        }
+    }
+    std::error_code ignored;
+    fs::remove_all(run, ignored);
+}
+
+void remove_runs_but(const fs::path& runs, const std::string& kept) {
+    std::vector<fs::path> others;
+    std::error_code error;
+    for (const auto& entry : fs::directory_iterator(runs, error))
+        if (entry.path().filename() != kept) others.push_back(entry.path());
+    for (const fs::path& run : others) remove_run(run);
+}
+
+// Whether `dir` is a folder an older surfvp wrote: only its files, by its names (keypoints,
+// reports, traces), none hidden, no links.
+bool legacy_folder(const fs::path& dir) {
+    static const std::regex keypoints(R"(frame_[0-9]+\.(surf|key))");
+    std::error_code error;
+    for (auto it = fs::recursive_directory_iterator(dir, error); !error && it != fs::recursive_directory_iterator(); it.increment(error)) {
+        const fs::file_type t = type_of(it->path());
+        const std::string name = it->path().filename().string();
+        if (hidden(it->path()) || (t != fs::file_type::directory && t != fs::file_type::regular) ||
+            (t == fs::file_type::regular && !kLegacyOutputs.count(name) && !std::regex_match(name, keypoints)))
             return false;
     }
     return !error;
@@ -68,25 +157,59 @@ OutputFolder::OutputFolder(const fs::path& folder) : folder_(folder) {
     std::error_code error;
     fs::create_directories(folder_, error);
     if (error || !fs::is_directory(folder_)) refuse(folder_, "cannot create the folder: " + (error ? error.message() : "a file is in the way"));
+    lock();
+    // Holding the lock, every run folder but the current one is a killed run's; a real folder
+    // only (a link there is not surfvp's, and removing through it would reach outside).
+    const fs::path runs = folder_ / kRuns;
+    if (type_of(runs) == fs::file_type::not_found) fs::create_directory(runs, error);
+    if (type_of(runs) != fs::file_type::directory)
+        throw ConfigError(fmt::format("--out {}: {} is not a folder surfvp made (a link or a file); remove it", folder_.string(),
+                                      runs.string()));
+    remove_runs_but(runs, current_run(folder_));
+    for (const auto& entry : fs::directory_iterator(folder_, error)) {
+        const std::string name = entry.path().filename().string();
+        const fs::file_type type = type_of(entry.path());
+        if ((name.rfind(kLegacyStagingPrefix, 0) == 0 && type == fs::file_type::directory) ||  // an older surfvp's killed run
+            ((name.rfind(".surfvp-link-", 0) == 0 || name.rfind(".surfvp-current-", 0) == 0) && type == fs::file_type::symlink))
+            fs::remove_all(entry.path(), error);  // a killed run's link not yet in place
+    }
+    const auto now = std::chrono::system_clock::now().time_since_epoch();
+    staging_ = runs / fmt::format("{}-{}", ::getpid(), std::chrono::duration_cast<std::chrono::microseconds>(now).count());
+    fs::create_directory(staging_, error);
+    if (error) refuse(folder_, "cannot create " + staging_.string() + ": " + error.message());
+}
+
+// flock is released when its holder ends, so a lock file no process holds is stale, whatever
+// pid it names. Another user's lock file cannot be opened for writing: it is locked through a
+// read-only descriptor and taken over, made again as ours where the folder lets us remove it.
+void OutputFolder::lock() {
     const fs::path lock = folder_ / kLock;
-    lock_ = ::open(lock.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+    const fs::file_type type = type_of(lock);
+    if (type != fs::file_type::not_found && type != fs::file_type::regular)
+        throw ConfigError(fmt::format("--out {}: {} is not a regular file (surfvp's lock is); remove it", folder_.string(), lock.string()));
+    lock_ = ::open(lock.c_str(), O_RDWR | O_CREAT | O_CLOEXEC | O_NOFOLLOW, 0644);
+    const bool foreign = lock_ < 0 && errno == EACCES;
+    if (foreign) lock_ = ::open(lock.c_str(), O_RDONLY | O_CLOEXEC | O_NOFOLLOW);
     if (lock_ < 0) refuse(folder_, fmt::format("cannot create {} ({})", lock.string(), std::strerror(errno)));
-    if (::flock(lock_, LOCK_EX | LOCK_NB) != 0) {
-        std::string pid;
-        std::getline(std::ifstream(lock), pid);
-        ::close(lock_);
+    const std::string previous = first_line(lock);
+    auto busy = [&] {
+        if (lock_ >= 0) ::close(lock_);
+        lock_ = -1;
         refuse(folder_, fmt::format("another surfvp run (pid {}) is writing there; wait for it or give another --out",
-                                    pid.empty() ? "?" : pid));
+                                    previous.empty() ? "?" : previous));
+    };
+    if (::flock(lock_, LOCK_EX | LOCK_NB) != 0) busy();
+    if (foreign) {
+        std::fprintf(stderr, "surfvp: warning: --out %s: took over the stale lock of another user's run (pid %s, %s)\n",
+                     folder_.c_str(), previous.empty() ? "?" : previous.c_str(), alive(previous) ? "no longer holding it" : "no longer running");
+        if (::unlink(lock.c_str()) != 0) return;  // a folder that keeps others' files (sticky): locked through theirs
+        ::close(lock_);
+        lock_ = ::open(lock.c_str(), O_RDWR | O_CREAT | O_EXCL | O_CLOEXEC | O_NOFOLLOW, 0644);
+        if (lock_ < 0 || ::flock(lock_, LOCK_EX | LOCK_NB) != 0) busy();  // another run made it first
     }
     const std::string pid = std::to_string(::getpid()) + "\n";
     if (::ftruncate(lock_, 0) != 0 || ::pwrite(lock_, pid.data(), pid.size(), 0) != ssize_t(pid.size()))
         refuse(folder_, fmt::format("cannot write {} ({})", lock.string(), std::strerror(errno)));
-    // Holding the lock, any staging folder here is a killed run's.
-    for (const auto& entry : fs::directory_iterator(folder_, error))
-        if (entry.path().filename().string().rfind(kStagingPrefix, 0) == 0) fs::remove_all(entry.path(), error);
-    staging_ = folder_ / (kStagingPrefix + std::to_string(::getpid()));
-    fs::create_directories(staging_, error);
-    if (error) refuse(folder_, "cannot create " + staging_.string() + ": " + error.message());
 }
 
 OutputFolder::~OutputFolder() {
@@ -95,74 +218,72 @@ OutputFolder::~OutputFolder() {
     ::close(lock_);  // releases the lock
 }
 
-std::set<std::string> OutputFolder::previous_outputs() const {
-    std::set<std::string> previous;
-    std::ifstream manifest(folder_ / kManifest);
-    if (manifest) {
-        for (std::string line; std::getline(manifest, line);)
-            if (!line.empty()) previous.insert(line);
-        return previous;
-    }
-    std::error_code error;
-    for (const std::string& name : kKnownOutputs)
-        if (fs::exists(folder_ / name, error)) previous.insert(name);
-    if (fs::is_directory(folder_ / "keypoints", error))
-        for (const std::string& f : files_under(folder_ / "keypoints")) previous.insert("keypoints/" + f);
-    return previous;
-}
-
 void OutputFolder::publish() {
-    const std::set<std::string> written = files_under(staging_), previous = previous_outputs();
-    const std::set<std::string> whole = move_folders(written, previous);
-    auto in_whole = [&whole](const std::string& f) { return whole.count(top_of(f)) > 0; };
+    remove_hidden(staging_);
+    std::set<std::string> names;
     std::error_code error;
-    for (const std::string& f : written) {
-        if (in_whole(f)) continue;
-        const fs::path to = folder_ / f;
-        if (fs::path(f).extension() == ".gtkw") name_published_files(staging_ / f);
-        fs::create_directories(to.parent_path(), error);
-        if (!error) fs::rename(staging_ / f, to, error);
-        if (error) refuse(folder_, fmt::format("cannot move {} into place: {}", f, error.message()));
-    }
-    for (const std::string& f : previous) {
-        if (written.count(f) || in_whole(f)) continue;  // a folder replaced whole took its previous files along
-        fs::remove(folder_ / f, error);
-        const fs::path parent = (folder_ / f).parent_path();
-        if (parent != folder_ && fs::is_empty(parent, error)) fs::remove(parent, error);
-    }
-    std::string manifest;
-    for (const std::string& f : written) manifest += f + "\n";
-    write_file_atomically(folder_ / kManifest, manifest);
-    fs::remove_all(staging_, error);  // with the folders replaced whole, the previous run's files in them
+    for (const auto& entry : fs::directory_iterator(staging_, error)) names.insert(entry.path().filename().string());
+    for (auto it = fs::recursive_directory_iterator(staging_, error); !error && it != fs::recursive_directory_iterator();
+         it.increment(error))
+        if (it->path().extension() == ".gtkw") name_published_files(it->path());
+    if (error) refuse(folder_, fmt::format("cannot read {}: {}", staging_.string(), error.message()));
+    write_file_atomically(staging_ / kRunList, list_of_files(staging_));
+    link_outputs(names);
+    switch_current();
     published_ = true;
+    remove_stale(names);
 }
 
-// A folder of outputs (keypoints/: two files a frame) goes into place in one step when the
-// folder it replaces holds only the previous run's outputs, or there is none: renamed, or
-// exchanged with the previous one (which then leaves with the staging folder). Its files then
-// change at once, and none is renamed over another, which on ext4 writes the new file's data
-// out first (~0.2 ms a file here, 40 files a 20-frame run). The rest go file by file.
-std::set<std::string> OutputFolder::move_folders(const std::set<std::string>& written,
-                                                 const std::set<std::string>& previous) const {
-    std::set<std::string> folders;  // the staging folder's, before any leaves it
-    for (const std::string& f : written)
-        if (f.find('/') != std::string::npos) folders.insert(top_of(f));
-    for (const std::string& f : written)
-        if (fs::path(f).extension() == ".gtkw") folders.erase(top_of(f));  // rewritten as they go
-    std::set<std::string> whole;
-    std::error_code error;
-    for (const std::string& name : folders) {
-        const fs::path from = staging_ / name, to = folder_ / name;
-        if (!holds_only(staging_, from, written)) continue;
-        const fs::file_type there = fs::symlink_status(to, error).type();
-        bool moved = false;
-        if (there == fs::file_type::not_found)
-            moved = ::rename(from.c_str(), to.c_str()) == 0;
-        else if (there == fs::file_type::directory && holds_only(folder_, to, previous))
-            moved = ::renameat2(AT_FDCWD, from.c_str(), AT_FDCWD, to.c_str(), RENAME_EXCHANGE) == 0;  // not on every file system
-        if (moved) whole.insert(name);
+// Each output's name becomes a link through .surfvp-current. Before the switch a new name's
+// link leads nowhere (or to the previous run's file of that name), so the folder still holds
+// the previous set. A file of that name (an older surfvp's, or one the user put there, as a
+// run always replaced it) is replaced by its link; a folder only when an older surfvp wrote
+// it: one the user made is refused before anything changes.
+void OutputFolder::link_outputs(const std::set<std::string>& names) const {
+    for (const std::string& name : names)
+        if (type_of(folder_ / name) == fs::file_type::directory && !legacy_folder(folder_ / name))
+            throw ConfigError(fmt::format("--out {}: {} is a folder surfvp did not write; move it away, or give another --out",
+                                          folder_.string(), (folder_ / name).string()));
+    for (const std::string& name : names) {
+        const fs::path at = folder_ / name;
+        if (!output_of_link(at).empty()) continue;
+        const fs::path tmp = folder_ / fmt::format(".surfvp-link-{}", ::getpid());
+        std::error_code error;
+        fs::remove(tmp, error);
+        fs::create_symlink(link_target(name), tmp, error);
+        if (!error && type_of(at) == fs::file_type::directory) {
+            fs::remove_all(at, error);  // an older surfvp's folder of outputs
+        }
+        if (!error) fs::rename(tmp, at, error);
+        if (error) refuse(folder_, fmt::format("cannot link {} into place: {}", name, error.message()));
     }
-    return whole;
+}
+
+// The one step: .surfvp-current renamed to name this run's folder.
+void OutputFolder::switch_current() const {
+    const fs::path next = folder_ / fmt::format(".surfvp-current-{}", ::getpid()), current = folder_ / kCurrent;
+    if (type_of(current) == fs::file_type::directory)
+        throw ConfigError(fmt::format("--out {}: {} is a folder, not surfvp's link; remove it", folder_.string(), current.string()));
+    std::error_code error;
+    fs::remove(next, error);
+    fs::create_symlink(fs::path(kRuns) / staging_.filename(), next, error);
+    if (!error) fs::rename(next, current, error);
+    if (error) refuse(folder_, fmt::format("cannot switch {} to this run: {}", current.string(), error.message()));
+}
+
+// After the switch: links of outputs this run did not write, the run folders before it, and
+// what an older surfvp left under its fixed names.
+void OutputFolder::remove_stale(const std::set<std::string>& names) const {
+    std::error_code error;
+    std::vector<fs::path> gone;
+    for (const auto& entry : fs::directory_iterator(folder_, error)) {
+        const std::string name = entry.path().filename().string(), output = output_of_link(entry.path());
+        if ((!output.empty() && !names.count(output)) ||
+            (output.empty() && kLegacyOutputs.count(name) && !names.count(name) && type_of(entry.path()) == fs::file_type::regular))
+            gone.push_back(entry.path());
+    }
+    for (const fs::path& p : gone) fs::remove_all(p, error);
+    remove_runs_but(folder_ / kRuns, staging_.filename().string());
 }
 
 // GTKWave's save file names the VCD by its absolute path: the one it is published under.

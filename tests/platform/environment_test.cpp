@@ -2,10 +2,13 @@
 // names the thing and its documented exit code (README: 2 bad input, 4 a refused write), and
 // no file is left under a final name half written.
 #include <algorithm>
+#include <chrono>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
+#include <random>
 #include <sys/wait.h>
 
 #include "cli.h"
@@ -119,12 +122,62 @@ TEST(Environment, AFailedOrKilledRunLeavesTheEarlierOutputIntact) {
     std::string long_run = kShort;
     long_run.replace(long_run.find("surf.frames=3"), 13, "surf.frames=40");
     const std::string run = std::string(SURFVP_BINARY) + " run " + kBudget + " --quiet --trace all --out " + out + long_run;
-    std::system(("(" + run + " 2>/dev/null & pid=$!; while ! ls -d " + out + "/.partial-* >/dev/null 2>&1; do sleep 0.05; done;"
+    // Killed once its run folder exists beside the published one.
+    std::system(("(" + run + " 2>/dev/null & pid=$!; while [ $(ls " + out + "/.surfvp-runs | wc -l) -lt 2 ]; do sleep 0.05; done;"
                  " sleep 0.3; kill -9 $pid; wait $pid) 2>/dev/null").c_str());
     EXPECT_EQ(slurp(out + "/report.json"), before);
     ASSERT_EQ(surfvp("run " + kBudget + " --quiet --trace none --out " + out + kShort).exit_code, 0);
-    for (const auto& f : fs::directory_iterator(out))
-        EXPECT_EQ(f.path().filename().string().find(".partial-"), std::string::npos) << f.path();
+    EXPECT_EQ(std::distance(fs::directory_iterator(out + "/.surfvp-runs"), fs::directory_iterator()), 1);
+}
+
+size_t surf_files(const std::string& dir) {
+    size_t n = 0;
+    if (fs::is_directory(dir))
+        for (const auto& f : fs::directory_iterator(dir)) n += f.path().extension() == ".surf";
+    return n;
+}
+
+// What a user sees in `out` is one run's whole set: a run of N frames has N keypoint files,
+// and traces exactly when it is the kind that writes them (N = 2); every name resolves.
+::testing::AssertionResult one_runs_set(const std::string& out) {
+    if (!fs::exists(out + "/report.json")) return ::testing::AssertionSuccess() << "nothing published yet";
+    const auto frames = nlohmann::json::parse(slurp(out + "/report.json"))["frames"].get<int>();
+    if (surf_files(out + "/keypoints") != size_t(frames))
+        return ::testing::AssertionFailure() << surf_files(out + "/keypoints") << " keypoint files beside a report of " << frames;
+    if (fs::exists(out + "/trace.vcd") != (frames == 2))
+        return ::testing::AssertionFailure() << "traces " << (frames == 2 ? "missing from" : "beside") << " a run of " << frames;
+    for (const auto& e : fs::directory_iterator(out))
+        if (e.path().filename().string()[0] != '.' && !fs::exists(e.path()))
+            return ::testing::AssertionFailure() << e.path() << " resolves to nothing";
+    return ::testing::AssertionSuccess();
+}
+
+// Kills land at random instants spread over whole runs, their publishing included. Whatever the
+// instant, the folder holds one run's set: the run before the kill or the killed one, whole.
+TEST(Environment, AKillAtAnyInstantLeavesOneRunsWholeSet) {
+    const std::string out = fresh_dir("killed_at_random");
+    const std::string settings = kOneRun + " --set surf.width=256 --set surf.height=192 --set budget.fps=0 --quiet --out " + out;
+    const auto command = [&](int frames) {
+        return std::string(SURFVP_BINARY) + " run " + kBudget + settings + " --set surf.frames=" + std::to_string(frames) +
+               (frames == 2 ? " --trace all" : " --trace none");
+    };
+    const auto start = std::chrono::steady_clock::now();
+    ASSERT_EQ(std::system(command(1).c_str()), 0);
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    std::mt19937 random(34);
+    std::uniform_real_distribution<double> instant(0.2 * seconds, 1.2 * seconds);
+    int changed = 0, kept = 0;
+    for (int kill = 0; kill < 40; ++kill) {
+        const std::string before = slurp(out + "/report.json");
+        std::system(("(" + command(1 + kill % 2) + " 2>/dev/null & pid=$!; sleep " + std::to_string(instant(random)) +
+                     "; kill -9 $pid; wait $pid) 2>/dev/null").c_str());
+        ASSERT_TRUE(one_runs_set(out)) << "kill " << kill;
+        (slurp(out + "/report.json") == before ? kept : changed)++;
+    }
+    std::printf("40 kills over runs of %.3f s: %d left the earlier set, %d the killed run's\n", seconds, kept, changed);
+    ASSERT_EQ(std::system(command(2).c_str()), 0);  // and the next run cleans up after them
+    EXPECT_TRUE(one_runs_set(out));
+    EXPECT_EQ(std::distance(fs::directory_iterator(out + "/.surfvp-runs"), fs::directory_iterator()), 1);
 }
 
 }  // namespace

@@ -1,13 +1,13 @@
-// The output folder's publication: a folder of outputs goes into place whole when the folder
-// it replaces holds only the previous run's outputs, file by file when it holds anything else;
-// either way the folder ends with exactly this run's outputs and every file surfvp did not write.
+// The output folder's publication: a run's files go into a run folder of its own and become the
+// outputs in one step; what the folder held before is never trusted, and nothing surfvp did not
+// write, inside the folder or outside it, is removed.
 #include <filesystem>
 #include <gtest/gtest.h>
 #include <set>
-#include <sys/stat.h>
 
 #include "cli.h"
 #include "platform/run/output_folder.h"
+#include "platform/scenario/config.h"
 
 namespace surfvp::test {
 namespace {
@@ -23,50 +23,109 @@ void publish_run(const std::string& folder, const std::set<std::string>& files) 
     out.publish();
 }
 
-// Every file under `dir`, hidden ones too, relative to it.
-std::set<std::string> everything_under(const std::string& dir) {
+// The files a reader sees in `dir`: its visible names, links followed.
+std::set<std::string> outputs_in(const std::string& dir) {
     std::set<std::string> files;
-    for (const auto& e : fs::recursive_directory_iterator(dir))
-        if (e.is_regular_file()) files.insert(e.path().lexically_relative(dir).string());
+    for (const auto& top : fs::directory_iterator(dir)) {
+        if (top.path().filename().string().front() == '.') continue;
+        if (top.is_regular_file()) files.insert(top.path().filename().string());
+        if (top.is_directory())
+            for (const auto& e : fs::recursive_directory_iterator(top.path()))
+                if (e.is_regular_file()) files.insert((top.path().filename() / e.path().lexically_relative(top.path())).string());
+    }
     return files;
 }
 
-ino_t inode(const std::string& path) {
-    struct stat s {};
-    return ::stat(path.c_str(), &s) == 0 ? s.st_ino : 0;
+size_t runs_in(const std::string& dir) {
+    return size_t(std::distance(fs::directory_iterator(dir + "/.surfvp-runs"), fs::directory_iterator{}));
 }
 
-TEST(OutputFolder, AFolderOfOutputsReplacesThePreviousRunsWhole) {
+TEST(OutputFolder, ANewRunReplacesThePreviousSetWholeAndKeepsOneRunFolder) {
     const std::string out = fresh_dir("publish_whole");
-    publish_run(out, {"report.json", "keypoints/frame_0000.surf", "keypoints/frame_0001.surf", "keypoints/frame_0002.surf"});
-    const ino_t first = inode(out + "/keypoints");
-    publish_run(out, {"report.json", "keypoints/frame_0000.surf", "keypoints/frame_0001.surf"});
-    EXPECT_EQ(everything_under(out), (std::set<std::string>{".surfvp-outputs", ".surfvp.lock", "report.json",
-                                                            "keypoints/frame_0000.surf", "keypoints/frame_0001.surf"}));
-    EXPECT_NE(inode(out + "/keypoints"), first);  // the staging folder's, moved in
-    EXPECT_EQ(slurp(out + "/keypoints/frame_0001.surf"), "run of 3: keypoints/frame_0001.surf");
+    publish_run(out, {"report.json", "trace.vcd", "keypoints/frame_0000.surf", "keypoints/frame_0001.surf"});
+    publish_run(out, {"report.json", "keypoints/frame_0000.surf"});
+    EXPECT_EQ(outputs_in(out), (std::set<std::string>{"report.json", "keypoints/frame_0000.surf"}));
+    EXPECT_EQ(slurp(out + "/keypoints/frame_0000.surf"), "run of 2: keypoints/frame_0000.surf");
+    EXPECT_FALSE(fs::exists(fs::symlink_status(out + "/trace.vcd")));  // its link is gone too
+    EXPECT_EQ(runs_in(out), 1u);
+    EXPECT_TRUE(fs::is_symlink(out + "/report.json"));
 }
 
-TEST(OutputFolder, AFolderHoldingAFileSurfvpDidNotWriteIsUpdatedFileByFile) {
-    const std::string out = fresh_dir("publish_by_file");
+TEST(OutputFolder, AManifestNamingFilesOutsideTheFolderIsNeverActedOn) {
+    const std::string root = fresh_dir("publish_manifest"), out = root + "/out";
+    write_file(root, "victim.txt", "keep me");
+    fs::create_directories(out);
+    write_file(out, ".surfvp-outputs", "../victim.txt\n" + root + "/victim.txt\nmine.txt\n");
+    write_file(out, "mine.txt", "mine");
+    publish_run(out, {"report.json"});
+    EXPECT_EQ(slurp(root + "/victim.txt"), "keep me");
+    EXPECT_EQ(slurp(out + "/mine.txt"), "mine");
+    EXPECT_FALSE(fs::exists(out + "/.surfvp-outputs"));  // an older surfvp's list, not read
+    EXPECT_EQ(outputs_in(out), (std::set<std::string>{"mine.txt", "report.json"}));
+}
+
+TEST(OutputFolder, AnOlderSurfvpsOutputsAreReplacedAndTheUsersFilesKept) {
+    const std::string out = fresh_dir("publish_legacy");
+    fs::create_directories(out + "/keypoints");
+    for (const char* f : {"report.json", "report.md", "trace.vcd", "notes.txt"}) write_file(out, f, "old");
+    write_file(out + "/keypoints", "frame_0000.surf", "old");
+    write_file(out + "/keypoints", "frame_0001.surf", "old");
+    publish_run(out, {"report.json", "keypoints/frame_0000.surf"});
+    EXPECT_EQ(outputs_in(out), (std::set<std::string>{"notes.txt", "report.json", "keypoints/frame_0000.surf"}));
+    EXPECT_EQ(slurp(out + "/notes.txt"), "old");
+}
+
+TEST(OutputFolder, AFolderTheUserMadeUnderAnOutputsNameIsRefusedBeforeAnythingChanges) {
+    const std::string out = fresh_dir("publish_user_folder");
+    publish_run(out, {"report.json"});
+    fs::remove(out + "/report.json");
+    fs::create_directories(out + "/keypoints");
+    write_file(out + "/keypoints", "plan.txt", "mine");
+    try {
+        publish_run(out, {"report.json", "keypoints/frame_0000.surf"});
+        FAIL() << "published over the user's folder";
+    } catch (const ConfigError& e) {
+        EXPECT_NE(std::string(e.what()).find("keypoints is a folder surfvp did not write"), std::string::npos) << e.what();
+    }
+    EXPECT_EQ(slurp(out + "/keypoints/plan.txt"), "mine");
+    EXPECT_EQ(runs_in(out), 1u);  // the refused run's folder is gone, the previous one stays
+}
+
+TEST(OutputFolder, FilesPutIntoAPublishedFolderKeepTheirRunFolder) {
+    const std::string out = fresh_dir("publish_user_file_inside");
     publish_run(out, {"keypoints/frame_0000.surf", "keypoints/frame_0001.surf"});
     write_file(out + "/keypoints", "mine.txt", "mine");
-    fs::create_directories(out + "/keypoints/.hidden");
-    write_file(out + "/keypoints/.hidden", "notes", "also mine");
-    const ino_t first = inode(out + "/keypoints");
     publish_run(out, {"keypoints/frame_0000.surf"});
-    EXPECT_EQ(inode(out + "/keypoints"), first);
-    EXPECT_EQ(everything_under(out), (std::set<std::string>{".surfvp-outputs", ".surfvp.lock", "keypoints/frame_0000.surf",
-                                                            "keypoints/mine.txt", "keypoints/.hidden/notes"}));
-    EXPECT_EQ(slurp(out + "/keypoints/frame_0000.surf"), "run of 1: keypoints/frame_0000.surf");
-    EXPECT_EQ(slurp(out + "/keypoints/mine.txt"), "mine");
+    EXPECT_EQ(outputs_in(out), (std::set<std::string>{"keypoints/frame_0000.surf"}));
+    EXPECT_EQ(runs_in(out), 2u);  // the earlier run's folder, with mine.txt, is kept
+    bool found = false;
+    for (const auto& run : fs::directory_iterator(out + "/.surfvp-runs"))
+        found = found || (fs::exists(run.path() / "keypoints/mine.txt") && slurp((run.path() / "keypoints/mine.txt").string()) == "mine");
+    EXPECT_TRUE(found);
 }
 
 TEST(OutputFolder, AHiddenFolderInStagingIsNotPublished) {
     const std::string out = fresh_dir("publish_hidden");
     publish_run(out, {"table/a.txt", "table/.scratch/point0.json", ".points/p.json"});
-    EXPECT_EQ(everything_under(out), (std::set<std::string>{".surfvp-outputs", ".surfvp.lock", "table/a.txt"}));
-    EXPECT_EQ(slurp(out + "/.surfvp-outputs"), "table/a.txt\n");
+    EXPECT_EQ(outputs_in(out), (std::set<std::string>{"table/a.txt"}));
+    EXPECT_FALSE(fs::exists(out + "/table/.scratch"));
+}
+
+TEST(OutputFolder, LinksAndRunFoldersSomeoneElseMadeAreNeverFollowed) {
+    const std::string root = fresh_dir("publish_foreign_links"), out = root + "/out", elsewhere = root + "/elsewhere";
+    fs::create_directories(elsewhere);
+    write_file(elsewhere, "precious.txt", "keep me");
+    fs::create_directories(out);
+    fs::create_directory_symlink(elsewhere, out + "/.surfvp-current");
+    fs::create_symlink(elsewhere + "/precious.txt", out + "/report.md");
+    publish_run(out, {"report.json"});
+    EXPECT_EQ(slurp(elsewhere + "/precious.txt"), "keep me");
+    EXPECT_EQ(outputs_in(out), (std::set<std::string>{"report.json", "report.md"}));  // a link not of surfvp's form is the user's
+    const std::string other = root + "/other";
+    fs::create_directories(other);
+    fs::create_directory_symlink(elsewhere, other + "/.surfvp-runs");
+    EXPECT_THROW(OutputFolder{other}, ConfigError);
+    EXPECT_EQ(slurp(elsewhere + "/precious.txt"), "keep me");
 }
 
 }  // namespace

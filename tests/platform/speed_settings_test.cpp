@@ -151,15 +151,17 @@ TEST(SpeedSettings, TheSecondThreadMovesNoFigureAndNoByte) {
         expect_same_figures(nlohmann::json::parse(slurp(outs[0] + "/report.json")),
                             nlohmann::json::parse(slurp(outs[1] + "/report.json")), scenario);
         size_t files = 0;
-        for (const auto& e : fs::recursive_directory_iterator(outs[0])) {
-            const std::string name = e.path().filename().string();
-            if (!e.is_regular_file() || name.rfind("report", 0) == 0 || name == "config.yaml" || name == ".surfvp.lock")
-                continue;
-            const fs::path other = fs::path(outs[1]) / fs::relative(e.path(), outs[0]);
-            EXPECT_EQ(comparable(e.path().string(), outs[0]), comparable(other.string(), outs[1])) << scenario << ": " << other;
+        // The folder as a user sees it: through its links, without surfvp's hidden run folders.
+        for (auto e = fs::recursive_directory_iterator(outs[0], fs::directory_options::follow_directory_symlink);
+             e != fs::recursive_directory_iterator(); ++e) {
+            const std::string name = e->path().filename().string();
+            if (name[0] == '.') e.disable_recursion_pending();
+            if (!e->is_regular_file() || name[0] == '.' || name.rfind("report", 0) == 0 || name == "config.yaml") continue;
+            const fs::path other = fs::path(outs[1]) / e->path().lexically_relative(outs[0]);
+            EXPECT_EQ(comparable(e->path().string(), outs[0]), comparable(other.string(), outs[1])) << scenario << ": " << other;
             ++files;
         }
-        EXPECT_GT(files, 3u) << scenario;  // the keypoint files at least
+        EXPECT_GE(files, 3u) << scenario;  // frames.csv and keypoint files at least
     }
 }
 
