@@ -10,6 +10,7 @@
 
 #include "models/common/atomic_file.h"
 #include "platform/run/run.h"
+#include "platform/scenario/json_input.h"
 #include "platform/scenario/parameters.h"
 #include "platform/scenario/scenario.h"
 #include "platform/sweep/sweep_results.h"
@@ -20,13 +21,11 @@ using Json = nlohmann::ordered_json;
 
 namespace {
 
-Json read_json(const fs::path& file, const std::string& side) {
-    std::ifstream in(file);
-    if (!in) throw ConfigError(fmt::format("{}: no {} (not a run folder?)", side, file.filename().string()));
-    std::stringstream text;
-    text << in.rdbuf();
-    Json j = Json::parse(text.str(), nullptr, false);
-    if (j.is_discarded() || !j.is_object()) throw ConfigError(fmt::format("{}: {} is not a JSON object", side, file.string()));
+// A run folder's or sweep's JSON: untrusted (someone else's folder, another version).
+Json read_object(const fs::path& file, const std::string& side) {
+    if (!fs::exists(file)) throw ConfigError(fmt::format("{}: no {} (not a run folder?)", side, file.filename().string()));
+    Json j = read_json_file(file, "a side of compare");
+    if (!j.is_object()) throw ConfigError(fmt::format("{}: {} is not a JSON object", side, file.string()));
     return j;
 }
 
@@ -36,15 +35,18 @@ Json read_parameters(const fs::path& file) {
     Json out = Json::object();
     if (!fs::exists(file)) return out;
     const YAML::Node root = load_yaml_file(file.string(), "configuration");
+    if (!root.IsMap()) throw ConfigError(fmt::format("{}: a configuration is a map of sections", file.string()));
     for (const auto& section : root)
-        if (section.second.IsMap())
+        if (section.first.IsScalar() && section.second.IsMap())
             for (const auto& item : section.second)
-                if (item.second.IsScalar()) out[section.first.Scalar() + "." + item.first.Scalar()] = item.second.Scalar();
+                if (item.first.IsScalar() && item.second.IsScalar())
+                    out[section.first.Scalar() + "." + item.first.Scalar()] = item.second.Scalar();
     return out;
 }
 
 // The report's numeric figures by path, leaving out what is not a figure of the chip (wall
 // clock, the legend, per-frame rows, time series, the workload's own section, the verdict's).
+// The recursion is bounded by parse_json's depth limit.
 void flatten(const Json& j, const std::string& path, const std::set<std::string>& skip, Json& out) {
     if (j.is_object()) {
         for (const auto& [key, value] : j.items())
@@ -57,13 +59,30 @@ void flatten(const Json& j, const std::string& path, const std::set<std::string>
 Json figures_of_run(const Json& report) {
     std::set<std::string> skip = {"statistics", "per_frame", "workload", "verdict", "checks", "outputs", "scenario",
                                   "busy_series", "line_fifo_series", "maxima_fifo_series", "schedules"};
-    if (report.contains("wall_clock_fields"))
-        for (const auto& f : report["wall_clock_fields"]) skip.insert(f.get<std::string>());
-    if (report.contains("simulation_fields"))
-        for (const auto& f : report["simulation_fields"]) skip.insert(f.get<std::string>());
+    for (const char* legend : {"/wall_clock_fields", "/simulation_fields"})
+        if (const Json& fields = value_at(report, legend); fields.is_array())
+            for (const auto& f : fields)
+                if (f.is_string()) skip.insert(f.get<std::string>());
     Json all = Json::object();
     flatten(report, "", skip, all);
     return all;
+}
+
+Json object_or_empty(const Json& j) { return j.is_object() ? j : Json::object(); }
+
+// SWEEP_DIR@POINT: the point's row of the sweep's results.json.
+Json load_point(const std::string& side, const fs::path& dir, const std::string& number) {
+    if (number.size() > 9) throw ConfigError(fmt::format("{}: no sweep has point {}", side, number));
+    const size_t point = std::stoul(number);
+    const fs::path file = dir / "results.json";
+    const Json results = read_object(file, side);
+    const Json& points = value_at(results, "/points");
+    if (!points.is_array()) throw ConfigError(fmt::format("{}: {} has no list of points", side, file.string()));
+    for (const auto& p : points)
+        if (number_at(p, "/point", -1) == double(point))
+            return {{"name", side}, {"kind", "sweep point"}, {"parameters", object_or_empty(value_at(p, "/params"))},
+                    {"main", object_or_empty(value_at(p, "/figures"))}, {"all", Json::object()}};
+    throw ConfigError(fmt::format("{}: the sweep in {} has no point {}", side, dir.string(), point));
 }
 
 // One side: its name, parameters, main figures (as a sweep row has them) and, for a run, every
@@ -71,19 +90,11 @@ Json figures_of_run(const Json& report) {
 Json load_side(const std::string& side) {
     const auto at = side.rfind('@');
     if (at != std::string::npos && at + 1 < side.size() &&
-        side.find_first_not_of("0123456789", at + 1) == std::string::npos) {
-        const fs::path dir = side.substr(0, at);
-        const size_t point = std::stoul(side.substr(at + 1));
-        const Json results = read_json(dir / "results.json", side);
-        for (const auto& p : results["points"])
-            if (p["point"].get<size_t>() == point)
-                return {{"name", side}, {"kind", "sweep point"}, {"parameters", p["params"]}, {"main", p["figures"]},
-                        {"all", Json::object()}};
-        throw ConfigError(fmt::format("{}: the sweep in {} has no point {}", side, dir.string(), point));
-    }
+        side.find_first_not_of("0123456789", at + 1) == std::string::npos)
+        return load_point(side, side.substr(0, at), side.substr(at + 1));
     const fs::path dir(side);
     if (!fs::is_directory(dir)) throw ConfigError(fmt::format("{}: not a run folder nor SWEEP_DIR@POINT", side));
-    const Json report = read_json(dir / "report.json", side);
+    const Json report = read_object(dir / "report.json", side);
     return {{"name", side}, {"kind", "run"}, {"parameters", read_parameters(dir / "config.yaml")},
             {"main", sweep_figures(report)}, {"all", figures_of_run(report)}};
 }
@@ -133,7 +144,7 @@ std::string cell(const Json& v) {
     if (v.is_null()) return "-";
     if (v.is_number_float()) return fmt::format("{:.6g}", v.get<double>());
     if (v.is_string()) return v.get<std::string>();
-    return v.dump();
+    return v.dump(-1, ' ', false, Json::error_handler_t::replace);
 }
 
 std::string rows_markdown(const Json& table, size_t sides) {
@@ -151,6 +162,9 @@ std::string rows_markdown(const Json& table, size_t sides) {
     }
     return md;
 }
+
+// A side's config.yaml is not checked for UTF-8: a byte that is not is written as U+FFFD.
+std::string text_of(const Json& c) { return c.dump(2, ' ', false, Json::error_handler_t::replace) + "\n"; }
 
 std::string header(const Json& c) {
     std::string md = "| |";
@@ -189,9 +203,8 @@ Json compare_runs(const std::vector<std::string>& names) {
     Json budgets = Json::array();
     for (const Json& s : sides) {
         const Json& m = s["main"];
-        budgets.push_back({{"frame_rate", m.contains("budget_met") ? m["budget_met"] : Json()},
-                           {"power", m.contains("within_power_budget") ? m["within_power_budget"] : Json()},
-                           {"fits_fpga", m.contains("fits") ? m["fits"] : Json()}});
+        const auto flag = [&m](const char* key) { return m.contains(key) && m[key].is_boolean() ? m[key] : Json(); };
+        budgets.push_back({{"frame_rate", flag("budget_met")}, {"power", flag("within_power_budget")}, {"fits_fpga", flag("fits")}});
     }
     Json side_list = Json::array();
     for (const Json& s : sides) side_list.push_back({{"name", s["name"]}, {"kind", s["kind"]}});
@@ -235,13 +248,13 @@ void check_side(const std::string& side) { load_side(side); }
 void write_comparison(const std::string& reference, const std::string& staging, const std::string& published) {
     Json c = compare_runs({reference, staging});
     c["sides"][1]["name"] = published;  // the folder the run is published as, not its staging name
-    write_file_atomically((fs::path(staging) / "compare.json").string(), c.dump(2) + "\n");
+    write_file_atomically((fs::path(staging) / "compare.json").string(), text_of(c));
     write_file_atomically((fs::path(staging) / "compare.md").string(), compare_markdown(c));
 }
 
 int compare_command(const CompareOptions& options) {
     const Json c = compare_runs(options.sides);
-    if (!options.json.empty()) write_file_atomically(options.json, c.dump(2) + "\n");
+    if (!options.json.empty()) write_file_atomically(options.json, text_of(c));
     std::fputs(compare_markdown(c).c_str(), stdout);
     return kExitOk;
 }

@@ -8,6 +8,7 @@
 #include <set>
 
 #include "models/common/atomic_file.h"
+#include "platform/scenario/json_input.h"
 #include "platform/sweep/sweep_plots.h"
 
 namespace surfvp {
@@ -43,41 +44,35 @@ const char* status_of(const SweepRow& r) { return r.error.empty() ? (r.exit == 0
 
 }  // namespace
 
+// Checked lookups throughout: the report may be another version's or a damaged one (compare
+// reads run folders it did not write).
 Json sweep_figures(const Json& r) {
     Json f;
-    f["fps"] = r.value("throughput_fps", 0.0);
-    f["budget_fps"] = r.contains("budget") && r["budget"].is_object() ? r["budget"].value("fps", 0.0) : 0.0;
-    f["budget_met"] = r.contains("budget") && r["budget"].is_object() ? Json(r["budget"].value("met", false)) : Json();
-    f["latency_ms"] = r.value("latency_ms", 0.0);
-    f["bottleneck"] = r.contains("limit") ? r["limit"].value("resource", "") : "";
-    f["bottleneck_cause"] = r.contains("limit") ? r["limit"].value("cause", "") : "";
-    if (r.contains("time_per_frame"))
-        for (const auto& [resource, t] : r["time_per_frame"].items())
-            f["busy." + resource] = t.value("busy_share", 0.0);
-    if (r.contains("fpga_resources")) {
-        const Json& fpga = r["fpga_resources"];
-        f["bram36"] = fpga["total"]["ramb36"];
-        f["dsp48e"] = fpga["total"]["dsp48e"];
-        f["luts"] = fpga["total"]["luts"];
-        f["fits"] = fpga["fits"];
-    }
-    if (r.contains("power")) {
-        f["watts"] = r["power"]["watts"];
-        f["joules_per_frame"] = r["power"]["joules_per_frame"];
-        f["within_power_budget"] = r["power"]["within_budget"];
-    }
+    f["fps"] = number_at(r, "/throughput_fps");
+    f["budget_fps"] = number_at(r, "/budget/fps");
+    f["budget_met"] = value_at(r, "/budget/met").is_boolean() ? value_at(r, "/budget/met") : Json();
+    f["latency_ms"] = number_at(r, "/latency_ms");
+    f["bottleneck"] = text_at(r, "/limit/resource");
+    f["bottleneck_cause"] = text_at(r, "/limit/cause");
+    if (value_at(r, "/time_per_frame").is_object())
+        for (const auto& [resource, t] : r["time_per_frame"].items()) f["busy." + resource] = number_at(t, "/busy_share");
+    auto copy = [&](const char* name, std::string_view pointer) {
+        if (!value_at(r, pointer).is_null()) f[name] = value_at(r, pointer);
+    };
+    copy("bram36", "/fpga_resources/total/ramb36");
+    copy("dsp48e", "/fpga_resources/total/dsp48e");
+    copy("luts", "/fpga_resources/total/luts");
+    copy("fits", "/fpga_resources/fits");
+    copy("watts", "/power/watts");
+    copy("joules_per_frame", "/power/joules_per_frame");
+    copy("within_power_budget", "/power/within_budget");
     // Feature quality, when the scenario's eval.* asks for it (a homography or camera poses).
-    if (r.contains("workload") && r["workload"].contains("evaluation")) {
-        const Json& e = r["workload"]["evaluation"];
-        if (e.contains("homography")) {
-            f["repeatability"] = e["homography"]["repeatability"];
-            f["precision"] = e["homography"]["precision"];
-        }
-        if (e.contains("distinguishability_gap1")) f["distinguishability"] = e["distinguishability_gap1"]["ransac"];
-    }
-    f["keypoints_per_frame"] = r.value("keypoints_per_frame", 0.0);
-    f["sim_time_s"] = r.value("sim_time_s", 0.0);
-    f["passed"] = r.value("passed", false);
+    copy("repeatability", "/workload/evaluation/homography/repeatability");
+    copy("precision", "/workload/evaluation/homography/precision");
+    copy("distinguishability", "/workload/evaluation/distinguishability_gap1/ransac");
+    f["keypoints_per_frame"] = number_at(r, "/keypoints_per_frame");
+    f["sim_time_s"] = number_at(r, "/sim_time_s");
+    f["passed"] = flag_at(r, "/passed");
     return f;
 }
 
