@@ -72,5 +72,45 @@ TEST(Compare, ASideThatIsNoRunIsBadInput) {
     EXPECT_FALSE(std::filesystem::exists(out));  // refused before anything is simulated or written
 }
 
+// What compare reads is someone else's folder: damaged, foreign or hostile content is bad
+// input naming the file, never a crash (each case once ended in SIGSEGV or exit 3).
+TEST(Compare, DamagedOrHostileSidesAreBadInputNamingTheFile) {
+    const std::string dir = fresh_dir("cmp_hostile");
+    const auto side = [&](const std::string& name, const std::string& file, const std::string& text) {
+        std::filesystem::create_directories(dir + "/" + name);
+        write_file(dir + "/" + name, file, text);
+        return dir + "/" + name;
+    };
+    const std::string deep = std::string(100000, '[') + std::string(100000, ']');
+    const std::vector<std::pair<std::string, std::string>> cases = {
+        {side("no_points", "results.json", "{\"sweep\": \"x\"}") + "@0", "has no list of points"},
+        {side("points_not_list", "results.json", "{\"points\": 7}") + "@0", "has no list of points"},
+        {side("huge_point", "results.json", "{\"points\": []}") + "@99999999999999999999", "no sweep has point"},
+        {side("deep_results", "results.json", "{\"points\": " + deep + "}") + "@0", "nested deeper than 64 levels"},
+        {side("deep_report", "report.json", "{\"a\": " + deep + "}"), "nested deeper than 64 levels"},
+        {side("not_json", "report.json", "{\"a\": 1,"), "not valid JSON"},
+        {side("array_report", "report.json", "[1, 2]"), "is not a JSON object"},
+    };
+    const std::string good = side("good", "report.json", "{\"fps\": 1}");
+    for (const auto& [bad, message] : cases) {
+        const auto r = surfvp("compare " + good + " " + bad);
+        EXPECT_EQ(r.exit_code, 2) << bad << ": " << r.err;
+        EXPECT_NE(r.err.find(message), std::string::npos) << bad << ": " << r.err;
+        EXPECT_NE(r.err.find(dir), std::string::npos) << bad << ": " << r.err;
+    }
+    // Mistyped values are absent, not errors: a point whose fields are of other types compares.
+    const std::string odd = side("odd_point", "results.json",
+                                 "{\"points\": [{\"point\": \"0\"}, {\"point\": 0, \"params\": 3, \"figures\": "
+                                 "{\"budget_met\": \"yes\", \"fps\": 2}}], \"wall_clock_fields\": [1, {}]}");
+    side("odd_run", "report.json", "{\"fps\": 1, \"wall_clock_fields\": [1, null], \"budget_met\": 3}");
+    write_file(dir + "/odd_run", "config.yaml", "- not\n- a map\n");
+    const auto r = surfvp("compare " + odd + "@0 " + dir + "/odd_run");
+    EXPECT_EQ(r.exit_code, 2) << r.err;  // config.yaml is a list
+    EXPECT_NE(r.err.find("config.yaml: a configuration is a map of sections"), std::string::npos) << r.err;
+    std::filesystem::remove(dir + "/odd_run/config.yaml");
+    const auto fine = surfvp("compare " + odd + "@0 " + dir + "/odd_run --json " + dir + "/c.json");
+    EXPECT_EQ(fine.exit_code, 0) << fine.err;
+}
+
 }  // namespace
 }  // namespace surfvp::test
