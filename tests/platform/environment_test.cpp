@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 #include <random>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include "cli.h"
 
@@ -178,6 +179,28 @@ TEST(Environment, AKillAtAnyInstantLeavesOneRunsWholeSet) {
     ASSERT_EQ(std::system(command(2).c_str()), 0);  // and the next run cleans up after them
     EXPECT_TRUE(one_runs_set(out));
     EXPECT_EQ(std::distance(fs::directory_iterator(out + "/.surfvp-runs"), fs::directory_iterator()), 1);
+}
+
+// A shared folder where another user's run was killed: its lock file cannot be written by
+// this user, yet no process holds it, so it is taken over with a warning, whether the folder
+// lets this user replace the file (plain) or not (sticky, as /tmp).
+TEST(Environment, AnotherUsersStaleLockIsTakenOverWithAWarning) {
+    if (::geteuid() != 0) GTEST_SKIP() << "acting as another user needs root";
+    const std::string shared = fresh_dir("shared");
+    fs::permissions(shared, fs::perms::all);
+    for (const char* kind : {"plain", "sticky"}) {
+        const std::string out = shared + "/" + kind;
+        fs::create_directory(out);
+        fs::permissions(out, fs::perms::all | (kind[0] == 's' ? fs::perms::sticky_bit : fs::perms::none));
+        write_file(out, ".surfvp.lock", "999999\n");  // root's, 0644, no process holds it
+        const std::string err = fresh_path(std::string(kind) + ".err");
+        const int status = std::system(("SURFVP_CACHE=off setpriv --reuid=65534 --regid=65534 --clear-groups " +
+                                        std::string(SURFVP_BINARY) + " run smoke -q --out " + out + " 2>" + err).c_str());
+        EXPECT_EQ(WIFEXITED(status) ? WEXITSTATUS(status) : -1, 0) << kind << ": " << slurp(err);
+        EXPECT_NE(slurp(err).find("took over the stale lock of another user's run (pid 999999, no longer running)"),
+                  std::string::npos) << kind << ": " << slurp(err);
+        EXPECT_TRUE(fs::exists(out + "/report.json")) << kind;
+    }
 }
 
 }  // namespace
