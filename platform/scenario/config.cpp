@@ -38,7 +38,15 @@ const Config::Entry& Config::entry(const std::string& key, ParamKind kind) const
     throw std::logic_error("no parameter " + key);
 }
 
-const std::string& Config::origin(const std::string& key) const { return entry(key, find_parameter(key)->kind).origin; }
+namespace {
+ParamKind kind_of(const std::string& key) {
+    const ParamSpec* spec = find_parameter(key);
+    if (!spec) throw std::logic_error("no parameter " + key);  // callers check keys they were given
+    return spec->kind;
+}
+}  // namespace
+
+const std::string& Config::origin(const std::string& key) const { return entry(key, kind_of(key)).origin; }
 
 std::string Config::source_of(const std::string& key) const {
     const std::string& from = origin(key);
@@ -74,9 +82,9 @@ unsigned Config::bits(const std::string& key) const { return parse_bits(entry(ke
 Bytes Config::bytes(const std::string& key) const { return parse_bytes(entry(key, ParamKind::bytes).value); }
 uint64_t Config::cycles(const std::string& key) const { return parse_cycles(entry(key, ParamKind::cycles).value); }
 unsigned Config::beats(const std::string& key) const { return parse_beats(entry(key, ParamKind::beats).value); }
-const std::string& Config::value(const std::string& key) const { return entry(key, find_parameter(key)->kind).value; }
+const std::string& Config::value(const std::string& key) const { return entry(key, kind_of(key)).value; }
 double Config::base_value(const std::string& key) const {
-    const Entry& e = entry(key, find_parameter(key)->kind);
+    const Entry& e = entry(key, kind_of(key));
     return parse_value(*e.spec, e.value);
 }
 const std::string& Config::choice(const std::string& key) const { return entry(key, ParamKind::choice).value; }

@@ -44,15 +44,20 @@ std::vector<Axis> default_axes() {
             {"surf.haar", {"exact"}}};
 }
 
-// --axis KEY=V1,V2,...
+// --axis KEY=V1,V2,...: a parameter and values it takes, each checked before anything runs.
 Axis parse_axis(const std::string& text) {
     const auto eq = text.find('=');
     if (eq == std::string::npos || eq == 0 || eq + 1 == text.size())
         throw ConfigError(fmt::format("--axis {}: give KEY=VALUE,VALUE,... (fhg.det_bits=24 bit,20 bit)", text));
     Axis a{text.substr(0, eq), {}};
+    if (!find_parameter(a.key))
+        throw ConfigError(fmt::format("--axis {}: '{}' is not a parameter; the study narrows one (fhg.det_bits, surf.haar, ...; "
+                                      "`surfvp params` lists them)", text, a.key));
     for (size_t from = eq + 1;;) {
         const size_t comma = text.find(',', from);
         a.values.push_back(text.substr(from, comma == std::string::npos ? std::string::npos : comma - from));
+        if (a.values.back().find_first_not_of(' ') == std::string::npos)
+            throw ConfigError(fmt::format("--axis {}: value {} is empty", text, a.values.size()));
         if (comma == std::string::npos) break;
         from = comma + 1;
     }
@@ -186,13 +191,15 @@ std::string markdown(const Json& report) {
                                  report["scenario"].get<std::string>(), report["scenario"].get<std::string>(),
                                  report["pair"].is_null() ? "" : fmt::format(" and `{}`", report["pair"].get<std::string>()),
                                  kTolerance);
+    const double error = report["standard_error"].get<double>();
+    const std::string noise = error > 0 ? fmt::format("and the tolerance of {:g} is {:.1f} of them", kTolerance, kTolerance / error)
+                                        : std::string("and here the pairs do not spread at all");
     md += fmt::format("Keypoints per frame: {}. Over {} pairs the rows' standard error is about {:.3f}: a change smaller than that "
-                      "is noise, and the tolerance of {:g} is {:.1f} of them.\n\n",
+                      "is noise, {}.\n\n",
                       report["threshold_control"] == "track" ? "each point holds its count near the target (surf.threshold_control = "
                                                                "track), since narrower arithmetic scales the determinants"
                                                              : "the calibrated threshold is held (surf.threshold_control = hold)",
-                      report["pairs"].get<size_t>(), report["standard_error"].get<double>(), kTolerance,
-                      kTolerance / std::max(report["standard_error"].get<double>(), 1e-9));
+                      report["pairs"].get<size_t>(), error, noise);
     md += "| width | value | keypoints per frame | Y Y | Y N | N Y | N N | within | repeatability | precision | RAMB36 | DSP48E | LUTs | "
           "det bytes/frame |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
     auto line = [&](const std::string& key, const std::string& value, const Json& r) {
@@ -303,6 +310,10 @@ int precision_command(const PrecisionOptions& o) {
             throw ConfigError(fmt::format("{}: the precision study needs SURF scenarios (run.workload: surf)", c->where("run.workload")));
         check_scenario(*c);
     }
+    for (const Config* c : std::vector<const Config*>{&seq, pair ? &*pair : nullptr})
+        if (c && !c->faults.empty())  // the study runs the chip without time, where no fault can strike
+            throw ConfigError(fmt::format("{}: faults: the precision study runs the chip without time; give a scenario without "
+                                          "faults", c->faults.front().origin));
     if (pair && pair->text("eval.homography").empty())
         throw ConfigError(fmt::format("--pair {}: a pair under a homography (eval.homography) gives repeatability and precision; "
                                       "it has none", o.pair));
@@ -314,6 +325,9 @@ int precision_command(const PrecisionOptions& o) {
         for (const std::string& v : a.values) {
             try {
                 points.push_back({a.key, v, point_sets(seq, {{a.key, v}}), {}});
+                if (!pair) continue;
+                Config p = *pair;  // the pair takes them too: refused now, not after the reference ran
+                apply_overrides(p, points.back().sets);
             } catch (const ConfigError& e) {
                 throw ConfigError(fmt::format("--axis {}={}: {}", a.key, v, e.what()));
             }

@@ -55,7 +55,12 @@ TEST(PrecisionStudy, BadAxesAndPairsAreRefusedBeforeAnyPointRuns) {
              {"--axis 'fhg.nope=3 bit'", "fhg.nope"},
              {"--axis fhg.det_bits", "give KEY=VALUE,VALUE"},
              {"--axis 'fhg.det_bits=40 bit'", "--axis fhg.det_bits=40 bit"},
-             {"--pair castle_sequence", "it has none"}}) {
+             {"--pair castle_sequence", "it has none"},
+             {"--axis 'faults=[]'", "'faults' is not a parameter"},  // once a SIGSEGV after every point ran
+             {"--axis 'fhg.det_bits=24 bit,'", "value 2 is empty"},
+             {"--axis 'fhg.det_bits=, 20 bit'", "value 1 is empty"},
+             {"--pair faults", "faults.yaml:15: faults: the precision study runs the chip without time"},
+             {"--set surf.frames=0", "surf.frames"}}) {
         const auto r = surfvp("precision castle_sequence " + args + " --out " + out);
         EXPECT_EQ(r.exit_code, 2) << args;
         EXPECT_NE(r.err.find(says), std::string::npos) << args << ": " << r.err;
