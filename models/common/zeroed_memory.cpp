@@ -34,7 +34,7 @@ uint8_t* map_zeroed(size_t bytes) {
 
 ZeroedMemory zeroed_memory(size_t bytes, const std::string& what) {
     uint8_t* p = map_zeroed(bytes);
-    if (!p) throw std::runtime_error(what + ": cannot allocate " + std::to_string(bytes) + " bytes");
+    if (!p) throw OutOfMemory(what + ": cannot have " + std::to_string(bytes >> 20) + " MiB");
     return ZeroedMemory(p, ZeroedMemoryRelease{bytes});
 }
 

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <memory>
 #include <new>
+#include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
@@ -20,7 +21,13 @@ struct ZeroedMemoryRelease {
 };
 using ZeroedMemory = std::unique_ptr<uint8_t[], ZeroedMemoryRelease>;
 
-// Throws std::runtime_error naming `what` and the size when the block cannot be had.
+// The machine has no memory for what a run needs: neither the user's input (exit 2) nor a bug
+// (exit 3), but an outcome of its own (exit 5). The message names the allocation and its size.
+struct OutOfMemory : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
+
+// Throws OutOfMemory naming `what` and the size when the block cannot be had.
 ZeroedMemory zeroed_memory(size_t bytes, const std::string& what);
 
 // From now on this process's blocks ask for 2 MB pages (MADV_HUGEPAGE). For a re-simulation's

@@ -21,7 +21,7 @@ DdrMemory::DdrMemory(const sc_core::sc_module_name& name, const Params& params)
     if (params.size.n == 0) throw std::invalid_argument(fmt::format("{}: memory size must be above zero", basename()));
     if (params.efficiency <= 0 || params.efficiency > 1)
         throw std::invalid_argument(fmt::format("{}: efficiency must be in (0, 1], not {}", basename(), params.efficiency));
-    storage_ = zeroed_memory(params.size.n, basename());
+    storage_ = zeroed_memory(params.size.n, std::string("the modelled DDR memory (") + basename() + ", memory.size)");
     if (params.populate_ahead) populate_ = std::make_unique<PopulateAhead>(storage_.get(), params.size.n);
     ports.register_b_transport(this, &DdrMemory::b_transport);
     ports.register_get_direct_mem_ptr(this, &DdrMemory::get_direct_mem_ptr);

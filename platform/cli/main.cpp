@@ -8,6 +8,7 @@
 #include <systemc>
 
 #include "models/common/atomic_file.h"
+#include "models/common/zeroed_memory.h"
 #include "platform/tools/bench.h"
 #include "platform/tools/calibrate.h"
 #include "platform/scenario/config.h"
@@ -182,6 +183,12 @@ int dispatch(int argc, char** argv) {
     } catch (const EnvironmentError& e) {
         std::fprintf(stderr, "surfvp: cannot write: %s\n", e.what());
         return kExitEnvironment;
+    } catch (const OutOfMemory& e) {
+        std::fprintf(stderr, "surfvp: out of memory: %s\n", e.what());
+        return kExitOutOfMemory;
+    } catch (const std::bad_alloc&) {  // an allocation of no named block: the command is what we know
+        std::fprintf(stderr, "surfvp: out of memory: an allocation of `surfvp %s` failed\n", argv[1]);
+        return kExitOutOfMemory;
     } catch (const std::exception& e) {
         std::fprintf(stderr, "surfvp: internal error: %s\n", e.what());
         return kExitInternal;

@@ -54,7 +54,7 @@ void DirectChip::Pair::stop_listening() {
 
 DirectChip::DirectChip(const Config& config, unsigned accelerators)
     : memory_size_(config.bytes("memory.size").n),
-      memory_(zeroed_memory(memory_size_, "direct mode's memory")),
+      memory_(zeroed_memory(memory_size_, "the modelled DDR memory of direct mode (memory.size)")),
       intc_(unsigned(config.count("intc.inputs")), [this] { return levels(); }),
       sum_bits_(config.bits("iig.sum_bits")),
       core_(fhg_params(config).precision),

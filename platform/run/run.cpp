@@ -16,6 +16,7 @@
 #include <fmt/format.h>
 #include <opencv2/core/utility.hpp>
 
+#include "models/common/zeroed_memory.h"
 #include "models/fhg/hessian_core.h"
 #include "models/fhg/sequence_cache.h"
 #include "platform/direct/direct_chip.h"
@@ -218,6 +219,10 @@ int run_direct(const Config& config, const fs::path& dir) {
     std::string failure;
     try {
         workload->software()(chip);
+    } catch (const OutOfMemory&) {  // not the software's failure: the machine's
+        throw;
+    } catch (const std::bad_alloc&) {
+        throw OutOfMemory("the driver and software stage of the direct run");
     } catch (const std::exception& e) {
         failure = std::string("software error: ") + e.what();
     }

@@ -10,7 +10,8 @@
 
 namespace surfvp {
 
-enum ExitCode { kExitOk = 0, kExitFailed = 1, kExitBadInput = 2, kExitInternal = 3, kExitEnvironment = 4 };
+enum ExitCode { kExitOk = 0, kExitFailed = 1, kExitBadInput = 2, kExitInternal = 3, kExitEnvironment = 4,
+               kExitOutOfMemory = 5 };
 
 struct RunOptions {
     std::string scenario;

@@ -90,6 +90,12 @@ void Resimulation::start(Job job) {
         } catch (const ConfigError& e) {
             out = {{"error", e.what()}, {"exit", 2}};
             code = 2;
+        } catch (const OutOfMemory& e) {
+            out = {{"error", std::string("out of memory: ") + e.what()}, {"exit", 5}};
+            code = 5;
+        } catch (const std::bad_alloc&) {
+            out = {{"error", "out of memory"}, {"exit", 5}};
+            code = 5;
         } catch (const std::exception& e) {
             out = {{"error", e.what()}, {"exit", 3}};
         }

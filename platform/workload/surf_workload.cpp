@@ -12,6 +12,7 @@
 #include <yaml-cpp/binary.h>
 
 #include "models/common/worker.h"
+#include "models/common/zeroed_memory.h"
 #include "platform/address_map.h"
 #include "platform/workload/describer.h"
 #include "models/fhg/fhg_regs.h"
@@ -174,6 +175,13 @@ SourceFrames read_frames(const Config& c) {
         }
     } catch (const ConfigError&) {
         throw;
+    } catch (const OutOfMemory&) {  // the machine's, not the source's fault
+        throw;
+    } catch (const std::bad_alloc&) {
+        throw OutOfMemory(fmt::format("reading the frames of {}", where));
+    } catch (const cv::Exception& e) {
+        if (e.code == cv::Error::StsNoMem) throw OutOfMemory(fmt::format("reading the frames of {}: {}", where, e.err));
+        throw ConfigError(fmt::format("{}: {}", where, e.what()));
     } catch (const std::exception& e) {
         throw ConfigError(fmt::format("{}: {}", where, e.what()));
     }

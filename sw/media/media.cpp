@@ -6,11 +6,15 @@
 #include <cstdlib>
 #include <cstring>
 #include <dlfcn.h>
+#include <elf.h>
 #include <filesystem>
 #include <fmt/format.h>
+#include <fstream>
 #include <string_view>
+#include <sys/statvfs.h>
 
 #include "models/common/disk_cache.h"
+#include "models/common/zeroed_memory.h"
 #include "sw/media/plugin_abi.h"
 
 namespace surfvp::media {
@@ -43,12 +47,53 @@ void bind(void* handle, const fs::path& path, const char* name, F& f) {
     if (!f) throw MediaError(fmt::format("{}: the image and video plugin lacks {}", path.string(), name));
 }
 
+// The loader maps a shared object's segments as its headers say; a segment past the file's end
+// (a truncated copy) is mapped all the same and faults (SIGBUS) when first touched. So the
+// headers are checked against the file before it is handed to dlopen.
+std::string elf_problem(const fs::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::error_code ec;
+    const uintmax_t size = fs::file_size(path, ec);
+    if (!in || ec || !fs::is_regular_file(path, ec)) return "not a readable regular file";
+    Elf64_Ehdr header{};
+    if (!in.read(reinterpret_cast<char*>(&header), sizeof header) || std::memcmp(header.e_ident, ELFMAG, SELFMAG) != 0 ||
+        header.e_ident[EI_CLASS] != ELFCLASS64 || header.e_phentsize != sizeof(Elf64_Phdr))
+        return "not a 64-bit ELF shared object";
+    if (header.e_phoff + uintmax_t(header.e_phnum) * sizeof(Elf64_Phdr) > size) return "cut short (program headers)";
+    if (header.e_shoff + uintmax_t(header.e_shnum) * header.e_shentsize > size) return "cut short (section headers)";
+    in.seekg(std::streamoff(header.e_phoff));
+    for (unsigned i = 0; i < header.e_phnum; ++i) {
+        Elf64_Phdr segment{};
+        if (!in.read(reinterpret_cast<char*>(&segment), sizeof segment)) return "cut short (program headers)";
+        if (segment.p_type == PT_LOAD && segment.p_offset + segment.p_filesz > size)
+            return fmt::format("cut short: segment {} ends at byte {}, the file at {}", i, segment.p_offset + segment.p_filesz, size);
+    }
+    return "";
+}
+
+// The loader's words when mmap failed, without its errno: out of memory (or address space),
+// unless the file system forbids executing what is on it.
+bool mapping_refused(const std::string& why, const fs::path& path) {
+    const bool mapping = why.find("failed to map segment") != std::string::npos ||
+                         why.find("cannot map zero-fill pages") != std::string::npos ||
+                         why.find("annot allocate memory") != std::string::npos;
+    struct statvfs fs_info {};
+    return mapping && !(::statvfs(path.c_str(), &fs_info) == 0 && (fs_info.f_flag & ST_NOEXEC));
+}
+
 Plugin load() {
     const fs::path path = plugin_path();
+    if (const std::string problem = elf_problem(path); !problem.empty())
+        throw MediaError(fmt::format("cannot load the image and video plugin {}: {} (reinstall it, or set SURFVP_MEDIA_PLUGIN "
+                                     "to its path)", path.string(), problem));
     void* handle = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
-    if (!handle)
+    if (!handle) {
+        const std::string why = dlerror();
+        if (mapping_refused(why, path))
+            throw OutOfMemory(fmt::format("mapping the image and video plugin {} and its libraries ({})", path.string(), why));
         throw MediaError(fmt::format("cannot load the image and video plugin {}: {} (set SURFVP_MEDIA_PLUGIN to its path)",
-                                     path.string(), dlerror()));
+                                     path.string(), why));
+    }
     Plugin p{};  // never closed: OpenCV's codec libraries keep state until the process ends
     bind(handle, path, "surfvp_media_read_image", p.read_image);
     bind(handle, path, "surfvp_media_encode_image", p.encode_image);

@@ -4,11 +4,15 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <cstddef>
 #include <cstdlib>
+#include <cstring>
+#include <elf.h>
 #include <filesystem>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 #include <random>
+#include <tuple>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -200,6 +204,48 @@ TEST(Environment, AnotherUsersStaleLockIsTakenOverWithAWarning) {
         EXPECT_NE(slurp(err).find("took over the stale lock of another user's run (pid 999999, no longer running)"),
                   std::string::npos) << kind << ": " << slurp(err);
         EXPECT_TRUE(fs::exists(out + "/report.json")) << kind;
+    }
+}
+
+// An address-space limit stands in for a machine out of memory: the run ends with its own code
+// (5), naming what it could not have, neither blaming the scenario (2) nor calling it a bug (3).
+TEST(Environment, OutOfMemoryIsItsOwnOutcomeNamingTheAllocation) {
+    const std::vector<std::tuple<std::string, unsigned, std::string>> cases = {
+        {"run smoke --quiet", 150000, "surfvp: out of memory: the modelled DDR memory (memory, memory.size): cannot have 256 MiB"},
+        {"run " + kBudget + kShort + " --set 'memory.size=1 MiB' --quiet", 200000,
+         "surfvp: out of memory: mapping the image and video plugin "}};
+    for (const auto& [args, kib, says] : cases) {
+        const std::string err = fresh_path("oom.err");
+        const int status = std::system(("bash -c \"ulimit -v " + std::to_string(kib) + "; SURFVP_CACHE=off exec " +
+                                        std::string(SURFVP_BINARY) + " " + args + " --out " + fresh_dir("oom") + "\" 2>" + err).c_str());
+        EXPECT_EQ(WIFEXITED(status) ? WEXITSTATUS(status) : -1, 5) << args << ": " << slurp(err);
+        EXPECT_NE(slurp(err).find(says), std::string::npos) << args << ": " << slurp(err);
+    }
+}
+
+// A truncated image and video plugin is refused before the loader maps it (it faulted with
+// SIGBUS when a segment lay past the file's end), naming the plugin and what is wrong.
+TEST(Environment, ATruncatedMediaPluginIsRefusedNotMapped) {
+    const std::string plugin = slurp(std::string(SURFVP_BINARY).substr(0, std::string(SURFVP_BINARY).rfind('/')) +
+                                     "/libsurfvp_media.so");
+    ASSERT_GT(plugin.size(), 8000u);
+    std::string segments_cut = plugin.substr(0, plugin.size() / 2);
+    const uint64_t none = 0;  // no section headers: only the segments can tell the cut
+    std::memcpy(segments_cut.data() + offsetof(Elf64_Ehdr, e_shoff), &none, sizeof none);
+    std::memset(segments_cut.data() + offsetof(Elf64_Ehdr, e_shnum), 0, sizeof(Elf64_Half));
+    const std::string dir = fresh_dir("plugin");
+    for (const auto& [bytes, says] : std::vector<std::pair<std::string, std::string>>{
+             {plugin.substr(0, plugin.size() / 2), "cut short (section headers)"},
+             {segments_cut, "cut short: segment "},
+             {plugin.substr(0, 40), "not a 64-bit ELF shared object"},
+             {"#!/bin/sh\n", "not a 64-bit ELF shared object"}}) {
+        const std::string file = write_file(dir, "libsurfvp_media.so", bytes);
+        const std::string err = fresh_path("plugin.err");
+        const int status = std::system(("SURFVP_CACHE=off SURFVP_MEDIA_PLUGIN=" + file + " " + std::string(SURFVP_BINARY) + " run " +
+                                        kBudget + kShort + " --quiet --out " + dir + "/out 2>" + err).c_str());
+        EXPECT_EQ(WIFEXITED(status) ? WEXITSTATUS(status) : -1, 2) << says << ": " << slurp(err);
+        EXPECT_NE(slurp(err).find("cannot load the image and video plugin " + file + ": " + says), std::string::npos)
+            << slurp(err);
     }
 }
 
