@@ -11,6 +11,7 @@
 #include <thread>
 #include <unistd.h>
 
+#include "models/common/atomic_file.h"
 #include "models/common/zeroed_memory.h"
 #include "platform/run/run.h"
 #include "platform/soc.h"
@@ -90,6 +91,9 @@ void Resimulation::start(Job job) {
         } catch (const ConfigError& e) {
             out = {{"error", e.what()}, {"exit", 2}};
             code = 2;
+        } catch (const EnvironmentError& e) {  // a write the machine refused (a trace on a full disk)
+            out = {{"error", std::string("cannot write: ") + e.what()}, {"exit", 4}};
+            code = 4;
         } catch (const OutOfMemory& e) {
             out = {{"error", std::string("out of memory: ") + e.what()}, {"exit", 5}};
             code = 5;
@@ -131,11 +135,15 @@ void Resimulation::run(const std::function<void(size_t, size_t)>& progress) {
         std::stringstream text;
         text << file.rdbuf();
         Json result = Json::parse(text.str(), nullptr, false);
-        if (result.is_discarded() || !result.is_object())
+        if (result.is_discarded() || !result.is_object()) {
+            // A child that exited with its code but could not write its result (a full disk: it
+            // exits 0 after the failed write) keeps the code; one killed by a signal is a bug's.
+            const int code = WIFEXITED(status) ? (WEXITSTATUS(status) ? WEXITSTATUS(status) : 4) : 3;
             result = {{"error", fmt::format("the re-simulation ended without a result ({})",
                                             WIFSIGNALED(status) ? fmt::format("signal {}", WTERMSIG(status))
                                                                 : fmt::format("exit {}", WEXITSTATUS(status)))},
-                      {"exit", 3}};
+                      {"exit", code}};
+        }
         std::error_code ignored;
         fs::remove(path, ignored);
         ++finished_;
