@@ -1,7 +1,9 @@
 #include "platform/tools/calibrate.h"
 
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <ext/stdio_filebuf.h>
 #include <filesystem>
 #include <fmt/format.h>
@@ -10,6 +12,7 @@
 #include <istream>
 #include <nlohmann/json.hpp>
 #include <opencv2/core/utility.hpp>
+#include <unistd.h>
 
 #include "platform/workload/describer.h"
 #include "models/common/atomic_file.h"
@@ -192,18 +195,50 @@ struct RunResult {
     Json record;
 };
 
-RunResult calibration_run(const CalibrateOptions& o, const std::string& scenario, const std::string& haar,
-                          const std::vector<sw::PipelineParams>& sets, bool sample = false) {
-    const fs::path dir = fs::path(o.out) / fmt::format("{}_{}", fs::path(scenario).stem().string(), haar);
-    fs::create_directories(dir);
-    for (const char* f : {"inputs.bin", "vp_results.bin", "iss_results.bin"}) fs::remove(dir / f);
+// A scenario as the calibration runs it.
+Config calibration_scenario(const CalibrateOptions& o, const std::string& scenario, const std::string& haar) {
     // The paper's budget of ~100 keypoints per frame unless the caller sets another.
     std::vector<std::string> sets_text{"surf.target_keypoints=100"};
     sets_text.insert(sets_text.end(), o.sets.begin(), o.sets.end());
     sets_text.push_back(fmt::format("surf.frames={}", o.frames));
     sets_text.push_back("surf.haar=" + haar);
     sets_text.push_back("budget.fps=0");  // a frame rate needs frames the calibration need not run
-    const Config config = load_scenario(resolve_scenario(scenario), sets_text);
+    return load_scenario(resolve_scenario(scenario), sets_text);
+}
+
+// Everything the long work will need, checked before it starts: every scenario loads with the
+// sets, and every file it ends by writing can be written.
+void check_options(const CalibrateOptions& o) {
+    if (o.frames < 1) throw ConfigError("calibrate: --frames must be at least 1");
+    if (o.fit.empty()) throw ConfigError("calibrate: --fit needs at least one scenario");
+    for (const auto& [option, list] : {std::pair{"--fit", &o.fit}, std::pair{"--check", &o.check}})
+        for (const std::string& scenario : *list)
+            try {
+                if (scenario != "none")
+                    for (const char* haar : {"exact", "rounded"}) check_scenario(calibration_scenario(o, scenario, haar));
+            } catch (const ConfigError& e) {
+                throw ConfigError(fmt::format("{} {}: {}", option, scenario, e.what()));
+            }
+    std::error_code ec;
+    if (!o.table.empty()) {
+        const fs::path folder = fs::path(o.table).has_parent_path() ? fs::path(o.table).parent_path() : fs::path(".");
+        if (fs::is_directory(o.table, ec)) throw ConfigError(fmt::format("--table {}: is a folder, not a file to write", o.table));
+        if (!fs::is_directory(folder, ec))
+            throw ConfigError(fmt::format("--table {}: no folder {} to write it in", o.table, folder.string()));
+        if (::access(folder.c_str(), W_OK) != 0)
+            throw EnvironmentError(fmt::format("--table {}: its folder cannot be written ({})", o.table, std::strerror(errno)));
+    }
+    fs::create_directories(o.out, ec);
+    if (ec || ::access(o.out.c_str(), W_OK) != 0)
+        throw EnvironmentError(fmt::format("--out {}: cannot be written ({})", o.out, ec ? ec.message() : std::strerror(errno)));
+}
+
+RunResult calibration_run(const CalibrateOptions& o, const std::string& scenario, const std::string& haar,
+                          const std::vector<sw::PipelineParams>& sets, bool sample = false) {
+    const fs::path dir = fs::path(o.out) / fmt::format("{}_{}", fs::path(scenario).stem().string(), haar);
+    fs::create_directories(dir);
+    for (const char* f : {"inputs.bin", "vp_results.bin", "iss_results.bin"}) fs::remove(dir / f);
+    const Config config = calibration_scenario(o, scenario, haar);
     if (!o.quiet) std::fprintf(stderr, "calibrate: %s, %s Haar: VP run\n", scenario.c_str(), haar.c_str());
     // The VP run in a child (SystemC elaborates once per process), recording what its stage saw.
     record_stage_inputs((dir / "inputs.bin").string(), (dir / "vp_results.bin").string());
@@ -374,10 +409,8 @@ int calibrate_command(const CalibrateOptions& options) {
                           ": install g++-powerpc-linux-gnu and rebuild (./scripts/bootstrap.sh does both)");
     if (std::system((std::string("command -v ") + kQemu + " > /dev/null").c_str()) != 0)
         throw ConfigError(std::string("calibrate: no ") + kQemu + ": install qemu-user (./scripts/bootstrap.sh does)");
-    if (o.frames < 1) throw ConfigError("calibrate: --frames must be at least 1");
-    if (o.fit.empty()) throw ConfigError("calibrate: --fit needs at least one scenario");
+    check_options(o);
     cv::setNumThreads(0);
-    fs::create_directories(o.out);
 
     // Every parameter set the stream is timed at, in one pass: per precision its base and
     // each knob's probes (the table), then the multi-knob check points.

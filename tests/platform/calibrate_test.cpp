@@ -61,6 +61,20 @@ TEST(Calibrate, RefusesWhatItCannotUse) {
     EXPECT_EQ(firmware.exit_code, 2);
     EXPECT_NE(firmware.err.find("/nonexistent/stage_firmware"), std::string::npos) << firmware.err;
     EXPECT_NE(firmware.err.find("g++-powerpc-linux-gnu"), std::string::npos) << firmware.err;
+    // Options that would fail only once the fit had run (a quarter of an hour) fail first, and
+    // leave no output folder behind.
+    const std::string out = fresh_path("calibrate_never");
+    std::filesystem::remove_all(out);
+    for (const auto& [args, says] : std::vector<std::pair<std::string, std::string>>{
+             {"--check nope", "--check nope: nope: no such scenario file"},
+             {"--fit graf --set surf.frames=x", "--fit graf: --set: surf.frames: 'x' is not a whole number"},
+             {"--table /nonexistent/calibration.json", "--table /nonexistent/calibration.json: no folder /nonexistent"},
+             {"--table " + fresh_dir("calibrate_table"), "is a folder, not a file to write"}}) {
+        const Cli r = surfvp("calibrate " + args + " --out " + out);
+        EXPECT_EQ(r.exit_code, 2) << args << ": " << r.err;
+        EXPECT_NE(r.err.find(says), std::string::npos) << args << ": " << r.err;
+        EXPECT_FALSE(std::filesystem::exists(out)) << args;
+    }
 }
 
 }  // namespace
