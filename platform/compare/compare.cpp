@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "models/common/atomic_file.h"
+#include "platform/compare/run_figures.h"
 #include "platform/run/run.h"
 #include "platform/scenario/json_input.h"
 #include "platform/scenario/parameters.h"
@@ -44,30 +45,6 @@ Json read_parameters(const fs::path& file) {
     return out;
 }
 
-// The report's numeric figures by path, leaving out what is not a figure of the chip (wall
-// clock, the legend, per-frame rows, time series, the workload's own section, the verdict's).
-// The recursion is bounded by parse_json's depth limit.
-void flatten(const Json& j, const std::string& path, const std::set<std::string>& skip, Json& out) {
-    if (j.is_object()) {
-        for (const auto& [key, value] : j.items())
-            if (!skip.count(key)) flatten(value, path.empty() ? key : path + "." + key, skip, out);
-    } else if (j.is_number()) {
-        out[path] = j;
-    }
-}
-
-Json figures_of_run(const Json& report) {
-    std::set<std::string> skip = {"statistics", "per_frame", "workload", "verdict", "checks", "outputs", "scenario",
-                                  "busy_series", "line_fifo_series", "maxima_fifo_series", "schedules"};
-    for (const char* legend : {"/wall_clock_fields", "/simulation_fields"})
-        if (const Json& fields = value_at(report, legend); fields.is_array())
-            for (const auto& f : fields)
-                if (f.is_string()) skip.insert(f.get<std::string>());
-    Json all = Json::object();
-    flatten(report, "", skip, all);
-    return all;
-}
-
 Json object_or_empty(const Json& j) { return j.is_object() ? j : Json::object(); }
 
 // SWEEP_DIR@POINT: the point's row of the sweep's results.json.
@@ -96,7 +73,7 @@ Json load_side(const std::string& side) {
     if (!fs::is_directory(dir)) throw ConfigError(fmt::format("{}: not a run folder nor SWEEP_DIR@POINT", side));
     const Json report = read_object(dir / "report.json", side);
     return {{"name", side}, {"kind", "run"}, {"parameters", read_parameters(dir / "config.yaml")},
-            {"main", sweep_figures(report)}, {"all", figures_of_run(report)}};
+            {"main", sweep_figures(report)}, {"all", all_figures(report)}};
 }
 
 // "125MHz" and "125 MHz" are one value: compared as the parameter reads them.

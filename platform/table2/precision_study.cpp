@@ -17,6 +17,7 @@
 #include "platform/sweep/resimulation.h"
 #include "platform/sweep/sweep_plan.h"
 #include "platform/table2/columns.h"
+#include "platform/table2/precision_axis.h"
 #include "platform/workload/workload.h"
 
 namespace surfvp {
@@ -27,10 +28,7 @@ using Json = nlohmann::ordered_json;
 
 constexpr double kTolerance = 0.01;  // issue: "within 0.01 of full precision" on every row
 
-struct Axis {
-    std::string key;
-    std::vector<std::string> values;
-};
+using Axis = PrecisionAxis;
 
 // The built-in study: each width narrowed from its default toward where it breaks.
 std::vector<Axis> default_axes() {
@@ -42,26 +40,6 @@ std::vector<Axis> default_axes() {
             {"fhg.det_bits", {"24 bit", "20 bit", "16 bit"}},
             {"iig.sum_bits", {"27 bit"}},
             {"surf.haar", {"exact"}}};
-}
-
-// --axis KEY=V1,V2,...: a parameter and values it takes, each checked before anything runs.
-Axis parse_axis(const std::string& text) {
-    const auto eq = text.find('=');
-    if (eq == std::string::npos || eq == 0 || eq + 1 == text.size())
-        throw ConfigError(fmt::format("--axis {}: give KEY=VALUE,VALUE,... (fhg.det_bits=24 bit,20 bit)", text));
-    Axis a{text.substr(0, eq), {}};
-    if (!find_parameter(a.key))
-        throw ConfigError(fmt::format("--axis {}: '{}' is not a parameter; the study narrows one (fhg.det_bits, surf.haar, ...; "
-                                      "`surfvp params` lists them)", text, a.key));
-    for (size_t from = eq + 1;;) {
-        const size_t comma = text.find(',', from);
-        a.values.push_back(text.substr(from, comma == std::string::npos ? std::string::npos : comma - from));
-        if (a.values.back().find_first_not_of(' ') == std::string::npos)
-            throw ConfigError(fmt::format("--axis {}: value {} is empty", text, a.values.size()));
-        if (comma == std::string::npos) break;
-        from = comma + 1;
-    }
-    return a;
 }
 
 std::string set_of(const std::string& key, const std::string& value) { return key + "=" + value; }
@@ -318,7 +296,7 @@ int precision_command(const PrecisionOptions& o) {
         throw ConfigError(fmt::format("--pair {}: a pair under a homography (eval.homography) gives repeatability and precision; "
                                       "it has none", o.pair));
     std::vector<Axis> axes;
-    for (const std::string& a : o.axes) axes.push_back(parse_axis(a));
+    for (const std::string& a : o.axes) axes.push_back(parse_precision_axis(a));
     if (axes.empty()) axes = default_axes();
     std::vector<Point> points{{"", "as the scenario", {}, {}}};
     for (const Axis& a : axes)

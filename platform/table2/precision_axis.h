@@ -1,0 +1,19 @@
+#pragma once
+// A precision study's axis as `--axis KEY=V1,V2,...` gives it: a parameter and the values the
+// study narrows it to (docs/precision.md).
+#include <string>
+#include <vector>
+
+namespace surfvp {
+
+struct PrecisionAxis {
+    std::string key;
+    std::vector<std::string> values;
+};
+
+// Throws ConfigError naming the option when the text is not KEY=VALUE,..., the key is not a
+// parameter, or a value is empty. The values are checked against the parameter when the
+// study applies them (before any point runs).
+PrecisionAxis parse_precision_axis(const std::string& text);
+
+}  // namespace surfvp
