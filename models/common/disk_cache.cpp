@@ -58,8 +58,11 @@ std::string cache_entry(const std::string& key, const std::string& data) { retur
 
 std::optional<std::string> read_cached(const std::string& kind, const std::string& key) {
     const auto folder = cache_folder();
-    if (!folder) return std::nullopt;
-    const auto text = read_entry(cache_file(*folder, kind, key));
+    return folder ? read_cached_in(*folder, kind, key) : std::nullopt;
+}
+
+std::optional<std::string> read_cached_in(const fs::path& folder, const std::string& kind, const std::string& key) {
+    const auto text = read_entry(cache_file(folder, kind, key));
     if (!text) return std::nullopt;
     const size_t first = text->find('\n'), second = first == std::string::npos ? first : text->find('\n', first + 1);
     if (second == std::string::npos || text->compare(0, first, key) != 0 || first != key.size()) return std::nullopt;
@@ -69,12 +72,14 @@ std::optional<std::string> read_cached(const std::string& kind, const std::strin
 }
 
 void write_cached(const std::string& kind, const std::string& key, const std::string& data) {
-    const auto folder = cache_folder();
-    if (!folder) return;
+    if (const auto folder = cache_folder()) write_cached_in(*folder, kind, key, data);
+}
+
+void write_cached_in(const fs::path& folder, const std::string& kind, const std::string& key, const std::string& data) {
     try {
         std::error_code ignored;
-        fs::create_directories(*folder, ignored);
-        write_file_atomically(cache_file(*folder, kind, key), cache_entry(key, data));
+        fs::create_directories(folder, ignored);
+        write_file_atomically(cache_file(folder, kind, key), cache_entry(key, data));
     } catch (const EnvironmentError&) {
         // a folder that cannot be written: the result is still right, only not kept
     }

@@ -37,4 +37,9 @@ std::string cache_entry(const std::string& key, const std::string& data);
 // Stores `data` for `key`; silently nothing when the cache is off or cannot be written.
 void write_cached(const std::string& kind, const std::string& key, const std::string& data);
 
+// The same in a given folder rather than the cache folder.
+std::optional<std::string> read_cached_in(const std::filesystem::path& folder, const std::string& kind, const std::string& key);
+void write_cached_in(const std::filesystem::path& folder, const std::string& kind, const std::string& key,
+                     const std::string& data);
+
 }  // namespace surfvp

@@ -1,14 +1,12 @@
 #include "sequence_cache.h"
 
 #include <fmt/format.h>
-#include <fstream>
 #include <functional>
 #include <map>
 #include <mutex>
 #include <tuple>
 #include <sstream>
 
-#include "models/common/atomic_file.h"
 #include "models/common/disk_cache.h"
 
 #ifndef SURFVP_SEQUENCE_FINGERPRINT
@@ -76,20 +74,10 @@ std::optional<Sequence> read_sequence_text(const std::string& text, const std::s
 
 Sequence stored_sequence(const SequenceParams& params, const fs::path& folder) {
     const std::string key = sequence_key(params);
-    const fs::path file = folder / fmt::format("sequence-{:016x}.txt", std::hash<std::string>{}(key));
-    if (std::ifstream in{file}) {
-        std::stringstream text;
-        text << in.rdbuf();
-        if (auto s = read_sequence_text(text.str(), key)) return *s;
-    }
+    if (const auto text = read_cached_in(folder, "sequence", key))  // an entry checked as the cache checks every one
+        if (auto s = read_sequence_text(*text, key)) return *s;
     Sequence s = generate_sequence(params);
-    try {
-        std::error_code ignored;
-        fs::create_directories(folder, ignored);
-        write_file_atomically(file, sequence_text(key, s));
-    } catch (const EnvironmentError&) {
-        // a folder that cannot be written: the sequence is still right, only not kept
-    }
+    write_cached_in(folder, "sequence", key, sequence_text(key, s));
     return s;
 }
 

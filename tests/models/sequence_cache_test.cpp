@@ -8,8 +8,10 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <sys/wait.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
+#include "models/common/disk_cache.h"
 #include "models/fhg/sequence_cache.h"
 
 namespace surfvp::fhg {
@@ -92,15 +94,27 @@ TEST(SequenceCache, AStoredFileIsReadAndABadOneMadeAgain) {
     // Read back: a (valid) file whose figures were changed gives the changed figures.
     Sequence changed = generated;
     changed.interval += 1000;
-    { std::ofstream(file) << sequence_text(sequence_key(p), changed); }
+    { std::ofstream(file) << cache_entry(sequence_key(p), sequence_text(sequence_key(p), changed)); }
     EXPECT_EQ(stored_sequence(p, dir).interval, generated.interval + 1000);
-    // Cut short, of another key, or not a sequence at all: made again and stored again.
+    // Cut short, of another key, not a sequence at all, without its seal, or with a flipped
+    // bit: made again and stored again.
     const std::string text = sequence_text(sequence_key(p), generated);
-    for (const std::string& bad : {text.substr(0, text.size() / 2), "generator 0000 " + text, std::string("hello\n")}) {
+    const std::string entry = cache_entry(sequence_key(p), text);
+    std::string flipped = entry;  // a bit of the last step's last figure flipped, the checksum left
+    flipped[flipped.size() - 2] ^= 1;
+    for (const std::string& bad : {entry.substr(0, entry.size() / 2), "generator 0000 " + entry, std::string("hello\n"), text,
+                                   flipped}) {
         { std::ofstream(file) << bad; }
         expect_same(stored_sequence(p, dir), generated);
         std::ifstream in(file);
-        EXPECT_EQ(std::string(std::istreambuf_iterator<char>(in), {}), text);
+        EXPECT_EQ(std::string(std::istreambuf_iterator<char>(in), {}), entry);
+    }
+    // A FIFO or a link to an endless device under the entry's name: made again, never blocking.
+    for (const bool fifo : {true, false}) {
+        fs::remove(file);
+        if (fifo) ASSERT_EQ(::mkfifo(file.c_str(), 0644), 0);
+        else fs::create_symlink("/dev/zero", file);
+        expect_same(stored_sequence(p, dir), generated);
     }
     fs::remove_all(dir);
 }
@@ -132,9 +146,10 @@ TEST(SequenceCache, ConcurrentRunsShareTheFolder) {
         waitpid(pid, &status, 0);
         EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0);
     }
-    const fs::path file = only_file(dir);  // no temporaries left behind
-    std::ifstream in(file);
-    const auto back = read_sequence_text(std::string(std::istreambuf_iterator<char>(in), {}), sequence_key(p));
+    only_file(dir);  // no temporaries left behind
+    const auto text = read_cached_in(dir, "sequence", sequence_key(p));
+    ASSERT_TRUE(text.has_value());
+    const auto back = read_sequence_text(*text, sequence_key(p));
     ASSERT_TRUE(back.has_value());
     expect_same(*back, generate_sequence(p));
     fs::remove_all(dir);
