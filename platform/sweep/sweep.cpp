@@ -104,7 +104,6 @@ int submit_to_slurm(const SweepOptions& options, const SweepPlan& plan, const fs
     const std::string script = fmt::format(
         "#!/bin/sh\n"
         "# surfvp sweep {name}: {n} shards, one per array task (docs/sweeps.md)\n"
-        "#SBATCH --job-name=surfvp-{name}\n"
         "#SBATCH --array=1-{n}\n"
         "#SBATCH --cpus-per-task={jobs}\n"
         "#SBATCH --output={logs}/shard-%a.log\n"
@@ -113,11 +112,13 @@ int submit_to_slurm(const SweepOptions& options, const SweepPlan& plan, const fs
         fmt::arg("self", quoted(self.string())), fmt::arg("file", quoted(file.string())), fmt::arg("folder", quoted(folder.string())));
     const fs::path array = logs / "array.sh";
     write_file_atomically(array.string(), script);
-    const std::string id = run_tool("sbatch --parsable " + quoted(array.string()));
+    // The job names go on the command line, quoted: a sweep's name may hold spaces or quotes,
+    // which neither an #SBATCH line nor the shell would take as they are.
+    const std::string id =
+        run_tool(fmt::format("sbatch --parsable --job-name={} {}", quoted("surfvp-" + plan.name), quoted(array.string())));
     const std::string array_id = id.substr(0, id.find_first_of(";\n"));
-    const std::string merge = run_tool(fmt::format("sbatch --parsable --job-name=surfvp-{}-merge --dependency=afterok:{} --output={} "
-                                                   "--wrap={}",
-                                                   plan.name, array_id, quoted((logs / "merge.log").string()),
+    const std::string merge = run_tool(fmt::format("sbatch --parsable --job-name={} --dependency=afterok:{} --output={} --wrap={}",
+                                                   quoted("surfvp-" + plan.name + "-merge"), array_id, quoted((logs / "merge.log").string()),
                                                    quoted(quoted(self.string()) + " sweep-merge " + quoted(folder.string()))));
     std::fprintf(stderr, "surfvp: %s: job array %s (%u shards) and merge job %s submitted; results in %s when they end\n",
                  plan.name.c_str(), array_id.c_str(), n, merge.substr(0, merge.find_first_of(";\n")).c_str(), folder.c_str());

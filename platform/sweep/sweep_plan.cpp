@@ -20,6 +20,8 @@ std::string scalar(const std::string& path, const YAML::Node& node, const std::s
     if (!node.IsScalar())
         throw ConfigError(fmt::format("{}: {}: expected a single value, found a {}", at(path, node), what,
                                       node.IsMap() ? "map" : node.IsSequence() ? "list" : "null"));
+    // The name, values and description go into results.json, which holds only UTF-8 text.
+    if (!is_utf8(node.Scalar())) throw ConfigError(fmt::format("{}: {}: not UTF-8 text", at(path, node), what));
     return node.Scalar();
 }
 
@@ -145,7 +147,11 @@ SweepPlan load_sweep(const std::string& path) {
         const std::string key = scalar(path, item.first, "key");
         if (const auto [first, fresh] = seen.emplace(key, at(path, item.first)); !fresh)
             throw ConfigError(fmt::format("{}: '{}' appears twice (first at {})", at(path, item.first), key, first->second));
-        if (key == "name") plan.name = scalar(path, item.second, key);
+        if (key == "name") {
+            // The default sweep folder is traces/<name>, as a scenario's output folder.
+            plan.name = scalar(path, item.second, key);
+            check_folder_name(at(path, item.second), plan.name);
+        }
         else if (key == "description") plan.description = scalar(path, item.second, key);
         else if (key == "scenario") {
             // A path is relative to the sweep file's folder; a bare name is a shipped scenario.
@@ -173,6 +179,7 @@ SweepPlan load_sweep(const std::string& path) {
                                           at(path, item.first), key));
         }
     }
+    if (!seen.count("name")) check_folder_name(path, plan.name);  // the file's stem: "..yaml" gives "."
     if (plan.scenario.empty()) throw ConfigError(fmt::format("{}: a sweep names its base scenario (scenario: NAME_OR_PATH)", path));
     std::map<std::string, std::string> axis_at;
     for (const auto& item : axes) {

@@ -71,6 +71,39 @@ TEST(SweepPlan, BadAxesAreNamedAtTheirLine) {
     }
 }
 
+// The name is the default sweep folder's (traces/<name>): a scenario's rule, at its line.
+TEST(SweepPlan, ANameFollowsTheScenarioNameRuleAtItsLine) {
+    const std::string dir = fresh_dir("names");
+    auto named = [&](const std::string& name) {
+        return write_file(dir, "named.yaml", "name: " + name + "\nscenario: smoke\naxes:\n  plb2.width: [32 bit, 64 bit]\n");
+    };
+    for (const std::string name : {"../up", "a/b", "'..'", "'.'", "'a\\b'", "\"tab\\there\"", "''"}) {
+        try {
+            load_sweep(named(name));
+            ADD_FAILURE() << "accepted: " << name;
+        } catch (const ConfigError& e) {
+            EXPECT_NE(std::string(e.what()).find("named.yaml:1: name '"), std::string::npos) << e.what();
+            EXPECT_NE(std::string(e.what()).find("cannot name the output folder"), std::string::npos) << e.what();
+        }
+    }
+    // Text that results.json cannot hold is refused at its line, not when the results are written.
+    try {
+        load_sweep(named("\xff\xfe"));
+        ADD_FAILURE() << "a name that is not UTF-8 accepted";
+    } catch (const ConfigError& e) {
+        EXPECT_NE(std::string(e.what()).find("named.yaml:1: name: not UTF-8 text"), std::string::npos) << e.what();
+    }
+    // Without a name, the file's stem is the name, under the same rule.
+    try {
+        load_sweep(write_file(dir, "..yaml", "scenario: smoke\n"));
+        ADD_FAILURE() << "the stem '.' accepted";
+    } catch (const ConfigError& e) {
+        EXPECT_NE(std::string(e.what()).find("..yaml: name '.' cannot name"), std::string::npos) << e.what();
+    }
+    // What a scenario's name may hold, a sweep's may too (a space, '<', a quote).
+    EXPECT_EQ(load_sweep(named("'a <b> & \"c\"'")).name, "a <b> & \"c\"");
+}
+
 TEST(SweepResults, TheParetoFrontIsThePointsNoOtherBeats) {
     auto row = [](size_t i, double fps, double bram) {
         return SweepRow{i, std::to_string(i), Json::object(), 0, "", {{"fps", fps}, {"bram36", bram}}, 0};
