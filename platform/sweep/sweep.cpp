@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <regex>
 #include <unistd.h>
 
@@ -35,6 +36,66 @@ Shard parse_shard(const std::string& text) {
 
 std::string database_name(const Shard& s) {
     return s.n == 1 ? "sweep.db" : fmt::format("shard-{}-of-{}.db", s.k, s.n);
+}
+
+// The sweep databases in `dir`: sweep.db and shard-K-of-N.db, whatever they hold.
+std::vector<fs::path> sweep_databases(const fs::path& dir) {
+    static const std::regex shard_name(R"(shard-[0-9]+-of-[0-9]+\.db)");
+    std::vector<fs::path> out;
+    std::error_code ec;
+    for (const auto& entry : fs::directory_iterator(dir, ec)) {
+        const std::string name = entry.path().filename().string();
+        if (name == "sweep.db" || std::regex_match(name, shard_name)) out.push_back(entry.path());
+    }
+    std::sort(out.begin(), out.end());
+    return out;
+}
+
+// A database and SQLite's files beside it (a journal left by a killed sweep would otherwise be
+// played back into the next database of that name).
+void remove_database(const fs::path& db) {
+    for (const char* suffix : {"", "-journal", "-wal", "-shm"}) {
+        std::error_code ec;
+        fs::remove(db.string() + suffix, ec);
+        if (ec) throw EnvironmentError(fmt::format("{}{}: cannot remove it: {}", db.string(), suffix, ec.message()));
+    }
+}
+
+// What a whole sweep writes besides sweep.db: results.csv, results.json, pareto.svg and
+// plot_<parameter>.svg. Nothing else in the folder is touched.
+void remove_results(const fs::path& dir) {
+    std::error_code ec;
+    std::vector<fs::path> files;
+    for (const auto& entry : fs::directory_iterator(dir, ec)) {
+        const std::string name = entry.path().filename().string();
+        const bool plot = name.size() > 9 && name.rfind("plot_", 0) == 0 && name.substr(name.size() - 4) == ".svg" &&
+                          find_parameter(name.substr(5, name.size() - 9));
+        if (plot || name == "results.csv" || name == "results.json" || name == "pareto.svg") files.push_back(entry.path());
+    }
+    for (const fs::path& f : files)
+        if (!fs::remove(f, ec) && ec) throw EnvironmentError(fmt::format("{}: cannot remove it: {}", f.string(), ec.message()));
+}
+
+// The folder's databases against this sweep, before one is opened. One of another sweep is
+// refused, saying what changed, so that two sweeps' points never mix; with --fresh it is
+// discarded with the results. --fresh also starts this sweep over: a whole sweep (or its
+// Slurm array) discards every database of the folder, a shard its own, so that no other
+// shard's work is lost.
+void prepare_folder(const fs::path& dir, const fs::path& mine, const SweepPlan& plan, bool fresh, bool whole) {
+    bool discarded_sweep_db = false;
+    for (const fs::path& db : sweep_databases(dir)) {
+        const std::string theirs = SweepStore::fingerprint_of(db.string());
+        const bool other = !theirs.empty() && theirs != plan.fingerprint;
+        if (other && !fresh)
+            throw ConfigError(fmt::format("{}: holds the points of another sweep: {}; give --fresh to discard them and start "
+                                          "over, or another --out",
+                                          db.string(), fmt::join(sweep_changes(theirs, plan.fingerprint), "; ")));
+        if (fresh && (other || whole || db == mine)) {
+            remove_database(db);
+            discarded_sweep_db = discarded_sweep_db || db.filename() == "sweep.db";
+        }
+    }
+    if (fresh && (whole || discarded_sweep_db)) remove_results(dir);
 }
 
 std::string clock(double seconds) {
@@ -135,6 +196,7 @@ int sweep_command(const SweepOptions& options) {
     std::error_code ec;
     fs::create_directories(dir, ec);
     if (ec) throw EnvironmentError(fmt::format("{}: cannot make the sweep folder: {}", dir.string(), ec.message()));
+    prepare_folder(dir, dir / database_name(shard), plan, options.fresh, shard.n == 1);
     SweepStore store((dir / database_name(shard)).string(), plan.fingerprint);
     store.set_meta("name", plan.name);
     Json axes = Json::array();

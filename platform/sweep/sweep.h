@@ -15,6 +15,9 @@ struct SweepOptions {
     std::string shard;  // "K/N": only the points whose index % N == K - 1, into shard-K-of-N.db
     unsigned slurm = 0;  // > 0: write and submit a Slurm job array of this many shards, and a merge after it
     bool quiet = false;
+    // Start over: discard the folder's record of an earlier sweep (its databases, results and
+    // plots) instead of refusing a sweep that differs from it.
+    bool fresh = false;
 };
 
 // Runs the points not yet in the folder's database; returns 0 when every point ran (whatever

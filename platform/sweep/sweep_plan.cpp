@@ -1,8 +1,10 @@
 #include "platform/sweep/sweep_plan.h"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <fstream>
 #include <map>
 #include <regex>
@@ -12,6 +14,7 @@
 
 namespace surfvp {
 namespace fs = std::filesystem;
+using Json = nlohmann::ordered_json;
 namespace {
 
 std::string at(const std::string& path, const YAML::Node& node) { return fmt::format("{}:{}", path, node.Mark().line + 1); }
@@ -25,6 +28,20 @@ std::string scalar(const std::string& path, const YAML::Node& node, const std::s
     return node.Scalar();
 }
 
+// A value as the sweep keeps it: a path parameter's (surf.source, eval.*) is its file's one
+// absolute spelling, symbolic links and '..' resolved, so that a sweep run from another folder
+// or through another spelling of its file has the same points; any other value as written.
+std::string resolved(const std::string& file, const std::string& key, const std::string& value) {
+    const std::string v = relative_to_file(file, key, value);
+    const ParamSpec* spec = find_parameter(key);
+    if (!spec || spec->kind != ParamKind::text || v.empty()) return v;
+    std::error_code ec;
+    const fs::path absolute = fs::absolute(v, ec);
+    if (ec) return fs::path(v).lexically_normal().string();
+    const fs::path canonical = fs::weakly_canonical(absolute, ec);
+    return (ec ? absolute.lexically_normal() : canonical).string();
+}
+
 std::pair<double, std::string> quantity(const std::string& text, const std::string& where) {
     const auto q = split_quantity(text);
     if (!q) throw ConfigError(fmt::format("{}: '{}' is not a number with an optional unit", where, text));
@@ -36,7 +53,7 @@ SweepAxis parse_axis(const std::string& path, const YAML::Node& key, const YAML:
     if (!find_parameter(axis.key)) throw ConfigError(fmt::format("{}: axis {}: no such parameter (surfvp params lists them)",
                                                                  axis.origin, axis.key));
     if (body.IsSequence()) {
-        for (const auto& v : body) axis.values.push_back(relative_to_file(path, axis.key, scalar(path, v, axis.key)));
+        for (const auto& v : body) axis.values.push_back(resolved(path, axis.key, scalar(path, v, axis.key)));
     } else if (body.IsMap()) {
         std::map<std::string, std::string> range;
         for (const auto& item : body) {
@@ -51,7 +68,7 @@ SweepAxis parse_axis(const std::string& path, const YAML::Node& key, const YAML:
                                               at(path, body), axis.key, k));
         axis.values = expand_range(range["from"], range["to"], range["step"], at(path, body) + ": axis " + axis.key);
     } else {
-        axis.values.push_back(relative_to_file(path, axis.key, scalar(path, body, axis.key)));
+        axis.values.push_back(resolved(path, axis.key, scalar(path, body, axis.key)));
     }
     if (axis.values.empty()) throw ConfigError(fmt::format("{}: axis {} has no values", axis.origin, axis.key));
     return axis;
@@ -97,7 +114,96 @@ std::vector<SweepPoint> combine(const std::vector<SweepAxis>& axes, bool zip, co
     return points;
 }
 
+// The sweep's content, not the spelling of its files: the base scenario's text, the sets (by
+// key: their order in the file changes nothing), the axes in order, and how they combine.
+Json identity_of(const SweepPlan& plan) {
+    std::ifstream in(plan.scenario, std::ios::binary);
+    std::stringstream text;
+    text << in.rdbuf();
+    std::map<std::string, std::string> sets;
+    for (const std::string& s : plan.sets) sets[s.substr(0, s.find('='))] = s.substr(s.find('=') + 1);
+    Json axes = Json::array();
+    for (const SweepAxis& a : plan.axes) axes.push_back({{"key", a.key}, {"values", a.values}});
+    return {{"surfvp", SURFVP_VERSION}, {"scenario", text.str()}, {"set", sets}, {"axes", axes},
+            {"combine", plan.zip ? "zip" : "cartesian"}};
+}
+
+// A list of values for a message: the first few, then how many more.
+std::string some(const std::vector<std::string>& values) {
+    constexpr size_t shown = 6;
+    const std::vector<std::string> head(values.begin(), values.begin() + long(std::min(values.size(), shown)));
+    return fmt::format("{}{}", fmt::join(head, ", "),
+                       values.size() > shown ? fmt::format(", ... ({} in all)", values.size()) : std::string());
+}
+
+std::vector<std::string> set_changes(const Json& before, const Json& now) {
+    std::vector<std::string> out;
+    for (const auto& [key, value] : now.items())
+        if (!before.contains(key)) out.push_back(fmt::format("{} added", key));
+        else if (before[key] != value)
+            out.push_back(fmt::format("{}: {}, now {}", key, before[key].get<std::string>(), value.get<std::string>()));
+    for (const auto& [key, value] : before.items())
+        if (!now.contains(key)) out.push_back(fmt::format("{} removed", key));
+    return out;
+}
+
+std::vector<std::string> axis_changes(const Json& before, const Json& now) {
+    std::vector<std::string> keys_before, keys_now, out;
+    std::map<std::string, std::vector<std::string>> values_before;
+    for (const Json& a : before) {
+        keys_before.push_back(a.at("key").get<std::string>());
+        values_before[keys_before.back()] = a.at("values").get<std::vector<std::string>>();
+    }
+    std::vector<std::string> added, removed, common;
+    for (const Json& a : now) {
+        const std::string key = a.at("key").get<std::string>();
+        keys_now.push_back(key);
+        const auto it = values_before.find(key);
+        if (it == values_before.end()) {
+            added.push_back(key);
+            continue;
+        }
+        common.push_back(key);
+        const auto values = a.at("values").get<std::vector<std::string>>();
+        if (values != it->second)
+            out.push_back(fmt::format("axis {}: values changed ({}; now {})", key, some(it->second), some(values)));
+    }
+    for (const std::string& k : keys_before)
+        if (std::find(keys_now.begin(), keys_now.end(), k) == keys_now.end()) removed.push_back(k);
+    if (!added.empty()) out.push_back(fmt::format("axes added: {}", fmt::join(added, ", ")));
+    if (!removed.empty()) out.push_back(fmt::format("axes removed: {}", fmt::join(removed, ", ")));
+    std::vector<std::string> common_before;
+    for (const std::string& k : keys_before)
+        if (std::find(common.begin(), common.end(), k) != common.end()) common_before.push_back(k);
+    if (common_before != common)  // the order decides the points' indices
+        out.push_back(fmt::format("axes reordered ({}; now {})", fmt::join(common_before, ", "), fmt::join(common, ", ")));
+    return out;
+}
+
 }  // namespace
+
+std::vector<std::string> sweep_changes(const std::string& before_text, const std::string& now_text) {
+    if (before_text == now_text) return {};
+    const Json before = Json::parse(before_text, nullptr, false), now = Json::parse(now_text);
+    // A database of a surfvp before this one kept its sweep as other text.
+    if (!before.is_object() || !before.contains("scenario"))
+        return {"made by an earlier surfvp, which recorded no description of the sweep"};
+    std::vector<std::string> out;
+    try {
+        if (before.value("surfvp", "") != now["surfvp"])
+            out.push_back(fmt::format("made by surfvp {} (this is {})", before.value("surfvp", "?"), now["surfvp"].get<std::string>()));
+        if (before.at("scenario") != now["scenario"]) out.push_back("base scenario changed");
+        if (const auto sets = set_changes(before.at("set"), now["set"]); !sets.empty())
+            out.push_back(fmt::format("set changed ({})", fmt::join(sets, "; ")));
+        for (const std::string& a : axis_changes(before.at("axes"), now["axes"])) out.push_back(a);
+        if (before.at("combine") != now["combine"])
+            out.push_back(fmt::format("combine changed ({}, now {})", before["combine"].get<std::string>(), now["combine"].get<std::string>()));
+    } catch (const Json::exception&) {
+        return {"its record of the sweep is damaged"};
+    }
+    if (out.empty()) out.push_back("its record of the sweep differs");  // only in a way the phrases above do not name
+    return out;
+}
 
 std::optional<std::pair<double, std::string>> split_quantity(const std::string& text) {
     static const std::regex form(R"(\s*([-+]?[0-9]*\.?[0-9]+(?:[eE][-+]?[0-9]+)?)\s*([A-Za-z]*)\s*)");
@@ -163,7 +269,7 @@ SweepPlan load_sweep(const std::string& path) {
             if (!item.second.IsMap()) throw ConfigError(fmt::format("{}: set: a map of KEY: VALUE", at(path, item.second)));
             for (const auto& s : item.second) {
                 const std::string k = scalar(path, s.first, "set");
-                plan.sets.push_back(k + "=" + relative_to_file(path, k, scalar(path, s.second, k)));
+                plan.sets.push_back(k + "=" + resolved(path, k, scalar(path, s.second, k)));
             }
         } else if (key == "axes") {
             if (!item.second.IsMap()) throw ConfigError(fmt::format("{}: axes: a map of KEY: values", at(path, item.second)));
@@ -195,12 +301,8 @@ SweepPlan load_sweep(const std::string& path) {
                 throw ConfigError(fmt::format("{}: axis {} is also in set:", axis.origin, axis.key));
     check_values(plan, base);
     plan.points = combine(plan.axes, plan.zip, combine_where);
-    // The points' results rest on the base scenario as it is now and on the fixed sets.
-    std::ifstream in(plan.scenario, std::ios::binary);
-    std::stringstream text;
-    text << in.rdbuf();
-    plan.fingerprint = fmt::format("surfvp {}\nscenario {}\n{}\nset {}\n", SURFVP_VERSION, plan.scenario, text.str(),
-                                   fmt::join(plan.sets, "\nset "));
+    plan.identity = identity_of(plan);
+    plan.fingerprint = plan.identity.dump();
     return plan;
 }
 

@@ -17,6 +17,7 @@
 #include <string>
 #include <utility>
 #include <vector>
+#include <nlohmann/json.hpp>
 
 #include "platform/scenario/config.h"
 
@@ -41,7 +42,11 @@ struct SweepPlan {
     std::vector<SweepAxis> axes;
     bool zip = false;
     std::vector<SweepPoint> points;
-    std::string fingerprint;            // what the points' results rest on besides their values
+    // What the points' results rest on, whatever folder the sweep is run from and however its
+    // files are spelt: surfvp's version, the base scenario's text, the fixed sets and the axes
+    // (keys, values, how they combine). A path's value is its file's one absolute spelling.
+    nlohmann::ordered_json identity;
+    std::string fingerprint;            // identity as text: sweep.db's, to compare
 
     // The point's configuration: the base scenario with the fixed sets and its values.
     Config config(const SweepPoint& point) const;
@@ -49,6 +54,11 @@ struct SweepPlan {
 
 // Throws ConfigError naming the file and line.
 SweepPlan load_sweep(const std::string& path);
+
+// What differs between the sweep of fingerprint `before` and `now`, one phrase each: "base
+// scenario changed", "set changed (surf.frames: 3, now 5)", "axis fhg.clock: values changed
+// (...)", "axes added: ...", "combine changed (cartesian, now zip)". Empty when they are equal.
+std::vector<std::string> sweep_changes(const std::string& before, const std::string& now);
 
 // A number and its unit: "25 MHz" -> {25, "MHz"}, "4" -> {4, ""}; nothing for a word.
 std::optional<std::pair<double, std::string>> split_quantity(const std::string& text);

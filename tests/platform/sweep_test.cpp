@@ -205,6 +205,121 @@ TEST(Sweep, APointThatCannotRunIsRecordedAndTheOthersGoOn) {
     EXPECT_NE(mixed.err.find("holds the points of another sweep"), std::string::npos) << mixed.err;
 }
 
+// The smoke scenario, copied next to the sweep file and named by a relative path: a sweep of
+// two points that runs in a fraction of a second.
+std::string smoke_sweep(const std::string& dir, const std::string& body) {
+    fs::copy_file(std::string(SURFVP_SOURCE_DIR) + "/scenarios/smoke.yaml", dir + "/base.yaml", fs::copy_options::overwrite_existing);
+    return write_file(dir, "s.yaml", "name: tiny\nscenario: base.yaml\n" + body);
+}
+const std::string kTinyAxes = "set: {smoke.copies: 2, surf.source: frame.png}\naxes:\n  plb2.width: [32 bit, 64 bit]\n";
+
+// In `dir` for as long as it lives.
+class InFolder {
+public:
+    explicit InFolder(const std::string& dir) : before_(fs::current_path()) { fs::current_path(dir); }
+    ~InFolder() { fs::current_path(before_); }
+
+private:
+    fs::path before_;
+};
+
+// A sweep is its content: run from another folder, or through another spelling of its file
+// (relative, with '..', absolute, a symbolic link), it resumes; shards so spelt merge.
+TEST(Sweep, ItsIdentityIsItsContentNotTheSpellingOfItsFiles) {
+    const std::string dir = fresh_dir("identity");
+    fs::create_directories(dir + "/a");
+    smoke_sweep(dir + "/a", kTinyAxes);
+    fs::create_directory_symlink(dir + "/a", dir + "/link");
+    {
+        InFolder here(dir + "/a");
+        const auto r = surfvp("sweep s.yaml --quiet --out out");
+        ASSERT_EQ(r.exit_code, 0) << r.err;
+        ASSERT_EQ(surfvp("sweep s.yaml --quiet --shard 1/2 --out sharded").exit_code, 0);
+    }
+    const Json first = results(dir + "/a/out");
+    ASSERT_EQ(first["points"].size(), 2u);
+    // A path among the sets is kept as its file's one absolute spelling.
+    const std::string frame = (fs::canonical(dir + "/a") / "frame.png").string();
+    EXPECT_EQ(slurp(dir + "/a/out/results.json").find("frame.png"), std::string::npos);  // sets are not in the results...
+    InFolder here(dir);
+    for (const std::string& spelling :
+         std::vector<std::string>{"a/s.yaml", "./a/../a/s.yaml", dir + "/a/s.yaml", dir + "/link/s.yaml", "link/./s.yaml"}) {
+        const auto again = surfvp("sweep " + spelling + " --out a/out");
+        EXPECT_EQ(again.exit_code, 0) << spelling << ": " << again.err;
+        EXPECT_NE(again.err.find("2 of 2 points already done"), std::string::npos) << spelling << ": " << again.err;
+    }
+    EXPECT_EQ(results(dir + "/a/out")["points"].size(), 2u);
+    // Shard 2 through the link, from another folder: the merge takes both shards as one sweep's.
+    ASSERT_EQ(surfvp("sweep " + dir + "/link/s.yaml --quiet --shard 2/2 --out " + dir + "/a/sharded").exit_code, 0);
+    const auto merged = surfvp("sweep-merge a/sharded");
+    ASSERT_EQ(merged.exit_code, 0) << merged.err;
+    Json whole = first["points"], sharded = results(dir + "/a/sharded")["points"];
+    for (Json* j : {&whole, &sharded})
+        for (auto& p : *j) p.erase("wall_s");
+    EXPECT_EQ(whole, sharded);
+    // ...but an axis of paths names each point by its file's one spelling.
+    const SweepPlan plan = load_sweep(dir + "/link/s.yaml");
+    const SweepPlan paths = load_sweep(write_file(dir + "/link", "p.yaml", "scenario: base.yaml\naxes:\n  surf.source: [x.png, ../a/y.png]\n"));
+    EXPECT_EQ(paths.points[0].id, "surf.source=" + (fs::canonical(dir + "/a") / "x.png").string());
+    EXPECT_EQ(paths.points[1].id, "surf.source=" + (fs::canonical(dir + "/a") / "y.png").string());
+    EXPECT_NE(plan.fingerprint.find(frame), std::string::npos) << plan.fingerprint;
+    EXPECT_EQ(plan.fingerprint, load_sweep("a/../link/s.yaml").fingerprint);
+}
+
+// A sweep edited and run again into its folder is refused with what changed; the folder is
+// left as it was. --fresh discards the old sweep's files (only those) and runs the new one.
+TEST(Sweep, AnEditedSweepIsRefusedWithWhatChangedUnlessFresh) {
+    const std::string dir = fresh_dir("edited");
+    const std::string file = smoke_sweep(dir, kTinyAxes);
+    ASSERT_EQ(surfvp("sweep " + file + " --quiet --out " + dir + "/out").exit_code, 0);
+    write_file(dir + "/out", "notes.txt", "mine");
+    const std::string db = slurp(dir + "/out/sweep.db"), json = slurp(dir + "/out/results.json");
+    auto refused = [&](const std::string& body, const std::vector<std::string>& phrases) {
+        smoke_sweep(dir, body);
+        const auto r = surfvp("sweep " + file + " --out " + dir + "/out");
+        EXPECT_EQ(r.exit_code, 2) << body << r.err;
+        EXPECT_NE(r.err.find(dir + "/out/sweep.db: holds the points of another sweep: "), std::string::npos) << r.err;
+        for (const std::string& phrase : phrases) EXPECT_NE(r.err.find(phrase), std::string::npos) << phrase << "\n" << r.err;
+        EXPECT_NE(r.err.find("give --fresh to discard them"), std::string::npos) << r.err;
+        EXPECT_EQ(slurp(dir + "/out/sweep.db"), db);
+        EXPECT_EQ(slurp(dir + "/out/results.json"), json);
+    };
+    refused("set: {smoke.copies: 2, surf.source: frame.png}\naxes:\n  plb2.width: [64 bit]\n",
+            {"axis plb2.width: values changed (32 bit, 64 bit; now 64 bit)"});
+    refused("set: {smoke.copies: 3, smoke.polls: 1}\naxes:\n  plb2.width: [32 bit, 64 bit]\n",
+            {"set changed (smoke.copies: 2, now 3; smoke.polls added; surf.source removed)"});
+    refused("set: {smoke.copies: 2, surf.source: frame.png}\naxes:\n  plb1.width: [32 bit, 64 bit]\n",
+            {"axes added: plb1.width", "axes removed: plb2.width"});
+    refused(kTinyAxes + "  plb1.width: [32 bit, 64 bit]\ncombine: zip\n", {"axes added: plb1.width", "combine changed (cartesian, now zip)"});
+    // The same sets in another order are the same sweep; the base scenario's text is not.
+    smoke_sweep(dir, "set: {surf.source: frame.png, smoke.copies: 2}\naxes:\n  plb2.width: [32 bit, 64 bit]\n");
+    EXPECT_EQ(surfvp("sweep " + file + " --quiet --out " + dir + "/out").exit_code, 0);
+    std::string text = slurp(dir + "/base.yaml");
+    text.replace(text.find("buffer: 64 KiB"), 14, "buffer: 32 KiB");
+    write_file(dir, "base.yaml", text);
+    const auto base = surfvp("sweep " + dir + "/s.yaml --out " + dir + "/out");
+    EXPECT_EQ(base.exit_code, 2);
+    EXPECT_NE(base.err.find("another sweep: base scenario changed;"), std::string::npos) << base.err;
+
+    // --fresh: the new sweep's points and plots only; a file of the user's stays.
+    smoke_sweep(dir, "axes:\n  plb1.width: [32 bit, 64 bit, 128 bit]\n");
+    write_file(dir + "/out", "shard-1-of-2.db", "");  // an old shard of no sweep: not a database of another sweep
+    const auto fresh = surfvp("sweep " + file + " --quiet --fresh --out " + dir + "/out");
+    ASSERT_EQ(fresh.exit_code, 0) << fresh.err;
+    const Json j = results(dir + "/out");
+    ASSERT_EQ(j["points"].size(), 3u);
+    EXPECT_EQ(j["points"][2]["params"]["plb1.width"], "128 bit");
+    EXPECT_TRUE(fs::exists(dir + "/out/plot_plb1.width.svg"));
+    EXPECT_FALSE(fs::exists(dir + "/out/plot_plb2.width.svg"));
+    EXPECT_FALSE(fs::exists(dir + "/out/shard-1-of-2.db"));  // a whole sweep starts over with every database
+    EXPECT_EQ(slurp(dir + "/out/notes.txt"), "mine");
+    // --fresh on the same sweep runs every point again.
+    const auto again = surfvp("sweep " + file + " --fresh --out " + dir + "/out");
+    EXPECT_EQ(again.exit_code, 0) << again.err;
+    EXPECT_EQ(again.err.find("already done"), std::string::npos) << again.err;
+    EXPECT_NE(again.err.find("3 points run"), std::string::npos) << again.err;
+}
+
 TEST(Sweep, BadShardOptionsAreBadInput) {
     const std::string dir = fresh_dir("bad_shard");
     const std::string file = small_sweep(dir, kTwoByTwo);
