@@ -103,6 +103,8 @@ int dispatch(int argc, char** argv) {
     sweep->add_flag("--quiet,-q", sweep_options.quiet, "No progress or summary lines on stderr");
     sweep->add_flag("--fresh", sweep_options.fresh,
                     "Start over: discard the folder's sweep databases and results (another sweep's, or this one's) first");
+    sweep->add_flag("--keep-failed", sweep_options.keep_failed,
+                    "Keep the points that could not run (exit 2, 3, 4) as recorded instead of running them again");
     std::string merge_dir;
     CLI::App* sweep_merge = app.add_subcommand("sweep-merge", "Merge a sweep folder's shard databases and write its results");
     sweep_merge->add_option("folder", merge_dir, "The sweep folder")->required();

@@ -11,6 +11,7 @@
 #include <thread>
 #include <unistd.h>
 
+#include "models/common/atomic_file.h"
 #include "models/common/zeroed_memory.h"
 #include "platform/run/run.h"
 #include "platform/soc.h"
@@ -90,6 +91,9 @@ void Resimulation::start(Job job) {
         } catch (const ConfigError& e) {
             out = {{"error", e.what()}, {"exit", 2}};
             code = 2;
+        } catch (const EnvironmentError& e) {  // a refused write is the machine's, not a bug
+            out = {{"error", e.what()}, {"exit", 4}};
+            code = 4;
         } catch (const std::exception& e) {
             out = {{"error", e.what()}, {"exit", 3}};
         }

@@ -186,6 +186,24 @@ int submit_to_slurm(const SweepOptions& options, const SweepPlan& plan, const fs
     return kExitOk;
 }
 
+// 0 when every point of the sweep (or shard) ran, whatever its verdict; 1 when some could not,
+// now or in an earlier run whose rows were kept: one line names them (also with --quiet: it
+// is why the sweep did not end well).
+int exit_code(const SweepPlan& plan, const Shard& shard, const SweepStore& store) {
+    std::vector<std::string> not_run;
+    for (const SweepPoint& p : plan.points)
+        if (p.index % shard.n == shard.k - 1)
+            if (const auto exit = store.exit_of(p.id); exit && !point_ran(*exit))
+                not_run.push_back(fmt::format("point {} ({}, exit {})", p.index, p.id, *exit));
+    if (not_run.empty()) return kExitOk;
+    constexpr size_t named = 10;
+    std::fprintf(stderr, "surfvp: %s: %zu points could not run: %s%s; %s says why\n", plan.name.c_str(), not_run.size(),
+                 fmt::format("{}", fmt::join(not_run.begin(), not_run.begin() + long(std::min(named, not_run.size())), "; ")).c_str(),
+                 not_run.size() > named ? fmt::format("; and {} more", not_run.size() - named).c_str() : "",
+                 shard.n == 1 ? "results.csv" : "the shard database");
+    return kExitFailed;
+}
+
 }  // namespace
 
 int sweep_command(const SweepOptions& options) {
@@ -204,17 +222,25 @@ int sweep_command(const SweepOptions& options) {
     store.set_meta("axes", axes.dump());
     if (options.slurm) return submit_to_slurm(options, plan, dir);
 
+    // A point is done when its row says it ran; one that could not run is run again (its
+    // cause may be gone: a file now there, a machine no longer out of memory) unless kept.
     std::vector<const SweepPoint*> todo;
-    size_t mine = 0;
+    size_t mine = 0, retried = 0, kept = 0;
     for (const SweepPoint& p : plan.points)
         if (p.index % shard.n == shard.k - 1) {
             ++mine;
-            if (!store.has(p.id)) todo.push_back(&p);
+            const std::optional<int> exit = store.exit_of(p.id);
+            const bool retry = exit && !point_ran(*exit) && !options.keep_failed;
+            if (!exit || retry) todo.push_back(&p);
+            retried += retry;
+            kept += exit && !point_ran(*exit) && options.keep_failed;
         }
-    if (!options.quiet && todo.size() < mine)
-        std::fprintf(stderr, "surfvp: %s: %zu of %zu points already done in %s\n", plan.name.c_str(), mine - todo.size(), mine,
-                     (dir / database_name(shard)).c_str());
-
+    if (!options.quiet && (todo.size() < mine || retried))
+        std::fprintf(stderr, "surfvp: %s: %zu of %zu points already done in %s%s\n", plan.name.c_str(), mine - todo.size(), mine,
+                     (dir / database_name(shard)).c_str(),
+                     retried ? fmt::format("; {} that could not run are run again", retried).c_str()
+                     : kept  ? fmt::format(" ({} that could not run kept as recorded: --keep-failed)", kept).c_str()
+                             : "");
     // Each point is checked and prepared here, in this process (so a child inherits the frames,
     // the threshold calibration and the FHG sequences), then simulated in a child.
     Resimulation pool(options.jobs, dir / fmt::format(".scratch-{}", getpid()));
@@ -232,7 +258,7 @@ int sweep_command(const SweepOptions& options) {
             row.wall_s = result["wall_time_s"].get<double>();
             if (result.contains("failure")) row.error = result["failure"].get<std::string>();
         }
-        errors += !row.error.empty();
+        errors += !point_ran(row.exit);
         store.record(row);
         ++done;
         show();
@@ -263,7 +289,7 @@ int sweep_command(const SweepOptions& options) {
     if (!options.quiet)
         std::fprintf(stderr, "surfvp: %s: %zu points run (%zu not run); %s in %s\n", plan.name.c_str(), done, errors,
                      shard.n == 1 ? "results.csv, results.json and plots" : "shard database", dir.c_str());
-    return errors ? kExitFailed : kExitOk;
+    return exit_code(plan, shard, store);
 }
 
 int sweep_merge_command(const std::string& folder) {

@@ -18,10 +18,15 @@ struct SweepOptions {
     // Start over: discard the folder's record of an earlier sweep (its databases, results and
     // plots) instead of refusing a sweep that differs from it.
     bool fresh = false;
+    // Keep the rows of points that could not run (exit 2, 3, 4) as recorded, instead of
+    // running them again.
+    bool keep_failed = false;
 };
 
-// Runs the points not yet in the folder's database; returns 0 when every point ran (whatever
-// its verdict), 1 when some could not (their rows say why). Throws ConfigError for bad input.
+// Runs the points not yet in the folder's database, and those recorded as not run (unless
+// keep_failed); returns 0 when every point of the sweep (or shard) ran, whatever its verdict,
+// 1 when some could not (the summary names them, their rows say why). Throws ConfigError for
+// bad input.
 int sweep_command(const SweepOptions& options);
 
 // Merges DIR/shard-*.db into DIR/sweep.db and writes the results; returns 0.

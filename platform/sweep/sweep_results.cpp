@@ -39,7 +39,8 @@ std::string as_text(const Json& v) {
     return v.dump();
 }
 
-const char* status_of(const SweepRow& r) { return r.error.empty() ? (r.exit == 0 ? "passed" : "failed") : "error"; }
+// A point that failed a check ran: its row is a result. "error" is a point that could not run.
+const char* status_of(const SweepRow& r) { return !point_ran(r.exit) ? "error" : r.exit == 0 ? "passed" : "failed"; }
 
 }  // namespace
 

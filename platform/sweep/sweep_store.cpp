@@ -118,9 +118,9 @@ std::string SweepStore::fingerprint_of(const std::string& file) {
     return out;
 }
 
-bool SweepStore::has(const std::string& id) const {
-    Statement s(db_, "SELECT 1 FROM points WHERE id = ?", file_);
-    return s.bind(1, id).step();
+std::optional<int> SweepStore::exit_of(const std::string& id) const {
+    Statement s(db_, "SELECT exit FROM points WHERE id = ?", file_);
+    return s.bind(1, id).step() ? std::optional<int>(int(s.integer(0))) : std::nullopt;
 }
 
 void SweepStore::record(const SweepRow& row) {

@@ -22,6 +22,12 @@ struct SweepRow {
     double wall_s = 0;
 };
 
+// Whether a point ran: it exited 0 (passed) or 1 (failed a check, missed its budget, or its
+// software did not finish), as `surfvp run` would; its row is a result. Any other exit (2 bad
+// input, 3 a crash or a killed point, 4 a refused write) is a point that could not run, which
+// a resumed sweep runs again.
+inline bool point_ran(int exit) { return exit == 0 || exit == 1; }
+
 class SweepStore {
 public:
     // Opens or creates `file`. Throws ConfigError when it holds another sweep (another
@@ -37,7 +43,8 @@ public:
     // A database's fingerprint, to open another of the same sweep ("" when it has none).
     static std::string fingerprint_of(const std::string& file);
 
-    bool has(const std::string& id) const;
+    // The exit code recorded for the point, or nothing when it has no row.
+    std::optional<int> exit_of(const std::string& id) const;
     void record(const SweepRow& row);  // committed at once: a killed sweep keeps every row before
     std::vector<SweepRow> rows() const;  // in point order
     // The rows of another sweep database of the same sweep (a shard); returns how many were new.

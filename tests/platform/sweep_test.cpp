@@ -320,6 +320,49 @@ TEST(Sweep, AnEditedSweepIsRefusedWithWhatChangedUnlessFresh) {
     EXPECT_NE(again.err.find("3 points run"), std::string::npos) << again.err;
 }
 
+// A point that could not run (here: its frame is missing) is run again when the sweep is
+// resumed, unless --keep-failed; one that ran and failed a check (here: an unreachable
+// budget) is a result and is not. While any point could not run, the sweep exits 1.
+TEST(Sweep, PointsThatCouldNotRunAreRunAgainOnResume) {
+    const std::string dir = fresh_dir("retry");
+    fs::copy_file(kOpencvData + "/graf1.png", dir + "/a.png");
+    const std::string file = write_file(dir, "s.yaml",
+                                        "scenario: " + kBudget + "\n"
+                                        "set: {surf.frames: 3, surf.width: 256, surf.height: 192, surf.target_keypoints: 20, "
+                                        "budget.fps: 100000}\n"
+                                        "axes:\n  surf.source: [a.png, b.png]\n");
+    const std::string out = " --out " + dir + "/out";
+    const auto first = surfvp("sweep " + file + " --quiet" + out);
+    EXPECT_EQ(first.exit_code, 1) << first.err;
+    EXPECT_NE(first.err.find("1 points could not run: point 1 (surf.source=" + dir + "/b.png, exit 2)"), std::string::npos)
+        << first.err;
+    Json j = results(dir + "/out");
+    EXPECT_EQ(j["points"][0]["status"], "failed");
+    EXPECT_EQ(j["points"][0]["exit"], 1);
+    EXPECT_EQ(j["points"][1]["status"], "error");
+    const auto wall0 = j["points"][0]["wall_s"];
+
+    const auto kept = surfvp("sweep " + file + " --keep-failed" + out);
+    EXPECT_EQ(kept.exit_code, 1) << kept.err;  // not 0: the point is still not run
+    EXPECT_NE(kept.err.find("2 of 2 points already done"), std::string::npos) << kept.err;
+    EXPECT_NE(kept.err.find("1 that could not run kept as recorded"), std::string::npos) << kept.err;
+    EXPECT_NE(kept.err.find("0 points run"), std::string::npos) << kept.err;
+
+    const auto still = surfvp("sweep " + file + out);  // run again, and still missing
+    EXPECT_EQ(still.exit_code, 1) << still.err;
+    EXPECT_NE(still.err.find("1 of 2 points already done in " + dir + "/out/sweep.db; 1 that could not run are run again"),
+              std::string::npos) << still.err;
+
+    fs::copy_file(kOpencvData + "/graf1.png", dir + "/b.png");
+    const auto again = surfvp("sweep " + file + out);
+    EXPECT_EQ(again.exit_code, 0) << again.err;
+    EXPECT_NE(again.err.find("1 points run (0 not run)"), std::string::npos) << again.err;
+    j = results(dir + "/out");
+    EXPECT_EQ(j["points"][0]["wall_s"], wall0);  // the failed check was not run again
+    EXPECT_EQ(j["points"][1]["status"], "failed");
+    EXPECT_EQ(j["points"][1]["figures"]["fps"], j["points"][0]["figures"]["fps"]);
+}
+
 TEST(Sweep, BadShardOptionsAreBadInput) {
     const std::string dir = fresh_dir("bad_shard");
     const std::string file = small_sweep(dir, kTwoByTwo);
