@@ -74,28 +74,46 @@ SweepAxis parse_axis(const std::string& path, const YAML::Node& key, const YAML:
     return axis;
 }
 
-// Every value on its parameter, at its line, before anything runs.
+// Every value on its parameter, at its line, before anything runs (one copy of the base per
+// axis: a value set replaces the one before).
 void check_values(const SweepPlan& plan, const Config& base) {
-    for (const SweepAxis& axis : plan.axes)
-        for (const std::string& v : axis.values) {
-            Config c = base;
-            c.set(axis.key, v, axis.origin);
-        }
+    for (const SweepAxis& axis : plan.axes) {
+        Config c = base;
+        for (const std::string& v : axis.values) c.set(axis.key, v, axis.origin);
+    }
 }
 
-std::vector<SweepPoint> combine(const std::vector<SweepAxis>& axes, bool zip, const std::string& where) {
+// How many points the axes make, known before any is made: zipped, the axes' common length;
+// crossed, the product of their lengths, multiplied with a check at each step, so that five
+// axes of a thousand values are refused in a moment instead of filling the memory (or
+// wrapping around to a small number).
+size_t point_count(const std::vector<SweepAxis>& axes, bool zip, const std::string& where) {
+    if (axes.empty()) return 1;
+    size_t n = zip ? axes[0].values.size() : 1;
+    bool over = false;
+    for (const SweepAxis& a : axes) {
+        if (zip && a.values.size() != n)
+            throw ConfigError(fmt::format("{}: combine: zip needs axes of one length: {} has {} values, {} has {}", where,
+                                          axes[0].key, n, a.key, a.values.size()));
+        if (!zip) over = over || __builtin_mul_overflow(n, a.values.size(), &n);
+    }
+    if (!over && n <= kMaxSweepPoints) return n;
+    long double product = 1;
+    std::vector<std::string> sizes;
+    for (const SweepAxis& a : axes) {
+        product *= zip ? 1 : (long double)a.values.size();
+        sizes.push_back(fmt::format("{} ({} values)", a.key, a.values.size()));
+    }
+    if (zip) product = (long double)n;
+    throw ConfigError(fmt::format("{}: combine: the axes make {} points, more than the {} a sweep may have: {}", where,
+                                  product < 1e18L ? fmt::format("{}", (unsigned long long)product) : fmt::format("{:.3g}", double(product)),
+                                  kMaxSweepPoints, fmt::join(sizes, fmt::format(" {} ", zip ? "with" : "x"))));
+}
+
+std::vector<SweepPoint> combine(const std::vector<SweepAxis>& axes, bool zip, size_t n) {
     std::vector<SweepPoint> points;
     if (axes.empty()) return {SweepPoint{0, {}, "(base)"}};
-    size_t n = 1;
-    if (zip) {
-        n = axes[0].values.size();
-        for (const SweepAxis& a : axes)
-            if (a.values.size() != n)
-                throw ConfigError(fmt::format("{}: combine: zip needs axes of one length: {} has {} values, {} has {}", where,
-                                              axes[0].key, n, a.key, a.values.size()));
-    } else {
-        for (const SweepAxis& a : axes) n *= a.values.size();
-    }
+    points.reserve(n);
     for (size_t i = 0; i < n; ++i) {
         SweepPoint p{i, {}, ""};
         size_t rest = i;
@@ -294,13 +312,14 @@ SweepPlan load_sweep(const std::string& path) {
             throw ConfigError(fmt::format("{}: axis {} is given twice (first at {})", axis.origin, axis.key, first->second));
         plan.axes.push_back(std::move(axis));
     }
+    const size_t count = point_count(plan.axes, plan.zip, seen.count("combine") ? combine_where : seen.count("axes") ? seen["axes"] : path);
     const Config base = load_scenario(plan.scenario, plan.sets);
     for (const SweepAxis& axis : plan.axes)
         for (const std::string& s : plan.sets)
             if (s.rfind(axis.key + "=", 0) == 0)
                 throw ConfigError(fmt::format("{}: axis {} is also in set:", axis.origin, axis.key));
     check_values(plan, base);
-    plan.points = combine(plan.axes, plan.zip, combine_where);
+    plan.points = combine(plan.axes, plan.zip, count);
     plan.identity = identity_of(plan);
     plan.fingerprint = plan.identity.dump();
     return plan;

@@ -52,6 +52,10 @@ struct SweepPlan {
     Config config(const SweepPoint& point) const;
 };
 
+// The most points a sweep may have: more are refused when the file is loaded, before any
+// point is made, naming each axis and its number of values.
+constexpr size_t kMaxSweepPoints = 100000;
+
 // Throws ConfigError naming the file and line.
 SweepPlan load_sweep(const std::string& path);
 

@@ -71,6 +71,47 @@ TEST(SweepPlan, BadAxesAreNamedAtTheirLine) {
     }
 }
 
+// The number of points is known, and checked, before any point is made: five axes of a
+// thousand values each are refused at once, naming every axis and its size; four of 100000
+// (a product past 2^64) are not wrapped around to a small number.
+TEST(SweepPlan, TooManyPointsAreRefusedBeforeTheyAreMade) {
+    const std::string dir = fresh_dir("too_many");
+    const std::string thousand =
+        "  fhg.clock: {from: 1 MHz, to: 1000 MHz, step: 1 MHz}\n"
+        "  smoke.copies: {from: 1, to: 1000, step: 1}\n"
+        "  smoke.polls: {from: 0, to: 999, step: 1}\n"
+        "  smoke.poll_interval: {from: 0 cycles, to: 999 cycles, step: 1 cycles}\n"
+        "  plb1.clock: {from: 1 MHz, to: 1000 MHz, step: 1 MHz}\n";
+    try {
+        load_sweep(write_file(dir, "s.yaml", "scenario: smoke\naxes:\n" + thousand));
+        ADD_FAILURE() << "1e15 points accepted";
+    } catch (const ConfigError& e) {
+        EXPECT_EQ(std::string(e.what()),
+                  dir + "/s.yaml:2: combine: the axes make 1000000000000000 points, more than the 100000 a sweep may have: "
+                        "fhg.clock (1000 values) x smoke.copies (1000 values) x smoke.polls (1000 values) x "
+                        "smoke.poll_interval (1000 values) x plb1.clock (1000 values)");
+    }
+    const std::string huge =
+        "combine: cartesian\naxes:\n"
+        "  smoke.copies: {from: 1, to: 100000, step: 1}\n"
+        "  smoke.polls: {from: 1, to: 100000, step: 1}\n"
+        "  smoke.poll_interval: {from: 1 cycles, to: 100000 cycles, step: 1 cycles}\n"
+        "  fhg.clock: {from: 1 kHz, to: 100000 kHz, step: 1 kHz}\n";
+    try {
+        load_sweep(write_file(dir, "huge.yaml", "scenario: smoke\n" + huge));
+        ADD_FAILURE() << "1e20 points accepted";
+    } catch (const ConfigError& e) {
+        EXPECT_NE(std::string(e.what()).find("huge.yaml:2: combine: the axes make 1e+20 points, more than the 100000"),
+                  std::string::npos) << e.what();
+    }
+    // At the limit, the points are made.
+    const SweepPlan at_limit = load_sweep(write_file(dir, "ok.yaml", "scenario: smoke\naxes:\n"
+                                                                     "  smoke.copies: {from: 1, to: 1000, step: 1}\n"
+                                                                     "  smoke.polls: {from: 1, to: 100, step: 1}\n"));
+    EXPECT_EQ(at_limit.points.size(), 100000u);
+    EXPECT_EQ(at_limit.points.back().id, "smoke.copies=1000, smoke.polls=100");
+}
+
 // The name is the default sweep folder's (traces/<name>): a scenario's rule, at its line.
 TEST(SweepPlan, ANameFollowsTheScenarioNameRuleAtItsLine) {
     const std::string dir = fresh_dir("names");
