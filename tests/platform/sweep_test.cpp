@@ -2,7 +2,12 @@
 // and is recorded in SQLite as it ends; a sweep run again resumes, shards merge into the
 // results of one whole run, a point that cannot run is recorded and the others go on.
 #include <filesystem>
+#include <functional>
+#include <optional>
 #include <gtest/gtest.h>
+#include <libxml/parser.h>
+#include <libxml/tree.h>
+#include <memory>
 #include <nlohmann/json.hpp>
 
 #include "cli.h"
@@ -402,6 +407,57 @@ TEST(Sweep, PointsThatCouldNotRunAreRunAgainOnResume) {
     EXPECT_EQ(j["points"][0]["wall_s"], wall0);  // the failed check was not run again
     EXPECT_EQ(j["points"][1]["status"], "failed");
     EXPECT_EQ(j["points"][1]["figures"]["fps"], j["points"][0]["figures"]["fps"]);
+}
+
+// Every text of an element in an SVG (its <text> and <title> elements), or nothing when the
+// file is not well-formed XML.
+std::optional<std::vector<std::string>> svg_texts(const std::string& svg) {
+    std::unique_ptr<xmlDoc, decltype(&xmlFreeDoc)> doc(
+        xmlReadMemory(svg.data(), int(svg.size()), "plot.svg", nullptr, XML_PARSE_NONET | XML_PARSE_NOERROR | XML_PARSE_NOWARNING),
+        xmlFreeDoc);
+    if (!doc) return std::nullopt;
+    std::vector<std::string> texts;
+    std::function<void(xmlNodePtr)> walk = [&](xmlNodePtr n) {
+        for (; n; n = n->next) {
+            if (n->type == XML_ELEMENT_NODE && (xmlStrEqual(n->name, BAD_CAST "text") || xmlStrEqual(n->name, BAD_CAST "title"))) {
+                xmlChar* t = xmlNodeGetContent(n);
+                texts.emplace_back(reinterpret_cast<const char*>(t));
+                xmlFree(t);
+            }
+            walk(n->children);
+        }
+    };
+    walk(xmlDocGetRootElement(doc.get()));
+    return texts;
+}
+
+// Names, values and ids holding markup, '&', quotes and a control character give plots that
+// are well-formed SVG and show those texts as text.
+TEST(Sweep, PlotsEscapeEveryTextTheyShow) {
+    const std::string dir = fresh_dir("escape");
+    const std::string file = smoke_sweep(dir, "");
+    write_file(dir, "s.yaml",
+               "name: \"<script>alert('x') & \\\"q\\\"\"\n"
+               "description: \"<script>evil()</script> & 'single' \\\"double\\\"\"\n"
+               "scenario: base.yaml\n"
+               "axes:\n  surf.source: [\"<script>a & 'b'.png\", \"c\\\"d<e>\\x01.png\"]\n");
+    const auto r = surfvp("sweep " + file + " --quiet --out " + dir + "/out");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const std::string name = "<script>alert('x') & \"q\"";
+    for (const char* plot : {"plot_surf.source.svg", "pareto.svg"}) {
+        const std::string svg = slurp(dir + "/out/" + plot);
+        EXPECT_EQ(svg.find("<script"), std::string::npos) << plot;
+        const auto texts = svg_texts(svg);
+        ASSERT_TRUE(texts.has_value()) << plot << " is not well-formed:\n" << svg;
+        EXPECT_NE(std::find_if(texts->begin(), texts->end(), [&](const std::string& t) { return t.rfind(name + ": frames/s against", 0) == 0; }),
+                  texts->end()) << plot;
+        // Each point's title is its id, the control character shown as U+FFFD.
+        const std::string b = "surf.source=" + (fs::canonical(dir) / "<script>a & 'b'.png").string();
+        const std::string d = "surf.source=" + (fs::canonical(dir) / "c\"d<e>\xEF\xBF\xBD.png").string();
+        for (const std::string& id : {b, d})
+            EXPECT_NE(std::find_if(texts->begin(), texts->end(), [&](const std::string& t) { return t.rfind(id + ":", 0) == 0; }),
+                      texts->end()) << plot << ": no point titled " << id;
+    }
 }
 
 TEST(Sweep, BadShardOptionsAreBadInput) {
