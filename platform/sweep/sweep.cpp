@@ -10,6 +10,7 @@
 #include "models/common/atomic_file.h"
 #include "platform/cli/progress_line.h"
 #include "platform/run/run.h"
+#include "platform/scenario/scenario.h"
 #include "platform/sweep/resimulation.h"
 #include "platform/sweep/sweep_plan.h"
 #include "platform/sweep/sweep_results.h"
@@ -127,13 +128,10 @@ Json params_of(const SweepPoint& p) {
     return j;
 }
 
-std::vector<std::string> axes_of(const SweepStore& store) {
-    const std::string text = store.meta("axes");
-    return text.empty() ? std::vector<std::string>{} : Json::parse(text).get<std::vector<std::string>>();
-}
-
 void write_results(const fs::path& dir, const SweepStore& store) {
-    write_sweep_results(dir.string(), store.meta("name"), axes_of(store), store.rows());
+    const std::string name = store.meta("name");
+    if (!is_utf8(name)) throw ConfigError(fmt::format("{}: its record of the sweep's name is not UTF-8 text", store.file()));
+    write_sweep_results(dir.string(), name, store.axes(), store.rows());
 }
 
 // Runs `command` through the shell; its standard output, or throws EnvironmentError with what
@@ -216,6 +214,7 @@ int sweep_command(const SweepOptions& options) {
     if (ec) throw EnvironmentError(fmt::format("{}: cannot make the sweep folder: {}", dir.string(), ec.message()));
     prepare_folder(dir, dir / database_name(shard), plan, options.fresh, shard.n == 1);
     SweepStore store((dir / database_name(shard)).string(), plan.fingerprint);
+    store.rows();  // read whole now: a damaged row is refused before any point runs, not after them all
     store.set_meta("name", plan.name);
     Json axes = Json::array();
     for (const SweepAxis& a : plan.axes) axes.push_back(a.key);

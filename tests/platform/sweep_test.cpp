@@ -9,11 +9,13 @@
 #include <libxml/tree.h>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <sqlite3.h>
 
 #include "cli.h"
 #include "platform/scenario/config.h"
 #include "platform/sweep/sweep_plan.h"
 #include "platform/sweep/sweep_results.h"
+#include "platform/sweep/sweep_store.h"
 
 namespace surfvp::test {
 namespace {
@@ -458,6 +460,55 @@ TEST(Sweep, PlotsEscapeEveryTextTheyShow) {
             EXPECT_NE(std::find_if(texts->begin(), texts->end(), [&](const std::string& t) { return t.rfind(id + ":", 0) == 0; }),
                       texts->end()) << plot << ": no point titled " << id;
     }
+}
+
+// Runs `sql` on the database `file`.
+void sql(const std::string& file, const std::string& statements) {
+    sqlite3* db = nullptr;
+    ASSERT_EQ(sqlite3_open(file.c_str(), &db), SQLITE_OK);
+    char* message = nullptr;
+    EXPECT_EQ(sqlite3_exec(db, statements.c_str(), nullptr, nullptr, &message), SQLITE_OK) << (message ? message : "");
+    sqlite3_free(message);
+    sqlite3_close(db);
+}
+
+// A damaged sweep.db (not SQLite, cut short, other tables, rows whose values are not what a
+// sweep writes) is bad input naming the file and the point: exit 2, before any point runs,
+// never exit 3.
+TEST(Sweep, ADamagedDatabaseIsBadInputNamingTheFileAndThePoint) {
+    const std::string dir = fresh_dir("damaged");
+    const std::string file = smoke_sweep(dir, kTinyAxes);
+    ASSERT_EQ(surfvp("sweep " + file + " --quiet --out " + dir + "/good").exit_code, 0);
+    const std::string good = slurp(dir + "/good/sweep.db");
+    const std::string db = dir + "/out/sweep.db";
+    auto refused = [&](const std::string& what, const std::function<void()>& damage, const std::string& message) {
+        fs::remove_all(dir + "/out");
+        fs::create_directories(dir + "/out");
+        write_file(dir + "/out", "sweep.db", good);
+        damage();
+        const auto r = surfvp("sweep " + file + " --out " + dir + "/out");
+        EXPECT_EQ(r.exit_code, 2) << what << ": " << r.err;
+        EXPECT_NE(r.err.find("surfvp: error: " + db + ": " + message), std::string::npos) << what << ": " << r.err;
+        EXPECT_EQ(r.err.find("points run"), std::string::npos) << what << ": " << r.err;
+    };
+    refused("not SQLite", [&] { write_file(dir + "/out", "sweep.db", "name: not a database\n"); },
+            "not a sweep database, or a damaged one");
+    refused("cut short", [&] { write_file(dir + "/out", "sweep.db", good.substr(0, good.size() / 2)); }, "not a sweep database, or a damaged one");
+    refused("other tables", [&] { sql(db, "DROP TABLE points; CREATE TABLE points (a, b);"); },
+            "is not a sweep database: its table points has the columns (a, b), not (idx, id, params, exit, error, figures, wall_s)");
+    const std::string point1 = "point 1 (plb2.width=64 bit): ";
+    refused("params not JSON", [&] { sql(db, "UPDATE points SET params = '{\"plb2.width\": ' WHERE idx = 1"); },
+            point1 + "params is not JSON: [json.exception.parse_error.101]");
+    refused("params a list", [&] { sql(db, "UPDATE points SET params = '[1]' WHERE idx = 1"); }, point1 + "params is a JSON array, not an object");
+    refused("a value a number", [&] { sql(db, "UPDATE points SET params = '{\"plb2.width\": 64}' WHERE idx = 1"); },
+            point1 + "params.plb2.width is a JSON number, not a text");
+    refused("figures a text", [&] { sql(db, "UPDATE points SET figures = '\"fast\"' WHERE idx = 1"); }, point1 + "figures is a JSON string, not an object");
+    refused("frames/s a text", [&] { sql(db, "UPDATE points SET figures = '{\"fps\": \"fast\"}' WHERE idx = 1"); },
+            point1 + "figures.fps is a JSON string, not a number");
+    refused("exit not an exit code", [&] { sql(db, "UPDATE points SET exit = 1000 WHERE idx = 1"); }, point1 + "exit 1000 is not an exit code");
+    refused("index a text", [&] { sql(db, "UPDATE points SET idx = 'one' WHERE id = 'plb2.width=64 bit'"); }, "point in row ");
+    EXPECT_NE(surfvp("sweep " + file + " --out " + dir + "/out").err.find(" (plb2.width=64 bit): its idx is text, not an integer"),
+              std::string::npos);
 }
 
 TEST(Sweep, BadShardOptionsAreBadInput) {
