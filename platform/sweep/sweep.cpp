@@ -1,6 +1,8 @@
 #include "platform/sweep/sweep.h"
 
 #include <algorithm>
+#include <map>
+#include <set>
 #include <filesystem>
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -128,10 +130,10 @@ Json params_of(const SweepPoint& p) {
     return j;
 }
 
-void write_results(const fs::path& dir, const SweepStore& store) {
+void write_results(const fs::path& dir, const SweepStore& store, const Json& notes = Json::object()) {
     const std::string name = store.meta("name");
     if (!is_utf8(name)) throw ConfigError(fmt::format("{}: its record of the sweep's name is not UTF-8 text", store.file()));
-    write_sweep_results(dir.string(), name, store.axes(), store.rows());
+    write_sweep_results(dir.string(), name, store.axes(), store.rows(), notes);
 }
 
 // Runs `command` through the shell; its standard output, or throws EnvironmentError with what
@@ -184,23 +186,97 @@ int submit_to_slurm(const SweepOptions& options, const SweepPlan& plan, const fs
     return kExitOk;
 }
 
-// 0 when every point of the sweep (or shard) ran, whatever its verdict; 1 when some could not,
-// now or in an earlier run whose rows were kept: one line names them (also with --quiet: it
-// is why the sweep did not end well).
+// 0 when every point named ran, whatever its verdict; 1 when some could not, now or in an
+// earlier run whose rows were kept: one line names them (also with --quiet: it is why the
+// command did not end well). `not_run`: "point 3 (ID, exit 2)" each.
+int exit_for(const std::string& name, const std::vector<std::string>& not_run, const std::string& why_in) {
+    if (not_run.empty()) return kExitOk;
+    constexpr size_t named = 10;
+    std::fprintf(stderr, "surfvp: %s: %zu points could not run: %s%s; %s says why\n", name.c_str(), not_run.size(),
+                 fmt::format("{}", fmt::join(not_run.begin(), not_run.begin() + long(std::min(named, not_run.size())), "; ")).c_str(),
+                 not_run.size() > named ? fmt::format("; and {} more", not_run.size() - named).c_str() : "", why_in.c_str());
+    return kExitFailed;
+}
+
+std::string not_run_text(size_t index, const std::string& id, int exit) { return fmt::format("point {} ({}, exit {})", index, id, exit); }
+
 int exit_code(const SweepPlan& plan, const Shard& shard, const SweepStore& store) {
     std::vector<std::string> not_run;
     for (const SweepPoint& p : plan.points)
         if (p.index % shard.n == shard.k - 1)
-            if (const auto exit = store.exit_of(p.id); exit && !point_ran(*exit))
-                not_run.push_back(fmt::format("point {} ({}, exit {})", p.index, p.id, *exit));
-    if (not_run.empty()) return kExitOk;
-    constexpr size_t named = 10;
-    std::fprintf(stderr, "surfvp: %s: %zu points could not run: %s%s; %s says why\n", plan.name.c_str(), not_run.size(),
-                 fmt::format("{}", fmt::join(not_run.begin(), not_run.begin() + long(std::min(named, not_run.size())), "; ")).c_str(),
-                 not_run.size() > named ? fmt::format("; and {} more", not_run.size() - named).c_str() : "",
-                 shard.n == 1 ? "results.csv" : "the shard database");
-    return kExitFailed;
+            if (const auto exit = store.exit_of(p.id); exit && !point_ran(*exit)) not_run.push_back(not_run_text(p.index, p.id, *exit));
+    return exit_for(plan.name, not_run, shard.n == 1 ? "results.csv" : "the shard database");
 }
+
+// A shard database of the folder: shard-K-of-N.db.
+struct ShardFile {
+    fs::path path;
+    size_t k, n;
+};
+
+std::vector<ShardFile> shard_files(const fs::path& dir) {
+    static const std::regex form(R"(shard-([0-9]{1,6})-of-([0-9]{1,6})\.db)");
+    std::vector<ShardFile> out;
+    for (const fs::path& db : sweep_databases(dir)) {
+        std::smatch m;
+        const std::string name = db.filename().string();
+        if (std::regex_match(name, m, form) && std::stoul(m[1]) >= 1 && std::stoul(m[1]) <= std::stoul(m[2]))
+            out.push_back({db, std::stoul(m[1]), std::stoul(m[2])});
+    }
+    return out;
+}
+
+// The shards absent from the folder, of every split (N) of which one is there: "shard-2-of-4.db".
+std::vector<std::string> missing_shards(const std::vector<ShardFile>& shards) {
+    std::map<size_t, std::set<size_t>> present;
+    for (const ShardFile& s : shards) present[s.n].insert(s.k);
+    std::vector<std::string> out;
+    for (const auto& [n, ks] : present)
+        for (size_t k = 1; k <= n; ++k)
+            if (!ks.count(k)) out.push_back(database_name({k, n}));
+    return out;
+}
+
+// One database to merge, read whole and checked before anything is written: a sweep
+// database, not empty, of the sweep `fingerprint` (the reference's), each row undamaged, of
+// its own shard (a renamed file is not), and named by its own values.
+void check_merged(const fs::path& file, const std::string& fingerprint, const std::string& reference, const Shard& shard) {
+    const auto db = SweepStore::read_only(file.string());
+    const std::string theirs = db->meta("fingerprint");
+    if (theirs.empty()) throw ConfigError(fmt::format("{}: is empty: it holds no sweep", file.string()));
+    if (theirs != fingerprint)
+        throw ConfigError(fmt::format("{}: is not of the sweep of {}: {}", file.string(), reference,
+                                      fmt::join(sweep_changes(fingerprint, theirs), "; ")));
+    const std::vector<std::string> axes = db->axes();
+    for (const SweepRow& r : db->rows()) {
+        if (r.index % shard.n != shard.k - 1)
+            throw ConfigError(fmt::format("{}: point {} ({}) is not of shard {} of {} (a file renamed?)", file.string(), r.index, r.id,
+                                          shard.k, shard.n));
+        std::vector<std::pair<std::string, std::string>> values;
+        for (const std::string& a : axes) values.emplace_back(a, r.params.value(a, ""));
+        if (point_id(values) != r.id)
+            throw ConfigError(fmt::format("{}: point {} ({}): its values give another id ({})", file.string(), r.index, r.id,
+                                          point_id(values)));
+    }
+}
+
+// A file removed when it goes out of scope, unless kept: a merge that fails leaves nothing.
+class Scratch {
+public:
+    explicit Scratch(fs::path path) : path_(std::move(path)) { remove_database(path_); }
+    ~Scratch() {
+        if (!kept_) try {
+                remove_database(path_);
+            } catch (const EnvironmentError&) {
+            }
+    }
+    const fs::path& path() const { return path_; }
+    void keep() { kept_ = true; }
+
+private:
+    fs::path path_;
+    bool kept_ = false;
+};
 
 }  // namespace
 
@@ -291,26 +367,52 @@ int sweep_command(const SweepOptions& options) {
     return exit_code(plan, shard, store);
 }
 
-int sweep_merge_command(const std::string& folder) {
-    const fs::path dir(folder);
-    std::vector<fs::path> shards;
+int sweep_merge_command(const std::string& folder, bool partial) {
+    const fs::path dir(folder), whole = fs::path(folder) / "sweep.db";
     std::error_code ec;
-    for (const auto& entry : fs::directory_iterator(dir, ec))
-        if (entry.path().filename().string().rfind("shard-", 0) == 0 && entry.path().extension() == ".db")
-            shards.push_back(entry.path());
-    if (ec) throw ConfigError(fmt::format("{}: cannot read the sweep folder: {}", folder, ec.message()));
-    std::sort(shards.begin(), shards.end());
-    if (shards.empty() && !fs::exists(dir / "sweep.db"))
-        throw ConfigError(fmt::format("{}: holds no sweep database (sweep.db or shard-K-of-N.db)", folder));
-    const std::string fingerprint =
-        SweepStore::fingerprint_of((shards.empty() ? dir / "sweep.db" : shards.front()).string());
-    SweepStore store((dir / "sweep.db").string(), fingerprint);
+    if (!fs::is_directory(dir, ec)) throw ConfigError(fmt::format("{}: no such sweep folder", folder));
+    const std::vector<ShardFile> shards = shard_files(dir);
+    if (shards.empty()) throw ConfigError(fmt::format("{}: holds no shard databases (shard-K-of-N.db) to merge", folder));
+    const std::vector<std::string> missing = missing_shards(shards);
+    if (!missing.empty() && !partial)
+        throw ConfigError(fmt::format("{}: {} missing ({}): their points would not be in the results; give --partial to merge "
+                                      "the others",
+                                      folder, missing.size() == 1 ? "a shard is" : fmt::format("{} shards are", missing.size()),
+                                      fmt::join(missing, ", ")));
+    // sweep.db, when there is one, is the sweep the shards must be of; else the first shard.
+    const bool has_whole = fs::exists(whole, ec);
+    const fs::path reference = has_whole ? whole : shards.front().path;
+    const std::string fingerprint = SweepStore::fingerprint_of(reference.string());
+    if (has_whole) check_merged(whole, fingerprint, reference.string(), {1, 1});
+    for (const ShardFile& s : shards) check_merged(s.path, fingerprint, reference.string(), {s.k, s.n});
+
+    // Merged under a temporary name beside sweep.db, renamed over it once everything is in: a
+    // refusal or a failure leaves the folder as it was.
+    Scratch merging(dir / fmt::format(".sweep.db.merging-{}", getpid()));
     size_t added = 0;
-    for (const fs::path& s : shards) added += store.merge(s.string());
-    write_results(dir, store);
-    std::fprintf(stderr, "surfvp: %s: %zu shard databases, %zu new points, %zu in all; results in %s\n",
-                 store.meta("name").c_str(), shards.size(), added, store.rows().size(), folder.c_str());
-    return kExitOk;
+    {
+        SweepStore merged(merging.path().string(), fingerprint);
+        if (has_whole) merged.merge(whole.string());
+        for (const ShardFile& s : shards) added += merged.merge(s.path.string());
+    }
+    fs::rename(merging.path(), whole, ec);
+    if (ec) throw EnvironmentError(fmt::format("{}: cannot put the merged database in place: {}", whole.string(), ec.message()));
+    merging.keep();
+
+    const SweepStore store(whole.string(), fingerprint);
+    Json notes = Json::object();
+    if (!missing.empty()) notes["missing_shards"] = missing;
+    write_results(dir, store, notes);
+    const std::vector<SweepRow> rows = store.rows();
+    std::fprintf(stderr, "surfvp: %s: %zu shard databases, %zu new points, %zu in all; results in %s%s\n", store.meta("name").c_str(),
+                 shards.size(), added, rows.size(), folder.c_str(),
+                 missing.empty() ? ""
+                                 : fmt::format(" (partial: {} missing, their points are not in the results)", fmt::join(missing, ", "))
+                                       .c_str());
+    std::vector<std::string> not_run;
+    for (const SweepRow& r : rows)
+        if (!point_ran(r.exit)) not_run.push_back(not_run_text(r.index, r.id, r.exit));
+    return exit_for(store.meta("name"), not_run, "results.csv");
 }
 
 }  // namespace surfvp

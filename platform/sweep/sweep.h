@@ -29,7 +29,11 @@ struct SweepOptions {
 // bad input.
 int sweep_command(const SweepOptions& options);
 
-// Merges DIR/shard-*.db into DIR/sweep.db and writes the results; returns 0.
-int sweep_merge_command(const std::string& dir);
+// Merges DIR/shard-K-of-N.db (and DIR/sweep.db, when there is one) into DIR/sweep.db and
+// writes the results. Everything is read and checked first: no shard, a missing shard (unless
+// `partial`), an empty, foreign or damaged database is refused with ConfigError naming the
+// file (and the point), and the folder is left as it was. Returns 0, or 1 when some merged
+// point could not run.
+int sweep_merge_command(const std::string& dir, bool partial = false);
 
 }  // namespace surfvp

@@ -112,7 +112,7 @@ size_t point_count(const std::vector<SweepAxis>& axes, bool zip, const std::stri
 
 std::vector<SweepPoint> combine(const std::vector<SweepAxis>& axes, bool zip, size_t n) {
     std::vector<SweepPoint> points;
-    if (axes.empty()) return {SweepPoint{0, {}, "(base)"}};
+    if (axes.empty()) return {SweepPoint{0, {}, point_id({})}};
     points.reserve(n);
     for (size_t i = 0; i < n; ++i) {
         SweepPoint p{i, {}, ""};
@@ -123,10 +123,8 @@ std::vector<SweepPoint> combine(const std::vector<SweepAxis>& axes, bool zip, si
             pick[a] = zip ? i : rest % axes[a].values.size();
             if (!zip) rest /= axes[a].values.size();
         }
-        for (size_t a = 0; a < axes.size(); ++a) {
-            p.values.emplace_back(axes[a].key, axes[a].values[pick[a]]);
-            p.id += fmt::format("{}{}={}", a ? ", " : "", axes[a].key, axes[a].values[pick[a]]);
-        }
+        for (size_t a = 0; a < axes.size(); ++a) p.values.emplace_back(axes[a].key, axes[a].values[pick[a]]);
+        p.id = point_id(p.values);
         points.push_back(std::move(p));
     }
     return points;
@@ -202,25 +200,35 @@ std::vector<std::string> axis_changes(const Json& before, const Json& now) {
 
 std::vector<std::string> sweep_changes(const std::string& before_text, const std::string& now_text) {
     if (before_text == now_text) return {};
-    const Json before = Json::parse(before_text, nullptr, false), now = Json::parse(now_text);
-    // A database of a surfvp before this one kept its sweep as other text.
-    if (!before.is_object() || !before.contains("scenario"))
-        return {"made by an earlier surfvp, which recorded no description of the sweep"};
+    // Either may be read from a database: one of an earlier surfvp kept its sweep as other
+    // text, and a damaged one may hold anything.
+    const Json before = Json::parse(before_text, nullptr, false), now = Json::parse(now_text, nullptr, false);
+    const char* unknown = "one of them was made by an earlier surfvp, or its record of the sweep is damaged";
+    if (!before.is_object() || !now.is_object()) return {unknown};
     std::vector<std::string> out;
     try {
-        if (before.value("surfvp", "") != now["surfvp"])
-            out.push_back(fmt::format("made by surfvp {} (this is {})", before.value("surfvp", "?"), now["surfvp"].get<std::string>()));
-        if (before.at("scenario") != now["scenario"]) out.push_back("base scenario changed");
-        if (const auto sets = set_changes(before.at("set"), now["set"]); !sets.empty())
+        if (before.at("surfvp") != now.at("surfvp"))
+            out.push_back(fmt::format("made by surfvp {} (this is {})", before.at("surfvp").get<std::string>(),
+                                      now.at("surfvp").get<std::string>()));
+        if (before.at("scenario") != now.at("scenario")) out.push_back("base scenario changed");
+        if (const auto sets = set_changes(before.at("set"), now.at("set")); !sets.empty())
             out.push_back(fmt::format("set changed ({})", fmt::join(sets, "; ")));
-        for (const std::string& a : axis_changes(before.at("axes"), now["axes"])) out.push_back(a);
-        if (before.at("combine") != now["combine"])
-            out.push_back(fmt::format("combine changed ({}, now {})", before["combine"].get<std::string>(), now["combine"].get<std::string>()));
+        for (const std::string& a : axis_changes(before.at("axes"), now.at("axes"))) out.push_back(a);
+        if (before.at("combine") != now.at("combine"))
+            out.push_back(fmt::format("combine changed ({}, now {})", before.at("combine").get<std::string>(),
+                                      now.at("combine").get<std::string>()));
     } catch (const Json::exception&) {
-        return {"its record of the sweep is damaged"};
+        return {unknown};
     }
-    if (out.empty()) out.push_back("its record of the sweep differs");  // only in a way the phrases above do not name
+    if (out.empty()) out.push_back("their records of the sweep differ");  // in a way the phrases above do not name
     return out;
+}
+
+std::string point_id(const std::vector<std::pair<std::string, std::string>>& values) {
+    if (values.empty()) return "(base)";
+    std::string id;
+    for (const auto& [key, value] : values) id += fmt::format("{}{}={}", id.empty() ? "" : ", ", key, value);
+    return id;
 }
 
 std::optional<std::pair<double, std::string>> split_quantity(const std::string& text) {

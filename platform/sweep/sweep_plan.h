@@ -64,6 +64,10 @@ SweepPlan load_sweep(const std::string& path);
 // (...)", "axes added: ...", "combine changed (cartesian, now zip)". Empty when they are equal.
 std::vector<std::string> sweep_changes(const std::string& before, const std::string& now);
 
+// A point's id from its values in the axes' order: "fhg.clock=75 MHz, fhg.read_buses=4", or
+// "(base)" for a sweep without axes.
+std::string point_id(const std::vector<std::pair<std::string, std::string>>& values);
+
 // A number and its unit: "25 MHz" -> {25, "MHz"}, "4" -> {4, ""}; nothing for a word.
 std::optional<std::pair<double, std::string>> split_quantity(const std::string& text);
 

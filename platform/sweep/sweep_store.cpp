@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 #include <sqlite3.h>
@@ -113,6 +114,17 @@ Json parse_object(const std::string& where, const char* column, const std::strin
     return j;
 }
 
+// SQLite takes a file shorter than its header for an empty database (and would write over
+// it): a file that has bytes must begin as an SQLite database does.
+void check_header(const std::string& file) {
+    std::ifstream in(file, std::ios::binary);
+    std::string head(16, '\0');
+    in.read(head.data(), 16);
+    const auto got = size_t(in.gcount());
+    if (got > 0 && head.compare(0, 16, std::string("SQLite format 3\0", 16)) != 0)
+        throw ConfigError(fmt::format("{}: not a sweep database, or a damaged one (not an SQLite file)", file));
+}
+
 }  // namespace
 
 SweepRow decode_sweep_row(const std::string& file, int64_t index, const std::string& id, const std::string& params, int64_t exit,
@@ -136,6 +148,7 @@ SweepRow decode_sweep_row(const std::string& file, int64_t index, const std::str
 }
 
 SweepStore::SweepStore(const std::string& file, int flags) : file_(file) {
+    check_header(file);
     if (sqlite3_open_v2(file.c_str(), &db_, flags, nullptr) != SQLITE_OK) {
         const std::string why = db_ ? sqlite3_errmsg(db_) : "out of memory";
         sqlite3_close(db_);

@@ -3,6 +3,7 @@
 // results of one whole run, a point that cannot run is recorded and the others go on.
 #include <filesystem>
 #include <functional>
+#include <map>
 #include <optional>
 #include <gtest/gtest.h>
 #include <libxml/parser.h>
@@ -509,6 +510,92 @@ TEST(Sweep, ADamagedDatabaseIsBadInputNamingTheFileAndThePoint) {
     refused("index a text", [&] { sql(db, "UPDATE points SET idx = 'one' WHERE id = 'plb2.width=64 bit'"); }, "point in row ");
     EXPECT_NE(surfvp("sweep " + file + " --out " + dir + "/out").err.find(" (plb2.width=64 bit): its idx is text, not an integer"),
               std::string::npos);
+}
+
+// Every file of a folder, by name, with its content.
+std::map<std::string, std::string> files_in(const std::string& dir) {
+    std::map<std::string, std::string> out;
+    for (const auto& e : fs::directory_iterator(dir)) out[e.path().filename().string()] = slurp(e.path().string());
+    return out;
+}
+
+// sweep-merge reads and checks everything before it writes: an empty, foreign, not-SQLite or
+// damaged database, a missing shard or no shard at all is refused (exit 2, naming the file and
+// the point), and the folder's sweep.db, results and plots are left as they were, with
+// nothing beside them.
+TEST(SweepMerge, RefusesWhatItCannotMergeAndLeavesTheFolderAsItWas) {
+    const std::string dir = fresh_dir("merge");
+    const std::string file = smoke_sweep(dir, kTinyAxes), out = dir + "/out";
+    for (const char* shard : {"1/2", "2/2"})
+        ASSERT_EQ(surfvp("sweep " + file + " --quiet --shard " + shard + " --out " + out).exit_code, 0) << shard;
+    ASSERT_EQ(surfvp("sweep-merge " + out).exit_code, 0);
+    const std::string shard1 = slurp(out + "/shard-1-of-2.db"), shard2 = slurp(out + "/shard-2-of-2.db");
+    // Another sweep's shard 2.
+    const std::string other = write_file(dir, "other.yaml", "scenario: base.yaml\nset: {smoke.copies: 2, surf.source: frame.png}\n"
+                                                            "axes:\n  plb2.width: [32 bit, 128 bit]\n");
+    ASSERT_EQ(surfvp("sweep " + other + " --quiet --shard 2/2 --out " + dir + "/other").exit_code, 0);
+
+    auto refused = [&](const std::string& what, const std::function<void()>& damage, const std::string& message,
+                       const std::string& args = "") {
+        write_file(out, "shard-1-of-2.db", shard1);
+        write_file(out, "shard-2-of-2.db", shard2);
+        damage();
+        const auto before = files_in(out);
+        const auto r = surfvp("sweep-merge " + out + args);
+        EXPECT_EQ(r.exit_code, 2) << what << ": " << r.err;
+        EXPECT_NE(r.err.find("surfvp: error: " + message), std::string::npos) << what << ": " << r.err;
+        EXPECT_EQ(files_in(out), before) << what;
+    };
+    const std::string s2 = out + "/shard-2-of-2.db";
+    refused("empty", [&] { write_file(out, "shard-2-of-2.db", ""); }, s2 + ": is empty: it holds no sweep");
+    refused("foreign", [&] { fs::copy_file(dir + "/other/shard-2-of-2.db", s2, fs::copy_options::overwrite_existing); },
+            s2 + ": is not of the sweep of " + out + "/sweep.db: axis plb2.width: values changed (32 bit, 64 bit; now 32 bit, 128 bit)");
+    refused("not SQLite", [&] { write_file(out, "shard-2-of-2.db", "shard\n"); }, s2 + ": not a sweep database, or a damaged one");
+    refused("damaged row", [&] { sql(s2, "UPDATE points SET figures = '{' WHERE idx = 1"); },
+            s2 + ": point 1 (plb2.width=64 bit): figures is not JSON");
+    refused("values not the id", [&] { sql(s2, "UPDATE points SET params = '{\"plb2.width\": \"16 bit\"}' WHERE idx = 1"); },
+            s2 + ": point 1 (plb2.width=64 bit): its values give another id (plb2.width=16 bit)");
+    refused("damaged axes", [&] { sql(s2, "UPDATE sweep SET value = '[\"../../x\"]' WHERE key = 'axes'"); },
+            s2 + ": its record of the sweep's axes is damaged");
+    refused("renamed", [&] { write_file(out, "shard-2-of-2.db", shard1); }, s2 + ": point 0 (plb2.width=32 bit) is not of shard 2 of 2");
+    refused("damaged sweep.db", [&] { write_file(out, "sweep.db.keep", slurp(out + "/sweep.db")); write_file(out, "sweep.db", "x"); },
+            out + "/sweep.db: not a sweep database, or a damaged one");
+    write_file(out, "sweep.db", slurp(out + "/sweep.db.keep"));
+    fs::remove(out + "/sweep.db.keep");
+    refused("missing", [&] { fs::remove(s2); }, out + ": a shard is missing (shard-2-of-2.db): their points would not be in the results; "
+                                                       "give --partial");
+    refused("no shards", [&] { fs::remove(s2); fs::remove(out + "/shard-1-of-2.db"); },
+            out + ": holds no shard databases (shard-K-of-N.db) to merge");
+
+    // A point a shard ran replaces the same point that sweep.db has as not run (a shard run
+    // again); a point no database ran makes the merge exit 1, named.
+    write_file(out, "shard-1-of-2.db", shard1);
+    write_file(out, "shard-2-of-2.db", shard2);
+    sql(out + "/sweep.db", "UPDATE points SET exit = 3, error = 'killed', figures = '{}' WHERE idx = 1");
+    const auto rerun = surfvp("sweep-merge " + out);
+    EXPECT_EQ(rerun.exit_code, 0) << rerun.err;
+    EXPECT_EQ(results(out)["points"][1]["status"], "passed");
+    for (const std::string& db : {out + "/sweep.db", s2}) sql(db, "UPDATE points SET exit = 3, error = 'killed' WHERE idx = 1");
+    const auto killed = surfvp("sweep-merge " + out);
+    EXPECT_EQ(killed.exit_code, 1) << killed.err;
+    EXPECT_NE(killed.err.find("1 points could not run: point 1 (plb2.width=64 bit, exit 3)"), std::string::npos) << killed.err;
+    EXPECT_EQ(results(out)["points"][1]["status"], "error");
+
+    // --partial merges the shards there are and says which are missing.
+    const std::string part = dir + "/part";
+    ASSERT_EQ(surfvp("sweep " + file + " --quiet --shard 1/3 --out " + part).exit_code, 0);
+    ASSERT_EQ(surfvp("sweep " + file + " --quiet --shard 3/3 --out " + part).exit_code, 0);  // no point of its own
+    const auto r = surfvp("sweep-merge " + part + " --partial");
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.err.find("2 shard databases, 1 new points, 1 in all; results in " + part +
+                         " (partial: shard-2-of-3.db missing, their points are not in the results)"),
+              std::string::npos) << r.err;
+    const Json j = results(part);
+    EXPECT_EQ(j["missing_shards"], Json::array({"shard-2-of-3.db"}));
+    ASSERT_EQ(j["points"].size(), 1u);
+    EXPECT_EQ(j["points"][0]["point"], 0);
+    for (const auto& e : fs::directory_iterator(part))  // the merged database went into place under its name
+        EXPECT_EQ(e.path().filename().string().find(".sweep.db"), std::string::npos) << e.path();
 }
 
 TEST(Sweep, BadShardOptionsAreBadInput) {
