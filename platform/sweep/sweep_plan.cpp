@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -44,6 +45,8 @@ std::string resolved(const std::string& file, const std::string& key, const std:
 
 std::pair<double, std::string> quantity(const std::string& text, const std::string& where) {
     const auto q = split_quantity(text);
+    if (!q && split_quantity(text, true))
+        throw ConfigError(fmt::format("{}: '{}' is out of range (not a finite number)", where, text));
     if (!q) throw ConfigError(fmt::format("{}: '{}' is not a number with an optional unit", where, text));
     return *q;
 }
@@ -231,11 +234,14 @@ std::string point_id(const std::vector<std::pair<std::string, std::string>>& val
     return id;
 }
 
-std::optional<std::pair<double, std::string>> split_quantity(const std::string& text) {
+std::optional<std::pair<double, std::string>> split_quantity(const std::string& text, bool any_magnitude) {
     static const std::regex form(R"(\s*([-+]?[0-9]*\.?[0-9]+(?:[eE][-+]?[0-9]+)?)\s*([A-Za-z]*)\s*)");
     std::smatch m;
     if (!std::regex_match(text, m, form)) return std::nullopt;
-    return std::make_pair(std::stod(m[1]), m[2].str());
+    // strtod, not stod: "1e400" is a number too large for a double, not an exception.
+    const double value = std::strtod(m[1].str().c_str(), nullptr);
+    if (!std::isfinite(value) && !any_magnitude) return std::nullopt;
+    return std::make_pair(value, m[2].str());
 }
 
 std::vector<std::string> expand_range(const std::string& from, const std::string& to, const std::string& step,

@@ -68,8 +68,9 @@ std::vector<std::string> sweep_changes(const std::string& before, const std::str
 // "(base)" for a sweep without axes.
 std::string point_id(const std::vector<std::pair<std::string, std::string>>& values);
 
-// A number and its unit: "25 MHz" -> {25, "MHz"}, "4" -> {4, ""}; nothing for a word.
-std::optional<std::pair<double, std::string>> split_quantity(const std::string& text);
+// A number and its unit: "25 MHz" -> {25, "MHz"}, "4" -> {4, ""}; nothing for a word, nor
+// for a number beyond a double's range ("1e400 MHz") unless `any_magnitude`.
+std::optional<std::pair<double, std::string>> split_quantity(const std::string& text, bool any_magnitude = false);
 
 // "50 MHz", "150 MHz", "25 MHz" -> 50 MHz, 75 MHz, ..., 150 MHz (the unit of `from`; `to` is
 // included when the steps land on it). Throws ConfigError (with `where`) for a step that is

@@ -61,6 +61,8 @@ TEST(SweepPlan, BadAxesAreNamedAtTheirLine) {
         {"  fhg.clock: {from: 50 MHz, to: 60 MHz, step: 0 MHz}\n", "step 0 MHz must be above zero"},
         {"  fhg.clock: {from: 50 MHz, to: 60 GHz, step: 5 MHz}\n", "must share one unit"},
         {"  fhg.clock: {from: 50 MHz, to: 60 MHz}\n", "'step' is missing"},
+        {"  fhg.clock: {from: 1e400 MHz, to: 60 MHz, step: 5 MHz}\n", "'1e400 MHz' is out of range (not a finite number)"},  // was exit 3
+        {"  fhg.clock: {from: 50 MHz, to: 60 MHz, step: fast}\n", "'fast' is not a number with an optional unit"},
         {"  surf.frames: [2, 4]\n", "axis surf.frames is also in set:"},
     };
     for (const auto& [axes, message] : cases) {
