@@ -497,6 +497,10 @@ TEST(Sweep, ADamagedDatabaseIsBadInputNamingTheFileAndThePoint) {
     refused("not SQLite", [&] { write_file(dir + "/out", "sweep.db", "name: not a database\n"); },
             "not a sweep database, or a damaged one");
     refused("cut short", [&] { write_file(dir + "/out", "sweep.db", good.substr(0, good.size() / 2)); }, "not a sweep database, or a damaged one");
+    refused("an index without a row", [&] {  // SQLite reads through it (found by tests/fuzz sweep_db)
+        fs::copy_file(std::string(SURFVP_SOURCE_DIR) + "/tests/fuzz/regressions/sweep_db/index_missing_a_row", db,
+                      fs::copy_options::overwrite_existing);
+    }, "not a sweep database, or a damaged one (integrity check: row 2 missing from index");
     refused("other tables", [&] { sql(db, "DROP TABLE points; CREATE TABLE points (a, b);"); },
             "is not a sweep database: its table points has the columns (a, b), not (idx, id, params, exit, error, figures, wall_s)");
     const std::string point1 = "point 1 (plb2.width=64 bit): ";
