@@ -237,6 +237,21 @@ std::vector<std::string> missing_shards(const std::vector<ShardFile>& shards) {
     return out;
 }
 
+// "shard 2 of 2 is missing (shard-2-of-2.db)", "shards 2, 4 of 4 are missing (...)": which K
+// of which N, and their files.
+std::string missing_text(const std::vector<std::string>& missing) {
+    static const std::regex form(R"(shard-([0-9]+)-of-([0-9]+)\.db)");
+    std::map<std::string, std::vector<std::string>> by_n;
+    for (const std::string& name : missing) {
+        std::smatch m;
+        std::regex_match(name, m, form);
+        by_n[m[2]].push_back(m[1]);
+    }
+    std::vector<std::string> parts;
+    for (const auto& [n, ks] : by_n) parts.push_back(fmt::format("{} {} of {}", ks.size() == 1 ? "shard" : "shards", fmt::join(ks, ", "), n));
+    return fmt::format("{} {} missing ({})", fmt::join(parts, " and "), missing.size() == 1 ? "is" : "are", fmt::join(missing, ", "));
+}
+
 // One database to merge, read whole and checked before anything is written: a sweep
 // database, not empty, of the sweep `fingerprint` (the reference's), each row undamaged, of
 // its own shard (a renamed file is not), and named by its own values.
@@ -375,10 +390,8 @@ int sweep_merge_command(const std::string& folder, bool partial) {
     if (shards.empty()) throw ConfigError(fmt::format("{}: holds no shard databases (shard-K-of-N.db) to merge", folder));
     const std::vector<std::string> missing = missing_shards(shards);
     if (!missing.empty() && !partial)
-        throw ConfigError(fmt::format("{}: {} missing ({}): their points would not be in the results; give --partial to merge "
-                                      "the others",
-                                      folder, missing.size() == 1 ? "a shard is" : fmt::format("{} shards are", missing.size()),
-                                      fmt::join(missing, ", ")));
+        throw ConfigError(fmt::format("{}: {}: their points would not be in the results; give --partial to merge the others",
+                                      folder, missing_text(missing)));
     // sweep.db, when there is one, is the sweep the shards must be of; else the first shard.
     const bool has_whole = fs::exists(whole, ec);
     const fs::path reference = has_whole ? whole : shards.front().path;
@@ -407,7 +420,7 @@ int sweep_merge_command(const std::string& folder, bool partial) {
     std::fprintf(stderr, "surfvp: %s: %zu shard databases, %zu new points, %zu in all; results in %s%s\n", store.meta("name").c_str(),
                  shards.size(), added, rows.size(), folder.c_str(),
                  missing.empty() ? ""
-                                 : fmt::format(" (partial: {} missing, their points are not in the results)", fmt::join(missing, ", "))
+                                 : fmt::format(" (partial: {}, their points are not in the results)", missing_text(missing))
                                        .c_str());
     std::vector<std::string> not_run;
     for (const SweepRow& r : rows)

@@ -568,8 +568,8 @@ TEST(SweepMerge, RefusesWhatItCannotMergeAndLeavesTheFolderAsItWas) {
             out + "/sweep.db: not a sweep database, or a damaged one");
     write_file(out, "sweep.db", slurp(out + "/sweep.db.keep"));
     fs::remove(out + "/sweep.db.keep");
-    refused("missing", [&] { fs::remove(s2); }, out + ": a shard is missing (shard-2-of-2.db): their points would not be in the results; "
-                                                       "give --partial");
+    refused("missing", [&] { fs::remove(s2); }, out + ": shard 2 of 2 is missing (shard-2-of-2.db): their points would not be in "
+                                                       "the results; give --partial");
     refused("no shards", [&] { fs::remove(s2); fs::remove(out + "/shard-1-of-2.db"); },
             out + ": holds no shard databases (shard-K-of-N.db) to merge");
 
@@ -594,7 +594,7 @@ TEST(SweepMerge, RefusesWhatItCannotMergeAndLeavesTheFolderAsItWas) {
     const auto r = surfvp("sweep-merge " + part + " --partial");
     EXPECT_EQ(r.exit_code, 0) << r.err;
     EXPECT_NE(r.err.find("2 shard databases, 1 new points, 1 in all; results in " + part +
-                         " (partial: shard-2-of-3.db missing, their points are not in the results)"),
+                         " (partial: shard 2 of 3 is missing (shard-2-of-3.db), their points are not in the results)"),
               std::string::npos) << r.err;
     const Json j = results(part);
     EXPECT_EQ(j["missing_shards"], Json::array({"shard-2-of-3.db"}));
