@@ -20,7 +20,7 @@ readonly SOURCE=tests/fuzz
 readonly SEED=${SURFVP_FUZZ_SEED:-1}
 # Executions per target: about 10-20 s each on the CI machine (2 cores).
 declare -A RUNS=([scenario]=14000 [units]=1000000 [registers]=20000 [register_bank]=150000
-                 [keypoint_file]=45000 [homography]=60000 [poses]=70000
+                 [keypoint_file]=45000 [homography]=60000 [poses]=70000 [sweep_file]=25000 [sweep_db]=150000
                  [compare_json]=100000 [precision_axis]=100000)
 # A cap, so that a much slower machine still ends; the summary says when it cut a target short.
 readonly CAP_SECONDS=120

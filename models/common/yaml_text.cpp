@@ -1,6 +1,8 @@
 #include "models/common/yaml_text.h"
 
 #include <algorithm>
+#include <sstream>
+#include <yaml-cpp/eventhandler.h>
 
 namespace surfvp {
 
@@ -50,6 +52,46 @@ std::size_t yaml_hang_line(const std::string& text) {
 
 namespace {
 
+// yaml-cpp's parse of `text` as events, counted. On text it would never finish it starts one
+// empty document after another without consuming a token (memory grows until it runs out):
+// the ','s yaml_hang_line finds, a ',' after a complete top-level node ('"a",', '[a],', found
+// by tests/fuzz sweep_file), and whatever else leads it there. A document, collection, scalar
+// or alias takes at least one byte of text, so ten events a byte is a bound no text that
+// yaml-cpp finishes reaches; past it, the parse is stopped where the repeating began.
+class EventBound : public YAML::EventHandler {
+public:
+    explicit EventBound(std::size_t limit) : limit_(limit) {}
+    void OnDocumentStart(const YAML::Mark& mark) override { tick(mark); }
+    void OnDocumentEnd() override { tick(mark_); }
+    void OnNull(const YAML::Mark& mark, YAML::anchor_t) override { tick(mark); }
+    void OnAlias(const YAML::Mark& mark, YAML::anchor_t) override { tick(mark); }
+    void OnScalar(const YAML::Mark& mark, const std::string&, YAML::anchor_t, const std::string&) override { tick(mark); }
+    void OnSequenceStart(const YAML::Mark& mark, const std::string&, YAML::anchor_t, YAML::EmitterStyle::value) override {
+        tick(mark);
+    }
+    void OnSequenceEnd() override { tick(mark_); }
+    void OnMapStart(const YAML::Mark& mark, const std::string&, YAML::anchor_t, YAML::EmitterStyle::value) override { tick(mark); }
+    void OnMapEnd() override { tick(mark_); }
+
+private:
+    void tick(const YAML::Mark& mark) {
+        mark_ = mark;
+        if (++events_ > limit_)
+            throw YAML::ParserException(mark, "yaml-cpp would never finish this text: it repeats an empty document here "
+                                              "without end (a ',' after a complete top-level node?)");
+    }
+    std::size_t limit_, events_ = 0;
+    YAML::Mark mark_;
+};
+
+void refuse_endless(const std::string& text) {
+    std::istringstream in(text);
+    YAML::Parser parser(in);
+    EventBound bound(10 * text.size() + 100);
+    while (parser.HandleNextDocument(bound)) {
+    }
+}
+
 void refuse_hang(const std::string& text) {
     if (const std::size_t nul = text.find('\0'); nul != std::string::npos) {  // yaml-cpp loops on one
         YAML::Mark mark;
@@ -61,6 +103,7 @@ void refuse_hang(const std::string& text) {
         mark.line = int(line - 1);
         throw YAML::ParserException(mark, "a ',' where a node begins (',' only separates the entries of [ ] or { })");
     }
+    refuse_endless(text);
 }
 
 }  // namespace

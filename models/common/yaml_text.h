@@ -1,5 +1,6 @@
 #pragma once
-// YAML text through yaml-cpp, with yaml-cpp 0.7's one known hang refused first.
+// YAML text through yaml-cpp, with yaml-cpp 0.7's known hangs refused first, and any other
+// text it would never finish parsing stopped (a count of its parse events: yaml_text.cpp).
 //
 // Debian 12's yaml-cpp 0.7.0 never returns (it builds nodes until memory runs out) on a ','
 // where a top-level node begins: as a document's first token (",", ",: a", "--- ,", a comment
@@ -16,7 +17,7 @@ namespace surfvp {
 // The 1-based line of the first ',' that would hang yaml-cpp, or 0 when there is none.
 std::size_t yaml_hang_line(const std::string& text);
 
-// YAML::LoadAll / YAML::Load after that check: a YAML::ParserException (with the line) for
+// YAML::LoadAll / YAML::Load after those checks: a YAML::ParserException (with the line) for
 // text that would hang, as for any other text yaml-cpp refuses.
 std::vector<YAML::Node> load_all_yaml(const std::string& text);
 YAML::Node load_yaml(const std::string& text);

@@ -102,9 +102,15 @@ int dispatch(int argc, char** argv) {
         ->type_name("N")
         ->check(CLI::Range(1u, 100000u));
     sweep->add_flag("--quiet,-q", sweep_options.quiet, "No progress or summary lines on stderr");
+    sweep->add_flag("--fresh", sweep_options.fresh,
+                    "Start over: discard the folder's sweep databases and results (another sweep's, or this one's) first");
+    sweep->add_flag("--keep-failed", sweep_options.keep_failed,
+                    "Keep the points that could not run (exit 2, 3, 4) as recorded instead of running them again");
     std::string merge_dir;
+    bool merge_partial = false;
     CLI::App* sweep_merge = app.add_subcommand("sweep-merge", "Merge a sweep folder's shard databases and write its results");
     sweep_merge->add_option("folder", merge_dir, "The sweep folder")->required();
+    sweep_merge->add_flag("--partial", merge_partial, "Merge although shards are missing (the results name them)");
     CompareOptions compare_options;
     CLI::App* compare = app.add_subcommand("compare", "Runs side by side: parameters that differ, every figure with its change, budgets");
     compare->add_option("runs", compare_options.sides, "Run folders or sweep points (SWEEP_DIR@N); the first is the reference")
@@ -167,7 +173,7 @@ int dispatch(int argc, char** argv) {
         if (*table2) return table2_command(table2_options);
         if (*correlate) return correlate_command(correlate_options);
         if (*precision) return precision_command(precision_options);
-        if (*sweep_merge) return sweep_merge_command(merge_dir);
+        if (*sweep_merge) return sweep_merge_command(merge_dir, merge_partial);
         if (app.got_subcommand("list")) return list_scenarios();
         if (app.got_subcommand("registers")) {
             std::fputs(registers_markdown(chip_registers()).c_str(), stdout);

@@ -17,7 +17,10 @@ std::string xml_escape(const std::string& text) {
             case '<': out += "&lt;"; break;
             case '>': out += "&gt;"; break;
             case '"': out += "&quot;"; break;
-            default: out += c;
+            // XML 1.0 has no way to write the other control characters, not even as &#1;: each
+            // becomes U+FFFD, so that a file name holding one still gives a well-formed page.
+            case '\t': case '\n': case '\r': out += c; break;
+            default: out += (unsigned char)c < 0x20 ? "\xEF\xBF\xBD" : std::string(1, c);
         }
     }
     return out;

@@ -22,27 +22,6 @@ std::string at(const std::string& path, const YAML::Node& node) {
     return fmt::format("{}:{}", path, node.Mark().line + 1);
 }
 
-// Well-formed UTF-8 (no overlong forms, surrogates or code points above U+10FFFF). YAML is
-// Unicode text, and config.yaml could not give back a value that is not: its writer replaces
-// each stray byte with U+FFFD, so such a value is refused here, where it can be named.
-bool is_utf8(std::string_view text) {
-    for (size_t i = 0; i < text.size();) {
-        const auto byte = [&](size_t k) { return k < text.size() ? uint8_t(text[k]) : uint8_t(0); };
-        const uint8_t lead = byte(i);
-        const size_t length = lead < 0x80 ? 1 : (lead >> 5) == 0x6 ? 2 : (lead >> 4) == 0xE ? 3 : (lead >> 3) == 0x1E ? 4 : 0;
-        if (length == 0) return false;
-        uint32_t code = length == 1 ? lead : lead & (0x7F >> length);
-        for (size_t k = 1; k < length; ++k) {
-            if ((byte(i + k) & 0xC0) != 0x80) return false;
-            code = code << 6 | (byte(i + k) & 0x3F);
-        }
-        const uint32_t least[] = {0, 0, 0x80, 0x800, 0x10000};
-        if (code < least[length] || code > 0x10FFFF || (code >= 0xD800 && code <= 0xDFFF)) return false;
-        i += length;
-    }
-    return true;
-}
-
 std::string scalar(const std::string& path, const std::string& key, const YAML::Node& node) {
     if (!node.IsScalar())
         throw ConfigError(fmt::format("{}: {}: expected a single value, found a {}", at(path, node), key,
@@ -74,18 +53,39 @@ void apply_section(Config& config, const std::string& path, const std::string& s
     }
 }
 
+}  // namespace
+
+// Well-formed UTF-8 (no overlong forms, surrogates or code points above U+10FFFF). YAML is
+// Unicode text, and config.yaml could not give back a value that is not: its writer replaces
+// each stray byte with U+FFFD, so such a value is refused here, where it can be named.
+bool is_utf8(std::string_view text) {
+    for (size_t i = 0; i < text.size();) {
+        const auto byte = [&](size_t k) { return k < text.size() ? uint8_t(text[k]) : uint8_t(0); };
+        const uint8_t lead = byte(i);
+        const size_t length = lead < 0x80 ? 1 : (lead >> 5) == 0x6 ? 2 : (lead >> 4) == 0xE ? 3 : (lead >> 3) == 0x1E ? 4 : 0;
+        if (length == 0) return false;
+        uint32_t code = length == 1 ? lead : lead & (0x7F >> length);
+        for (size_t k = 1; k < length; ++k) {
+            if ((byte(i + k) & 0xC0) != 0x80) return false;
+            code = code << 6 | (byte(i + k) & 0x3F);
+        }
+        const uint32_t least[] = {0, 0, 0x80, 0x800, 0x10000};
+        if (code < least[length] || code > 0x10FFFF || (code >= 0xD800 && code <= 0xDFFF)) return false;
+        i += length;
+    }
+    return true;
+}
+
 // The default output folder is traces/<name>: a name is one folder's name, so that no
-// scenario writes outside traces/.
-void check_name(const std::string& path, const YAML::Node& node, const std::string& name) {
+// scenario (nor sweep) writes outside traces/.
+void check_folder_name(const std::string& where, const std::string& name) {
     const bool plain = !name.empty() && name != "." && name != ".." &&
                        std::none_of(name.begin(), name.end(), [](unsigned char c) { return c == '/' || c == '\\' || c < ' '; });
     if (!plain)
         throw ConfigError(fmt::format("{}: name '{}' cannot name the output folder traces/<name>: it must not be empty, "
                                       "'.' or '..', nor hold '/', '\\' or control characters",
-                                      at(path, node), name));
+                                      where, name));
 }
-
-}  // namespace
 
 std::string relative_to_file(const std::string& file, const std::string& key, const std::string& value) {
     const ParamSpec* spec = find_parameter(key);
@@ -135,7 +135,7 @@ Config load_scenario(const std::string& path, const std::vector<std::string>& ov
                                           whole_section ? "section '" + key + "'" : "'" + key + "'", first->second));
         if (key == "name") {
             config.name = scalar(path, key, item.second);
-            check_name(path, item.second, config.name);
+            check_folder_name(at(path, item.second), config.name);
         } else if (key == "description") {
             config.description = scalar(path, key, item.second);
         } else if (key == "faults") {

@@ -4,6 +4,7 @@
 // applies `--set key=value` overrides after the file, so that a bad scenario is reported
 // (file, line, key, what is wrong) before anything runs or is written.
 #include <string>
+#include <string_view>
 #include <vector>
 #include <yaml-cpp/yaml.h>
 
@@ -20,6 +21,13 @@ YAML::Node load_yaml_file(const std::string& path, const std::string& what);
 // A path parameter's value (a text parameter: surf.source, eval.*) as given in `file`: relative
 // to that file's folder; any other value as it is.
 std::string relative_to_file(const std::string& file, const std::string& key, const std::string& value);
+// Well-formed UTF-8: what a YAML value must be for config.yaml (or a sweep's results.json) to
+// give it back.
+bool is_utf8(std::string_view text);
+// A scenario's or a sweep's name is its default output folder's (traces/<name>), so it must be
+// one folder's name: not empty, '.' or '..', without '/', '\' or control characters. Throws
+// ConfigError at `where` (FILE:LINE) otherwise.
+void check_folder_name(const std::string& where, const std::string& name);
 // `--set KEY=VALUE` overrides, applied in order (a key at most once); throws ConfigError.
 void apply_overrides(Config& config, const std::vector<std::string>& overrides);
 

@@ -17,6 +17,7 @@
 #include <string>
 #include <utility>
 #include <vector>
+#include <nlohmann/json.hpp>
 
 #include "platform/scenario/config.h"
 
@@ -41,17 +42,35 @@ struct SweepPlan {
     std::vector<SweepAxis> axes;
     bool zip = false;
     std::vector<SweepPoint> points;
-    std::string fingerprint;            // what the points' results rest on besides their values
+    // What the points' results rest on, whatever folder the sweep is run from and however its
+    // files are spelt: surfvp's version, the base scenario's text, the fixed sets and the axes
+    // (keys, values, how they combine). A path's value is its file's one absolute spelling.
+    nlohmann::ordered_json identity;
+    std::string fingerprint;            // identity as text: sweep.db's, to compare
 
     // The point's configuration: the base scenario with the fixed sets and its values.
     Config config(const SweepPoint& point) const;
 };
 
+// The most points a sweep may have: more are refused when the file is loaded, before any
+// point is made, naming each axis and its number of values.
+constexpr size_t kMaxSweepPoints = 100000;
+
 // Throws ConfigError naming the file and line.
 SweepPlan load_sweep(const std::string& path);
 
-// A number and its unit: "25 MHz" -> {25, "MHz"}, "4" -> {4, ""}; nothing for a word.
-std::optional<std::pair<double, std::string>> split_quantity(const std::string& text);
+// What differs between the sweep of fingerprint `before` and `now`, one phrase each: "base
+// scenario changed", "set changed (surf.frames: 3, now 5)", "axis fhg.clock: values changed
+// (...)", "axes added: ...", "combine changed (cartesian, now zip)". Empty when they are equal.
+std::vector<std::string> sweep_changes(const std::string& before, const std::string& now);
+
+// A point's id from its values in the axes' order: "fhg.clock=75 MHz, fhg.read_buses=4", or
+// "(base)" for a sweep without axes.
+std::string point_id(const std::vector<std::pair<std::string, std::string>>& values);
+
+// A number and its unit: "25 MHz" -> {25, "MHz"}, "4" -> {4, ""}; nothing for a word, nor
+// for a number beyond a double's range ("1e400 MHz") unless `any_magnitude`.
+std::optional<std::pair<double, std::string>> split_quantity(const std::string& text, bool any_magnitude = false);
 
 // "50 MHz", "150 MHz", "25 MHz" -> 50 MHz, 75 MHz, ..., 150 MHz (the unit of `from`; `to` is
 // included when the steps land on it). Throws ConfigError (with `where`) for a step that is

@@ -7,12 +7,15 @@
 #include <optional>
 #include <set>
 
+#include "platform/report/report_html.h"
 #include "platform/sweep/sweep_plan.h"
 
 namespace surfvp {
 namespace {
 
-// A frames/s chart: its frame, y ticks, x ticks the caller places, the budget dashed.
+// A frames/s chart: its frame, y ticks, x ticks the caller places, the budget dashed. Every
+// text it is given (the sweep's name, axis keys, values, point ids) is escaped here: a value
+// may hold '<', '&' or quotes, and the plot must stay well-formed SVG.
 class FpsChart {
 public:
     static constexpr double W = 640, H = 400, L = 64, R = 16, T = 36, B = 48;
@@ -32,7 +35,8 @@ public:
                            "<line x1=\"{2}\" y1=\"{6}\" x2=\"{2}\" y2=\"{4}\" stroke=\"black\"/>"
                            "<text x=\"{7}\" y=\"{8}\" text-anchor=\"middle\">{9}</text>"
                            "<text x=\"14\" y=\"{10}\" transform=\"rotate(-90 14 {10})\" text-anchor=\"middle\">frames/s</text>",
-                           W, H, L, title, H - B, W - R, T, (L + W - R) / 2, H - 10, x_label, (T + H - B) / 2);
+                           W, H, L, xml_escape(title), H - B, W - R, T, (L + W - R) / 2, H - 10, xml_escape(x_label),
+                           (T + H - B) / 2);
         for (int i = 0; i <= 4; ++i)
             svg_ += fmt::format("<text x=\"{}\" y=\"{:.1f}\" text-anchor=\"end\">{:.3g}</text>", L - 6, py(y1_ * i / 4) + 4, y1_ * i / 4);
         if (budget > 0)
@@ -43,23 +47,24 @@ public:
     double px(double x) const { return L + (x - x0_) / (x1_ - x0_) * (W - L - R); }
     double py(double y) const { return H - B - y / y1_ * (H - T - B); }
     void x_tick(double x, const std::string& label) {
-        svg_ += fmt::format("<text x=\"{:.1f}\" y=\"{}\" text-anchor=\"middle\">{}</text>", px(x), H - B + 16, label);
+        svg_ += fmt::format("<text x=\"{:.1f}\" y=\"{}\" text-anchor=\"middle\">{}</text>", px(x), H - B + 16, xml_escape(label));
     }
     void line(const std::vector<std::pair<double, double>>& points, const std::string& stroke, const std::string& title) {
         std::string p;
         for (const auto& [x, y] : points) p += fmt::format("{:.1f},{:.1f} ", px(x), py(y));
-        svg_ += fmt::format("<polyline points=\"{}\" fill=\"none\" stroke=\"{}\"><title>{}</title></polyline>", p, stroke, title);
+        svg_ += fmt::format("<polyline points=\"{}\" fill=\"none\" stroke=\"{}\"><title>{}</title></polyline>", p, stroke,
+                            xml_escape(title));
     }
     void label(double x, double y, const std::string& text) {
         svg_ += fmt::format("<text x=\"{:.1f}\" y=\"{:.1f}\" text-anchor=\"end\" font-size=\"10\" fill=\"#466\">{}</text>", px(x) - 8,
-                            py(y) - 6, text);
+                            py(y) - 6, xml_escape(text));
     }
     // A point of the sweep; filled when it is on the Pareto front.
     void point(double x, const SweepRow& r, bool on_front) {
         const double fps = r.figures.value("fps", 0.0);
         svg_ += fmt::format("<circle cx=\"{:.1f}\" cy=\"{:.1f}\" r=\"4\" stroke=\"#1b3a5c\" fill=\"{}\"><title>{}: {:.3g} frames/s{}"
                             "</title></circle>",
-                            px(x), py(fps), on_front ? "#1b3a5c" : "white", r.id, fps, on_front ? " (Pareto front)" : "");
+                            px(x), py(fps), on_front ? "#1b3a5c" : "white", xml_escape(r.id), fps, on_front ? " (Pareto front)" : "");
     }
     std::string finish() {
         return svg_ + fmt::format("<text x=\"{}\" y=\"{}\" fill=\"#1b3a5c\">filled: on the Pareto front</text></svg>", L + 8,

@@ -40,7 +40,8 @@ std::string as_text(const Json& v) {
     return v.dump();
 }
 
-const char* status_of(const SweepRow& r) { return r.error.empty() ? (r.exit == 0 ? "passed" : "failed") : "error"; }
+// A point that failed a check ran: its row is a result. "error" is a point that could not run.
+const char* status_of(const SweepRow& r) { return !point_ran(r.exit) ? "error" : r.exit == 0 ? "passed" : "failed"; }
 
 }  // namespace
 
@@ -117,7 +118,8 @@ std::vector<bool> pareto_front(const std::vector<SweepRow>& rows, const std::vec
 }
 
 std::vector<std::string> write_sweep_results(const std::string& dir, const std::string& name,
-                                             const std::vector<std::string>& axes, const std::vector<SweepRow>& rows) {
+                                             const std::vector<std::string>& axes, const std::vector<SweepRow>& rows,
+                                             const Json& notes) {
     const std::vector<Objective> objectives = pareto_objectives(rows);
     const std::vector<bool> front = pareto_front(rows, objectives);
     const std::vector<std::string> columns = figure_columns(rows);
@@ -143,7 +145,10 @@ std::vector<std::string> write_sweep_results(const std::string& dir, const std::
     }
     Json objectives_json = Json::array();
     for (const Objective& o : objectives) objectives_json.push_back({{"figure", o.figure}, {"better", o.higher_is_better ? "higher" : "lower"}});
-    const Json results = {{"sweep", name}, {"axes", axes}, {"pareto_objectives", objectives_json}, {"points", points}};
+    Json results = {{"sweep", name}, {"axes", axes}};
+    for (const auto& [key, value] : notes.items()) results[key] = value;
+    results["pareto_objectives"] = objectives_json;
+    results["points"] = points;
     std::vector<std::string> written{"results.csv", "results.json"};
     write_file_atomically((fs::path(dir) / "results.csv").string(), csv);
     write_file_atomically((fs::path(dir) / "results.json").string(), results.dump(2) + "\n");

@@ -25,8 +25,10 @@ std::vector<Objective> pareto_objectives(const std::vector<SweepRow>& rows);
 std::vector<bool> pareto_front(const std::vector<SweepRow>& rows, const std::vector<Objective>& objectives);
 
 // results.csv, results.json and plot_<axis>.svg (one per axis) into `dir`; `axes` in the
-// sweep's order. Returns the files written.
+// sweep's order; `notes` go into results.json as they are (a partial merge's missing shards).
+// Returns the files written.
 std::vector<std::string> write_sweep_results(const std::string& dir, const std::string& name,
-                                             const std::vector<std::string>& axes, const std::vector<SweepRow>& rows);
+                                             const std::vector<std::string>& axes, const std::vector<SweepRow>& rows,
+                                             const nlohmann::ordered_json& notes = nlohmann::ordered_json::object());
 
 }  // namespace surfvp

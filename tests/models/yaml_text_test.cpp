@@ -50,5 +50,24 @@ TEST(YamlText, ANulByteIsRefusedAtItsLine) {
     }
 }
 
+// yaml-cpp 0.7 also never returns on a ',' after a complete top-level node, which the ','
+// check above does not see (found by the sweep_file fuzzer: '"a21...",eP:'): its parse is
+// stopped by the count of its events, at the line where it began repeating.
+TEST(YamlText, TextYamlCppWouldNeverFinishIsStoppedAtItsLine) {
+    for (const std::string text : {"\"a\",", "'a' ,b", "[a],", "{a: 1},", "- x\n\"a\",", "&x \"a\",", "---\n\"a\" ,"}) {
+        try {
+            load_all_yaml(text);
+            ADD_FAILURE() << "handed to yaml-cpp: " << text;
+        } catch (const YAML::ParserException& e) {
+            EXPECT_NE(e.msg.find("yaml-cpp would never finish this text"), std::string::npos) << text << ": " << e.msg;
+            EXPECT_EQ(e.mark.line, std::count(text.begin(), text.end(), '\n')) << text;
+        }
+    }
+    // Text with many events for its length is still parsed.
+    EXPECT_EQ(load_all_yaml("[[[[[[[[]]]]]]]]\n").size(), 1u);
+    EXPECT_EQ(load_yaml("{? , ? , a: [&x b, *x, ~, {:}]}").size(), 3u);
+    EXPECT_THROW(load_yaml("k: \"a\",b"), YAML::ParserException);  // yaml-cpp's own refusal: "end of map not found"
+}
+
 }  // namespace
 }  // namespace surfvp
