@@ -199,6 +199,9 @@ void OutputFolder::lock() {
                                     previous.empty() ? "?" : previous));
     };
     if (::flock(lock_, LOCK_EX | LOCK_NB) != 0) busy();
+    if (!foreign && !previous.empty())  // a run that ends empties its lock: this one's was killed
+        std::fprintf(stderr, "surfvp: warning: --out %s: took over the stale lock of a run that did not finish (pid %s, %s)\n",
+                     folder_.c_str(), previous.c_str(), alive(previous) ? "no longer holding it" : "no longer running");
     if (foreign) {
         std::fprintf(stderr, "surfvp: warning: --out %s: took over the stale lock of another user's run (pid %s, %s)\n",
                      folder_.c_str(), previous.empty() ? "?" : previous.c_str(), alive(previous) ? "no longer holding it" : "no longer running");
@@ -215,6 +218,7 @@ void OutputFolder::lock() {
 OutputFolder::~OutputFolder() {
     std::error_code ignored;
     if (!published_) fs::remove_all(staging_, ignored);
+    [[maybe_unused]] const int emptied = ::ftruncate(lock_, 0);  // finished: nothing stale (another user's stays)
     ::close(lock_);  // releases the lock
 }
 

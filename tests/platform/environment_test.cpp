@@ -131,8 +131,12 @@ TEST(Environment, AFailedOrKilledRunLeavesTheEarlierOutputIntact) {
     std::system(("(" + run + " 2>/dev/null & pid=$!; while [ $(ls " + out + "/.surfvp-runs | wc -l) -lt 2 ]; do sleep 0.05; done;"
                  " sleep 0.3; kill -9 $pid; wait $pid) 2>/dev/null").c_str());
     EXPECT_EQ(slurp(out + "/report.json"), before);
-    ASSERT_EQ(surfvp("run " + kBudget + " --quiet --trace none --out " + out + kShort).exit_code, 0);
+    const auto next = surfvp("run " + kBudget + " --quiet --trace none --out " + out + kShort);
+    ASSERT_EQ(next.exit_code, 0);
+    EXPECT_NE(next.err.find("took over the stale lock of a run that did not finish (pid "), std::string::npos) << next.err;
     EXPECT_EQ(std::distance(fs::directory_iterator(out + "/.surfvp-runs"), fs::directory_iterator()), 1);
+    // A run that finished leaves nothing stale: the one after it says nothing.
+    EXPECT_EQ(surfvp("run " + kBudget + " --quiet --trace none --out " + out + kShort).err, "");
 }
 
 size_t surf_files(const std::string& dir) {
