@@ -31,6 +31,7 @@ using Json = nlohmann::ordered_json;
         case SQLITE_RANGE:
         case SQLITE_CONSTRAINT:
         case SQLITE_TOOBIG:
+        case SQLITE_NOMEM:  // a damaged file can declare a size SQLite will not allocate (found by fuzzing)
             throw ConfigError(fmt::format("{}: not a sweep database, or a damaged one ({}: {})", file, what, why));
         default:
             throw EnvironmentError(fmt::format("{}: sqlite {}: {}", file, what, why));
