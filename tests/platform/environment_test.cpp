@@ -196,6 +196,14 @@ TEST(Environment, AnotherUsersStaleLockIsTakenOverWithAWarning) {
     if (::geteuid() != 0) GTEST_SKIP() << "acting as another user needs root";
     const std::string shared = fresh_dir("shared");
     fs::permissions(shared, fs::perms::all);
+    // The other user may not reach the build (a clone under /root): the binary and the scenario
+    // are copied where it can.
+    const std::string binary = shared + "/surfvp", scenario = shared + "/smoke.yaml";
+    fs::copy_file(SURFVP_BINARY, binary);
+    fs::copy_file(std::string(SURFVP_SOURCE_DIR) + "/scenarios/smoke.yaml", scenario);
+    fs::permissions(binary, fs::perms::owner_all | fs::perms::group_read | fs::perms::group_exec | fs::perms::others_read |
+                                fs::perms::others_exec);
+    fs::permissions(scenario, fs::perms::owner_read | fs::perms::owner_write | fs::perms::group_read | fs::perms::others_read);
     for (const char* kind : {"plain", "sticky"}) {
         const std::string out = shared + "/" + kind;
         fs::create_directory(out);
@@ -203,7 +211,7 @@ TEST(Environment, AnotherUsersStaleLockIsTakenOverWithAWarning) {
         write_file(out, ".surfvp.lock", "999999\n");  // root's, 0644, no process holds it
         const std::string err = fresh_path(std::string(kind) + ".err");
         const int status = std::system(("SURFVP_CACHE=off setpriv --reuid=65534 --regid=65534 --clear-groups " +
-                                        std::string(SURFVP_BINARY) + " run smoke -q --out " + out + " 2>" + err).c_str());
+                                        binary + " run " + scenario + " -q --out " + out + " 2>" + err).c_str());
         EXPECT_EQ(WIFEXITED(status) ? WEXITSTATUS(status) : -1, 0) << kind << ": " << slurp(err);
         EXPECT_NE(slurp(err).find("took over the stale lock of another user's run (pid 999999, no longer running)"),
                   std::string::npos) << kind << ": " << slurp(err);
