@@ -9,7 +9,6 @@
 #include <fmt/ranges.h>
 #include <fstream>
 #include <regex>
-#include <sstream>
 #include <csignal>
 #include <sys/file.h>
 #include <sys/stat.h>
@@ -93,16 +92,14 @@ std::string first_line(const fs::path& file) {
     return line.substr(0, 32);
 }
 
-// Every regular file under `dir` but its list, relative to it, one a line.
-std::string list_of_files(const fs::path& dir) {
+// Every regular file under `dir` but its list, relative to it.
+std::set<std::string> files_of(const fs::path& dir) {
     std::set<std::string> files;
     std::error_code error;
     for (auto it = fs::recursive_directory_iterator(dir, error); !error && it != fs::recursive_directory_iterator(); it.increment(error))
         if (type_of(it->path()) == fs::file_type::regular && it->path().filename() != kRunList)
             files.insert(it->path().lexically_relative(dir).string());
-    std::string text;
-    for (const std::string& f : files) text += f + "\n";
-    return text;
+    return files;
 }
 
 // Removes a run folder that is not the current one, unless someone put files into it through
@@ -115,8 +112,7 @@ void remove_run(const fs::path& run) {
         std::set<std::string> ours;
         for (size_t at = 0, end; (end = listed.find('\n', at)) != std::string::npos; at = end + 1) ours.insert(listed.substr(at, end - at));
         std::vector<std::string> theirs;
-        std::istringstream now(list_of_files(run));
-        for (std::string f; std::getline(now, f);)
+        for (const std::string& f : files_of(run))
             if (!ours.count(f)) theirs.push_back(f);
         if (!theirs.empty()) {
             std::fprintf(stderr, "surfvp: warning: kept %s: it holds files surfvp did not write (%s)\n", run.c_str(),
@@ -231,7 +227,9 @@ void OutputFolder::publish() {
          it.increment(error))
         if (it->path().extension() == ".gtkw") name_published_files(it->path());
     if (error) refuse(folder_, fmt::format("cannot read {}: {}", staging_.string(), error.message()));
-    write_file_atomically(staging_ / kRunList, list_of_files(staging_));
+    std::string list;
+    for (const std::string& f : files_of(staging_)) list += f + "\n";
+    write_file_atomically(staging_ / kRunList, list);
     link_outputs(names);
     switch_current();
     published_ = true;
