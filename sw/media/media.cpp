@@ -59,13 +59,15 @@ std::string elf_problem(const fs::path& path) {
     if (!in.read(reinterpret_cast<char*>(&header), sizeof header) || std::memcmp(header.e_ident, ELFMAG, SELFMAG) != 0 ||
         header.e_ident[EI_CLASS] != ELFCLASS64 || header.e_phentsize != sizeof(Elf64_Phdr))
         return "not a 64-bit ELF shared object";
-    if (header.e_phoff + uintmax_t(header.e_phnum) * sizeof(Elf64_Phdr) > size) return "cut short (program headers)";
-    if (header.e_shoff + uintmax_t(header.e_shnum) * header.e_shentsize > size) return "cut short (section headers)";
+    // Each bound as `offset > size - length`: a hostile offset near 2^64 must not wrap past the check.
+    const auto beyond = [size](uint64_t offset, uint64_t length) { return length > size || offset > size - length; };
+    if (beyond(header.e_phoff, uintmax_t(header.e_phnum) * sizeof(Elf64_Phdr))) return "cut short (program headers)";
+    if (beyond(header.e_shoff, uintmax_t(header.e_shnum) * header.e_shentsize)) return "cut short (section headers)";
     in.seekg(std::streamoff(header.e_phoff));
     for (unsigned i = 0; i < header.e_phnum; ++i) {
         Elf64_Phdr segment{};
         if (!in.read(reinterpret_cast<char*>(&segment), sizeof segment)) return "cut short (program headers)";
-        if (segment.p_type == PT_LOAD && segment.p_offset + segment.p_filesz > size)
+        if (segment.p_type == PT_LOAD && beyond(segment.p_offset, segment.p_filesz))
             return fmt::format("cut short: segment {} ends at byte {}, the file at {}", i, segment.p_offset + segment.p_filesz, size);
     }
     return "";
