@@ -168,6 +168,8 @@ OutputFolder::OutputFolder(const fs::path& folder) : folder_(folder) {
         if ((name.rfind(kLegacyStagingPrefix, 0) == 0 && type == fs::file_type::directory) ||  // an older surfvp's killed run
             ((name.rfind(".surfvp-link-", 0) == 0 || name.rfind(".surfvp-current-", 0) == 0) && type == fs::file_type::symlink))
             fs::remove_all(entry.path(), error);  // a killed run's link not yet in place
+        else if (!output_of_link(entry.path()).empty() && !fs::exists(entry.path(), error))
+            fs::remove(entry.path(), error);  // killed between its links and their switch
     }
     const auto now = std::chrono::system_clock::now().time_since_epoch();
     staging_ = runs / fmt::format("{}-{}", ::getpid(), std::chrono::duration_cast<std::chrono::microseconds>(now).count());

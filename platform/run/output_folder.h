@@ -5,9 +5,12 @@
 // (.surfvp-runs/<pid>), and publishes it by renaming one symbolic link: .surfvp-current names
 // the run folder whose files are the outputs, and each output's name in the folder is a link
 // through it (report.json -> .surfvp-current/report.json). Switching .surfvp-current changes
-// every output at once; a name the new run did not write then leads nowhere until its link is
-// removed a moment later. A run that fails or is killed leaves the previous set as it was; its
-// run folder is removed by the next run that takes the lock.
+// every output at once. A name only one of the two runs wrote leads nowhere for a moment
+// around the switch (before it, the new run's link; after it, the old run's until removed):
+// a kill in that moment leaves such a dangling link, which reads as no file, and the next run
+// that takes the lock removes it. Every name that resolves is one run's. A run that fails or
+// is killed leaves the previous set as it was; its run folder is removed by the next run that
+// takes the lock.
 //
 // Nothing the folder holds is trusted: surfvp removes only links of exactly that form, its
 // own run folders and, once, the files an older surfvp wrote under its fixed names. Files
