@@ -7,7 +7,7 @@
 #include <vector>
 #include <systemc>
 
-#include "platform/scenario/config.h"
+#include "platform/scenario/block_params.h"
 #include "models/common/statistics.h"
 #include "models/common/tracer.h"
 #include "models/dma/dma.h"
@@ -22,25 +22,9 @@
 
 namespace surfvp {
 
-// The IP blocks' parameters from a configuration (also used by `surfvp seqgen`).
-Iig::Params iig_params(const Config& config);
-Fhg::Params fhg_params(const Config& config);
-
 // The register tables of the chip's blocks with their place in the address map, for
 // docs/registers.md (`surfvp registers`).
 std::vector<MappedRegisters> chip_registers();
-
-// Line fills on the CPU's memory path with nothing else on it, by the models' own formulas
-// (direct mode charges these): one fill (the MCI link, or PLB1, and the DDR's read), how far
-// apart the path takes fills in flight together, how much sooner the missed word comes than
-// the whole line, and how many fills may be in flight.
-struct FillTiming {
-    sc_core::sc_time fill, spacing, critical_word_lead;
-    unsigned outstanding = 1;
-    // The CPU's wait for a burst of n fills asked at once (Ppc440::compute's rule).
-    sc_core::sc_time burst_stall(size_t n) const;
-};
-FillTiming uncontended_fills(const Config& config);
 
 class Soc {
 public:

@@ -1,6 +1,6 @@
 #include "tracer.h"
 
-#include "atomic_file.h"
+#include "models/host/atomic_file.h"
 
 #include <algorithm>
 #include <cstdio>

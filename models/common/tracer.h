@@ -21,9 +21,9 @@
 #include <utility>
 #include <vector>
 
-#include "gtkwave_save.h"
+#include "models/host/gtkwave_save.h"
 #include "vcd_writer.h"
-#include "worker.h"
+#include "models/host/worker.h"
 
 namespace surfvp {
 

@@ -1,6 +1,6 @@
 #include "vcd_writer.h"
 
-#include "atomic_file.h"
+#include "models/host/atomic_file.h"
 
 #include <algorithm>
 #include <ctime>

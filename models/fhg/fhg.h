@@ -29,7 +29,7 @@
 #include "models/common/parameter.h"
 #include "models/common/register_target.h"
 #include "models/common/tracer.h"
-#include "models/common/worker.h"
+#include "models/host/worker.h"
 #include "models/common/zeroed_memory.h"
 #include "models/common/units.h"
 #include "models/pixelbus/pixel_bus.h"

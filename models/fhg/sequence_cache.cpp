@@ -7,7 +7,7 @@
 #include <tuple>
 #include <sstream>
 
-#include "models/common/disk_cache.h"
+#include "models/host/disk_cache.h"
 
 #ifndef SURFVP_SEQUENCE_FINGERPRINT
 #error "the build defines SURFVP_SEQUENCE_FINGERPRINT (models/CMakeLists.txt)"

@@ -8,7 +8,7 @@
 // the key it was made for: every SequenceParams field and a fingerprint of the generator's
 // source (taken by the build), so a changed generator never reads an old sequence. Files are
 // written whole under a temporary name and renamed into place, so concurrent runs share the
-// folder safely; a file that is not a sound cache entry (models/common/disk_cache.h: its
+// folder safely; a file that is not a sound cache entry (models/host/disk_cache.h: its
 // size and checksum, a regular file) or does not read back as its key is made again. A
 // folder that cannot be written costs only the time: the sequence is generated as before.
 #include <filesystem>

@@ -7,13 +7,14 @@
 #include <string>
 #include <systemc>
 
-#include "models/common/atomic_file.h"
+#include "models/host/atomic_file.h"
 #include "models/common/zeroed_memory.h"
 #include "platform/tools/bench.h"
 #include "platform/tools/calibrate.h"
 #include "platform/scenario/config.h"
 #include "platform/scenario/parameters.h"
 #include "platform/quality/quality_commands.h"
+#include "platform/cli/run_command.h"
 #include "platform/run/run.h"
 #include "platform/scenario/scenario.h"
 #include "platform/compare/compare.h"

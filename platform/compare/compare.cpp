@@ -8,10 +8,10 @@
 #include <set>
 #include <sstream>
 
-#include "models/common/atomic_file.h"
+#include "models/host/atomic_file.h"
 #include "platform/compare/run_figures.h"
 #include "platform/run/run.h"
-#include "platform/scenario/json_input.h"
+#include "platform/report/json_input.h"
 #include "platform/scenario/parameters.h"
 #include "platform/scenario/scenario.h"
 #include "platform/sweep/sweep_results.h"

@@ -3,7 +3,7 @@
 #include <set>
 #include <string>
 
-#include "platform/scenario/json_input.h"
+#include "platform/report/json_input.h"
 
 namespace surfvp {
 using Json = nlohmann::ordered_json;

@@ -8,17 +8,17 @@
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 
-#include "models/common/atomic_file.h"
+#include "models/host/atomic_file.h"
 #include "models/fhg/sequence_cache.h"
-#include "platform/cli/progress_line.h"
-#include "platform/correlation/correlation.h"
+#include "platform/run/progress_line.h"
+#include "platform/report/correlation.h"
 #include "platform/cost/fpga_resources.h"
 #include "platform/run/output_folder.h"
 #include "platform/run/run.h"
 #include "platform/scenario/parameters.h"
 #include "platform/scenario/scenario.h"
-#include "platform/soc.h"
-#include "platform/sweep/resimulation.h"
+#include "platform/scenario/block_params.h"
+#include "platform/run/resimulation.h"
 
 namespace surfvp {
 namespace {

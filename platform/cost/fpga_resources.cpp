@@ -7,7 +7,7 @@
 #include "models/fhg/fhg.h"
 #include "models/fhg/fhg_regs.h"
 #include "models/fhg/sequence_cache.h"
-#include "platform/soc.h"
+#include "platform/scenario/block_params.h"
 
 namespace surfvp {
 namespace {

@@ -13,7 +13,7 @@
 #include "models/iig/iig_regs.h"
 #include "models/iig/integral_core.h"
 #include "models/intc/intc_regs.h"
-#include "platform/soc.h"
+#include "platform/scenario/block_params.h"
 
 namespace surfvp {
 namespace f = fhg_regs;

@@ -21,9 +21,9 @@
 #include <vector>
 
 #include "platform/scenario/config.h"
-#include "platform/soc.h"
+#include "platform/scenario/block_params.h"
 #include "models/common/hal.h"
-#include "models/common/worker.h"
+#include "models/host/worker.h"
 #include "models/common/zeroed_memory.h"
 #include "models/fhg/local_max_finder.h"
 #include "models/fhg/fhg_registers.h"

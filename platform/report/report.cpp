@@ -6,7 +6,7 @@
 #include <fstream>
 #include <stdexcept>
 
-#include "platform/correlation/correlation.h"
+#include "platform/report/correlation.h"
 #include "platform/report/statistics_json.h"
 
 namespace surfvp {

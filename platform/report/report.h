@@ -5,7 +5,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "models/common/atomic_file.h"
+#include "models/host/atomic_file.h"
 
 namespace surfvp {
 

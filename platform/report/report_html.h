@@ -7,13 +7,11 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "models/host/xml_text.h"
+
 namespace surfvp {
 
 // `first_frame_svg`: the workload's picture of its first frame (an <svg> element), or "".
 std::string report_html(const nlohmann::ordered_json& report, const std::string& first_frame_svg);
-
-// Text made safe for XML character data and attribute values (a control character XML cannot
-// hold becomes U+FFFD).
-std::string xml_escape(const std::string& text);
 
 }  // namespace surfvp

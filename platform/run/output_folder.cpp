@@ -14,7 +14,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include "models/common/atomic_file.h"
+#include "models/host/atomic_file.h"
 #include "platform/scenario/config.h"
 
 namespace surfvp {

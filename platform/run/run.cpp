@@ -1,9 +1,7 @@
 #include "platform/run/run.h"
 
-#include "platform/compare/compare.h"
-#include "platform/cost/fpga_resources.h"
 #include "platform/cost/power.h"
-#include "platform/correlation/correlation.h"
+#include "platform/report/correlation.h"
 
 #include <cctype>
 #include <chrono>
@@ -14,21 +12,18 @@
 #include <filesystem>
 #include <fstream>
 #include <fmt/format.h>
-#include <opencv2/core/utility.hpp>
 
 #include "models/common/zeroed_memory.h"
 #include "models/fhg/hessian_core.h"
 #include "models/fhg/sequence_cache.h"
 #include "platform/direct/direct_chip.h"
 #include "platform/workload/frame_limits.h"
-#include "platform/cli/progress_line.h"
-#include "platform/run/output_folder.h"
+#include "platform/run/progress_line.h"
 #include "platform/run/sanitizer_stacks.h"
-#include "platform/verdict/verdict.h"
 #include "platform/report/report.h"
 #include "platform/report/report_html.h"
 #include "platform/report/statistics_json.h"
-#include "platform/tools/seqgen.h"
+#include "platform/report/schedule_figures.h"
 #include "platform/scenario/consistency.h"
 #include "platform/scenario/scenario.h"
 #include "platform/soc.h"
@@ -62,11 +57,15 @@ double since(WallClock::time_point start) {
     return std::chrono::duration<double>(WallClock::now() - start).count();
 }
 
+}  // namespace
+
 Tracer::Options trace_options(const std::string& mode, const std::string& dir) {
     if (mode != "none" && mode != "vcd" && mode != "perfetto" && mode != "all")
         throw ConfigError(fmt::format("--trace {}: expected none, vcd, perfetto or all", mode));
     return {mode == "vcd" || mode == "all", mode == "perfetto" || mode == "all", dir};
 }
+
+namespace {
 
 struct Outcome {
     sc_core::sc_time sim_time;
@@ -152,22 +151,6 @@ nlohmann::ordered_json build_report(const Config& config, Soc& soc, const Outcom
     return r;
 }
 
-fs::path output_path(const RunOptions& options, const Config& config) {
-    return options.out.empty() ? fs::path("traces") / config.name : fs::path(options.out);
-}
-
-// The summary line, from the report as it was published.
-void print_summary(const Config& config, const fs::path& dir, bool direct) {
-    const auto r = nlohmann::json::parse(std::ifstream(dir / "report.json"));
-    const char* verdict = r["passed"].get<bool>() ? "passed" : "FAILED";
-    if (direct) {
-        std::fprintf(stderr, "surfvp: %s (direct): %s; report in %s\n", config.name.c_str(), verdict, (dir / "report.json").c_str());
-        return;
-    }
-    std::fprintf(stderr, "surfvp: %s: %s in %.3f ms simulated (%.3f s wall); report in %s\n", config.name.c_str(), verdict,
-                 r["sim_time_s"].get<double>() * 1e3, r["wall_time_s"].get<double>(), (dir / "report.md").c_str());
-}
-
 // config.yaml: the parameters as given, and what the run used in place of one (the threshold
 // surf.target_keypoints calibrated, or libSSA2's keypoint-count control chose per frame).
 Config config_as_run(const Config& config, const nlohmann::ordered_json& report) {
@@ -195,14 +178,6 @@ std::string with_origins(const Config& config, const std::string& message) {
         if (named) origins.push_back(fmt::format("{} = {} from {}", key, e.value, config.source_of(key)));
     }
     return origins.empty() ? message : fmt::format("{} ({})", message, fmt::join(origins, "; "));
-}
-
-void print_warnings(const Config& config) {
-    for (const std::string& w : scenario_warnings(config)) std::fprintf(stderr, "surfvp: warning: %s\n", w.c_str());
-    const FpgaResources fpga = fpga_resources(config);
-    if (!fpga.fits())
-        std::fprintf(stderr, "surfvp: warning: the configuration does not fit the %s: %s (docs/resources.md)\n",
-                     fpga.device.c_str(), fmt::format("{}", fmt::join(fpga.over, "; ")).c_str());
 }
 
 }  // namespace
@@ -312,52 +287,6 @@ void check_scenario(const Config& config) {
     } catch (const std::invalid_argument& e) {
         throw ConfigError(with_origins(config, e.what()));
     }
-}
-
-int run_scenario(const RunOptions& options) {
-    // The run's threads are its own (run.parallel): OpenCV's pool, which its first resize would
-    // start (~1 ms), would only compete with them.
-    cv::setNumThreads(0);
-    const Config config = load_scenario(resolve_scenario(options.scenario), options.sets);
-    trace_options(options.trace, "");  // a bad --trace is bad input before anything is written
-    if (options.direct && !config.faults.empty())
-        throw ConfigError(fmt::format("{}: faults: --direct has no time, buses or interrupts to inject them into; "
-                                      "run without --direct", config.faults.front().origin));
-    check_scenario(config);
-    if (!options.compare_to.empty()) check_side(options.compare_to);
-    print_warnings(config);
-    OutputFolder out(output_path(options, config));
-    const std::string staging = out.staging().string();
-    int code = kExitOk;
-    try {
-        if (options.direct) code = run_direct(config, staging);
-        else if (verdict_requested(config)) code = run_with_verdict(config, staging, options.trace, options.quiet);
-        else code = write_run(config, staging, simulate_scenario(config, staging, options.trace, options.quiet));
-        if (!options.compare_to.empty()) write_comparison(options.compare_to, staging, out.folder().string());
-        out.publish();
-    } catch (const EnvironmentError& e) {
-        throw EnvironmentError(fmt::format("{}; what was in {} before this run is as it was", out.as_published(e.what()),
-                                           out.folder().string()));
-    }
-    if (!options.quiet) print_summary(config, out.folder(), options.direct);
-    return code;
-}
-
-int validate_scenario(const RunOptions& options) {
-    const std::string path = resolve_scenario(options.scenario);
-    const Config config = load_scenario(path, options.sets);
-    check_scenario(config);
-    Tracer tracer;  // elaborate with every trace off: catches what only the wiring can see
-    Soc soc(config, tracer);
-    print_warnings(config);
-    size_t from_file = 0, from_set = 0;
-    for (const auto& e : config.entries()) {
-        if (e.origin == "--set") ++from_set;
-        else if (e.origin != "default") ++from_file;
-    }
-    std::printf("%s: ok: scenario '%s', %zu parameters (%zu from the file, %zu from --set, the rest defaults)\n",
-                path.c_str(), config.name.c_str(), config.entries().size(), from_file, from_set);
-    return kExitOk;
 }
 
 }  // namespace surfvp

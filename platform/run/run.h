@@ -1,11 +1,14 @@
 #pragma once
-// `surfvp run` and `surfvp validate`: load a scenario, elaborate the SoC, simulate until the
-// software finishes, write the traces and reports. Exit codes are documented in README.md.
+// The run loop: elaborate the SoC for a loaded scenario, simulate until the software
+// finishes, and write the traces and reports; or run the same software on the untimed
+// DirectChip. The commands (cli/run_command.h, the verdict, sweeps) are built on it. Exit codes
+// are documented in README.md.
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
+#include "models/common/tracer.h"
 #include "platform/scenario/config.h"
 
 namespace surfvp {
@@ -13,25 +16,14 @@ namespace surfvp {
 enum ExitCode { kExitOk = 0, kExitFailed = 1, kExitBadInput = 2, kExitInternal = 3, kExitEnvironment = 4,
                kExitOutOfMemory = 5 };
 
-struct RunOptions {
-    std::string scenario;
-    std::vector<std::string> sets;
-    std::string out;            // default: traces/<scenario name>
-    std::string trace = "all";  // none | vcd | perfetto | all
-    bool quiet = false;
-    bool direct = false;  // no SystemC: the driver and software on the untimed DirectChip
-    std::string compare_to;  // a run folder or SWEEP_DIR@N: compare.md and compare.json against it
-};
-
-// Both throw ConfigError for bad input; the caller turns it into kExitBadInput. Both print the
-// scenario's stated warnings (parameters given that have no effect) on stderr.
-int run_scenario(const RunOptions& options);
-int validate_scenario(const RunOptions& options);
-
 // Everything about a loaded scenario that needs no simulation and no SystemC: the parameters'
 // consistency, the files it names, the workload's layout. run and validate call it before
 // anything is built or written; throws ConfigError at the first problem.
 void check_scenario(const Config& config);
+
+// The trace files a --trace mode asks for (none, vcd, perfetto, all) under `dir`; throws
+// ConfigError for another mode.
+Tracer::Options trace_options(const std::string& mode, const std::string& dir);
 
 // One simulation of `config` on the VP and its report (not yet written), with the traces
 // (`trace`: none, vcd, perfetto, all) and the workload's files written into `out` (nothing

@@ -3,7 +3,7 @@
 #include <fmt/format.h>
 
 #include "platform/address_map.h"
-#include "platform/soc.h"
+#include "platform/scenario/block_params.h"
 
 namespace surfvp {
 namespace {

@@ -4,7 +4,7 @@
 #include <fmt/format.h>
 #include <yaml-cpp/yaml.h>
 
-#include "models/common/yaml_text.h"
+#include "models/host/yaml_text.h"
 #include "platform/scenario/config.h"
 
 namespace surfvp {

@@ -10,7 +10,7 @@
 #include <string_view>
 #include <yaml-cpp/yaml.h>
 
-#include "models/common/yaml_text.h"
+#include "models/host/yaml_text.h"
 #include "platform/scenario/consistency.h"
 #include "platform/scenario/faults.h"
 

@@ -9,11 +9,11 @@
 #include <regex>
 #include <unistd.h>
 
-#include "models/common/atomic_file.h"
-#include "platform/cli/progress_line.h"
+#include "models/host/atomic_file.h"
+#include "platform/run/progress_line.h"
 #include "platform/run/run.h"
 #include "platform/scenario/scenario.h"
-#include "platform/sweep/resimulation.h"
+#include "platform/run/resimulation.h"
 #include "platform/sweep/sweep_plan.h"
 #include "platform/sweep/sweep_results.h"
 #include "platform/sweep/sweep_store.h"

@@ -1,6 +1,6 @@
 #pragma once
 // `surfvp sweep` and `surfvp sweep-merge` (docs/sweeps.md): the points of a sweep file run as
-// re-simulations (platform/sweep/resimulation.h, the engine the verdict's analyses use too),
+// re-simulations (platform/run/resimulation.h, the engine the verdict's analyses use too),
 // `jobs` at a time, each recorded in the folder's SQLite database as it ends; then
 // results.csv, results.json and a plot of frames/s against each axis, with the Pareto front
 // marked.

@@ -7,7 +7,7 @@
 #include <optional>
 #include <set>
 
-#include "platform/report/report_html.h"
+#include "models/host/xml_text.h"
 #include "platform/sweep/sweep_plan.h"
 
 namespace surfvp {

@@ -7,8 +7,8 @@
 #include <map>
 #include <set>
 
-#include "models/common/atomic_file.h"
-#include "platform/scenario/json_input.h"
+#include "models/host/atomic_file.h"
+#include "platform/report/json_input.h"
 #include "platform/sweep/sweep_plots.h"
 
 namespace surfvp {

@@ -7,7 +7,7 @@
 #include <fmt/ranges.h>
 #include <sqlite3.h>
 
-#include "models/common/atomic_file.h"
+#include "models/host/atomic_file.h"
 #include "platform/scenario/config.h"
 #include "platform/scenario/scenario.h"
 

@@ -6,7 +6,7 @@
 #include <fstream>
 #include <opencv2/core/mat.hpp>
 
-#include "models/common/atomic_file.h"
+#include "models/host/atomic_file.h"
 #include "platform/workload/workload.h"
 #include "sw/eval/distinguishability.h"
 #include "sw/eval/homography.h"

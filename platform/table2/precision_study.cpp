@@ -8,13 +8,13 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 
-#include "models/common/atomic_file.h"
+#include "models/host/atomic_file.h"
 #include "models/fhg/fhg_regs.h"
-#include "platform/cli/progress_line.h"
+#include "platform/run/progress_line.h"
 #include "platform/cost/fpga_resources.h"
 #include "platform/run/output_folder.h"
 #include "platform/scenario/scenario.h"
-#include "platform/sweep/resimulation.h"
+#include "platform/run/resimulation.h"
 #include "platform/sweep/sweep_plan.h"
 #include "platform/table2/columns.h"
 #include "platform/table2/precision_axis.h"

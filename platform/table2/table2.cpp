@@ -7,7 +7,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
-#include "models/common/atomic_file.h"
+#include "models/host/atomic_file.h"
 #include "platform/run/output_folder.h"
 #include "platform/scenario/scenario.h"
 #include "platform/table2/columns.h"

@@ -15,8 +15,8 @@
 #include <unistd.h>
 
 #include "platform/workload/describer.h"
-#include "models/common/atomic_file.h"
-#include "platform/sweep/resimulation.h"
+#include "models/host/atomic_file.h"
+#include "platform/run/resimulation.h"
 #include "platform/run/run.h"
 #include "platform/scenario/scenario.h"
 #include "sw/cpu_cost/calibration.h"

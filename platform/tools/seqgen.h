@@ -1,10 +1,7 @@
 #pragma once
 // `surfvp seqgen`: the FHG's generated control sequence and what it implies, without a run.
-#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
-
-#include "models/fhg/fhg.h"
 
 namespace surfvp {
 
@@ -16,11 +13,5 @@ struct SeqgenOptions {
 
 // Prints one JSON object on stdout; throws ConfigError for bad input.
 int seqgen_command(const SeqgenOptions& options);
-
-// The machine the sequence is scheduled on and the three figures: the basic script (with
-// the spread of its passes), the improved one, and the lower bound with what sets it; and
-// the cycles per block the chip runs with. Throws std::invalid_argument for an impossible
-// configuration.
-nlohmann::ordered_json schedule_figures(const Fhg::Params& params);
 
 }  // namespace surfvp

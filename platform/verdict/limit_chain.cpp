@@ -9,7 +9,7 @@
 
 #include "models/fhg/sequence_cache.h"
 #include "platform/scenario/parameters.h"
-#include "platform/soc.h"
+#include "platform/scenario/block_params.h"
 
 namespace surfvp {
 namespace {

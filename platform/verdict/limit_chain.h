@@ -21,7 +21,7 @@
 #include <vector>
 
 #include "platform/scenario/config.h"
-#include "platform/sweep/resimulation.h"
+#include "platform/run/resimulation.h"
 
 namespace surfvp {
 

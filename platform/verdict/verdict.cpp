@@ -7,9 +7,9 @@
 #include <fmt/format.h>
 #include <unistd.h>
 
-#include "platform/cli/progress_line.h"
+#include "platform/run/progress_line.h"
 #include "platform/report/report.h"
-#include "platform/sweep/resimulation.h"
+#include "platform/run/resimulation.h"
 #include "platform/run/run.h"
 #include "platform/verdict/doubt.h"
 #include "platform/verdict/limit_chain.h"

@@ -13,10 +13,10 @@
 
 #include "models/fhg/fhg_regs.h"
 #include "models/fhg/local_max_finder.h"
-#include "platform/soc.h"
+#include "platform/scenario/block_params.h"
 #include "platform/workload/workload.h"
 #include "models/common/byte_order.h"
-#include "models/common/worker.h"
+#include "models/host/worker.h"
 #include "sw/cpu_cost/calibration.h"
 #include "sw/cpu_cost/calibration_dump.h"
 #include "sw/stage/software_stage.h"

@@ -11,13 +11,13 @@
 #include <opencv2/imgproc.hpp>
 #include <yaml-cpp/binary.h>
 
-#include "models/common/worker.h"
+#include "models/host/worker.h"
 #include "models/common/zeroed_memory.h"
 #include "platform/address_map.h"
 #include "platform/workload/describer.h"
 #include "models/fhg/fhg_regs.h"
 #include "models/fhg/hessian_core.h"
-#include "platform/soc.h"
+#include "platform/scenario/block_params.h"
 #include "sw/eval/distinguishability.h"
 #include "sw/eval/homography.h"
 #include "sw/eval/keypoint_file.h"
@@ -28,7 +28,7 @@
 #include "sw/media/media.h"
 #include "sw/surf/image_io.h"
 #include "sw/surf/surf.h"
-#include "platform/report/report_html.h"
+#include "models/host/xml_text.h"
 #include "platform/workload/workload.h"
 
 namespace surfvp {

@@ -10,7 +10,7 @@
 #include <Eigen/Dense>
 #include <opencv2/core.hpp>
 
-#include "models/common/yaml_text.h"
+#include "models/host/yaml_text.h"
 #include "sw/eval/text_io.h"
 
 namespace surfvp::eval {

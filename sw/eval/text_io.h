@@ -9,7 +9,7 @@
 #include <string_view>
 #include <vector>
 
-#include "models/common/atomic_file.h"
+#include "models/host/atomic_file.h"
 #include "sw/eval/format_error.h"
 
 namespace surfvp::eval {
@@ -47,6 +47,6 @@ private:
     std::size_t line_ = 0;
 };
 
-using surfvp::write_file_atomically;  // models/common/atomic_file.h
+using surfvp::write_file_atomically;  // models/host/atomic_file.h
 
 }  // namespace surfvp::eval

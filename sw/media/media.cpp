@@ -13,7 +13,7 @@
 #include <string_view>
 #include <sys/statvfs.h>
 
-#include "models/common/disk_cache.h"
+#include "models/host/disk_cache.h"
 #include "models/common/zeroed_memory.h"
 #include "sw/media/plugin_abi.h"
 

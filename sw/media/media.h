@@ -4,7 +4,7 @@
 // loading alone took ~0.2 s of every start. They live in a plugin, libsurfvp_media.so, loaded
 // on the first call here (a run whose frames come from the frame cache never loads it).
 //
-// Decoded images and encoded ones are kept in the cache folder (models/common/disk_cache.h):
+// Decoded images and encoded ones are kept in the cache folder (models/host/disk_cache.h):
 // a decoded image under its file's real path, size, modification time and the flags; an
 // encoded one under the extension and two hashes of the image's bytes. Videos are not cached.
 //

@@ -9,7 +9,7 @@
 
 #include <fmt/format.h>
 
-#include "models/common/disk_cache.h"
+#include "models/host/disk_cache.h"
 #include "sw/media/media.h"
 #include "sw/surf/descriptor.h"
 #include "sw/surf/fast_hessian.h"

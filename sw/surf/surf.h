@@ -54,7 +54,7 @@ float threshold_for_count(const cv::Mat& gray8, int target, Params params);
 // maxima's responses, largest first, and the threshold that keeps `target` of them.
 std::vector<float> ranked_responses(const cv::Mat& gray8, Params params);
 float threshold_for_rank(const std::vector<float>& ranked, int target);
-// ranked_responses, kept across runs in the cache folder (models/common/disk_cache.h) under the
+// ranked_responses, kept across runs in the cache folder (models/host/disk_cache.h) under the
 // image's content, the parameters detection depends on and a fingerprint of this library's
 // source (taken by the build), so that a changed detector never reads old responses.
 std::vector<float> stored_ranked_responses(const cv::Mat& gray8, const Params& params);

@@ -1,5 +1,5 @@
 // Fuzz target: what `surfvp compare` reads back from a run folder or a sweep's results
-// (platform/scenario/json_input.h: parse_json and the checked lookups; platform/compare/
+// (platform/report/json_input.h: parse_json and the checked lookups; platform/compare/
 // run_figures.h: all_figures), someone else's files, so untrusted.
 //
 // Input: the JSON text. Its first line, when it starts with '/', is also a JSON pointer looked
@@ -13,7 +13,7 @@
 #include "fuzz_support.h"
 #include "platform/compare/run_figures.h"
 #include "platform/scenario/config.h"
-#include "platform/scenario/json_input.h"
+#include "platform/report/json_input.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     using namespace surfvp;

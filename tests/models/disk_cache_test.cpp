@@ -1,4 +1,4 @@
-// The cache folder is shared and untrusted (models/common/disk_cache.h): an entry is used only
+// The cache folder is shared and untrusted (models/host/disk_cache.h): an entry is used only
 // when its key, size and checksum match and it is a regular file of plausible size; anything
 // else is a miss, never a block, a crash or other data.
 #include <gtest/gtest.h>
@@ -10,7 +10,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include "models/common/disk_cache.h"
+#include "models/host/disk_cache.h"
 
 namespace surfvp {
 namespace {

@@ -5,7 +5,7 @@
 #include <gtest/gtest.h>
 #include <string>
 
-#include "models/common/gtkwave_save.h"
+#include "models/host/gtkwave_save.h"
 
 namespace surfvp {
 namespace {

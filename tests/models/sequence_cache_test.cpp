@@ -11,7 +11,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include "models/common/disk_cache.h"
+#include "models/host/disk_cache.h"
 #include "models/fhg/sequence_cache.h"
 
 namespace surfvp::fhg {

@@ -11,7 +11,7 @@
 #include <thread>
 #include <vector>
 
-#include "models/common/worker.h"
+#include "models/host/worker.h"
 
 namespace surfvp {
 namespace {

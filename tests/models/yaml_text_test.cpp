@@ -1,6 +1,6 @@
 // YAML text that would hang yaml-cpp 0.7 is refused before it reaches it; other text is
 // parsed as yaml-cpp parses it.
-#include "models/common/yaml_text.h"
+#include "models/host/yaml_text.h"
 
 #include <gtest/gtest.h>
 

@@ -5,7 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli.h"
-#include "platform/correlation/correlation.h"
+#include "platform/report/correlation.h"
 
 namespace surfvp {
 namespace {

@@ -16,7 +16,7 @@
 
 #include <opencv2/imgcodecs.hpp>
 
-#include "models/common/disk_cache.h"
+#include "models/host/disk_cache.h"
 #include "sw/media/media.h"
 #include "sw/surf/surf.h"
 #include "tests/surf/test_data.h"

@@ -1,4 +1,4 @@
-#include "platform/scenario/json_input.h"
+#include "platform/report/json_input.h"
 
 #include <fmt/format.h>
 #include <fstream>

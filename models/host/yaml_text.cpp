@@ -1,4 +1,4 @@
-#include "models/common/yaml_text.h"
+#include "models/host/yaml_text.h"
 
 #include <algorithm>
 #include <sstream>

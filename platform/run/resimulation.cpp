@@ -1,4 +1,4 @@
-#include "platform/sweep/resimulation.h"
+#include "platform/run/resimulation.h"
 
 #include <cerrno>
 #include <cstdlib>
@@ -11,11 +11,11 @@
 #include <thread>
 #include <unistd.h>
 
-#include "models/common/atomic_file.h"
+#include "models/host/atomic_file.h"
 #include "models/common/zeroed_memory.h"
 #include "platform/run/run.h"
-#include "platform/soc.h"
-#include "platform/tools/seqgen.h"
+#include "platform/scenario/block_params.h"
+#include "platform/report/schedule_figures.h"
 #include "platform/workload/workload.h"
 
 namespace surfvp {

@@ -1,4 +1,4 @@
-#include "models/common/worker.h"
+#include "models/host/worker.h"
 
 #include <algorithm>
 #include <utility>

@@ -1,4 +1,4 @@
-#include "models/common/disk_cache.h"
+#include "models/host/disk_cache.h"
 
 #include <cstdlib>
 #include <fcntl.h>
@@ -8,7 +8,7 @@
 #include <unistd.h>
 #include <zlib.h>
 
-#include "models/common/atomic_file.h"
+#include "models/host/atomic_file.h"
 
 namespace surfvp {
 namespace fs = std::filesystem;

@@ -1,10 +1,10 @@
-#include "platform/correlation/correlation.h"
+#include "platform/report/correlation.h"
 
 #include <cmath>
 #include <fmt/format.h>
 #include <optional>
 
-#include "platform/report/report_html.h"
+#include "models/host/xml_text.h"
 
 namespace surfvp {
 namespace {
