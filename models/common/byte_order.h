@@ -1,5 +1,5 @@
 #pragma once
-// The one byte order of surfvp (DESIGN principle 6). The PPC440 and the PLB are big-endian:
+// The one byte order of surfvp (docs/architecture.md#principles, 9). The PPC440 and the PLB are big-endian:
 // memory holds bytes in address order, and a 32-bit word at address A has its most
 // significant byte at A. Every TLM payload's data array is in that same address order
 // (byte i of the array is the byte at address + i), so a memory-to-memory copy is a plain

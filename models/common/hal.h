@@ -1,5 +1,5 @@
 #pragma once
-// The hardware abstraction the CPU's software is written against (DESIGN principle 2), a
+// The hardware abstraction the CPU's software is written against (docs/architecture.md#principles, 2), a
 // contract like the registers' (models/*/*_regs.h): the software (sw/) and what runs it
 // (models/ppc440, platform/direct_chip) both include it, so no model reaches up into sw/. The
 // software reaches the chip only through MMIO, memory and interrupts, and says how much CPU

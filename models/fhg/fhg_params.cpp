@@ -8,9 +8,9 @@ const ParamTable<Fhg::Params>& Fhg::parameter_table() {
     using P = Params;
     static const ParamTable<P> table({
         field<P>({"fhg.clock", ParamKind::frequency, "100 MHz", 1 * unit::MHz, 1000 * unit::MHz, {}, "SSA FHG clock",
-           "[A] PLATFORM_FACTS §5.4: the quad schedule needs ~105 MHz for 10 FPS; the standard EDK clock",
+           "[A] the quad schedule needs ~105 MHz for 10 FPS (docs/sources.md#arithmetic); the standard EDK clock",
            {"90 MHz", "125 MHz",
-            "PLATFORM_FACTS: 100-125 MHz; a complex design may close timing a little lower"}},
+            "100-125 MHz (docs/sources.md#fhg); a complex design may close timing a little lower"}},
                  &P::clock),
         field<P>({"fhg.read_buses", ParamKind::count, "4", 1, 64, {}, "MasterController read buses from the line FIFO",
            "[S] paper §III-C: 4 independent buses"},
@@ -18,7 +18,7 @@ const ParamTable<Fhg::Params>& Fhg::parameter_table() {
         choice<P>({"fhg.bus_word", ParamKind::choice, "quad", 0, 0, {},
            "What one read bus delivers per cycle: a 2x2 quad of integral values (128 bit), two neighbours on "
            "one line (64 bit) or one value (32 bit)",
-           "[A] PLATFORM_FACTS §5.3(c): only quads reach ~10 FPS at 100 MHz",
+           "[A] only quads reach ~10 FPS at 100 MHz (docs/sources.md#arithmetic)",
            {"pair", "quad",
             "64-bit read buses (two values of one line) instead of 2x2 quads"}, ParamRole::design},
                   [](P& p) -> auto& { return p.sequence.bus_word; }, std::vector<std::pair<std::string, fhg::BusWord>>{{"quad", fhg::BusWord::quad}, {"pair", fhg::BusWord::pair}, {"scalar", fhg::BusWord::scalar}}),
@@ -79,7 +79,7 @@ const ParamTable<Fhg::Params>& Fhg::parameter_table() {
             "a short or a deep HessianCalc/LocMaxFinder pipeline"}},
                  &P::pipeline_latency_cycles),
         field<P>({"fhg.maxima_fifo_depth", ParamKind::count, "1024", 1, 1 << 20, {}, "Candidates the maxima FIFO holds",
-           "[A] one RAMB36 of 32-bit words (PLATFORM_FACTS table)",
+           "[A] one RAMB36 of 32-bit words (docs/sources.md#fhg)",
            {"512", "2048",
             "half or two RAMB36 of 32-bit words"}},
                  &P::maxima_fifo_depth),
@@ -129,7 +129,7 @@ const ParamTable<Fhg::Params>& Fhg::parameter_table() {
             "two fraction bits less still hold the threshold's resolution"}, ParamRole::design},
                  [](P& p) -> auto& { return p.precision.det_frac_bits; }),
         field<P>({"fhg.det_bits", ParamKind::bits, "32 bit", 8, 32, {}, "Determinant word written to memory (saturating)",
-           "[A] PLATFORM_FACTS: 32-bit fixed point",
+           "[A] 32-bit fixed point (docs/sources.md#fhg)",
            {"32 bit", "32 bit",
             "narrower words need det_frac_bits lowered with them (a two-parameter what-if); alone they saturate"}, ParamRole::design},
                  [](P& p) -> auto& { return p.precision.det_bits; })

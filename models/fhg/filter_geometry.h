@@ -1,6 +1,6 @@
 #pragma once
 // The box filters of the Fast-Hessian detector as the FHG forms them (paper §II, footnote 2;
-// PLATFORM_FACTS §3 and §5.2). Shared by HessianCore (which adds them up) and the
+// docs/sources.md#surf and #arithmetic). Shared by HessianCore (which adds them up) and the
 // SequenceGenerator (which schedules their integral-image reads). Plain C++.
 //
 // A filter of size L (9, 15, 21, 27, 39, 51) has lobe l = L/3 and half-width b = (L-1)/2,

@@ -13,7 +13,7 @@ const ParamTable<Iig::Params>& Iig::parameter_table() {
             "Fig. 3's clocks are lost: half the PLB clock to the FHG's upper guess"}},
                  &P::clock),
         field<P>({"iig.pixels_per_clock", ParamKind::count, "1", 1, 16, {}, "Pixels the integral core adds per clock",
-           "[A] one adder chain: 7.9 ms for 1024x768 at 100 MHz (PLATFORM_FACTS)",
+           "[A] one adder chain: 7.9 ms for 1024x768 at 100 MHz (docs/sources.md#iig)",
            {"1", "2",
             "one adder chain, or two"}},
                  &P::pixels_per_clock),
@@ -39,7 +39,7 @@ const ParamTable<Iig::Params>& Iig::parameter_table() {
            "[S] paper §III: image size limit 1024 x 1024"},
                  &P::max_height),
         field<P>({"pixelbus.width", ParamKind::bits, "32 bit", 8, 128, {}, "PixelBus width: integral values per IIG cycle x 32",
-           "[A] one 32-bit integral value per cycle (PLATFORM_FACTS table)",
+           "[A] one 32-bit integral value per cycle (docs/sources.md#pixelbus)",
            {"32 bit", "64 bit",
             "one value a cycle is the least that keeps up; two would be wider"}},
                  &P::pixelbus_width_bits)

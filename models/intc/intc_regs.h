@@ -1,5 +1,5 @@
 #pragma once
-// XPS INTC register map (Xilinx xps_intc; PLATFORM_FACTS §2): the contract between the
+// XPS INTC register map (Xilinx xps_intc; docs/sources.md#intc-and-dma): the contract between the
 // interrupt controller model and the software. Registers are 32-bit, big-endian on the bus.
 #include <cstdint>
 

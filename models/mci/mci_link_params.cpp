@@ -14,7 +14,7 @@ const ParamTable<MciLink::Params>& MciLink::parameter_table() {
             "the MCI at the PLB clock, or with a DDR2-533 MPMC"}},
                  &P::clock),
         field<P>({"mci.width", ParamKind::bits, "128 bit", 32, 128, {}, "Data width of the memory controller interface",
-           "[A] the PPC440 crossbar's 128-bit interfaces (PLATFORM_FACTS §2)",
+           "[A] the PPC440 crossbar's 128-bit interfaces (docs/sources.md#mci)",
            {"64 bit", "128 bit",
             "a narrower memory interface than the crossbar's"}},
                  &P::width_bits),

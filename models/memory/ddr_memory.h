@@ -1,5 +1,5 @@
 #pragma once
-// DDR memory behind a multi-port controller (the EDK MPMC, DS643; PLATFORM_FACTS §2).
+// DDR memory behind a multi-port controller (the EDK MPMC, DS643; docs/sources.md#ddr).
 // Each path to it binds its own port (PLB2 for the DMA masters, the PPC440's memory
 // controller interface or PLB1 for the CPU). The DRAM itself is one shared resource: an
 // access takes the DRAM for its transfer at the controller's bandwidth, at the earliest

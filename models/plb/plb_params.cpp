@@ -13,7 +13,7 @@ ParamTable<PlbBus::Params> PlbBus::parameter_table(const std::string& bus, const
                   "[S] ML507 design: PLB at 100 MHz (mch-plb-clk-period-ps = 10000)"},
                  &P::clock),
         field<P>({bus + ".width", ParamKind::bits, width, 32, 128, {}, role + " data width: 32, 64 or 128 bit", width_source,
-                  dma_bus ? ParamSpec::Band{"64 bit", "128 bit", "\"increased capacity\" could be 64 bit (PLATFORM_FACTS §5.5: enough)"}
+                  dma_bus ? ParamSpec::Band{"64 bit", "128 bit", "\"increased capacity\" could be 64 bit (docs/sources.md#arithmetic: enough)"}
                           : ParamSpec::Band{}},
                  &P::width_bits),
         field<P>({bus + ".max_burst", ParamKind::beats, "16 beats", 2, 16, {},
@@ -27,10 +27,10 @@ ParamTable<PlbBus::Params> PlbBus::parameter_table(const std::string& bus, const
                   std::vector<std::pair<std::string, Arbitration>>{{"round_robin", Arbitration::round_robin},
                                                                    {"fixed_priority", Arbitration::fixed_priority}}),
         field<P>({bus + ".arbitration_latency", ParamKind::cycles, "3 cycles", 0, 64, {}, "Request-to-grant cycles paid by every burst",
-                  "[A] PLATFORM_FACTS: ~3-4 cycles of arbitration overhead per burst (not retrieved)",
+                  "[A] ~3-4 cycles of arbitration overhead per burst, not retrieved (docs/sources.md#plb)",
                   {"1 cycle", "4 cycles",
                    dma_bus ? "as plb1.arbitration_latency"
-                           : "PLATFORM_FACTS: ~3-4 cycles, not retrieved; overlapped arbitration would hide most"}},
+                           : "~3-4 cycles, not retrieved (docs/sources.md#plb); overlapped arbitration would hide most"}},
                  &P::arbitration_cycles),
         field<P>({bus + ".address_latency", ParamKind::cycles, "1 cycle", 0, 64, {},
                   "Address-phase cycles paid by every burst (no address pipelining modelled)",

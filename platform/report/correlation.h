@@ -1,5 +1,5 @@
 #pragma once
-// The VP beside the chip the paper measured (DESIGN principle 11). The paper states a few
+// The VP beside the chip the paper measured (docs/architecture.md#principles, 11). The paper states a few
 // figures about its own chip; each is a measurement of real hardware, so a scenario at the
 // paper's settings must reproduce it, or the report says which assumption keeps them apart:
 // - about 10 frames/s at 1024x768, with around 100 descriptors per image (§I and its note 1;

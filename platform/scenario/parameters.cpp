@@ -102,13 +102,13 @@ void add_surf(std::vector<ParamSpec>& t) {
     t.push_back({"verdict.break_even", ParamKind::choice, "off", 0, 0, {"on", "off"},
                  "Find the limiting block's clock (and the FHG's cycles per block) that just meets budget.fps, by "
                  "re-simulation, and check it with one more run of the whole scenario",
-                 "[-] analysis (DESIGN principle 7)"});
+                 "[-] analysis (docs/architecture.md#principles, 7)"});
     t.push_back({"verdict.band", ParamKind::choice, "off", 0, 0, {"on", "off"},
                  "Re-simulate the unknowns about the chip jointly (verdict.samples points over their bands: the frames/s "
                  "percentiles, the probability of meeting the budget, each unknown's sensitivity) and each at its low and "
                  "its high (tornado.svg); and each design choice and workload setting with a band, one at a time (what a "
                  "review can change)",
-                 "[-] analysis (DESIGN principle 7)"});
+                 "[-] analysis (docs/architecture.md#principles, 7)"});
     t.push_back({"verdict.software", ParamKind::choice, "off", 0, 0, {"on", "off"},
                  "Re-simulate with the software settings that move the CPU's time (surf.haar, surf.upright, "
                  "surf.target_keypoints): the frames/s and CPU time under each",
@@ -130,11 +130,11 @@ void add_surf(std::vector<ParamSpec>& t) {
                  "fpga.slices)",
                  "[S] paper §III: XC5VFX70"});
     t.push_back({"fpga.ramb36", ParamKind::count, "148", 1, 100000, {}, "Block RAMs (RAMB36) the device has",
-                 "[A] XC5VFX70T: 148 (recalled from DS100; PLATFORM_FACTS)"});
+                 "[A] XC5VFX70T: 148 (recalled from DS100; docs/sources.md#fpga-resources)"});
     t.push_back({"fpga.dsp48e", ParamKind::count, "128", 0, 100000, {}, "DSP48E slices the device has",
-                 "[A] XC5VFX70T: 128 (recalled from DS100; PLATFORM_FACTS)"});
+                 "[A] XC5VFX70T: 128 (recalled from DS100; docs/sources.md#fpga-resources)"});
     t.push_back({"fpga.slices", ParamKind::count, "11200", 1, 10000000, {}, "Logic slices the device has (4 LUT6 and 4 flip-flops each)",
-                 "[A] XC5VFX70T: 11,200 (recalled from DS100; PLATFORM_FACTS); 4 LUTs and 4 FFs a slice (UG190, recalled)"});
+                 "[A] XC5VFX70T: 11,200 (recalled from DS100; docs/sources.md#fpga-resources); 4 LUTs and 4 FFs a slice (UG190, recalled)"});
     t.push_back({"fpga.bram_fmax", ParamKind::frequency, "450 MHz", 1 * unit::MHz, 2000 * unit::MHz, {},
                  "Highest clock the device's block RAM runs at (a line FIFO clocked at a multiple of fhg.clock must stay "
                  "under it)",
@@ -252,7 +252,7 @@ std::vector<ParamSpec> make_table() {
     t.push_back({"cpu.memory_path", ParamKind::choice, "mci", 0, 0, {"mci", "plb1"},
                  "How the CPU's line fills, write-backs and copies reach DDR: its crossbar and memory controller "
                  "interface (the MPMC's PPC440MC port), or PLB1",
-                 "[A] the PPC440 block has a PPC440MC interface (PLATFORM_FACTS §2); EDK designs for the ML507 wire "
+                 "[A] the PPC440 block has a PPC440MC interface (docs/sources.md#mci); EDK designs for the ML507 wire "
                  "the MPMC to it (recalled, not retrieved)"});
     append(t, MciLink::parameter_table().specs());
     add_cpu_cost(t);

@@ -1,5 +1,5 @@
 #pragma once
-// The doubt of the verdict, jointly (DESIGN principle 7): the unknowns about the chip (banded
+// The doubt of the verdict, jointly (docs/architecture.md#principles, 7): the unknowns about the chip (banded
 // parameters of role `unknown`) sampled together over their bands, each point re-simulated, so
 // that an assumption that does not matter at the defaults but does once another moves shows up.
 // - The design is a Latin hypercube: each unknown's range (or its low, default and high, for a

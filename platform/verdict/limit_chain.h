@@ -1,5 +1,5 @@
 #pragma once
-// The chain of limits (DESIGN principle 7): the verdict names what limits the frame rate, finds
+// The chain of limits (docs/architecture.md#principles, 7): the verdict names what limits the frame rate, finds
 // its break-even (the value of a parameter of the limit's cause that just meets the budget, by
 // re-simulation, then checked by a run of the whole scenario), re-simulates with the limit
 // relieved at that value and names the next limit with its headroom, up to `depth` limits.

@@ -1,5 +1,5 @@
 #pragma once
-// The budget verdict with its doubt (DESIGN principle 7), found by re-simulating the scenario:
+// The budget verdict with its doubt (docs/architecture.md#principles, 7), found by re-simulating the scenario:
 // - margin: frames/s against the budget, and each resource's slack (frame_limits.h);
 // - the chain of limits (`verdict.break_even`, limit_chain.h): the limit's break-even on the
 //   parameters of its cause, checked by a run of the whole scenario, then the limit relieved

@@ -1,6 +1,6 @@
 #pragma once
 // Where each resource's time goes in a SURF run, per frame, and what limits the frame rate
-// (DESIGN principle 7: the bottleneck named with its cause). Read from the run's report.
+// (docs/architecture.md#principles, 7: the bottleneck named with its cause). Read from the run's report.
 //
 // Every resource's frame splits into busy (its own work), waits by cause, and idle:
 //   iig                 busy: adding rows; waits: image DMA read, integral DMA write,

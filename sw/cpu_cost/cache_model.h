@@ -17,7 +17,7 @@ namespace surfvp::sw {
 enum class Replacement { lru, round_robin };
 
 struct CacheParams {
-    uint32_t size_bytes = 32 * 1024;  // [S] ML507 DTS, PLATFORM_FACTS §2
+    uint32_t size_bytes = 32 * 1024;  // [S] ML507 DTS (docs/sources.md#cpu)
     uint32_t line_bytes = 32;         // [S] ML507 DTS; PPC440x5 manual §4.1
     uint32_t ways = 64;               // [S] PPC440x5 manual Table 4-2 (32 KB -> 64 ways)
     Replacement replacement = Replacement::lru;  // [A] as asked; the PPC440 is round-robin [S]

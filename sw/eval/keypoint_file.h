@@ -1,6 +1,6 @@
 #pragma once
 // Keypoint files in the Mikolajczyk text format read by the standard evaluation code
-// (vlbenchmarks readFeaturesFile, Oxford repeatability.m; PLATFORM_FACTS §4):
+// (vlbenchmarks readFeaturesFile, Oxford repeatability.m; docs/sources.md#evaluation):
 //
 //   line 1   descriptor dimension: 64, or 65 with the Laplacian sign first (0 or 1: none)
 //   line 2   number of keypoints N

@@ -1,8 +1,8 @@
 #pragma once
 // The image region a SURF keypoint stands for, as the evaluation sees it: a circle of radius
 // r = 2.5 s about (x, y). The factor 2.5 is the one Bay's SURF library uses when it writes its
-// interest points in the Mikolajczyk format (a = c = 1/(2.5 s)^2); PLATFORM_FACTS §4 leaves the
-// convention to us [A], so keypoint files and repeatability both take it from here.
+// interest points in the Mikolajczyk format (a = c = 1/(2.5 s)^2); no source fixes the
+// convention (docs/sources.md#evaluation) [A], so keypoint files and repeatability both take it from here.
 #include "sw/surf/keypoint.h"
 
 namespace surfvp::eval {

@@ -1,6 +1,6 @@
 #pragma once
 // Detector repeatability under a known homography (Mikolajczyk et al., IJCV 2005 §4.1, as
-// vlbenchmarks' RepeatabilityBenchmark computes it; PLATFORM_FACTS §4), and the precision of
+// vlbenchmarks' RepeatabilityBenchmark computes it; docs/sources.md#evaluation), and the precision of
 // descriptor matching under the same homography.
 #include <cstddef>
 #include <vector>

@@ -22,7 +22,7 @@ namespace stage_detail {
 
 // The scales of the two octaves the FHG covers, as indices into fhg::kSizes
 // (9, 15, 21, 27, 39, 51): octave 1 is 9..27 at step 1, octave 2 is 15, 27, 39, 51 at step 2
-// (paper Table I; PLATFORM_FACTS §3).
+// (paper Table I; docs/sources.md#surf).
 constexpr int kOctaveSizes[2][4] = {{0, 1, 2, 3}, {1, 3, 4, 5}};
 // Octave 2's four scales in the block record of an even pixel (fhg_regs.h): its 15 and 27 are
 // octave 1's values there (k = 4 i + 0 for i = 1, 3), 39 and 51 are k = 16 and 17.

@@ -1,5 +1,5 @@
 #pragma once
-// An integral-image view over raw memory as the PPC440 sees it (DESIGN principle 6: memory is
+// An integral-image view over raw memory as the PPC440 sees it (docs/architecture.md#principles, 9: memory is
 // big-endian, 32-bit words in address order). The IIG leaves the integral image in DDR as
 // 32-bit big-endian words, row-major, `stride` bytes per row (models/iig); the software stage
 // runs the reference's orientation, descriptor and hessian_at on it through this view.

@@ -140,7 +140,7 @@ TEST(SequenceGenerator, FewerLineReadsNeverFaster) {
 }
 
 // The basic script as the paper's chip ran it: about 11 % over note 4's optimal state once a
-// line serves four reads a cycle; 25 % with two (PLATFORM_FACTS §8, measured by seqgen).
+// line serves four reads a cycle; 25 % with two (docs/sources.md#fhg, measured by seqgen).
 TEST(SequenceGenerator, BasicScriptOverheadByLineFifo) {
     SequenceParams p;
     p.reuse = false;

@@ -1,6 +1,6 @@
 // The correlation with the published chip: each figure the paper states beside the VP's, judged
 // within the paper's precision; the default scenario reproduces the frame rate and the basic
-// script's overhead (DESIGN principle 11).
+// script's overhead (docs/architecture.md#principles, 11).
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 

@@ -9,7 +9,7 @@ namespace surfvp {
 namespace {
 
 TEST(FpgaResources, BlockRamsInTheRamb36AspectRatios) {
-    EXPECT_EQ(ramb36_for(1024, 32), 1u);   // a line-FIFO line (PLATFORM_FACTS §5.6)
+    EXPECT_EQ(ramb36_for(1024, 32), 1u);   // a line-FIFO line (docs/sources.md#fhg)
     EXPECT_EQ(ramb36_for(1025, 32), 2u);
     EXPECT_EQ(ramb36_for(1024, 36), 1u);
     EXPECT_EQ(ramb36_for(1024, 37), 2u);   // 512 x 72: two deep

@@ -1,4 +1,4 @@
-// Settings that exist for simulation speed never move a figure (DESIGN principle 6): the
+// Settings that exist for simulation speed never move a figure (docs/architecture.md#principles, 6): the
 // budget scenario and a contention scenario at every DMA granularity and several quanta give
 // the same report.json, field by field, but for the wall-clock and simulation fields it names;
 // direct mode gives the VP's keypoints and the software's cycles within DDR contention.

@@ -79,7 +79,7 @@ TEST(SurfRun, TwoTasksInFlightOverlapHardwareAndSoftware) {
     EXPECT_GT(busiest, 0.97) << two["time_per_frame"];
 }
 
-// The limit is named with its cause (DESIGN principle 7), in four situations the report must
+// The limit is named with its cause (docs/architecture.md#principles, 7), in four situations the report must
 // tell apart.
 TEST(SurfRun, LimitAtTheDefaultsIsTheBusyFhg) {
     const auto r = run("limit_default", " --set surf.frames=4 --set budget.fps=0", 0);
