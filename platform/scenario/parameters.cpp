@@ -75,8 +75,8 @@ void add_surf(std::vector<ParamSpec>& t) {
     t.push_back({"surf.haar", ParamKind::choice, "rounded", 0, 0, {"rounded", "exact"},
                  "The CPU's Haar wavelets: at whole pixels with integer sizes (6 reads each), or exact at sub-pixel "
                  "positions like the float reference",
-                 "[A] embedded SURF of the time (OpenSURF) samples at whole pixels; exact costs 2.4 ms a keypoint "
-                 "on this PPC440 model against 0.76 ms rounded (sw/cpu_cost/README.md)"});
+                 "[A] embedded SURF of the time (OpenSURF) samples at whole pixels; what each costs the CPU is a run's "
+                 "software_time_per_keypoint_us (verdict.software runs both; docs/sources.md#surf)"});
     t.push_back({"surf.max_offset", ParamKind::real, "0.5", 0.5, 2, {},
                  "The CPU's interpolation drops a local maximum whose fitted offset exceeds this, in samples, in x, y "
                  "or scale (1 keeps the maxima that lie between two samples)",
