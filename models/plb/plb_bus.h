@@ -1,5 +1,5 @@
 #pragma once
-// PLB v4.6 bus (Xilinx DS531/DS561; PLATFORM_FACTS §2): address decode from the address map,
+// PLB v4.6 bus (Xilinx DS531/DS561; docs/sources.md#plb): address decode from the address map,
 // arbitration among several masters (round-robin or fixed priority), a data width and a
 // clock, fixed bursts of up to `max_burst_beats`, separate read and write data paths.
 //
