@@ -14,6 +14,8 @@
 #   scripts/fuzz.sh [TARGET...]      (default: every target; tests/fuzz/README.md lists them)
 set -euo pipefail
 cd "$(dirname "$0")/.."
+source scripts/packages.sh
+install_missing "${RUN_PACKAGES[@]}" "${FUZZ_PACKAGES[@]}"
 
 readonly BUILD=build-fuzz
 readonly SOURCE=tests/fuzz

@@ -10,9 +10,11 @@
 # them. Environment.OutOfMemoryIsItsOwnOutcomeNamingTheAllocation runs surfvp under an
 # address-space limit (ulimit -v), which AddressSanitizer's shadow memory exceeds before main().
 # About 11 minutes with -j2.
-# Called by `bootstrap.sh test` after the Release suite; run it alone after a bootstrap.
+# CI runs it after the README's test command (.ci/run); it installs what it needs itself.
 set -euo pipefail
 cd "$(dirname "$0")/.."
+source scripts/packages.sh
+install_missing "${RUN_PACKAGES[@]}" "${TEST_PACKAGES[@]}"
 
 cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=Release -DSURFVP_SANITIZE=ON >/dev/null
 cmake --build build-asan -j2
