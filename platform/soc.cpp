@@ -13,12 +13,14 @@
 namespace surfvp {
 
 std::vector<MappedRegisters> chip_registers() {
-    auto at = [](const map::Region& r, const char* bus) { return fmt::format("Its window is {:#010x} on {}", r.base, bus); };
+    auto at = [](const map::Region& r, const char* bus) {
+        return fmt::format("Its window is {:#010x} on {}", r.base, bus);
+    };
     const std::string pairs = fmt::format(", pair k at + k x {:#x}", map::kAcceleratorStride);
     return {{&iig::table(), at(map::iig, "PLB1") + pairs},
             {&fhg_regs::table(), at(map::fhg, "PLB1") + pairs},
-            {&intc::table(), at(map::intc, "PLB1") + fmt::format(" (inputs: DMA {}, IIG k {} + 2k, FHG k {} + 2k)", map::irq::dma,
-                                                                   map::irq::iig(0), map::irq::fhg(0))},
+            {&intc::table(), at(map::intc, "PLB1") + fmt::format(" (inputs: DMA {}, IIG k {} + 2k, FHG k {} + 2k)",
+                                                                 map::irq::dma, map::irq::iig(0), map::irq::fhg(0))},
             {&dma::table(), at(map::dma, "PLB1")}};
 }
 
@@ -34,13 +36,15 @@ Soc::Soc(const Config& c, Tracer& tracer) : faults_(c.faults), workload_(make_wo
 void Soc::build(const Config& c, Tracer& tracer) {
     const unsigned pairs = unsigned(c.count("soc.accelerators"));
     // The VCD's groups in GTKWave, in the order of the paper's Fig. 3.
-    std::vector<std::pair<std::string, std::string>> titles{{"sw", "Tasks (libSSA2)"}, {"irq", "Interrupts"}, {"cpu", "PPC440"}};
+    std::vector<std::pair<std::string, std::string>> titles{
+        {"sw", "Tasks (libSSA2)"}, {"irq", "Interrupts"}, {"cpu", "PPC440"}};
     for (unsigned k = 0; k < pairs; ++k) {
         const std::string suffix = pairs > 1 ? std::to_string(k) : "";
         titles.emplace_back("iig" + suffix, "SSA IIG" + (suffix.empty() ? "" : " " + suffix));
         titles.emplace_back("fhg" + suffix, "SSA FHG" + (suffix.empty() ? "" : " " + suffix));
     }
-    titles.insert(titles.end(), {{"plb1", "PLB1 (CPU, registers)"}, {"plb2", "PLB2 (DMA traffic)"}, {"dma", "Test DMA"}});
+    titles.insert(titles.end(),
+                  {{"plb1", "PLB1 (CPU, registers)"}, {"plb2", "PLB2 (DMA traffic)"}, {"dma", "Test DMA"}});
     tracer.group_titles(std::move(titles));
     cpu_memory_path_ = c.choice("cpu.memory_path");
     memory_ = std::make_unique<DdrMemory>("memory", memory_params(c));
@@ -147,12 +151,16 @@ void Soc::register_statistics() {
     memory_->register_statistics(statistics_.scope("memory"));
     const Statistics::Scope cpu = statistics_.scope("cpu");
     cpu_->register_statistics(cpu);
-    cpu.text("memory.path", [this] { return cpu_memory_path_; }, "the CPU's way to DDR: mci or plb1");
-    cpu.time("memory.ddr_wait_s", [this] {
-        for (const auto& p : memory_->port_stats())
-            if (p.name == cpu_memory_path_) return p.wait;  // the CPU is the only master behind that port
-        return sc_core::SC_ZERO_TIME;
-    }, "the CPU's accesses waiting for the DRAM behind the DMA's");
+    cpu.text(
+        "memory.path", [this] { return cpu_memory_path_; }, "the CPU's way to DDR: mci or plb1");
+    cpu.time(
+        "memory.ddr_wait_s",
+        [this] {
+            for (const auto& p : memory_->port_stats())
+                if (p.name == cpu_memory_path_) return p.wait;  // the CPU is the only master behind that port
+            return sc_core::SC_ZERO_TIME;
+        },
+        "the CPU's accesses waiting for the DRAM behind the DMA's");
     intc_->register_statistics(statistics_.scope("interrupts"));
     dma_->register_statistics(statistics_.scope("dma"));
     for (size_t k = 0; k < iigs_.size(); ++k) {

@@ -2,8 +2,9 @@
 
 namespace surfvp {
 
-__attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
-void store_be32_run(uint8_t* p, const uint32_t* words, size_t count) {
+__attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default"))) void store_be32_run(uint8_t* p,
+                                                                                                  const uint32_t* words,
+                                                                                                  size_t count) {
     static_assert(__BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__, "the host's words are swapped into the PLB's byte order");
     constexpr size_t kChunk = 16;
     size_t k = 0;

@@ -11,9 +11,12 @@ struct KindName {
     const char* name;
 };
 constexpr KindName kNames[] = {
-    {FaultKind::dma_outside_memory, "dma_outside_memory"}, {FaultKind::bus_error, "bus_error"},
-    {FaultKind::lost_interrupt, "lost_interrupt"},         {FaultKind::stuck_interrupt, "stuck_interrupt"},
-    {FaultKind::fifo_overflow, "fifo_overflow"},           {FaultKind::never_finishes, "never_finishes"},
+    {FaultKind::dma_outside_memory, "dma_outside_memory"},
+    {FaultKind::bus_error, "bus_error"},
+    {FaultKind::lost_interrupt, "lost_interrupt"},
+    {FaultKind::stuck_interrupt, "stuck_interrupt"},
+    {FaultKind::fifo_overflow, "fifo_overflow"},
+    {FaultKind::never_finishes, "never_finishes"},
     {FaultKind::corrupt_determinant, "corrupt_determinant"},
 };
 
@@ -52,7 +55,8 @@ std::optional<unsigned> pair_of(std::string_view name) {
         if (name.substr(0, kind.size()) != kind) continue;
         const std::string_view digits = name.substr(kind.size());
         if (digits.empty()) return 0u;
-        if (!std::all_of(digits.begin(), digits.end(), [](char c) { return c >= '0' && c <= '9'; })) return std::nullopt;
+        if (!std::all_of(digits.begin(), digits.end(), [](char c) { return c >= '0' && c <= '9'; }))
+            return std::nullopt;
         return unsigned(std::stoul(std::string(digits)));
     }
     return std::nullopt;

@@ -40,7 +40,7 @@ struct Fault {
     // What happened, filled in by the plan.
     bool fired = false;
     uint64_t fired_ps = 0;
-    int64_t struck_frame = -1;  // the frame it hit (bus_error: the frame its pair was working on)
+    int64_t struck_frame = -1;     // the frame it hit (bus_error: the frame its pair was working on)
     std::string describe() const;  // "lost_interrupt on fhg, frame 3"
 };
 

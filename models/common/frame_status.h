@@ -28,8 +28,10 @@ public:
     void reset() { bits_ = code_ = 0; }  // CTRL.RESET once idle
     void end(bool failed, uint32_t failure) {
         bits_ &= ~kBusy;
-        if (failed) flag(failure);
-        else bits_ |= kDone;
+        if (failed)
+            flag(failure);
+        else
+            bits_ |= kDone;
     }
 
 private:

@@ -33,11 +33,11 @@ struct ParamSpec {
     std::string key;
     ParamKind kind;
     std::string default_value;
-    double min;                        // in the kind's base unit (Hz, ps, bit, B, cycles, beats)
+    double min;  // in the kind's base unit (Hz, ps, bit, B, cycles, beats)
     double max;
     std::vector<std::string> choices;  // for ParamKind::choice
     std::string description;
-    std::string source;                // [S] sourced, [D] derived, [A] assumed, [-] a setting
+    std::string source;  // [S] sourced, [D] derived, [A] assumed, [-] a setting
     // The assumption band (every [A] parameter has one; a few uncertain others too): the
     // plausible low and high values and why. Empty when the parameter has none.
     struct Band {
@@ -79,23 +79,35 @@ namespace param_detail {
 
 inline double number(const ParamSpec& s, const ParamValues& v) {
     switch (s.kind) {
-        case ParamKind::bits: return v.bits(s.key);
-        case ParamKind::cycles: return double(v.cycles(s.key));
-        case ParamKind::beats: return v.beats(s.key);
-        case ParamKind::bytes: return double(v.bytes(s.key).n);
-        case ParamKind::real: return v.real(s.key);
-        default: return double(v.count(s.key));
+        case ParamKind::bits:
+            return v.bits(s.key);
+        case ParamKind::cycles:
+            return double(v.cycles(s.key));
+        case ParamKind::beats:
+            return v.beats(s.key);
+        case ParamKind::bytes:
+            return double(v.bytes(s.key).n);
+        case ParamKind::real:
+            return v.real(s.key);
+        default:
+            return double(v.count(s.key));
     }
 }
 
 template <typename T>
 void assign(T& target, const ParamSpec& s, const ParamValues& v) {
-    if constexpr (std::is_same_v<T, Frequency>) target = v.frequency(s.key);
-    else if constexpr (std::is_same_v<T, Duration>) target = v.duration(s.key);
-    else if constexpr (std::is_same_v<T, Bytes>) target = v.bytes(s.key);
-    else if constexpr (std::is_same_v<T, bool>) target = v.choice(s.key) == "on";
-    else if constexpr (std::is_floating_point_v<T>) target = T(number(s, v));
-    else target = T(std::llround(number(s, v)));
+    if constexpr (std::is_same_v<T, Frequency>)
+        target = v.frequency(s.key);
+    else if constexpr (std::is_same_v<T, Duration>)
+        target = v.duration(s.key);
+    else if constexpr (std::is_same_v<T, Bytes>)
+        target = v.bytes(s.key);
+    else if constexpr (std::is_same_v<T, bool>)
+        target = v.choice(s.key) == "on";
+    else if constexpr (std::is_floating_point_v<T>)
+        target = T(number(s, v));
+    else
+        target = T(std::llround(number(s, v)));
 }
 
 }  // namespace param_detail
@@ -105,8 +117,10 @@ void assign(T& target, const ParamSpec& s, const ParamValues& v) {
 template <typename Params, typename Member>
 ParamField<Params> field(ParamSpec spec, Member member) {
     return {spec, [member, spec](Params& p, const ParamValues& v) {
-                if constexpr (std::is_member_object_pointer_v<Member>) param_detail::assign(p.*member, spec, v);
-                else param_detail::assign(member(p), spec, v);
+                if constexpr (std::is_member_object_pointer_v<Member>)
+                    param_detail::assign(p.*member, spec, v);
+                else
+                    param_detail::assign(member(p), spec, v);
             }};
 }
 
@@ -118,8 +132,10 @@ ParamField<Params> choice(ParamSpec spec, Member member, std::vector<std::pair<s
     return {spec, [member, names, key = spec.key](Params& p, const ParamValues& v) {
                 const std::string& chosen = v.choice(key);
                 Enum& target = [&]() -> Enum& {
-                    if constexpr (std::is_member_object_pointer_v<Member>) return p.*member;
-                    else return member(p);
+                    if constexpr (std::is_member_object_pointer_v<Member>)
+                        return p.*member;
+                    else
+                        return member(p);
                 }();
                 for (const auto& n : names)
                     if (n.first == chosen) target = n.second;

@@ -7,11 +7,16 @@ namespace surfvp {
 
 const char* access_name(Access access) {
     switch (access) {
-        case Access::RO: return "RO";
-        case Access::RW: return "RW";
-        case Access::W1C: return "W1C";
-        case Access::WO: return "WO";
-        case Access::command: return "W1 (command)";
+        case Access::RO:
+            return "RO";
+        case Access::RW:
+            return "RW";
+        case Access::W1C:
+            return "W1C";
+        case Access::WO:
+            return "WO";
+        case Access::command:
+            return "W1 (command)";
     }
     return "?";
 }
@@ -35,12 +40,15 @@ uint32_t fields_mask(const Register& r, Access access) {
 
 RegisterBank::RegisterBank(const RegisterTable& table) : table_(table) {
     for (const Register& r : table.registers) {
-        if (r.offset % 4) throw std::logic_error(fmt::format("{}.{}: offset {:#x} is not word aligned", table.block, r.name, r.offset));
-        if (table.find(r.offset) != &r) throw std::logic_error(fmt::format("{}.{}: offset {:#x} taken twice", table.block, r.name, r.offset));
+        if (r.offset % 4)
+            throw std::logic_error(
+                fmt::format("{}.{}: offset {:#x} is not word aligned", table.block, r.name, r.offset));
+        if (table.find(r.offset) != &r)
+            throw std::logic_error(fmt::format("{}.{}: offset {:#x} taken twice", table.block, r.name, r.offset));
         for (const RegisterField& f : r.fields)
             if (f.lsb >= 32 || f.width > 32 - f.lsb)  // RegisterField::mask() could not shift it
-                throw std::logic_error(fmt::format("{}.{}.{}: bits {}..{} are outside the 32-bit word", table.block, r.name,
-                                                   f.name, f.lsb, f.lsb + f.width - 1));
+                throw std::logic_error(fmt::format("{}.{}.{}: bits {}..{} are outside the 32-bit word", table.block,
+                                                   r.name, f.name, f.lsb, f.lsb + f.width - 1));
         Slot s{&r, r.reset, 0, 0, {}, {}};
         if (r.access == Access::RW) s.writable = r.fields.empty() ? ~0u : fields_mask(r, Access::RW);
         if (r.access == Access::W1C) s.clearable = r.fields.empty() ? ~0u : fields_mask(r, Access::W1C);
@@ -113,13 +121,16 @@ std::string registers_markdown(const std::vector<MappedRegisters>& blocks) {
         "write 1 to clear, WO write only (reads 0), W1 (command) acts when written 1 and reads 0. The SystemC models\n"
         "and direct mode answer through the same table and behaviour (models/common/register_bank.h).\n";
     for (const auto& [t, where] : blocks) {
-        md += fmt::format("\n## {}\n\n{} {}.\n\n| offset | register | access | reset | meaning |\n| --- | --- | --- | --- | --- |\n",
-                          t->block, t->summary, where);
+        md += fmt::format(
+            "\n## {}\n\n{} {}.\n\n| offset | register | access | reset | meaning |\n| --- | --- | --- | --- | --- |\n",
+            t->block, t->summary, where);
         for (const Register& r : t->registers)
-            md += fmt::format("| {:#04x} | {} | {} | {:#x} | {} |\n", r.offset, r.name, access_name(r.access), r.reset, r.meaning);
+            md += fmt::format("| {:#04x} | {} | {} | {:#x} | {} |\n", r.offset, r.name, access_name(r.access), r.reset,
+                              r.meaning);
         for (const Register& r : t->registers) {
             if (r.fields.empty()) continue;
-            md += fmt::format("\n{} fields:\n\n| bits | field | access | meaning |\n| --- | --- | --- | --- |\n", r.name);
+            md +=
+                fmt::format("\n{} fields:\n\n| bits | field | access | meaning |\n| --- | --- | --- | --- |\n", r.name);
             for (const RegisterField& f : r.fields)
                 md += fmt::format("| {} | {} | {} | {} |\n", bits(f), f.name, access_name(f.access), f.meaning);
         }

@@ -26,20 +26,25 @@ struct RegisterTiming {
 // name, what it answers for ("SSA IIG registers") and the reason of its band.
 template <typename Params>
 ParamField<Params> register_latency(const std::string& block, const std::string& what, const std::string& band_why) {
-    return field<Params>({block + ".register_latency", ParamKind::cycles, "2 cycles", 0, 64, {},
-                          what + ": PLB1 cycles from the address phase to the register's data",
-                          "[A] an XPS PLBv46 slave (IPIF) decodes the address and registers its data: a few cycles (DS561 "
-                          "timing not retrieved)",
-                          {"1 cycle", "4 cycles", band_why}},
-                         [](Params& p) -> unsigned& { return p.registers.cycles; });
+    return field<Params>(
+        {block + ".register_latency",
+         ParamKind::cycles,
+         "2 cycles",
+         0,
+         64,
+         {},
+         what + ": PLB1 cycles from the address phase to the register's data",
+         "[A] an XPS PLBv46 slave (IPIF) decodes the address and registers its data: a few cycles (DS561 "
+         "timing not retrieved)",
+         {"1 cycle", "4 cycles", band_why}},
+        [](Params& p) -> unsigned& { return p.registers.cycles; });
 }
 
 // `access(offset, value, is_write)` reads into or writes from `value`; it returns false for
 // an offset that holds no register.
 template <typename Access>
 void answer_register_access(tlm::tlm_generic_payload& tx, Access&& access) {
-    const bool whole_word = tx.get_data_length() == 4 && tx.get_streaming_width() == 4 &&
-                            tx.get_address() % 4 == 0;
+    const bool whole_word = tx.get_data_length() == 4 && tx.get_streaming_width() == 4 && tx.get_address() % 4 == 0;
     if (tx.get_byte_enable_ptr() != nullptr) {
         tx.set_response_status(tlm::TLM_BYTE_ENABLE_ERROR_RESPONSE);
         return;

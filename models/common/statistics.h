@@ -29,16 +29,26 @@ enum class StatKind {
 };
 inline const char* stat_kind_name(StatKind kind) {
     switch (kind) {
-        case StatKind::count: return "count";
-        case StatKind::bytes: return "bytes";
-        case StatKind::time: return "time";
-        case StatKind::high_water: return "high-water";
-        case StatKind::max: return "max";
-        case StatKind::ratio: return "ratio";
-        case StatKind::value: return "value";
-        case StatKind::text: return "text";
-        case StatKind::histogram: return "histogram";
-        case StatKind::series: return "series";
+        case StatKind::count:
+            return "count";
+        case StatKind::bytes:
+            return "bytes";
+        case StatKind::time:
+            return "time";
+        case StatKind::high_water:
+            return "high-water";
+        case StatKind::max:
+            return "max";
+        case StatKind::ratio:
+            return "ratio";
+        case StatKind::value:
+            return "value";
+        case StatKind::text:
+            return "text";
+        case StatKind::histogram:
+            return "histogram";
+        case StatKind::series:
+            return "series";
     }
     return "?";
 }
@@ -62,7 +72,8 @@ public:
         Scope(Statistics& registry, std::string prefix) : registry_(registry), prefix_(std::move(prefix)) {}
         Scope operator/(const std::string& level) const { return {registry_, path(level)}; }
 
-        void count(const std::string& name, std::function<uint64_t()> get, const std::string& unit, const std::string& meaning) const {
+        void count(const std::string& name, std::function<uint64_t()> get, const std::string& unit,
+                   const std::string& meaning) const {
             add(name, StatKind::count, unit, meaning, [get](double) { return double(get()); });
         }
         void bytes(const std::string& name, std::function<uint64_t()> get, const std::string& meaning) const {
@@ -96,7 +107,8 @@ public:
             Statistic s{path(name), StatKind::histogram, unit, meaning, {}, {}, std::move(get), nullptr};
             registry_.all_.push_back(std::move(s));
         }
-        void series(const std::string& name, const TimeSeries& series, const std::string& unit, const std::string& meaning) const {
+        void series(const std::string& name, const TimeSeries& series, const std::string& unit,
+                    const std::string& meaning) const {
             Statistic s{path(name), StatKind::series, unit, meaning, {}, {}, {}, &series};
             registry_.all_.push_back(std::move(s));
         }

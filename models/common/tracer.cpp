@@ -34,8 +34,10 @@ void put_json_string(fmt::memory_buffer& out, std::string_view text) {
     out.push_back('"');
     for (char c : text) {
         if (c == '"' || c == '\\') out.push_back('\\');
-        if (static_cast<unsigned char>(c) < 0x20) fmt::format_to(std::back_inserter(out), "\\u{:04x}", unsigned(c));
-        else out.push_back(c);
+        if (static_cast<unsigned char>(c) < 0x20)
+            fmt::format_to(std::back_inserter(out), "\\u{:04x}", unsigned(c));
+        else
+            out.push_back(c);
     }
     out.push_back('"');
 }
@@ -95,7 +97,8 @@ void Tracer::hand_over() {
     writer_->submit([this, batch = std::make_shared<Batch>(std::move(batch_))] {
         fmt::memory_buffer out;
         format(*batch, out);
-        perfetto_.write(out.data(), std::streamsize(out.size()));  // a failed stream (a full disk) only stops taking data
+        perfetto_.write(out.data(),
+                        std::streamsize(out.size()));  // a failed stream (a full disk) only stops taking data
     });
     batch_ = Batch();
     batch_.events.reserve(kBatchEvents);
@@ -107,7 +110,9 @@ void Tracer::format(const Batch& batch, fmt::memory_buffer& out) {
         put(out, std::exchange(first, false) ? "\n" : ",\n");
         const std::string_view text(batch.text.data() + e.text, e.text_bytes);
         switch (e.kind) {
-            case Event::metadata: put(out, text); break;
+            case Event::metadata:
+                put(out, text);
+                break;
             case Event::slice:
                 put(out, R"({"ph":"X","name":)");
                 put_json_string(out, text);
@@ -131,14 +136,15 @@ void Tracer::format(const Batch& batch, fmt::memory_buffer& out) {
 // A process's or thread's name and its place in the timeline's order, as two metadata events.
 void Tracer::name_and_order(std::string_view what, int pid, int tid, std::string_view name, int sort_index) {
     fmt::memory_buffer text;
-    fmt::format_to(std::back_inserter(text), R"({{"ph":"M","name":"{}_name","pid":{},"tid":{},"args":{{"name":)", what, pid,
-                   tid);
+    fmt::format_to(std::back_inserter(text), R"({{"ph":"M","name":"{}_name","pid":{},"tid":{},"args":{{"name":)", what,
+                   pid, tid);
     put_json_string(text, name);
     put(text, "}}");
     record({Event::metadata, pid, tid, 0, 0, 0, 0, 0}, {text.data(), text.size()});
     text.clear();
-    fmt::format_to(std::back_inserter(text), R"({{"ph":"M","name":"{}_sort_index","pid":{},"tid":{},"args":{{"sort_index":{}}}}})",
-                   what, pid, tid, sort_index);
+    fmt::format_to(std::back_inserter(text),
+                   R"({{"ph":"M","name":"{}_sort_index","pid":{},"tid":{},"args":{{"sort_index":{}}}}})", what, pid,
+                   tid, sort_index);
     record({Event::metadata, pid, tid, 0, 0, 0, 0, 0}, {text.data(), text.size()});
 }
 
@@ -170,9 +176,12 @@ void Tracer::counter(int track, std::string_view name, const sc_core::sc_time& a
     if (!perfetto_on() || track < 0) return;
     auto& counters = tracks_[track].counters;
     auto last = std::find_if(counters.begin(), counters.end(), [&](const auto& c) { return c.first == name; });
-    if (last == counters.end()) counters.emplace_back(std::string(name), value);
-    else if (last->second == value) return;
-    else last->second = value;
+    if (last == counters.end())
+        counters.emplace_back(std::string(name), value);
+    else if (last->second == value)
+        return;
+    else
+        last->second = value;
     record({Event::counter, tracks_[track].pid, 0, at.value(), 0, value, 0, 0}, name);
 }
 

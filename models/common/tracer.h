@@ -52,8 +52,10 @@ public:
         const unsigned bits = std::is_same_v<T, bool> ? 1u : unsigned(8 * sizeof(T));
         // A word's bits as written: two's complement for a signed one.
         auto bits_of = [&s] {
-            if constexpr (std::is_same_v<T, bool>) return uint64_t(s.read());
-            else return uint64_t(std::make_unsigned_t<T>(s.read()));
+            if constexpr (std::is_same_v<T, bool>)
+                return uint64_t(s.read());
+            else
+                return uint64_t(std::make_unsigned_t<T>(s.read()));
         };
         const int index = vcd_->add(name, bits, bits_of());
         vcd_signals_.push_back({name, bits});

@@ -16,29 +16,32 @@ struct Unit {
 };
 
 struct Kind {
-    const char* what;             // "a frequency"
+    const char* what;  // "a frequency"
     std::vector<Unit> units;
-    bool integer;                 // the result must be a whole number of base units
+    bool integer;  // the result must be a whole number of base units
 };
 
 const Kind& kind(UnitKind k) {
     static const Kind frequency{"a frequency", {{"Hz", 1}, {"kHz", 1e3}, {"MHz", 1e6}, {"GHz", 1e9}}, false};
-    static const Kind duration{"a duration",
-                               {{"ps", 1}, {"ns", 1e3}, {"us", 1e6}, {"ms", 1e9}, {"s", 1e12}},
-                               true};
+    static const Kind duration{"a duration", {{"ps", 1}, {"ns", 1e3}, {"us", 1e6}, {"ms", 1e9}, {"s", 1e12}}, true};
     static const Kind bits{"a width in bits", {{"bit", 1}, {"bits", 1}}, true};
-    static const Kind bytes{"a size in bytes",
-                            {{"B", 1}, {"KiB", 1024.0}, {"MiB", 1048576.0}, {"GiB", 1073741824.0}},
-                            true};
+    static const Kind bytes{
+        "a size in bytes", {{"B", 1}, {"KiB", 1024.0}, {"MiB", 1048576.0}, {"GiB", 1073741824.0}}, true};
     static const Kind cycles{"a number of clock cycles", {{"cycle", 1}, {"cycles", 1}}, true};
     static const Kind beats{"a number of bus beats", {{"beat", 1}, {"beats", 1}}, true};
     switch (k) {
-        case UnitKind::frequency: return frequency;
-        case UnitKind::duration: return duration;
-        case UnitKind::bits: return bits;
-        case UnitKind::bytes: return bytes;
-        case UnitKind::cycles: return cycles;
-        case UnitKind::beats: return beats;
+        case UnitKind::frequency:
+            return frequency;
+        case UnitKind::duration:
+            return duration;
+        case UnitKind::bits:
+            return bits;
+        case UnitKind::bytes:
+            return bytes;
+        case UnitKind::cycles:
+            return cycles;
+        case UnitKind::beats:
+            return beats;
     }
     return frequency;
 }
@@ -56,13 +59,11 @@ double parse(const std::string& text, UnitKind which) {
     char* end = nullptr;
     double number = std::strtod(begin, &end);
     if (end == begin || !std::isfinite(number))
-        throw UnitError(fmt::format("'{}' is not {}: expected a number and a unit ({})", text, k.what,
-                                    unit_list(k)));
+        throw UnitError(fmt::format("'{}' is not {}: expected a number and a unit ({})", text, k.what, unit_list(k)));
     std::string unit(end);
     unit.erase(0, unit.find_first_not_of(' '));
     unit.erase(unit.find_last_not_of(' ') + 1);
-    if (unit.empty())
-        throw UnitError(fmt::format("'{}' has no unit: {} needs one of {}", text, k.what, unit_list(k)));
+    if (unit.empty()) throw UnitError(fmt::format("'{}' has no unit: {} needs one of {}", text, k.what, unit_list(k)));
     for (const auto& u : k.units) {
         if (unit != u.name) continue;
         double value = number * u.scale;

@@ -32,12 +32,12 @@ struct Bytes {
 // The kinds of value a parameter can hold; each unit-carrying kind accepts only its units.
 enum class UnitKind { frequency, duration, bits, bytes, cycles, beats };
 
-Frequency parse_frequency(const std::string& text);   // Hz kHz MHz GHz
-Duration parse_duration(const std::string& text);     // ps ns us ms s
-unsigned parse_bits(const std::string& text);         // bit bits
-Bytes parse_bytes(const std::string& text);           // B KiB MiB GiB
-uint64_t parse_cycles(const std::string& text);       // cycle cycles
-unsigned parse_beats(const std::string& text);        // beat beats
+Frequency parse_frequency(const std::string& text);  // Hz kHz MHz GHz
+Duration parse_duration(const std::string& text);    // ps ns us ms s
+unsigned parse_bits(const std::string& text);        // bit bits
+Bytes parse_bytes(const std::string& text);          // B KiB MiB GiB
+uint64_t parse_cycles(const std::string& text);      // cycle cycles
+unsigned parse_beats(const std::string& text);       // beat beats
 
 // The canonical text of a value, which parses back to the same value: exactly for durations
 // and sizes, to a relative 1e-9 for frequencies, which are written as a whole number of a unit

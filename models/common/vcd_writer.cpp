@@ -71,14 +71,18 @@ void VcdWriter::header() {
         fmt::format_to(out, "$scope module {} $end\n", name);
         for (const auto& [leaf, i] : scope.vars) {
             const Signal& s = signals_[i];
-            if (s.bits == 1) fmt::format_to(out, "$var wire {:>4}  {}  {}       $end\n", 1, s.id, leaf);
-            else fmt::format_to(out, "$var wire {:>4}  {}  {} [{}:0]  $end\n", s.bits, s.id, leaf, s.bits - 1);
+            if (s.bits == 1)
+                fmt::format_to(out, "$var wire {:>4}  {}  {}       $end\n", 1, s.id, leaf);
+            else
+                fmt::format_to(out, "$var wire {:>4}  {}  {} [{}:0]  $end\n", s.bits, s.id, leaf, s.bits - 1);
         }
         for (const auto& [child, sub] : scope.children) self(self, child, *sub);
         fmt::format_to(out, "$upscope $end\n");
     };
     print(print, "SystemC", top);
-    fmt::format_to(out, "$enddefinitions  $end\n\n$comment\nAll initial values are dumped below at time 0 sec = 0 timescale units.\n$end\n\n$dumpvars\n");
+    fmt::format_to(out,
+                   "$enddefinitions  $end\n\n$comment\nAll initial values are dumped below at time 0 sec = 0 timescale "
+                   "units.\n$end\n\n$dumpvars\n");
     for (Signal& s : signals_) {
         put_value(s);
         s.written = s.value, s.pending = false;
@@ -90,8 +94,10 @@ void VcdWriter::header() {
 
 void VcdWriter::put_value(const Signal& s) {
     auto out = std::back_inserter(buffer_);
-    if (s.bits == 1) fmt::format_to(out, "{}{}\n", s.value ? '1' : '0', s.id);
-    else fmt::format_to(out, "b{:b} {}\n", s.value, s.id);
+    if (s.bits == 1)
+        fmt::format_to(out, "{}{}\n", s.value ? '1' : '0', s.id);
+    else
+        fmt::format_to(out, "b{:b} {}\n", s.value, s.id);
 }
 
 // The pending time step: the values at its end that differ from the last written, in the
@@ -118,7 +124,8 @@ void VcdWriter::stamp(uint64_t ps) {
 }
 
 void VcdWriter::drain() {
-    out_.write(buffer_.data(), std::streamsize(buffer_.size()));  // a failed stream (a full disk) only stops taking data
+    out_.write(buffer_.data(),
+               std::streamsize(buffer_.size()));  // a failed stream (a full disk) only stops taking data
     buffer_.clear();
 }
 

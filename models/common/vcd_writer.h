@@ -41,7 +41,7 @@ private:
     void flush();  // the pending time step
     void put_value(const Signal& s);
     void stamp(uint64_t ps);  // a time step's "#<ps>" line
-    void drain();  // the buffer to the file
+    void drain();             // the buffer to the file
 
     std::ofstream out_;
     fmt::memory_buffer buffer_;
@@ -49,7 +49,7 @@ private:
     std::vector<int> pending_;  // signals changed at pending_ps_
     uint64_t pending_ps_ = 0;
     uint64_t stamped_ps_ = 0;  // the last "#<ps>" written
-    bool started_ = false;  // header and initial values written
+    bool started_ = false;     // header and initial values written
 };
 
 }  // namespace surfvp

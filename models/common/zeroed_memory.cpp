@@ -55,7 +55,8 @@ void populate_until(const std::atomic<bool>& stop, uint8_t* begin, uint8_t* end)
     const uintptr_t page = uintptr_t(sysconf(_SC_PAGESIZE));
     uint8_t* at = reinterpret_cast<uint8_t*>(reinterpret_cast<uintptr_t>(begin) & ~(page - 1));
     for (; at < end && !stop.load(std::memory_order_acquire); at += kStretch)
-        madvise(at, std::min<size_t>(kStretch, size_t(end - at)), MADV_POPULATE_WRITE);  // a hint: failure is a fault later
+        madvise(at, std::min<size_t>(kStretch, size_t(end - at)),
+                MADV_POPULATE_WRITE);  // a hint: failure is a fault later
 #else
     (void)stop, (void)begin, (void)end;
 #endif
@@ -75,7 +76,8 @@ void PopulateAhead::ask(size_t page) {
     const uint64_t end = std::min<uint64_t>((uint64_t(page + 1) << kPageShift) - first_offset_, bytes_);
     uint8_t* start = block_ + begin;
     const size_t length = size_t(end - begin);
-    worker_.submit([start, length] { madvise(start, length, MADV_POPULATE_WRITE); });  // a hint: failure is a fault later
+    worker_.submit(
+        [start, length] { madvise(start, length, MADV_POPULATE_WRITE); });  // a hint: failure is a fault later
 #endif
 }
 

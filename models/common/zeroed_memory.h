@@ -103,9 +103,9 @@ private:
 
     uint8_t* block_;
     size_t bytes_;
-    uint64_t first_offset_;     // the block's start within its first 2 MB stretch
-    std::vector<bool> asked_;   // per stretch of the block
-    Worker worker_;             // last: finishes its jobs and stops before the rest goes
+    uint64_t first_offset_;    // the block's start within its first 2 MB stretch
+    std::vector<bool> asked_;  // per stretch of the block
+    Worker worker_;            // last: finishes its jobs and stops before the rest goes
 };
 
 }  // namespace surfvp

@@ -24,8 +24,10 @@ Dma::Dma(const sc_core::sc_module_name& name, const Params& params, Tracer& trac
 void Dma::bind_registers() {
     bank_.on_write(dma::CTRL, [this](uint32_t value) {
         if (!(value & dma::CTRL_START)) return;
-        if (reg(dma::STATUS) & dma::STATUS_BUSY) fail(dma::ERR_START_BUSY, 0);
-        else if (reg(dma::LEN) == 0) fail(dma::ERR_ZERO_LENGTH, 0);
+        if (reg(dma::STATUS) & dma::STATUS_BUSY)
+            fail(dma::ERR_START_BUSY, 0);
+        else if (reg(dma::LEN) == 0)
+            fail(dma::ERR_ZERO_LENGTH, 0);
         else {
             reg(dma::STATUS) = dma::STATUS_BUSY;
             start_.notify(sc_core::SC_ZERO_TIME);
@@ -40,9 +42,9 @@ bool Dma::access(uint32_t offset, uint32_t& value, bool write) {
 }
 
 void Dma::b_transport(tlm::tlm_generic_payload& tx, sc_core::sc_time& delay) {
-    answer_register_access(tx, delay, params_.registers.latency(), [this](uint32_t offset, uint32_t& value, bool write) {
-        return access(offset, value, write);
-    });
+    answer_register_access(
+        tx, delay, params_.registers.latency(),
+        [this](uint32_t offset, uint32_t& value, bool write) { return access(offset, value, write); });
 }
 
 // Records an error; a copy in progress (BUSY) goes on unless the caller stops it.
@@ -91,8 +93,10 @@ void Dma::copy_thread() {
 }
 
 void Dma::register_statistics(Statistics::Scope s) const {
-    s.count("copies", [this] { return copies_; }, "copies", "copies done");
-    s.bytes("bytes_copied", [this] { return bytes_copied_; }, "bytes copied");
+    s.count(
+        "copies", [this] { return copies_; }, "copies", "copies done");
+    s.bytes(
+        "bytes_copied", [this] { return bytes_copied_; }, "bytes copied");
 }
 
 }  // namespace surfvp

@@ -26,7 +26,7 @@ public:
     struct Params {
         unsigned burst_beats = 16;
         unsigned bus_width_bits = 128;  // of the bus the MPLB port is on
-        RegisterTiming registers;  // a register access: its cycles (block.register_latency) of PLB1's clock
+        RegisterTiming registers;       // a register access: its cycles (block.register_latency) of PLB1's clock
     };
     // Its scenario parameters with the Params field each sets (dma_params.cpp).
     static const ParamTable<Params>& parameter_table();

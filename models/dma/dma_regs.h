@@ -24,27 +24,41 @@ constexpr uint32_t STATUS_ERROR = 1u << 2;
 
 enum ErrorCode : uint32_t {
     ERR_NONE = 0,
-    ERR_READ = 1,           // a read burst got an error response
-    ERR_WRITE = 2,          // a write burst got an error response
-    ERR_START_BUSY = 3,     // START written while a copy was running (ignored)
-    ERR_ZERO_LENGTH = 4,    // START with LEN = 0
+    ERR_READ = 1,         // a read burst got an error response
+    ERR_WRITE = 2,        // a write burst got an error response
+    ERR_START_BUSY = 3,   // START written while a copy was running (ignored)
+    ERR_ZERO_LENGTH = 4,  // START with LEN = 0
 };
 
 // The same registers as a table: the model behaves by it, docs/registers.md is generated from it.
 inline const RegisterTable& table() {
     static const RegisterTable t{
-        "Test DMA", "A memory-to-memory copy over PLB2 (the smoke scenario's test master).",
-        {{"CTRL", CTRL, Access::RW, 0, "command and interrupt enable",
+        "Test DMA",
+        "A memory-to-memory copy over PLB2 (the smoke scenario's test master).",
+        {{"CTRL",
+          CTRL,
+          Access::RW,
+          0,
+          "command and interrupt enable",
           {{"START", 0, 1, Access::command, "begin a copy (ERROR START_BUSY while busy, ZERO_LENGTH for LEN = 0)"},
            {"IRQ_EN", 1, 1, Access::RW, "raise the interrupt while DONE or ERROR"}}},
-         {"STATUS", STATUS, Access::W1C, 0, "the copy's state",
+         {"STATUS",
+          STATUS,
+          Access::W1C,
+          0,
+          "the copy's state",
           {{"BUSY", 0, 1, Access::RO, "a copy is running"},
            {"DONE", 1, 1, Access::W1C, "the last copy ended well"},
            {"ERROR", 2, 1, Access::W1C, "a command was refused or the copy failed"}}},
          {"SRC", SRC, Access::RW, 0, "source address (bus address on PLB2)", {}},
          {"DST", DST, Access::RW, 0, "destination address", {}},
          {"LEN", LEN, Access::RW, 0, "bytes to copy", {}},
-         {"ERROR_CODE", ERROR_CODE, Access::RO, ERR_NONE, "why ERROR was set: 1 read, 2 write, 3 START while busy, 4 zero length", {}},
+         {"ERROR_CODE",
+          ERROR_CODE,
+          Access::RO,
+          ERR_NONE,
+          "why ERROR was set: 1 read, 2 write, 3 START while busy, 4 zero length",
+          {}},
          {"ERROR_ADDR", ERROR_ADDR, Access::RO, 0, "the bus address that failed", {}}}};
     return t;
 }

@@ -14,8 +14,8 @@ namespace {
 // non-temporal (a frame's 14 MB of determinants is read back long after, if at all: writing it
 // through the cache read each line from memory first), so the caller fences before it hands
 // the row on.
-__attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
-void store_records_be32(const HessianCore::Lines& lines, uint8_t* row) {
+__attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default"))) void store_records_be32(
+    const HessianCore::Lines& lines, uint8_t* row) {
     const int32_t* pairs[8];  // local copies: the byte stores below may alias anything
     for (int pair = 0; pair < 8; ++pair) pairs[pair] = lines.octave1[pair / 2][pair % 2];
     const int32_t *octave2_a = lines.octave2[0], *octave2_b = lines.octave2[1];
@@ -27,8 +27,10 @@ void store_records_be32(const HessianCore::Lines& lines, uint8_t* row) {
             two = __builtin_bswap64(two);
             record[pair] = two >> 32 | two << 32;  // each word swapped in its own place
         }
-        record[8] = uint64_t(__builtin_bswap32(uint32_t(octave2_b[bx]))) << 32 | __builtin_bswap32(uint32_t(octave2_a[bx]));
-        for (int q = 0; q < 9; ++q) _mm_stream_si64(reinterpret_cast<long long*>(row + 8 * q), static_cast<long long>(record[q]));
+        record[8] =
+            uint64_t(__builtin_bswap32(uint32_t(octave2_b[bx]))) << 32 | __builtin_bswap32(uint32_t(octave2_a[bx]));
+        for (int q = 0; q < 9; ++q)
+            _mm_stream_si64(reinterpret_cast<long long*>(row + 8 * q), static_cast<long long>(record[q]));
     }
 }
 
@@ -39,7 +41,8 @@ void store_records(const HessianCore::Lines& lines, uint32_t det_bytes, uint8_t*
         return;
     }
     for (int bx = 0; bx < lines.blocks; ++bx)
-        for (int k = 0; k < kDeterminantsPerBlock; ++k, row += det_bytes) fhg_regs::store_det(row, lines.at(bx, k), det_bytes);
+        for (int k = 0; k < kDeterminantsPerBlock; ++k, row += det_bytes)
+            fhg_regs::store_det(row, lines.at(bx, k), det_bytes);
 }
 
 }  // namespace

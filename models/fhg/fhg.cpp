@@ -69,7 +69,8 @@ const char* Fhg::block_limit(const fhg::Sequence& sequence, const Params& params
 uint32_t Fhg::det_bytes() const { return r::det_bytes_for(params_.precision.det_bits); }
 
 FhgRegisters::Limits Fhg::register_limits(const Params& p) {
-    return {p.max_width, p.max_height, p.maxima_fifo_depth, p.precision.det_frac_bits, r::det_bytes_for(p.precision.det_bits)};
+    return {p.max_width, p.max_height, p.maxima_fifo_depth, p.precision.det_frac_bits,
+            r::det_bytes_for(p.precision.det_bits)};
 }
 
 // A register write or a FIFO pop: the levels and the interrupt line may have changed.
@@ -79,9 +80,9 @@ void Fhg::changed() {
 }
 
 void Fhg::b_transport(tlm::tlm_generic_payload& tx, sc_time& delay) {
-    answer_register_access(tx, delay, params_.registers.latency(), [this](uint32_t offset, uint32_t& value, bool write) {
-        return registers_.access(offset, value, write);
-    });
+    answer_register_access(
+        tx, delay, params_.registers.latency(),
+        [this](uint32_t offset, uint32_t& value, bool write) { return registers_.access(offset, value, write); });
 }
 
 // Stops the frame: waiting units wake up and run out without doing more work; ERROR shows
@@ -97,8 +98,9 @@ void Fhg::fail(uint32_t code) {
 // START accepted (FhgRegisters checked it and emptied the FIFO): listen for the frame.
 void Fhg::start(const FhgRegisters::Frame& f) {
     if (worker_) worker_->drain();  // (nothing runs: the last frame's thread drained it)
-    frame_ = {f.det_addr, f.width, f.height, (f.width + 1) / 2, (f.height + 1) / 2, f.threshold, true, false, 0, 0, 0,
-              0, 0, 0, sc_core::sc_time_stamp()};
+    frame_ = {
+        f.det_addr, f.width, f.height, (f.width + 1) / 2,       (f.height + 1) / 2, f.threshold, true, false, 0, 0, 0,
+        0,          0,       0,        sc_core::sc_time_stamp()};
     lines_.assign(size_t(f.width) * f.height, 0);
     // Every row is written whole before the writer sends it: no need to clear.
     if (worker_) {
@@ -113,7 +115,6 @@ void Fhg::start(const FhgRegisters::Frame& f) {
     corruption_.row = -1;
     start_.notify(sc_core::SC_ZERO_TIME);
 }
-
 
 // CTRL.RESET: a frame that never ended is dropped (the registers then clear STATUS and the
 // FIFO), one in progress is aborted; an injected stuck line lets go.
@@ -140,7 +141,8 @@ bool checked_by_software(const fhg::Candidate& c, uint32_t width, uint32_t heigh
     const int layer = second ? c.size_index - 2 : c.size_index, step = second ? 2 : 1;
     for (int l = layer - 1; l <= layer + 1; ++l)
         for (int d : {-step, step})
-            if (!fhg::HessianCore::inside(int(width), int(height), c.x + d, c.y + d, second ? kOctave2[l] : kOctave1[l]))
+            if (!fhg::HessianCore::inside(int(width), int(height), c.x + d, c.y + d,
+                                          second ? kOctave2[l] : kOctave1[l]))
                 return false;
     return true;
 }
@@ -148,7 +150,8 @@ bool checked_by_software(const fhg::Candidate& c, uint32_t width, uint32_t heigh
 // Where a candidate's own determinant is among its block row's records (fhg_regs.h's layout).
 size_t record_index(const fhg::Candidate& c) {
     const size_t bx = size_t(c.x / 2);
-    const size_t k = c.octave() == 2 ? (c.size_index == 3 ? 12 : 16) : size_t(4 * c.size_index + 2 * (c.y % 2) + c.x % 2);
+    const size_t k =
+        c.octave() == 2 ? (c.size_index == 3 ? 12 : 16) : size_t(4 * c.size_index + 2 * (c.y % 2) + c.x % 2);
     return bx * fhg::kDeterminantsPerBlock + k;
 }
 
@@ -233,7 +236,8 @@ void Fhg::frame_thread() {
             sc_core::wait(cycles(params_.clock, double(frame_.blocks_x) * block_cycles_));
             finish_block_row(int(by), block_row_results(by));  // the results exist once the row's cycles are spent
             stats_.computing += sc_core::sc_time_stamp() - began;
-            if (tracer_.perfetto_on()) tracer_.slice(row_track_, fmt::format("block row {}", by), began, sc_core::sc_time_stamp());
+            if (tracer_.perfetto_on())
+                tracer_.slice(row_track_, fmt::format("block row {}", by), began, sc_core::sc_time_stamp());
             frame_.oldest = std::max(frame_.oldest, int(2 * (by + 1)) - fhg::kReachBefore);
             trace_levels();
             room_.notify(sc_core::SC_ZERO_TIME);
@@ -310,21 +314,37 @@ void Fhg::trace_levels() {
 void Fhg::update_irq() { irq.write(faults_.line(registers_.irq())); }
 
 void Fhg::register_statistics(Statistics::Scope s) const {
-    s.count("frames", [this] { return stats_.frames; }, "frames", "frames ended (done or failed)");
-    s.count("errors", [this] { return errors(); }, "errors", "ERRORs flagged");
+    s.count(
+        "frames", [this] { return stats_.frames; }, "frames", "frames ended (done or failed)");
+    s.count(
+        "errors", [this] { return errors(); }, "errors", "ERRORs flagged");
     s.value("cycles_per_block", block_cycles_, "cycles", "FHG cycles per 2x2 block");
-    s.text("block_limit", [this] { return std::string(block_limit()); }, "what sets the cycles per block");
-    s.time("busy_s", [this] { return stats_.busy; }, "from START to the last determinants written, summed");
-    s.time("computing_s", [this] { return stats_.computing; }, "computing block rows");
-    s.share("utilisation", [this] { return stats_.computing; }, "computing over the run");
-    s.time("waiting_for_lines_s", [this] { return stats_.waiting_for_lines; }, "waiting for the line FIFO to hold a block row's window");
-    s.time("waiting_for_writer_s", [this] { return stats_.waiting_for_writer; }, "waiting for a free determinant row buffer (PLB2)");
-    s.count("candidates", [this] { return stats_.candidates; }, "candidates", "local maxima marked");
-    s.count("candidates_dropped", [this] { return stats_.dropped; }, "candidates", "dropped on a full maxima FIFO");
-    s.high_water("maxima_fifo_high_water", [this] { return uint64_t(stats_.fifo_high_water); }, "entries", "the maxima FIFO's highest level");
+    s.text(
+        "block_limit", [this] { return std::string(block_limit()); }, "what sets the cycles per block");
+    s.time(
+        "busy_s", [this] { return stats_.busy; }, "from START to the last determinants written, summed");
+    s.time(
+        "computing_s", [this] { return stats_.computing; }, "computing block rows");
+    s.share(
+        "utilisation", [this] { return stats_.computing; }, "computing over the run");
+    s.time(
+        "waiting_for_lines_s", [this] { return stats_.waiting_for_lines; },
+        "waiting for the line FIFO to hold a block row's window");
+    s.time(
+        "waiting_for_writer_s", [this] { return stats_.waiting_for_writer; },
+        "waiting for a free determinant row buffer (PLB2)");
+    s.count(
+        "candidates", [this] { return stats_.candidates; }, "candidates", "local maxima marked");
+    s.count(
+        "candidates_dropped", [this] { return stats_.dropped; }, "candidates", "dropped on a full maxima FIFO");
+    s.high_water(
+        "maxima_fifo_high_water", [this] { return uint64_t(stats_.fifo_high_water); }, "entries",
+        "the maxima FIFO's highest level");
     s.series("line_fifo_series", line_series_, "lines", "the line FIFO's highest level per time bin");
     s.series("maxima_fifo_series", maxima_series_, "entries", "the maxima FIFO's highest level per time bin");
-    s.high_water("line_fifo_high_water", [this] { return uint64_t(stats_.lines_high_water); }, "lines", "the line FIFO's highest level");
+    s.high_water(
+        "line_fifo_high_water", [this] { return uint64_t(stats_.lines_high_water); }, "lines",
+        "the line FIFO's highest level");
 }
 
 }  // namespace surfvp

@@ -53,7 +53,7 @@ public:
         unsigned max_width = 1024, max_height = 1024;
         uint64_t dma_transaction_bytes = 0;  // bytes per TLM transaction: 0 = a whole line (DmaEngine)
         Duration series_bin{1'000'000'000};  // report.html's time bins (the wiring's run.series_bin)
-        RegisterTiming registers;  // a register access: its cycles (block.register_latency) of PLB1's clock
+        RegisterTiming registers;            // a register access: its cycles (block.register_latency) of PLB1's clock
         // Block rows' determinants and maxima computed on a second thread as soon as their
         // lines have arrived, while the kernel simulates the rest (the wiring's run.parallel;
         // the results are the same).
@@ -79,7 +79,7 @@ public:
     Fhg(const sc_core::sc_module_name& name, const Params& params, Tracer& tracer);
 
     const fhg::Sequence& sequence() const { return sequence_; }  // the one `sequence.scheduler` generates
-    int block_cycles() const { return block_cycles_; }  // per 2x2 block, at the FHG clock
+    int block_cycles() const { return block_cycles_; }           // per 2x2 block, at the FHG clock
     const char* block_limit() const { return block_limit(sequence_, params_); }
 
     // HessianCalc reading the 18 TripleMAC outputs; a block takes the longer of that and the
@@ -118,7 +118,7 @@ private:
     void finish_block_row(int by, const std::vector<fhg::Candidate>& found);
     int needed_line(uint32_t by) const;  // the last integral line block row `by` reads
     void queue_ready_rows();             // hands the worker the rows whose lines have all arrived
-    uint8_t* row_bytes(uint32_t by);  // where block row `by`'s stored determinants are kept
+    uint8_t* row_bytes(uint32_t by);     // where block row `by`'s stored determinants are kept
     std::vector<fhg::Candidate> block_row_results(uint32_t by);
     void push_candidates(const std::vector<fhg::Candidate>& candidates);
     void update_irq();
@@ -137,17 +137,17 @@ private:
         uint32_t det_addr, width, height, blocks_x, blocks_y;
         int32_t threshold;
         bool running, failed;
-        uint32_t error;       // ErrorCode of the failure, shown at the frame's end
-        int received;         // lines received: rows 0 .. received-1
-        int oldest;           // first line still held in the FIFO
-        unsigned rows_sent;     // block rows handed to the writer
+        uint32_t error;      // ErrorCode of the failure, shown at the frame's end
+        int received;        // lines received: rows 0 .. received-1
+        int oldest;          // first line still held in the FIFO
+        unsigned rows_sent;  // block rows handed to the writer
         unsigned rows_written;
-        uint32_t rows_queued;   // block rows handed to the worker (Params::parallel)
+        uint32_t rows_queued;  // block rows handed to the worker (Params::parallel)
         sc_core::sc_time began;
     } frame_{};
     FrameBuffer<uint32_t> lines_;              // received integral rows (the FIFO's contents live here)
     std::vector<std::vector<uint8_t>> slots_;  // block rows for the writer (without Params::parallel)
-    sc_core::sc_fifo<int> det_rows_;  // block rows ready for the writer
+    sc_core::sc_fifo<int> det_rows_;           // block rows ready for the writer
     sc_core::sc_event start_, line_arrived_, room_, rows_written_, irq_changed_;
     sc_core::sc_signal<bool, sc_core::SC_UNCHECKED_WRITERS> busy_{"busy"};
     sc_core::sc_signal<unsigned, sc_core::SC_UNCHECKED_WRITERS> fifo_level_{"maxima_fifo_level"};
@@ -163,9 +163,9 @@ private:
     std::vector<size_t> row_jobs_;
     std::unique_ptr<Worker> worker_;  // with Params::parallel; last, so it stops before the rest goes
     BlockFaults faults_{"fhg"};
-    struct Corruption {  // a determinant to invert as its row is written
-        int row = -1;        // block row
-        size_t index = 0;    // determinant within the row's records
+    struct Corruption {    // a determinant to invert as its row is written
+        int row = -1;      // block row
+        size_t index = 0;  // determinant within the row's records
     } corruption_;
 };
 

@@ -6,11 +6,14 @@
 namespace surfvp::fhg {
 
 std::vector<Box> filter_boxes(int size, Response response) {
-    if (size < 9 || size % 6 != 3) throw std::invalid_argument("filter size must be 9, 15, 21, ...: " + std::to_string(size));
+    if (size < 9 || size % 6 != 3)
+        throw std::invalid_argument("filter size must be 9, 15, 21, ...: " + std::to_string(size));
     const int l = size / 3, b = (size - 1) / 2, h = (l - 1) / 2;
     switch (response) {
-        case Response::xx: return {{-b, -(l - 1), b, l - 1, 1}, {-h, -(l - 1), h, l - 1, -3}};
-        case Response::yy: return {{-(l - 1), -b, l - 1, b, 1}, {-(l - 1), -h, l - 1, h, -3}};
+        case Response::xx:
+            return {{-b, -(l - 1), b, l - 1, 1}, {-h, -(l - 1), h, l - 1, -3}};
+        case Response::yy:
+            return {{-(l - 1), -b, l - 1, b, 1}, {-(l - 1), -h, l - 1, h, -3}};
         case Response::xy:
             return {{1, -l, l, -1, 1}, {-l, 1, -1, l, 1}, {-l, -l, -1, -1, -1}, {1, 1, l, l, -1}};
     }

@@ -42,8 +42,8 @@ constexpr std::array<int, 6> kSizes = {9, 15, 21, 27, 39, 51};
 constexpr int kDeterminantsPerBlock = 18;
 
 struct BlockDeterminant {
-    int size;      // filter size L
-    int px, py;    // pixel within the block (0 or 1 each)
+    int size;    // filter size L
+    int px, py;  // pixel within the block (0 or 1 each)
 };
 // Index k in 0..17 of the determinant buffer's block record (fhg_regs.h documents it):
 // k = 4 i + (2 py + px) for octave 1 size index i (0..3), k = 16 + j for octave 2 size 39 (j = 0), 51 (j = 1).

@@ -28,11 +28,12 @@ struct FinishConstants {
     return shift ? (v + (int64_t(1) << (shift - 1))) >> shift : v;
 }
 
-[[gnu::always_inline]] inline int64_t clamp_to(int64_t v, int64_t max) { return v > max ? max : (v < -max - 1 ? -max - 1 : v); }
+[[gnu::always_inline]] inline int64_t clamp_to(int64_t v, int64_t max) {
+    return v > max ? max : (v < -max - 1 ? -max - 1 : v);
+}
 
-__attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
-void finish_run(const uint32_t* xx, const uint32_t* yy, const uint32_t* xy, int n, const FinishConstants& c,
-                int32_t* out) {
+__attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default"))) void finish_run(
+    const uint32_t* xx, const uint32_t* yy, const uint32_t* xy, int n, const FinishConstants& c, int32_t* out) {
     for (int i = 0; i < n; ++i) {
         const int64_t sxx = int64_t(uint64_t(int64_t(int32_t(xx[i]))) << c.drop) >> c.drop;
         const int64_t syy = int64_t(uint64_t(int64_t(int32_t(yy[i]))) << c.drop) >> c.drop;
@@ -46,8 +47,13 @@ void finish_run(const uint32_t* xx, const uint32_t* yy, const uint32_t* xy, int 
 }
 
 FinishConstants finish_constants(const Precision& p, int64_t k, int64_t weight) {
-    return {64 - p.accumulator_bits, k, weight, p.recip_shift, p.weight_frac_bits,
-            2 * p.response_frac_bits - p.det_frac_bits, (int64_t(1) << (p.response_bits - 1)) - 1,
+    return {64 - p.accumulator_bits,
+            k,
+            weight,
+            p.recip_shift,
+            p.weight_frac_bits,
+            2 * p.response_frac_bits - p.det_frac_bits,
+            (int64_t(1) << (p.response_bits - 1)) - 1,
             (int64_t(1) << (p.det_bits - 1)) - 1};
 }
 
@@ -98,9 +104,11 @@ HessianCore::Factors factor(const std::vector<Read>& reads, Response response, i
         for (const Read& g : own)
             if (g.dx == r.dx) {
                 ++group;
-                if (g.coefficient != tap * weight_of(g.dy)) throw std::logic_error("filter " + std::to_string(size) + " does not factor");
+                if (g.coefficient != tap * weight_of(g.dy))
+                    throw std::logic_error("filter " + std::to_string(size) + " does not factor");
             }
-        if (group != f.rows || f.taps == 4) throw std::logic_error("filter " + std::to_string(size) + " does not factor");
+        if (group != f.rows || f.taps == 4)
+            throw std::logic_error("filter " + std::to_string(size) + " does not factor");
         f.dx[size_t(f.taps)] = r.dx, f.tap[size_t(f.taps++)] = tap;
     }
     f.row_pairs = pairing(f.rows, f.weight);
@@ -182,9 +190,9 @@ namespace {
 // `drop` narrows them to its width.
 struct FinishConstantsF {
     unsigned drop;
-    double k_scaled, recip_half;     // K x 2^-recip_shift; 1/2, or 0 without a shift
+    double k_scaled, recip_half;  // K x 2^-recip_shift; 1/2, or 0 without a shift
     double weight_scaled, weight_half;
-    double det_scale, det_half;      // 2^-det_shift
+    double det_scale, det_half;  // 2^-det_shift
     double response_max, det_max;
 };
 
@@ -194,16 +202,25 @@ double half_of(unsigned s) { return s ? 0.5 : 0.0; }
 
 FinishConstantsF finish_constants_f(const Precision& p, int64_t k, int64_t weight) {
     const unsigned det_shift = 2 * p.response_frac_bits - p.det_frac_bits;
-    return {32 - p.accumulator_bits, double(k) * scale_of(p.recip_shift), half_of(p.recip_shift),
-            double(weight) * scale_of(p.weight_frac_bits), half_of(p.weight_frac_bits), scale_of(det_shift), half_of(det_shift),
-            double((int64_t(1) << (p.response_bits - 1)) - 1), double((int64_t(1) << (p.det_bits - 1)) - 1)};
+    return {32 - p.accumulator_bits,
+            double(k) * scale_of(p.recip_shift),
+            half_of(p.recip_shift),
+            double(weight) * scale_of(p.weight_frac_bits),
+            half_of(p.weight_frac_bits),
+            scale_of(det_shift),
+            half_of(det_shift),
+            double((int64_t(1) << (p.response_bits - 1)) - 1),
+            double((int64_t(1) << (p.det_bits - 1)) - 1)};
 }
 
 [[gnu::always_inline]] inline double clamp_f(double v, double max) { return std::min(std::max(v, -max - 1), max); }
 
-[[gnu::always_inline]] inline double narrow_f(uint32_t sum, unsigned drop) { return double(int32_t(sum << drop) >> drop); }
+[[gnu::always_inline]] inline double narrow_f(uint32_t sum, unsigned drop) {
+    return double(int32_t(sum << drop) >> drop);
+}
 
-[[gnu::always_inline]] inline int32_t finish_exact_double(uint32_t xx, uint32_t yy, uint32_t xy, const FinishConstantsF& c) {
+[[gnu::always_inline]] inline int32_t finish_exact_double(uint32_t xx, uint32_t yy, uint32_t xy,
+                                                          const FinishConstantsF& c) {
     const double rxx = clamp_f(std::floor(narrow_f(xx, c.drop) * c.k_scaled + c.recip_half), c.response_max);
     const double ryy = clamp_f(std::floor(narrow_f(yy, c.drop) * c.k_scaled + c.recip_half), c.response_max);
     const double rxy = clamp_f(std::floor(narrow_f(xy, c.drop) * c.k_scaled + c.recip_half), c.response_max);
@@ -211,9 +228,8 @@ FinishConstantsF finish_constants_f(const Precision& p, int64_t k, int64_t weigh
     return int32_t(clamp_f(std::floor(det * c.det_scale + c.det_half), c.det_max));
 }
 
-__attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
-void finish_run_exact_double(const uint32_t* xx, const uint32_t* yy, const uint32_t* xy, int n,
-                             const FinishConstantsF& c, int32_t* out) {
+__attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default"))) void finish_run_exact_double(
+    const uint32_t* xx, const uint32_t* yy, const uint32_t* xy, int n, const FinishConstantsF& c, int32_t* out) {
     for (int i = 0; i < n; ++i) out[i] = finish_exact_double(xx[i], yy[i], xy[i], c);
 }
 
@@ -249,22 +265,43 @@ template <int P, int U, int Step>
 
 template <int P, int U>
 [[gnu::always_inline]] inline void weigh_stride(uint32_t* out, const Pairs& t, int n, int step) {
-    if (step == 1) weigh_n<P, U, 1>(out, t, n, step);
-    else if (step == 2) weigh_n<P, U, 2>(out, t, n, step);
-    else weigh_n<P, U, 0>(out, t, n, step);
+    if (step == 1)
+        weigh_n<P, U, 1>(out, t, n, step);
+    else if (step == 2)
+        weigh_n<P, U, 2>(out, t, n, step);
+    else
+        weigh_n<P, U, 0>(out, t, n, step);
 }
 
-__attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
-void weigh(uint32_t* out, const Pairs& t, int n, int step) {
+__attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default"))) void weigh(uint32_t* out, const Pairs& t,
+                                                                                         int n, int step) {
     switch (t.count * 8 + std::min(t.units, 2)) {
-        case 0: std::fill(out, out + n, 0u); break;
-        case 8: weigh_stride<1, 0>(out, t, n, step); break;
-        case 9: weigh_stride<1, 1>(out, t, n, step); break;
-        case 16: weigh_stride<2, 0>(out, t, n, step); break;
-        case 17: weigh_stride<2, 1>(out, t, n, step); break;
-        case 18: weigh_stride<2, 2>(out, t, n, step); break;
-        case 24: case 25: case 26: weigh_stride<3, 0>(out, t, n, step); break;
-        default: weigh_stride<4, 0>(out, t, n, step); break;
+        case 0:
+            std::fill(out, out + n, 0u);
+            break;
+        case 8:
+            weigh_stride<1, 0>(out, t, n, step);
+            break;
+        case 9:
+            weigh_stride<1, 1>(out, t, n, step);
+            break;
+        case 16:
+            weigh_stride<2, 0>(out, t, n, step);
+            break;
+        case 17:
+            weigh_stride<2, 1>(out, t, n, step);
+            break;
+        case 18:
+            weigh_stride<2, 2>(out, t, n, step);
+            break;
+        case 24:
+        case 25:
+        case 26:
+            weigh_stride<3, 0>(out, t, n, step);
+            break;
+        default:
+            weigh_stride<4, 0>(out, t, n, step);
+            break;
     }
 }
 
@@ -279,7 +316,8 @@ Pairs pairs(const HessianCore::Factors::Pairing& plan, Source source, const uint
     Pairs t;
     t.count = plan.count, t.units = plan.units;
     for (int j = 0; j < plan.count; ++j)
-        t.plus[j] = row(plan.plus[size_t(j)]), t.minus[j] = row(plan.minus[size_t(j)]), t.magnitude[j] = plan.magnitude[size_t(j)];
+        t.plus[j] = row(plan.plus[size_t(j)]), t.minus[j] = row(plan.minus[size_t(j)]),
+        t.magnitude[j] = plan.magnitude[size_t(j)];
     return t;
 }
 
@@ -296,9 +334,11 @@ template <int Step>
 [[gnu::always_inline]] inline void taps_and_finish_n(const Pairs (&taps)[3], int n, int step, const FinishConstantsF& c,
                                                      int32_t* __restrict out) {
     // The output is a row of its own (restrict: without it, ten inputs are too many alias checks to vectorise).
-    const uint32_t *xx_p0 = taps[0].plus[0], *xx_m0 = taps[0].minus[0], *xx_p1 = taps[0].plus[1], *xx_m1 = taps[0].minus[1];
+    const uint32_t *xx_p0 = taps[0].plus[0], *xx_m0 = taps[0].minus[0], *xx_p1 = taps[0].plus[1],
+                   *xx_m1 = taps[0].minus[1];
     const uint32_t *yy_p = taps[1].plus[0], *yy_m = taps[1].minus[0];
-    const uint32_t *xy_p0 = taps[2].plus[0], *xy_m0 = taps[2].minus[0], *xy_p1 = taps[2].plus[1], *xy_m1 = taps[2].minus[1];
+    const uint32_t *xy_p0 = taps[2].plus[0], *xy_m0 = taps[2].minus[0], *xy_p1 = taps[2].plus[1],
+                   *xy_m1 = taps[2].minus[1];
     const uint32_t xx_m = taps[0].magnitude[1];
     const int stride = Step ? Step : step;
     for (int k = 0; k < n; ++k) {
@@ -310,11 +350,14 @@ template <int Step>
     }
 }
 
-__attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
-void taps_and_finish(const Pairs (&taps)[3], int n, int step, const FinishConstantsF& c, int32_t* __restrict out) {
-    if (step == 1) taps_and_finish_n<1>(taps, n, step, c, out);
-    else if (step == 2) taps_and_finish_n<2>(taps, n, step, c, out);
-    else taps_and_finish_n<0>(taps, n, step, c, out);
+__attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default"))) void taps_and_finish(
+    const Pairs (&taps)[3], int n, int step, const FinishConstantsF& c, int32_t* __restrict out) {
+    if (step == 1)
+        taps_and_finish_n<1>(taps, n, step, c, out);
+    else if (step == 2)
+        taps_and_finish_n<2>(taps, n, step, c, out);
+    else
+        taps_and_finish_n<0>(taps, n, step, c, out);
 }
 
 }  // namespace
@@ -345,10 +388,12 @@ void HessianCore::row(const IntegralView& ii, int y, int size, int x0, int step,
         p[-1] = 0;
         // Inside the image every row read is in [-1, height - 1]; row -1 is zero.
         weigh(p,
-              pairs(f.row_pairs, [&](int i) { return y + f.dy[size_t(i)] < 0 ? nullptr : ii.row(y + f.dy[size_t(i)]); },
-                    zeros.data()),
+              pairs(
+                  f.row_pairs, [&](int i) { return y + f.dy[size_t(i)] < 0 ? nullptr : ii.row(y + f.dy[size_t(i)]); },
+                  zeros.data()),
               ii.width, 1);
-        taps[r] = pairs(f.tap_pairs, [&](int i) { return p + x_first + f.dx[size_t(i)]; }, zeros.data());
+        taps[r] = pairs(
+            f.tap_pairs, [&](int i) { return p + x_first + f.dx[size_t(i)]; }, zeros.data());
     }
     const Precision& pr = precision_;
     if (double_exact_ && box_filter_taps(taps))
@@ -359,8 +404,8 @@ void HessianCore::row(const IntegralView& ii, int y, int size, int x0, int step,
         finish_run_exact_double(sums.data(), sums.data() + n, sums.data() + 2 * n, n,
                                 finish_constants_f(pr, reciprocal_[size], weight_), out + first);
     else
-        finish_run(sums.data(), sums.data() + n, sums.data() + 2 * n, n, finish_constants(pr, reciprocal_[size], weight_),
-                   out + first);
+        finish_run(sums.data(), sums.data() + n, sums.data() + 2 * n, n,
+                   finish_constants(pr, reciprocal_[size], weight_), out + first);
 }
 
 namespace {
@@ -368,8 +413,10 @@ namespace {
 // Each block's peak raised to its largest value in `values` (per_block a block) at the
 // positions k, k + 1 LocalMaxFinder tests. With clones for AVX2 and AVX-512: the max
 // vectorises there, not in the baseline's SSE2.
-__attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
-void raise_peaks(const int32_t* values, int per_block, int k, int blocks, int32_t* peaks) {
+__attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default"))) void raise_peaks(const int32_t* values,
+                                                                                               int per_block, int k,
+                                                                                               int blocks,
+                                                                                               int32_t* peaks) {
     const bool first = tested_by_finder(k), second = per_block == 2 && tested_by_finder(k + 1);
     if (first && second)
         for (int j = 0; j < blocks; ++j) peaks[j] = std::max(peaks[j], std::max(values[2 * j], values[2 * j + 1]));
@@ -392,8 +439,10 @@ HessianCore::Lines HessianCore::block_row_lines(const IntegralView& ii, int by, 
             int32_t* line = &storage[(2 * size_t(i) + size_t(py)) * pixels];
             lines.octave1[i][py] = line;
             line[pixels - 1] = 0;
-            if (y < ii.height) row(ii, y, kSizes[i], 0, 1, ii.width, line);
-            else std::fill(line, line + pixels, 0);
+            if (y < ii.height)
+                row(ii, y, kSizes[i], 0, 1, ii.width, line);
+            else
+                std::fill(line, line + pixels, 0);
             if (peaks) raise_peaks(line, 2, 4 * i + 2 * py, lines.blocks, peaks);
         }
     }
@@ -413,7 +462,8 @@ void HessianCore::block_row(const IntegralView& ii, int by, int32_t* out) const 
 
 int32_t HessianCore::from_float(double det) const {
     const double scaled = std::round(det * double(int64_t(1) << precision_.det_frac_bits));
-    return int32_t(clamp_to(int64_t(std::clamp(scaled, -9.2e18, 9.2e18)), (int64_t(1) << (precision_.det_bits - 1)) - 1));
+    return int32_t(
+        clamp_to(int64_t(std::clamp(scaled, -9.2e18, 9.2e18)), (int64_t(1) << (precision_.det_bits - 1)) - 1));
 }
 
 }  // namespace surfvp::fhg

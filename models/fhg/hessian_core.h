@@ -96,10 +96,10 @@ private:
 
     Precision precision_;
     int64_t weight_;
-    std::array<int64_t, 64> reciprocal_{};  // K_L indexed by L
-    std::array<std::vector<Read>, 64> reads_;  // filter_reads(L) indexed by L
+    std::array<int64_t, 64> reciprocal_{};              // K_L indexed by L
+    std::array<std::vector<Read>, 64> reads_;           // filter_reads(L) indexed by L
     std::array<std::array<Factors, 3>, 64> factors_{};  // the reads as a row's Factors, by L and Response
-    bool double_exact_ = false;                // the row path may finish in double precision
+    bool double_exact_ = false;                         // the row path may finish in double precision
 };
 
 }  // namespace surfvp::fhg

@@ -15,8 +15,8 @@ constexpr int kOctave2Index[4] = {4 * 1, 4 * 3, 16, 17};
 }  // namespace
 
 uint32_t pack_candidate(const Candidate& c) {
-    return 1u << 31 | uint32_t(c.octave() == 2) << 27 | uint32_t(c.size_index & 7) << 24 |
-           uint32_t(c.y & 0xFFF) << 12 | uint32_t(c.x & 0xFFF);
+    return 1u << 31 | uint32_t(c.octave() == 2) << 27 | uint32_t(c.size_index & 7) << 24 | uint32_t(c.y & 0xFFF) << 12 |
+           uint32_t(c.x & 0xFFF);
 }
 
 Candidate unpack_candidate(uint32_t word) {
@@ -77,8 +77,7 @@ void LocalMaxFinder::block_row(const int32_t* records, int blocks, int by, std::
     // few thousand candidates among ~200 thousand blocks): the neighbour tests run for those.
     for (int bx = 0; bx < blocks; ++bx) {
         const int32_t* record = records + bx * kDeterminantsPerBlock;
-        if (tested_peak(record) > threshold_)
-            block(record, bx ? record - kDeterminantsPerBlock : nullptr, bx, by, out);
+        if (tested_peak(record) > threshold_) block(record, bx ? record - kDeterminantsPerBlock : nullptr, bx, by, out);
     }
 }
 

@@ -19,23 +19,24 @@ namespace fs = std::filesystem;
 std::optional<fs::path> sequence_cache_folder() { return cache_folder(); }
 
 std::string sequence_key(const SequenceParams& p) {
-    return fmt::format("generator {} read_buses {} triple_macs {} fifo_lines {} x3_cycles {} bus_word {} reuse {} "
-                       "line_fifo {} scheduler {} attempts {}",
-                       SURFVP_SEQUENCE_FINGERPRINT, p.read_buses, p.triple_macs, p.fifo_lines, p.x3_cycles,
-                       bus_word_name(p.bus_word), p.reuse, line_fifo_name(p.line_fifo), scheduler_name(p.scheduler),
-                       p.attempts);
+    return fmt::format(
+        "generator {} read_buses {} triple_macs {} fifo_lines {} x3_cycles {} bus_word {} reuse {} "
+        "line_fifo {} scheduler {} attempts {}",
+        SURFVP_SEQUENCE_FINGERPRINT, p.read_buses, p.triple_macs, p.fifo_lines, p.x3_cycles, bus_word_name(p.bus_word),
+        p.reuse, line_fifo_name(p.line_fifo), scheduler_name(p.scheduler), p.attempts);
 }
 
 // Line 1 the key; line 2 the figures; then one line per step: cycle bus x y and its taps as
 // (triple_mac lane coefficient response) fours.
 std::string sequence_text(const std::string& key, const Sequence& s) {
     std::string out = key + "\n";
-    out += fmt::format("{} {} {} {} {} {} {} {} {} {} {}\n", s.interval, s.span, s.optimal_cycles, s.spread[0], s.spread[1],
-                       s.reads_per_block, s.distinct_reads_per_block, s.words_delivered, s.busy_bus_cycles, s.steps.size(),
-                       s.optimal_limit.empty() ? "-" : s.optimal_limit);
+    out += fmt::format("{} {} {} {} {} {} {} {} {} {} {}\n", s.interval, s.span, s.optimal_cycles, s.spread[0],
+                       s.spread[1], s.reads_per_block, s.distinct_reads_per_block, s.words_delivered, s.busy_bus_cycles,
+                       s.steps.size(), s.optimal_limit.empty() ? "-" : s.optimal_limit);
     for (const Step& step : s.steps) {
         out += fmt::format("{} {} {} {} {}", step.cycle, step.bus, step.x, step.y, step.taps.size());
-        for (const Tap& t : step.taps) out += fmt::format(" {} {} {} {}", t.triple_mac, t.lane, t.coefficient, int(t.response));
+        for (const Tap& t : step.taps)
+            out += fmt::format(" {} {} {} {}", t.triple_mac, t.lane, t.coefficient, int(t.response));
         out += "\n";
     }
     return out;
@@ -61,7 +62,8 @@ std::optional<Sequence> read_sequence_text(const std::string& text, const std::s
         for (size_t k = 0; k < taps; ++k) {
             Tap t{};
             int response = 0;
-            if (!(in >> t.triple_mac >> t.lane >> t.coefficient >> response) || response < 0 || response > 2) return std::nullopt;
+            if (!(in >> t.triple_mac >> t.lane >> t.coefficient >> response) || response < 0 || response > 2)
+                return std::nullopt;
             t.response = Response(response);
             step.taps.push_back(t);
         }
@@ -85,8 +87,8 @@ const Sequence& cached_sequence(const SequenceParams& p) {
     using Key = std::tuple<unsigned, unsigned, unsigned, unsigned, int, bool, int, int, unsigned>;
     static std::map<Key, Sequence> cache;
     static std::mutex mutex;
-    const Key key{p.read_buses, p.triple_macs, p.fifo_lines, p.x3_cycles, int(p.bus_word), p.reuse,
-                  int(p.line_fifo), int(p.scheduler), p.attempts};
+    const Key key{p.read_buses, p.triple_macs,    p.fifo_lines,     p.x3_cycles, int(p.bus_word),
+                  p.reuse,      int(p.line_fifo), int(p.scheduler), p.attempts};
     std::lock_guard<std::mutex> lock(mutex);
     auto it = cache.find(key);
     if (it == cache.end()) {

@@ -62,8 +62,10 @@ Ports reads_of(const SequenceParams& p, const std::vector<Point>& points) {
     units.erase(std::unique(units.begin(), units.end()), units.end());
     Ports ports;
     for (const auto& u : units) {
-        if (!ports.empty() && ports.back().first == u.first) ++ports.back().second;
-        else ports.emplace_back(u.first, 1);
+        if (!ports.empty() && ports.back().first == u.first)
+            ++ports.back().second;
+        else
+            ports.emplace_back(u.first, 1);
     }
     return ports;
 }
@@ -89,11 +91,12 @@ void check_words_fit(const SequenceParams& p, const std::vector<Word>& groups) {
     for (const Word& g : groups)
         for (const auto& [bram, reads] : g.ports)
             if (reads > f.reads)
-                throw std::invalid_argument(
-                    std::string("fhg.line_fifo: ") + line_fifo_name(p.line_fifo) + " serves " + std::to_string(f.reads) +
-                    (f.aligned_pairs ? " aligned pair" : " read") + (f.reads > 1 ? "s" : "") + " of a line's BRAM a cycle, but a " +
-                    bus_word_name(p.bus_word) + " word at column " + std::to_string(g.x) + " needs " + std::to_string(reads) +
-                    "; choose another fhg.line_fifo or fhg.bus_word");
+                throw std::invalid_argument(std::string("fhg.line_fifo: ") + line_fifo_name(p.line_fifo) + " serves " +
+                                            std::to_string(f.reads) + (f.aligned_pairs ? " aligned pair" : " read") +
+                                            (f.reads > 1 ? "s" : "") + " of a line's BRAM a cycle, but a " +
+                                            bus_word_name(p.bus_word) + " word at column " + std::to_string(g.x) +
+                                            " needs " + std::to_string(reads) +
+                                            "; choose another fhg.line_fifo or fhg.bus_word");
 }
 
 bool word_in_window(const SequenceParams& p, int y, int x) {
@@ -186,7 +189,8 @@ std::pair<int, std::string> lower_bound(const Problem& problem, const SequencePa
     if (buses == bound) limits.push_back("read buses");
     if (ports == bound) {
         const int bram = int(busiest - reads.begin());
-        limits.push_back("line FIFO ports (line " + std::to_string(bram / line_fifo_shape(p.line_fifo).banks - kReachBefore) + ")");
+        limits.push_back("line FIFO ports (line " +
+                         std::to_string(bram / line_fifo_shape(p.line_fifo).banks - kReachBefore) + ")");
     }
     std::string limit;
     for (const std::string& l : limits) limit += (limit.empty() ? "" : ", ") + l;
@@ -206,9 +210,16 @@ int lane_of(const SequenceParams& p, const Need& n, const Word& w) {
 class Machine {
 public:
     Machine(const Problem& problem, const SequenceParams& p)
-        : problem_(problem), p_(p), pending_(problem.needs.size(), true), busy_until_(p.triple_macs, 0),
-          claimed_at_(p.triple_macs, -1), remaining_(problem.work), port_cycle_(size_t(problem.brams), -1),
-          port_use_(size_t(problem.brams), 0), bram_left_(size_t(problem.brams), 0), left_(int(problem.needs.size())) {
+        : problem_(problem),
+          p_(p),
+          pending_(problem.needs.size(), true),
+          busy_until_(p.triple_macs, 0),
+          claimed_at_(p.triple_macs, -1),
+          remaining_(problem.work),
+          port_cycle_(size_t(problem.brams), -1),
+          port_use_(size_t(problem.brams), 0),
+          bram_left_(size_t(problem.brams), 0),
+          left_(int(problem.needs.size())) {
         for (const Need& n : problem.needs) bram_left_[size_t(bram_of(p, n.y, n.x))] += 1;
     }
 
@@ -290,7 +301,8 @@ std::vector<Step> schedule_list(const Problem& problem, const SequenceParams& p,
                     const int tm = problem.needs[size_t(i)].tm;
                     if (!m.free(tm, cycle)) continue;
                     // One value per TripleMAC: the costliest of those this word holds for it.
-                    if (slot[size_t(tm)] >= 0 && problem.needs[size_t(slot[size_t(tm)])].cost >= problem.needs[size_t(i)].cost)
+                    if (slot[size_t(tm)] >= 0 &&
+                        problem.needs[size_t(slot[size_t(tm)])].cost >= problem.needs[size_t(i)].cost)
                         continue;
                     if (slot[size_t(tm)] < 0) served.push_back(tm);
                     slot[size_t(tm)] = i;
@@ -304,7 +316,9 @@ std::vector<Step> schedule_list(const Problem& problem, const SequenceParams& p,
                 const bool whole = reuse || served.size() == w.needs.size();
                 if (reuse && !served.empty()) {  // a shared word reads the values it is taken for
                     points.clear();
-                    for (int tm : served) points.emplace_back(problem.needs[size_t(slot[size_t(tm)])].y, problem.needs[size_t(slot[size_t(tm)])].x);
+                    for (int tm : served)
+                        points.emplace_back(problem.needs[size_t(slot[size_t(tm)])].y,
+                                            problem.needs[size_t(slot[size_t(tm)])].x);
                     ports = reads_of(p, points);
                 }
                 const Ports& reads = reuse ? ports : w.ports;
@@ -333,7 +347,8 @@ std::vector<Step> schedule_list(const Problem& problem, const SequenceParams& p,
 
 Sequence finish(std::vector<Step> steps, const Problem& problem, const SequenceParams& p) {
     Sequence s;
-    std::sort(steps.begin(), steps.end(), [](const Step& a, const Step& b) { return std::tie(a.cycle, a.bus) < std::tie(b.cycle, b.bus); });
+    std::sort(steps.begin(), steps.end(),
+              [](const Step& a, const Step& b) { return std::tie(a.cycle, a.bus) < std::tie(b.cycle, b.bus); });
     std::vector<int> first(p.triple_macs, -1), last(p.triple_macs, 0);
     for (const Step& step : steps) {
         s.interval = std::max(s.interval, step.cycle + 1);
@@ -361,7 +376,8 @@ std::vector<Sequence> single_passes(const Problem& problem, const SequenceParams
     std::vector<Sequence> passes;
     for (unsigned seed = 1; seed <= std::max(1u, p.attempts); ++seed)
         passes.push_back(finish(schedule_list(problem, p, reuse, seed, port_aware), problem, p));
-    std::stable_sort(passes.begin(), passes.end(), [](const Sequence& a, const Sequence& b) { return a.interval < b.interval; });
+    std::stable_sort(passes.begin(), passes.end(),
+                     [](const Sequence& a, const Sequence& b) { return a.interval < b.interval; });
     return passes;
 }
 
@@ -391,7 +407,8 @@ std::string check_one_group(const Step& step, const SequenceParams& p) {
     std::set<std::tuple<int, int, int, int, int>> reads;
     std::set<int> tms;
     for (const Tap& tap : step.taps) {
-        if (tap.triple_mac < 0 || tap.triple_mac >= kDeterminantsPerBlock || tap.lane < 0 || tap.lane >= int(shape.size()))
+        if (tap.triple_mac < 0 || tap.triple_mac >= kDeterminantsPerBlock || tap.lane < 0 ||
+            tap.lane >= int(shape.size()))
             return "a tap outside the block's determinants or the word's lanes";
         const BlockDeterminant d = block_determinant(tap.triple_mac);
         reads.insert({d.size, step.x + shape[size_t(tap.lane)][1] - d.px, step.y + shape[size_t(tap.lane)][0] - d.py,
@@ -408,15 +425,19 @@ std::string check_one_group(const Step& step, const SequenceParams& p) {
 }  // namespace
 
 const std::vector<std::array<int, 2>>& word_shape(BusWord word) {
-    static const std::vector<std::array<int, 2>> scalar{{0, 0}}, pair{{0, 0}, {0, 1}}, quad{{0, 0}, {0, 1}, {1, 0}, {1, 1}};
+    static const std::vector<std::array<int, 2>> scalar{{0, 0}}, pair{{0, 0}, {0, 1}},
+        quad{{0, 0}, {0, 1}, {1, 0}, {1, 1}};
     return word == BusWord::scalar ? scalar : word == BusWord::pair ? pair : quad;
 }
 
 const char* bus_word_name(BusWord word) {
     switch (word) {
-        case BusWord::scalar: return "scalar";
-        case BusWord::pair: return "pair";
-        case BusWord::quad: return "quad";
+        case BusWord::scalar:
+            return "scalar";
+        case BusWord::pair:
+            return "pair";
+        case BusWord::quad:
+            return "quad";
     }
     return "?";
 }
@@ -425,20 +446,28 @@ const char* scheduler_name(Scheduler scheduler) { return scheduler == Scheduler:
 
 LineFifoShape line_fifo_shape(LineFifo fifo) {
     switch (fifo) {
-        case LineFifo::tdp: return {1, 2, false, 1};
-        case LineFifo::tdp_x2: return {1, 4, false, 2};
-        case LineFifo::banked: return {2, 2, false, 1};
-        case LineFifo::sdp72: return {1, 1, true, 1};
+        case LineFifo::tdp:
+            return {1, 2, false, 1};
+        case LineFifo::tdp_x2:
+            return {1, 4, false, 2};
+        case LineFifo::banked:
+            return {2, 2, false, 1};
+        case LineFifo::sdp72:
+            return {1, 1, true, 1};
     }
     return {1, 2, false, 1};
 }
 
 const char* line_fifo_name(LineFifo fifo) {
     switch (fifo) {
-        case LineFifo::tdp: return "tdp";
-        case LineFifo::tdp_x2: return "tdp_x2";
-        case LineFifo::banked: return "banked";
-        case LineFifo::sdp72: return "sdp72";
+        case LineFifo::tdp:
+            return "tdp";
+        case LineFifo::tdp_x2:
+            return "tdp_x2";
+        case LineFifo::banked:
+            return "banked";
+        case LineFifo::sdp72:
+            return "sdp72";
     }
     return "?";
 }
@@ -447,7 +476,8 @@ Sequence generate_sequence(const SequenceParams& params) {
     validate(params);
     const Problem problem = make_problem(params);
     check_words_fit(params, problem.groups);
-    Sequence s = params.scheduler == Scheduler::basic ? schedule_basic(problem, params) : schedule_improved(problem, params);
+    Sequence s =
+        params.scheduler == Scheduler::basic ? schedule_basic(problem, params) : schedule_improved(problem, params);
     std::tie(s.optimal_cycles, s.optimal_limit) = lower_bound(problem, params);
     s.busy_bus_cycles = ceil_div(s.words_delivered, int(params.read_buses));
     return s;
@@ -459,19 +489,22 @@ std::string check_sequence(const Sequence& sequence, const SequenceParams& param
     std::vector<std::multiset<Value>> wanted(params.triple_macs), got(params.triple_macs);
     for (int t = 0; t < kDeterminantsPerBlock; ++t) {
         const BlockDeterminant d = block_determinant(t);
-        for (const Read& r : filter_reads(d.size)) wanted[size_t(t)].insert({d.px + r.dx, d.py + r.dy, r.coefficient, int(r.response)});
+        for (const Read& r : filter_reads(d.size))
+            wanted[size_t(t)].insert({d.px + r.dx, d.py + r.dy, r.coefficient, int(r.response)});
     }
     std::vector<Step> steps = sequence.steps;
     std::stable_sort(steps.begin(), steps.end(), [](const Step& a, const Step& b) { return a.cycle < b.cycle; });
     const auto& shape = word_shape(params.bus_word);
     const LineFifoShape fifo = line_fifo_shape(params.line_fifo);
-    std::vector<int> busy_until(params.triple_macs, 0), last_cycle(params.triple_macs, -1), first(params.triple_macs, -1);
+    std::vector<int> busy_until(params.triple_macs, 0), last_cycle(params.triple_macs, -1),
+        first(params.triple_macs, -1);
     std::map<std::pair<int, int>, int> bus_use, bram_use;  // (cycle, bus) / (cycle, BRAM) -> count
     for (const Step& step : steps) {
         const std::string where = " in cycle " + std::to_string(step.cycle);
         if (step.bus < 0 || step.bus >= int(params.read_buses)) return "a step uses bus " + std::to_string(step.bus);
         if (step.cycle < 0 || step.cycle >= sequence.interval) return "a word outside the block's interval" + where;
-        if (++bus_use[{step.cycle, step.bus}] > 1) return "bus " + std::to_string(step.bus) + " carries two words" + where;
+        if (++bus_use[{step.cycle, step.bus}] > 1)
+            return "bus " + std::to_string(step.bus) + " carries two words" + where;
         for (const auto& [dy, dx] : shape)
             if (!in_window(step.y + dy) || !in_window(step.x + dx)) return "a word outside the 52-line window" + where;
         std::vector<Point> taken;
@@ -480,8 +513,9 @@ std::string check_sequence(const Sequence& sequence, const SequenceParams& param
                 taken.emplace_back(step.y + shape[size_t(tap.lane)][0], step.x + shape[size_t(tap.lane)][1]);
         for (const auto& [bram, reads] : reads_of(params, taken))
             if ((bram_use[{step.cycle, bram}] += reads) > fifo.reads)
-                return "line " + std::to_string(bram / fifo.banks - kReachBefore) + " (BRAM " + std::to_string(bram % fifo.banks) +
-                       ") serves more than " + std::to_string(fifo.reads) + " reads" + where;
+                return "line " + std::to_string(bram / fifo.banks - kReachBefore) + " (BRAM " +
+                       std::to_string(bram % fifo.banks) + ") serves more than " + std::to_string(fifo.reads) +
+                       " reads" + where;
         if (!params.reuse) {
             const std::string why = check_one_group(step, params);
             if (!why.empty()) return why + where;
@@ -492,11 +526,13 @@ std::string check_sequence(const Sequence& sequence, const SequenceParams& param
             if (tap.lane < 0 || tap.lane >= int(shape.size())) return who + " takes a lane the word does not have";
             if (last_cycle[size_t(tap.triple_mac)] == step.cycle) return who + " takes two values";
             if (busy_until[size_t(tap.triple_mac)] > step.cycle) return who + " is still busy with a x3";
-            got[size_t(tap.triple_mac)].insert({step.x + shape[size_t(tap.lane)][1], step.y + shape[size_t(tap.lane)][0],
-                                                tap.coefficient, int(tap.response)});
+            got[size_t(tap.triple_mac)].insert({step.x + shape[size_t(tap.lane)][1],
+                                                step.y + shape[size_t(tap.lane)][0], tap.coefficient,
+                                                int(tap.response)});
             if (first[size_t(tap.triple_mac)] < 0) first[size_t(tap.triple_mac)] = step.cycle;
             last_cycle[size_t(tap.triple_mac)] = step.cycle;
-            busy_until[size_t(tap.triple_mac)] = step.cycle + (std::abs(tap.coefficient) == 3 ? int(params.x3_cycles) : 1);
+            busy_until[size_t(tap.triple_mac)] =
+                step.cycle + (std::abs(tap.coefficient) == 3 ? int(params.x3_cycles) : 1);
         }
     }
     for (unsigned t = 0; t < params.triple_macs; ++t) {

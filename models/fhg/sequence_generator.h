@@ -94,11 +94,11 @@ struct Step {
 };
 
 struct Sequence {
-    std::vector<Step> steps;  // sorted by cycle, then bus
-    int interval = 0;         // cycles per block in the steady state: when the sequence starts again
-    int span = 0;             // from its first cycle until the last TripleMAC's last addition
-    int optimal_cycles = 0;   // lower bound on the interval under the same limits (the structural bound)
-    std::string optimal_limit;         // what sets that bound (every limit that reaches it)
+    std::vector<Step> steps;    // sorted by cycle, then bus
+    int interval = 0;           // cycles per block in the steady state: when the sequence starts again
+    int span = 0;               // from its first cycle until the last TripleMAC's last addition
+    int optimal_cycles = 0;     // lower bound on the interval under the same limits (the structural bound)
+    std::string optimal_limit;  // what sets that bound (every limit that reaches it)
     // The paper's "optimal state" (its note 4): the read buses never idle waiting for a busy
     // TripleMAC, i.e. every bus carries one of this sequence's words every cycle.
     int busy_bus_cycles = 0;

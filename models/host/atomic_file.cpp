@@ -19,8 +19,8 @@ void write_file_atomically(const std::filesystem::path& file, const std::string&
     {
         std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
         if (!out) {
-            throw EnvironmentError(file.string() + ": cannot create temporary " +
-                                     temporary.string() + " (" + std::strerror(errno) + ")");
+            throw EnvironmentError(file.string() + ": cannot create temporary " + temporary.string() + " (" +
+                                   std::strerror(errno) + ")");
         }
         out.write(content.data(), static_cast<std::streamsize>(content.size()));
         out.close();
@@ -35,8 +35,7 @@ void write_file_atomically(const std::filesystem::path& file, const std::string&
     if (ec) {
         std::error_code ignored;
         std::filesystem::remove(temporary, ignored);
-        throw EnvironmentError(file.string() + ": cannot rename temporary into place (" +
-                                 ec.message() + ")");
+        throw EnvironmentError(file.string() + ": cannot rename temporary into place (" + ec.message() + ")");
     }
 }
 

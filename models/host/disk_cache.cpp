@@ -45,7 +45,8 @@ std::optional<std::string> read_entry(const fs::path& file) {
     if (::fstat(fd, &s) == 0 && S_ISREG(s.st_mode) && std::uintmax_t(s.st_size) <= kMaxCacheEntry + 4096) {
         text.emplace(size_t(s.st_size), '\0');
         size_t got = 0;
-        for (ssize_t n; got < text->size() && (n = ::read(fd, text->data() + got, text->size() - got)) > 0;) got += size_t(n);
+        for (ssize_t n; got < text->size() && (n = ::read(fd, text->data() + got, text->size() - got)) > 0;)
+            got += size_t(n);
         if (got != text->size()) text.reset();
     }
     ::close(fd);
@@ -54,7 +55,9 @@ std::optional<std::string> read_entry(const fs::path& file) {
 
 }  // namespace
 
-std::string cache_entry(const std::string& key, const std::string& data) { return key + "\n" + seal(data) + "\n" + data; }
+std::string cache_entry(const std::string& key, const std::string& data) {
+    return key + "\n" + seal(data) + "\n" + data;
+}
 
 std::optional<std::string> read_cached(const std::string& kind, const std::string& key) {
     const auto folder = cache_folder();

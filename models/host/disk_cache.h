@@ -38,7 +38,8 @@ std::string cache_entry(const std::string& key, const std::string& data);
 void write_cached(const std::string& kind, const std::string& key, const std::string& data);
 
 // The same in a given folder rather than the cache folder.
-std::optional<std::string> read_cached_in(const std::filesystem::path& folder, const std::string& kind, const std::string& key);
+std::optional<std::string> read_cached_in(const std::filesystem::path& folder, const std::string& kind,
+                                          const std::string& key);
 void write_cached_in(const std::filesystem::path& folder, const std::string& kind, const std::string& key,
                      const std::string& data);
 

@@ -34,9 +34,7 @@ std::string trace_line(const VcdSignal& s, const GtkwaveSave& save) {
 
 }  // namespace
 
-double gtkwave_zoom(uint64_t end_ps) {
-    return -std::log2(200.0 * double(std::max<uint64_t>(end_ps, 1)) / kWavePixels);
-}
+double gtkwave_zoom(uint64_t end_ps) { return -std::log2(200.0 * double(std::max<uint64_t>(end_ps, 1)) / kWavePixels); }
 
 std::string gtkwave_task_filter() { return fmt::format("{} none\n", kNoTask); }
 

@@ -16,7 +16,7 @@ struct VcdSignal {
 
 struct GtkwaveSave {
     std::string vcd_path, save_path, filter_path;  // absolute: GTKWave finds a moved folder from them
-    uint64_t end_ps = 0;                            // the run's simulated time
+    uint64_t end_ps = 0;                           // the run's simulated time
     // Group titles in display order ("iig" -> "SSA IIG"); other groups follow as traced.
     std::vector<std::pair<std::string, std::string>> titles;
 };

@@ -5,7 +5,8 @@
 
 namespace surfvp {
 
-Worker::Worker(std::chrono::microseconds spin, Waiter waiter) : spin_(spin), waiter_(waiter), thread_([this] { loop(); }) {}
+Worker::Worker(std::chrono::microseconds spin, Waiter waiter)
+    : spin_(spin), waiter_(waiter), thread_([this] { loop(); }) {}
 
 Worker::~Worker() {
     {
@@ -74,9 +75,8 @@ bool Worker::take_up_to(size_t last, Job& job) {
 // A job first; else background work when there may be some; else sleeps until either comes.
 Worker::Next Worker::next(Job& job) {
     const auto poked = [&] { return pokes_.load(std::memory_order_acquire) != pokes_seen_; };
-    spin_until([&] {
-        return submitted_.load(std::memory_order_acquire) > taken_.load(std::memory_order_relaxed) || poked();
-    });
+    spin_until(
+        [&] { return submitted_.load(std::memory_order_acquire) > taken_.load(std::memory_order_relaxed) || poked(); });
     std::unique_lock<std::mutex> lock(mutex_);
     while (jobs_.empty() && !poked() && !stopping_) {
         worker_sleeps_ = true;
@@ -151,8 +151,10 @@ void Worker::loop() {
     for (Job job;;) {
         const Next n = next(job);
         if (n == Next::stop) return;
-        if (n == Next::job) run(job);
-        else background_piece();
+        if (n == Next::job)
+            run(job);
+        else
+            background_piece();
     }
 }
 

@@ -38,7 +38,8 @@ namespace surfvp {
 class Worker {
 public:
     enum class Waiter { runs_its_jobs, runs_any };
-    explicit Worker(std::chrono::microseconds spin = std::chrono::microseconds(200), Waiter waiter = Waiter::runs_its_jobs);
+    explicit Worker(std::chrono::microseconds spin = std::chrono::microseconds(200),
+                    Waiter waiter = Waiter::runs_its_jobs);
     ~Worker();  // finishes the jobs already submitted
     Worker(const Worker&) = delete;
     Worker& operator=(const Worker&) = delete;
@@ -70,10 +71,10 @@ private:
     };
     void loop();
     enum class Next { job, background, stop };
-    Next next(Job& job);                 // the worker's next thing to do; waits for one
-    bool background_piece();             // one piece of background work; false: there was none
+    Next next(Job& job);                     // the worker's next thing to do; waits for one
+    bool background_piece();                 // one piece of background work; false: there was none
     bool take_up_to(size_t last, Job& job);  // a waiter's: the queue's first if numbered <= last
-    void run(Job& job);                  // runs it, records its failure, counts it done
+    void run(Job& job);                      // runs it, records its failure, counts it done
     template <class Ready>
     bool spin_until(Ready ready) const;
 
@@ -83,20 +84,20 @@ private:
     std::condition_variable work_;  // the worker sleeps on it
     std::condition_variable done_;  // waiters sleep on it
     std::deque<Job> jobs_;
-    std::atomic<size_t> submitted_{0};   // written by the submitting thread, under mutex_
-    std::atomic<size_t> taken_{0};       // jobs taken off the queue, by the worker or a waiter
-    std::atomic<size_t> finished_{0};    // every job below it is done; read by spinning waiters
-    std::vector<size_t> done_ahead_;     // done above finished_ (two ran at once); under mutex_
-    bool worker_sleeps_ = false;         // under mutex_
-    std::mutex background_mutex_;        // held while a piece runs, and to replace the work
-    std::function<bool()> background_;   // under background_mutex_
-    std::atomic<uint64_t> pokes_{0};     // poke() calls; the worker has looked for work after pokes_seen_
-    uint64_t pokes_seen_ = 0;            // the worker's own
-    int waiters_sleeping_ = 0;           // under mutex_
+    std::atomic<size_t> submitted_{0};  // written by the submitting thread, under mutex_
+    std::atomic<size_t> taken_{0};      // jobs taken off the queue, by the worker or a waiter
+    std::atomic<size_t> finished_{0};   // every job below it is done; read by spinning waiters
+    std::vector<size_t> done_ahead_;    // done above finished_ (two ran at once); under mutex_
+    bool worker_sleeps_ = false;        // under mutex_
+    std::mutex background_mutex_;       // held while a piece runs, and to replace the work
+    std::function<bool()> background_;  // under background_mutex_
+    std::atomic<uint64_t> pokes_{0};    // poke() calls; the worker has looked for work after pokes_seen_
+    uint64_t pokes_seen_ = 0;           // the worker's own
+    int waiters_sleeping_ = 0;          // under mutex_
     bool stopping_ = false;
     size_t failed_job_ = 0;
-    std::exception_ptr failure_;         // the lowest-numbered job's that threw
-    std::thread thread_;  // last: started once the rest exists
+    std::exception_ptr failure_;  // the lowest-numbered job's that threw
+    std::thread thread_;          // last: started once the rest exists
 };
 
 }  // namespace surfvp

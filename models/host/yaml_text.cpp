@@ -65,20 +65,26 @@ public:
     void OnDocumentEnd() override { tick(mark_); }
     void OnNull(const YAML::Mark& mark, YAML::anchor_t) override { tick(mark); }
     void OnAlias(const YAML::Mark& mark, YAML::anchor_t) override { tick(mark); }
-    void OnScalar(const YAML::Mark& mark, const std::string&, YAML::anchor_t, const std::string&) override { tick(mark); }
-    void OnSequenceStart(const YAML::Mark& mark, const std::string&, YAML::anchor_t, YAML::EmitterStyle::value) override {
+    void OnScalar(const YAML::Mark& mark, const std::string&, YAML::anchor_t, const std::string&) override {
+        tick(mark);
+    }
+    void OnSequenceStart(const YAML::Mark& mark, const std::string&, YAML::anchor_t,
+                         YAML::EmitterStyle::value) override {
         tick(mark);
     }
     void OnSequenceEnd() override { tick(mark_); }
-    void OnMapStart(const YAML::Mark& mark, const std::string&, YAML::anchor_t, YAML::EmitterStyle::value) override { tick(mark); }
+    void OnMapStart(const YAML::Mark& mark, const std::string&, YAML::anchor_t, YAML::EmitterStyle::value) override {
+        tick(mark);
+    }
     void OnMapEnd() override { tick(mark_); }
 
 private:
     void tick(const YAML::Mark& mark) {
         mark_ = mark;
         if (++events_ > limit_)
-            throw YAML::ParserException(mark, "yaml-cpp would never finish this text: it repeats an empty document here "
-                                              "without end (a ',' after a complete top-level node?)");
+            throw YAML::ParserException(mark,
+                                        "yaml-cpp would never finish this text: it repeats an empty document here "
+                                        "without end (a ',' after a complete top-level node?)");
     }
     std::size_t limit_, events_ = 0;
     YAML::Mark mark_;
@@ -88,8 +94,7 @@ void refuse_endless(const std::string& text) {
     std::istringstream in(text);
     YAML::Parser parser(in);
     EventBound bound(10 * text.size() + 100);
-    while (parser.HandleNextDocument(bound)) {
-    }
+    while (parser.HandleNextDocument(bound)) {}
 }
 
 void refuse_hang(const std::string& text) {

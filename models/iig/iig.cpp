@@ -26,7 +26,8 @@ Iig::Iig(const sc_core::sc_module_name& name, const Params& params, Tracer& trac
       computed_for_write_("computed_for_write", int(params.line_buffers)),
       computed_for_send_("computed_for_send", int(params.line_buffers)) {
     if (params.pixels_per_clock == 0 || params.line_buffers == 0 || params.pixelbus_width_bits == 0)
-        throw std::invalid_argument(fmt::format("{}: pixels per clock, line buffers and PixelBus width must be above zero", basename()));
+        throw std::invalid_argument(
+            fmt::format("{}: pixels per clock, line buffers and PixelBus width must be above zero", basename()));
     regs.register_b_transport(this, &Iig::b_transport);
     SC_HAS_PROCESS(Iig);
     SC_THREAD(fetch_thread);
@@ -42,9 +43,9 @@ Iig::Iig(const sc_core::sc_module_name& name, const Params& params, Tracer& trac
 }
 
 void Iig::b_transport(tlm::tlm_generic_payload& tx, sc_time& delay) {
-    answer_register_access(tx, delay, params_.registers.latency(), [this](uint32_t offset, uint32_t& value, bool write) {
-        return registers_.access(offset, value, write);
-    });
+    answer_register_access(
+        tx, delay, params_.registers.latency(),
+        [this](uint32_t offset, uint32_t& value, bool write) { return registers_.access(offset, value, write); });
 }
 
 // Stops the frame in progress; its ERROR shows when the units have run out (FrameStatus).
@@ -56,7 +57,8 @@ void Iig::fail(uint32_t code) {
 
 // START accepted (IigRegisters checked it): the units take the frame.
 void Iig::start(const IigRegisters::Frame& f) {
-    frame_ = {f.src, f.dst, f.width, f.height, f.src_stride, f.dst_stride, f.stream, false, 0, 0, sc_core::sc_time_stamp()};
+    frame_ = {
+        f.src, f.dst, f.width, f.height, f.src_stride, f.dst_stride, f.stream, false, 0, 0, sc_core::sc_time_stamp()};
     image_.assign(size_t(frame_.width) * frame_.height, 0);
     integral_.assign(size_t(frame_.width) * frame_.height, 0);
     bytes_.resize(size_t(frame_.width) * 4);
@@ -69,7 +71,6 @@ void Iig::start(const IigRegisters::Frame& f) {
     }
     start_.notify(sc_core::SC_ZERO_TIME);
 }
-
 
 // CTRL.RESET: a frame that never ended is dropped (the registers then clear STATUS), one in
 // progress is aborted; an injected stuck line lets go.
@@ -108,8 +109,10 @@ void Iig::compute_thread() {
         if (!frame_.failed) {
             const size_t at = size_t(y) * frame_.width;
             const uint32_t* above = y ? integral_.data() + at - frame_.width : nullptr;
-            if (!core_.row(image_.data() + at, above, integral_.data() + at, int(frame_.width))) fail(iig::ERR_OVERFLOW);
-            const sc_time row = cycles(params_.clock, double((frame_.width + params_.pixels_per_clock - 1) / params_.pixels_per_clock));
+            if (!core_.row(image_.data() + at, above, integral_.data() + at, int(frame_.width)))
+                fail(iig::ERR_OVERFLOW);
+            const sc_time row =
+                cycles(params_.clock, double((frame_.width + params_.pixels_per_clock - 1) / params_.pixels_per_clock));
             sc_core::wait(row);
             stats_.computing += row;
         }
@@ -174,20 +177,30 @@ void Iig::finish_row() {
     irq_changed_.notify(sc_core::SC_ZERO_TIME);
 }
 
-void Iig::update_irq() {
-    irq.write(faults_.line(registers_.irq()));
-}
+void Iig::update_irq() { irq.write(faults_.line(registers_.irq())); }
 
 void Iig::register_statistics(Statistics::Scope s) const {
-    s.count("frames", [this] { return stats_.frames; }, "frames", "frames ended (done or failed)");
-    s.count("errors", [this] { return errors(); }, "errors", "ERRORs flagged");
-    s.time("busy_s", [this] { return stats_.busy; }, "from START to the last row written and sent, summed");
-    s.time("computing_s", [this] { return stats_.computing; }, "the integral core adding rows");
-    s.share("utilisation", [this] { return stats_.computing; }, "computing over the run");
-    s.time("waiting_for_image_s", [this] { return stats_.waiting_for_image; }, "the core waiting for image rows (image DMA)");
-    s.time("blocked_by_write_s", [this] { return stats_.blocked_by_write; }, "the core waiting for the write unit (integral DMA)");
-    s.time("blocked_by_pixelbus_s", [this] { return stats_.blocked_by_pixelbus; }, "the core waiting for the send unit (PixelBus)");
-    s.time("send_stalled_s", [this] { return stats_.stalled; }, "the send unit waiting on PixelBus back-pressure");
+    s.count(
+        "frames", [this] { return stats_.frames; }, "frames", "frames ended (done or failed)");
+    s.count(
+        "errors", [this] { return errors(); }, "errors", "ERRORs flagged");
+    s.time(
+        "busy_s", [this] { return stats_.busy; }, "from START to the last row written and sent, summed");
+    s.time(
+        "computing_s", [this] { return stats_.computing; }, "the integral core adding rows");
+    s.share(
+        "utilisation", [this] { return stats_.computing; }, "computing over the run");
+    s.time(
+        "waiting_for_image_s", [this] { return stats_.waiting_for_image; },
+        "the core waiting for image rows (image DMA)");
+    s.time(
+        "blocked_by_write_s", [this] { return stats_.blocked_by_write; },
+        "the core waiting for the write unit (integral DMA)");
+    s.time(
+        "blocked_by_pixelbus_s", [this] { return stats_.blocked_by_pixelbus; },
+        "the core waiting for the send unit (PixelBus)");
+    s.time(
+        "send_stalled_s", [this] { return stats_.stalled; }, "the send unit waiting on PixelBus back-pressure");
 }
 
 }  // namespace surfvp

@@ -36,12 +36,12 @@ public:
         unsigned pixels_per_clock = 1;
         unsigned sum_bits = 28;
         unsigned burst_beats = 16;
-        unsigned bus_width_bits = 128;   // of the bus its MPLB is on
+        unsigned bus_width_bits = 128;  // of the bus its MPLB is on
         unsigned pixelbus_width_bits = 32;
         unsigned line_buffers = 2;
         unsigned max_width = 1024, max_height = 1024;
         uint64_t dma_transaction_bytes = 0;  // bytes per TLM transaction: 0 = a whole line (DmaEngine)
-        RegisterTiming registers;  // a register access: its cycles (block.register_latency) of PLB1's clock
+        RegisterTiming registers;            // a register access: its cycles (block.register_latency) of PLB1's clock
     };
     // Its scenario parameters with the Params field each sets (iig_params.cpp).
     static const ParamTable<Params>& parameter_table();
@@ -99,9 +99,9 @@ private:
         unsigned rows_finished;  // written and (if streaming) sent
         sc_core::sc_time began;
     } frame_{};
-    FrameBuffer<uint8_t> image_;       // the frame's image rows as fetched
-    FrameBuffer<uint32_t> integral_;   // the frame's integral rows
-    std::vector<uint8_t> bytes_;       // one integral row as bus bytes
+    FrameBuffer<uint8_t> image_;      // the frame's image rows as fetched
+    FrameBuffer<uint32_t> integral_;  // the frame's integral rows
+    std::vector<uint8_t> bytes_;      // one integral row as bus bytes
     sc_core::sc_fifo<int> fetched_, computed_for_write_, computed_for_send_;
     sc_core::sc_event start_, irq_changed_;
     sc_core::sc_signal<bool, sc_core::SC_UNCHECKED_WRITERS> busy_{"busy"};  // set by START, cleared by the last unit

@@ -1,6 +1,7 @@
 #include "iig_registers.h"
 
-static_assert(surfvp::iig::STATUS_BUSY == surfvp::FrameStatus::kBusy && surfvp::iig::STATUS_DONE == surfvp::FrameStatus::kDone &&
+static_assert(surfvp::iig::STATUS_BUSY == surfvp::FrameStatus::kBusy &&
+              surfvp::iig::STATUS_DONE == surfvp::FrameStatus::kDone &&
               surfvp::iig::STATUS_ERROR == surfvp::FrameStatus::kError);
 
 namespace surfvp {
@@ -35,8 +36,13 @@ void IigRegisters::command(uint32_t ctrl) {
     if (width == 0 || height == 0 || width > limits_.max_width || height > limits_.max_height)
         return status_.flag(iig::ERR_SIZE);
     const uint32_t src_stride = bank_.value(iig::SRC_STRIDE), dst_stride = bank_.value(iig::DST_STRIDE);
-    const Frame frame{bank_.value(iig::SRC), bank_.value(iig::DST), width, height, src_stride ? src_stride : width,
-                      dst_stride ? dst_stride : 4 * width, (ctrl & iig::CTRL_STREAM) != 0};
+    const Frame frame{bank_.value(iig::SRC),
+                      bank_.value(iig::DST),
+                      width,
+                      height,
+                      src_stride ? src_stride : width,
+                      dst_stride ? dst_stride : 4 * width,
+                      (ctrl & iig::CTRL_STREAM) != 0};
     status_.start();
     hooks_.start(frame);
 }

@@ -41,29 +41,48 @@ enum ErrorCode : uint32_t {
 // docs/registers.md is generated from it.
 inline const RegisterTable& table() {
     static const RegisterTable t{
-        "SSA IIG", "One frame: an 8-bit image in memory in, its integral image out to memory and (STREAM) over PixelBus.",
-        {{"CTRL", CTRL, Access::RW, 0, "commands and interrupt enable",
-          {{"START", 0, 1, Access::command, "begin a frame with the registers as they are (ERROR START_BUSY while busy)"},
+        "SSA IIG",
+        "One frame: an 8-bit image in memory in, its integral image out to memory and (STREAM) over PixelBus.",
+        {{"CTRL",
+          CTRL,
+          Access::RW,
+          0,
+          "commands and interrupt enable",
+          {{"START", 0, 1, Access::command,
+            "begin a frame with the registers as they are (ERROR START_BUSY while busy)"},
            {"IRQ_EN", 1, 1, Access::RW, "raise the interrupt while DONE or ERROR"},
            {"STREAM", 2, 1, Access::RW, "also send each integral line over PixelBus to the FHG"},
            {"ABORT", 3, 1, Access::command, "stop the frame in progress (ERROR ABORTED)"},
            {"RESET", 4, 1, Access::command,
-            "back to idle: a frame in progress is aborted (as ABORT), one that never ended is dropped; once idle, STATUS "
+            "back to idle: a frame in progress is aborted (as ABORT), one that never ended is dropped; once idle, "
+            "STATUS "
             "and ERROR_CODE are cleared"}}},
-         {"STATUS", STATUS, Access::W1C, 0, "the frame's state",
+         {"STATUS",
+          STATUS,
+          Access::W1C,
+          0,
+          "the frame's state",
           {{"BUSY", 0, 1, Access::RO, "a frame is running"},
            {"DONE", 1, 1, Access::W1C, "the last frame ended well"},
            {"ERROR", 2, 1, Access::W1C, "a command was refused or the frame failed (ERROR_CODE says why)"}}},
-         {"ERROR_CODE", ERROR_CODE, Access::RO, ERR_NONE,
-          "why ERROR was set: 1 read, 2 write, 3 sum overflow, 4 size, 5 START while busy, 6 aborted", {}},
+         {"ERROR_CODE",
+          ERROR_CODE,
+          Access::RO,
+          ERR_NONE,
+          "why ERROR was set: 1 read, 2 write, 3 sum overflow, 4 size, 5 START while busy, 6 aborted",
+          {}},
          {"SRC", SRC, Access::RW, 0, "8-bit image in memory (bus address on PLB2)", {}},
          {"DST", DST, Access::RW, 0, "integral image in memory: 32-bit big-endian words", {}},
          {"WIDTH", WIDTH, Access::RW, 0, "pixels (1 to iig.max_width)", {}},
          {"HEIGHT", HEIGHT, Access::RW, 0, "rows (1 to iig.max_height)", {}},
          {"SRC_STRIDE", SRC_STRIDE, Access::RW, 0, "bytes from one image row to the next (0: WIDTH)", {}},
          {"DST_STRIDE", DST_STRIDE, Access::RW, 0, "bytes from one integral row to the next (0: 4 x WIDTH)", {}},
-         {"STALL_CYCLES", STALL_CYCLES, Access::RO, 0,
-          "IIG cycles the last frame waited on PixelBus back-pressure (0 in direct mode, which has no time)", {}}}};
+         {"STALL_CYCLES",
+          STALL_CYCLES,
+          Access::RO,
+          0,
+          "IIG cycles the last frame waited on PixelBus back-pressure (0 in direct mode, which has no time)",
+          {}}}};
     return t;
 }
 

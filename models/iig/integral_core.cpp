@@ -18,7 +18,8 @@ uint64_t pixel_sum(const uint8_t* pixels, int width) {
     __m128i sums = _mm_setzero_si128();
     int x = 0;
     for (; x + 16 <= width; x += 16)
-        sums = _mm_add_epi64(sums, _mm_sad_epu8(_mm_loadu_si128(reinterpret_cast<const __m128i*>(pixels + x)), _mm_setzero_si128()));
+        sums = _mm_add_epi64(
+            sums, _mm_sad_epu8(_mm_loadu_si128(reinterpret_cast<const __m128i*>(pixels + x)), _mm_setzero_si128()));
     uint64_t total = uint64_t(_mm_cvtsi128_si64(sums)) + uint64_t(_mm_cvtsi128_si64(_mm_unpackhi_epi64(sums, sums)));
     for (; x < width; ++x) total += pixels[x];
     return total;

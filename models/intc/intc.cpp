@@ -14,7 +14,8 @@ Intc::Intc(const sc_core::sc_module_name& name, const Params& params, Tracer& tr
       irq("irq"),
       params_(params),
       tracer_(tracer),
-      registers_(params.inputs, [this] { return levels(); }, [this] { changed_.notify(sc_core::SC_ZERO_TIME); }) {
+      registers_(
+          params.inputs, [this] { return levels(); }, [this] { changed_.notify(sc_core::SC_ZERO_TIME); }) {
     regs.register_b_transport(this, &Intc::b_transport);
     regs.register_transport_dbg(this, &Intc::transport_dbg);
     SC_HAS_PROCESS(Intc);
@@ -41,21 +42,21 @@ void Intc::update() {
 }
 
 void Intc::b_transport(tlm::tlm_generic_payload& tx, sc_core::sc_time& delay) {
-    answer_register_access(tx, delay, params_.registers.latency(), [this](uint32_t offset, uint32_t& value, bool write) {
-        return registers_.access(offset, value, write);
-    });
+    answer_register_access(
+        tx, delay, params_.registers.latency(),
+        [this](uint32_t offset, uint32_t& value, bool write) { return registers_.access(offset, value, write); });
 }
 
 unsigned Intc::transport_dbg(tlm::tlm_generic_payload& tx) {
     if (tx.is_write()) return 0;  // debug reads only: a debug write must not acknowledge
-    answer_register_access(tx, [this](uint32_t offset, uint32_t& value, bool write) {
-        return registers_.access(offset, value, write);
-    });
+    answer_register_access(
+        tx, [this](uint32_t offset, uint32_t& value, bool write) { return registers_.access(offset, value, write); });
     return tx.is_response_ok() ? 4 : 0;
 }
 
 void Intc::register_statistics(Statistics::Scope s) const {
-    s.count("raised", [this] { return raised_; }, "interrupts", "rising edges of the line to the CPU");
+    s.count(
+        "raised", [this] { return raised_; }, "interrupts", "rising edges of the line to the CPU");
 }
 
 }  // namespace surfvp

@@ -43,7 +43,8 @@ void MciLink::b_transport(tlm::tlm_generic_payload& tx, sc_time& delay) {
     const sc_time overhead = cycles(params_.clock, params_.latency_cycles);
     const sc_time own = own_time(params_, tx.get_data_length());
     free_at_ = start + own;
-    if (tx.is_read() && start + overhead > sc_core::sc_time_stamp()) sc_core::wait(start + overhead - sc_core::sc_time_stamp());
+    if (tx.is_read() && start + overhead > sc_core::sc_time_stamp())
+        sc_core::wait(start + overhead - sc_core::sc_time_stamp());
     sc_time memory_time = start + overhead - sc_core::sc_time_stamp();  // the DDR sees it after the address phase
     memory->b_transport(tx, memory_time);
     memory_time -= start + overhead - sc_core::sc_time_stamp();
@@ -67,13 +68,20 @@ bool MciLink::get_direct_mem_ptr(tlm::tlm_generic_payload& tx, tlm::tlm_dmi& dmi
 unsigned MciLink::transport_dbg(tlm::tlm_generic_payload& tx) { return memory->transport_dbg(tx); }
 
 void MciLink::register_statistics(Statistics::Scope s) const {
-    s.count("reads", [this] { return stats_.reads; }, "accesses", "reads");
-    s.count("writes", [this] { return stats_.writes; }, "accesses", "writes");
-    s.bytes("bytes_read", [this] { return stats_.bytes_read; }, "bytes read");
-    s.bytes("bytes_written", [this] { return stats_.bytes_written; }, "bytes written");
-    s.time("busy_s", [this] { return stats_.busy; }, "the link's own cycles: address phases and data beats");
-    s.share("utilisation", [this] { return stats_.busy; }, "busy over the run");
-    s.time("wait_s", [this] { return stats_.wait; }, "requests waiting behind earlier ones");
+    s.count(
+        "reads", [this] { return stats_.reads; }, "accesses", "reads");
+    s.count(
+        "writes", [this] { return stats_.writes; }, "accesses", "writes");
+    s.bytes(
+        "bytes_read", [this] { return stats_.bytes_read; }, "bytes read");
+    s.bytes(
+        "bytes_written", [this] { return stats_.bytes_written; }, "bytes written");
+    s.time(
+        "busy_s", [this] { return stats_.busy; }, "the link's own cycles: address phases and data beats");
+    s.share(
+        "utilisation", [this] { return stats_.busy; }, "busy over the run");
+    s.time(
+        "wait_s", [this] { return stats_.wait; }, "requests waiting behind earlier ones");
 }
 
 }  // namespace surfvp

@@ -20,7 +20,8 @@ DdrMemory::DdrMemory(const sc_core::sc_module_name& name, const Params& params)
       series_(params.series_bin.ps) {
     if (params.size.n == 0) throw std::invalid_argument(fmt::format("{}: memory size must be above zero", basename()));
     if (params.efficiency <= 0 || params.efficiency > 1)
-        throw std::invalid_argument(fmt::format("{}: efficiency must be in (0, 1], not {}", basename(), params.efficiency));
+        throw std::invalid_argument(
+            fmt::format("{}: efficiency must be in (0, 1], not {}", basename(), params.efficiency));
     storage_ = zeroed_memory(params.size.n, std::string("the modelled DDR memory (") + basename() + ", memory.size)");
     if (params.populate_ahead) populate_ = std::make_unique<PopulateAhead>(storage_.get(), params.size.n);
     ports.register_b_transport(this, &DdrMemory::b_transport);
@@ -118,8 +119,10 @@ unsigned DdrMemory::transport_dbg(int, tlm::tlm_generic_payload& tx) {
     const uint64_t address = tx.get_address();
     if (address >= params_.size.n) return 0;
     const auto n = static_cast<unsigned>(std::min<uint64_t>(tx.get_data_length(), params_.size.n - address));
-    if (tx.is_write()) std::memcpy(storage_.get() + address, tx.get_data_ptr(), n);
-    else if (tx.is_read()) std::memcpy(tx.get_data_ptr(), storage_.get() + address, n);
+    if (tx.is_write())
+        std::memcpy(storage_.get() + address, tx.get_data_ptr(), n);
+    else if (tx.is_read())
+        std::memcpy(tx.get_data_ptr(), storage_.get() + address, n);
     return n;
 }
 
@@ -133,16 +136,23 @@ void DdrMemory::register_statistics(Statistics::Scope s) const {
     };
     s.bytes("bytes_read", total(&PortStats::bytes_read), "bytes read, all ports");
     s.bytes("bytes_written", total(&PortStats::bytes_written), "bytes written, all ports");
-    s.time("busy_s", [this] { return busy_; }, "the DRAM transferring data");
-    s.share("utilisation", [this] { return busy_; }, "busy over the run");
+    s.time(
+        "busy_s", [this] { return busy_; }, "the DRAM transferring data");
+    s.share(
+        "utilisation", [this] { return busy_; }, "busy over the run");
     s.series("busy_series", series_, "share", "busy share per time bin");
     for (size_t i = 0; i < port_stats_.size(); ++i) {
         const Statistics::Scope p = s / "ports" / port_stats_[i].name;
-        p.count("reads", [this, i] { return port_stats_[i].reads; }, "accesses", "reads on this port");
-        p.count("writes", [this, i] { return port_stats_[i].writes; }, "accesses", "writes on this port");
-        p.bytes("bytes_read", [this, i] { return port_stats_[i].bytes_read; }, "bytes read on this port");
-        p.bytes("bytes_written", [this, i] { return port_stats_[i].bytes_written; }, "bytes written on this port");
-        p.time("wait_s", [this, i] { return port_stats_[i].wait; }, "waiting for the DRAM behind other accesses");
+        p.count(
+            "reads", [this, i] { return port_stats_[i].reads; }, "accesses", "reads on this port");
+        p.count(
+            "writes", [this, i] { return port_stats_[i].writes; }, "accesses", "writes on this port");
+        p.bytes(
+            "bytes_read", [this, i] { return port_stats_[i].bytes_read; }, "bytes read on this port");
+        p.bytes(
+            "bytes_written", [this, i] { return port_stats_[i].bytes_written; }, "bytes written on this port");
+        p.time(
+            "wait_s", [this, i] { return port_stats_[i].wait; }, "waiting for the DRAM behind other accesses");
     }
 }
 

@@ -34,12 +34,12 @@ public:
         Bytes size{256ull << 20};
         Frequency clock{200e6};
         unsigned width_bits = 64;
-        unsigned transfers_per_clock = 2;  // DDR: two transfers per clock
-        double efficiency = 0.8;           // fraction of the peak that sustained traffic gets
-        unsigned latency_cycles = 25;       // a read's, before the first data
-        unsigned write_latency_cycles = 0;  // a write's, as its master sees it (posted)
+        unsigned transfers_per_clock = 2;    // DDR: two transfers per clock
+        double efficiency = 0.8;             // fraction of the peak that sustained traffic gets
+        unsigned latency_cycles = 25;        // a read's, before the first data
+        unsigned write_latency_cycles = 0;   // a write's, as its master sees it (posted)
         Duration series_bin{1'000'000'000};  // report.html's time bins (the wiring's run.series_bin)
-        bool populate_ahead = true;  // written pages faulted in on a second thread (the wiring's run.parallel)
+        bool populate_ahead = true;          // written pages faulted in on a second thread (the wiring's run.parallel)
     };
     // Its scenario parameters with the Params field each sets (ddr_memory_params.cpp).
     static const ParamTable<Params>& parameter_table();

@@ -16,11 +16,11 @@ PlbBus::PlbBus(const sc_core::sc_module_name& name, const Params& params, Tracer
     : sc_module(name), masters("masters"), slaves("slaves"), params_(params), tracer_(tracer) {
     read_.series = write_.series = TimeSeries(params.series_bin.ps);
     if (params.width_bits != 32 && params.width_bits != 64 && params.width_bits != 128)
-        throw std::invalid_argument(fmt::format("{}: PLB width must be 32, 64 or 128 bit, not {}", basename(),
-                                                params.width_bits));
+        throw std::invalid_argument(
+            fmt::format("{}: PLB width must be 32, 64 or 128 bit, not {}", basename(), params.width_bits));
     if (params.max_burst_beats < 2 || params.max_burst_beats > 16)
-        throw std::invalid_argument(fmt::format("{}: PLB bursts are 2 to 16 beats, not {}", basename(),
-                                                params.max_burst_beats));
+        throw std::invalid_argument(
+            fmt::format("{}: PLB bursts are 2 to 16 beats, not {}", basename(), params.max_burst_beats));
     masters.register_b_transport(this, &PlbBus::b_transport);
     masters.register_get_direct_mem_ptr(this, &PlbBus::get_direct_mem_ptr);
     masters.register_transport_dbg(this, &PlbBus::transport_dbg);
@@ -28,15 +28,15 @@ PlbBus::PlbBus(const sc_core::sc_module_name& name, const Params& params, Tracer
 
     EndOfInstant::get();  // made during elaboration
     for (Path* path : {&read_, &write_}) {
-        path->busy = std::make_unique<sc_core::sc_signal<bool, sc_core::SC_UNCHECKED_WRITERS>>(fmt::format("{}_busy", path->name).c_str());
+        path->busy = std::make_unique<sc_core::sc_signal<bool, sc_core::SC_UNCHECKED_WRITERS>>(
+            fmt::format("{}_busy", path->name).c_str());
         tracer_.signal(*path->busy, fmt::format("{}.{}_busy", basename(), path->name));
         path->track = tracer_.track(basename(), fmt::format("{} data", path->name));
         sc_core::sc_spawn_options options;
         options.spawn_method();
         options.dont_initialize();
         options.set_sensitivity(&path->arbitrate);
-        sc_core::sc_spawn([this, path] { arbitrate(path); }, fmt::format("{}_arbiter", path->name).c_str(),
-                          &options);
+        sc_core::sc_spawn([this, path] { arbitrate(path); }, fmt::format("{}_arbiter", path->name).c_str(), &options);
     }
 }
 
@@ -53,8 +53,8 @@ void PlbBus::connect_master(tlm::tlm_base_initiator_socket<>& socket, const std:
 void PlbBus::map(uint64_t base, uint64_t size, unsigned slave, const std::string& name) {
     for (const Route& r : routes_)
         if (base < r.base + r.size && r.base < base + size)
-            throw std::invalid_argument(fmt::format("{}: region {} [{:#x}, +{:#x}) overlaps {}", basename(), name,
-                                                    base, size, r.name));
+            throw std::invalid_argument(
+                fmt::format("{}: region {} [{:#x}, +{:#x}) overlaps {}", basename(), name, base, size, r.name));
     routes_.push_back({base, size, slave, name});
 }
 
@@ -241,14 +241,14 @@ void PlbBus::b_transport(int master, tlm::tlm_generic_payload& tx, sc_time& dela
     if (tracer_.perfetto_on()) trace_transaction(master, tx.is_write(), bytes, requested, first_grant, end);
 }
 
-void PlbBus::trace_transaction(int master, bool write, uint64_t bytes, const sc_time& requested,
-                               const sc_time& granted, const sc_time& end) {
+void PlbBus::trace_transaction(int master, bool write, uint64_t bytes, const sc_time& requested, const sc_time& granted,
+                               const sc_time& end) {
     const int track = master_tracks_[master];
     if (granted > requested) tracer_.slice(track, "wait", requested, granted);
     const std::string name = fmt::format(FMT_COMPILE("{} {} B"), write ? "write" : "read", bytes);  // per transaction
     tracer_.slice(track, name, granted, end);
-    tracer_.slice((write ? write_ : read_).track, fmt::format(FMT_COMPILE("{} {}"), master_stats_[master].name, name), granted,
-                  end);
+    tracer_.slice((write ? write_ : read_).track, fmt::format(FMT_COMPILE("{} {}"), master_stats_[master].name, name),
+                  granted, end);
 }
 
 bool PlbBus::get_direct_mem_ptr(int, tlm::tlm_generic_payload& tx, tlm::tlm_dmi& dmi) {
@@ -282,7 +282,8 @@ void PlbBus::invalidate_direct_mem_ptr(int slave, sc_dt::uint64 start, sc_dt::ui
     for (const Route& r : routes_) {
         if (r.slave != static_cast<unsigned>(slave) || start >= r.size) continue;
         const uint64_t last = std::min<uint64_t>(end, r.size - 1);
-        for (unsigned m = 0; m < masters.size(); ++m) masters[m]->invalidate_direct_mem_ptr(r.base + start, r.base + last);
+        for (unsigned m = 0; m < masters.size(); ++m)
+            masters[m]->invalidate_direct_mem_ptr(r.base + start, r.base + last);
     }
 }
 
@@ -291,28 +292,44 @@ void PlbBus::register_statistics(Statistics::Scope s) const {
     s.value("width_bits", params_.width_bits, "bit", "data width");
     for (const auto& [name, path] : {std::pair{"read", &read_}, std::pair{"write", &write_}}) {
         const Statistics::Scope d = s / name;
-        d.count("bursts", [path = path] { return path->stats.bursts; }, "bursts", "bursts on this data path");
-        d.bytes("bytes", [path = path] { return path->stats.bytes; }, "bytes on this data path");
-        d.time("busy_s", [path = path] { return path->stats.busy; }, "the data path carrying a burst");
-        d.share("utilisation", [path = path] { return path->stats.busy; }, "busy over the run");
+        d.count(
+            "bursts", [path = path] { return path->stats.bursts; }, "bursts", "bursts on this data path");
+        d.bytes(
+            "bytes", [path = path] { return path->stats.bytes; }, "bytes on this data path");
+        d.time(
+            "busy_s", [path = path] { return path->stats.busy; }, "the data path carrying a burst");
+        d.share(
+            "utilisation", [path = path] { return path->stats.busy; }, "busy over the run");
         d.series("busy_series", path->series, "share", "busy share per time bin");
     }
-    s.count("decode_errors", [this] { return decode_errors_; }, "accesses", "addresses no slave answers");
+    s.count(
+        "decode_errors", [this] { return decode_errors_; }, "accesses", "addresses no slave answers");
     for (size_t i = 0; i < master_stats_.size(); ++i) {
         const Statistics::Scope m = s / "masters" / master_stats_[i].name;
         const MasterStats& st = master_stats_[i];
-        m.count("bursts", [&st] { return st.bursts; }, "bursts", "bursts granted");
-        m.bytes("bytes_read", [&st] { return st.bytes_read; }, "bytes read");
-        m.bytes("bytes_written", [&st] { return st.bytes_written; }, "bytes written");
-        m.count("errors", [&st] { return st.errors; }, "bursts", "error responses");
-        m.time("busy_s", [&st] { return st.busy; }, "from grant to the end of its bursts");
-        m.time("wait_s", [&st] { return st.wait; }, "from request to grant, summed");
-        m.max_time("max_wait_s", [&st] { return st.max_wait; }, "the longest wait for a grant");
-        m.histogram("bursts_by_wait_cycles", [&st] {
-            std::vector<std::pair<std::string, uint64_t>> bins;
-            for (size_t b = 0; b < st.wait_histogram.size(); ++b) bins.emplace_back(wait_bin_name(b), st.wait_histogram[b]);
-            return bins;
-        }, "bursts", "bursts by their wait in bus cycles");
+        m.count(
+            "bursts", [&st] { return st.bursts; }, "bursts", "bursts granted");
+        m.bytes(
+            "bytes_read", [&st] { return st.bytes_read; }, "bytes read");
+        m.bytes(
+            "bytes_written", [&st] { return st.bytes_written; }, "bytes written");
+        m.count(
+            "errors", [&st] { return st.errors; }, "bursts", "error responses");
+        m.time(
+            "busy_s", [&st] { return st.busy; }, "from grant to the end of its bursts");
+        m.time(
+            "wait_s", [&st] { return st.wait; }, "from request to grant, summed");
+        m.max_time(
+            "max_wait_s", [&st] { return st.max_wait; }, "the longest wait for a grant");
+        m.histogram(
+            "bursts_by_wait_cycles",
+            [&st] {
+                std::vector<std::pair<std::string, uint64_t>> bins;
+                for (size_t b = 0; b < st.wait_histogram.size(); ++b)
+                    bins.emplace_back(wait_bin_name(b), st.wait_histogram[b]);
+                return bins;
+            },
+            "bursts", "bursts by their wait in bus cycles");
     }
 }
 

@@ -100,7 +100,9 @@ public:
     const PathStats& read_stats() const { return read_.stats; }
     const PathStats& write_stats() const { return write_.stats; }
     uint64_t decode_errors() const { return decode_errors_; }
-    uint64_t tlm_transactions() const { return tlm_transactions_; }  // a simulation figure: depends on how masters batch
+    uint64_t tlm_transactions() const {
+        return tlm_transactions_;
+    }  // a simulation figure: depends on how masters batch
 
     // Its statistics, registered at elaboration (after every connection) under `scope`.
     void register_statistics(Statistics::Scope scope) const;
@@ -126,7 +128,8 @@ private:
         int last_master = -1;
         sc_core::sc_event arbitrate;
         std::deque<sc_core::sc_event> granted;  // one per master
-        std::unique_ptr<sc_core::sc_signal<bool, sc_core::SC_UNCHECKED_WRITERS>> busy;  // written by the arbiter and by a master granted at once
+        std::unique_ptr<sc_core::sc_signal<bool, sc_core::SC_UNCHECKED_WRITERS>>
+            busy;  // written by the arbiter and by a master granted at once
         PathStats stats;
         TimeSeries series;  // busy share per time bin
         int track = -1;

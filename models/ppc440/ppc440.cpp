@@ -12,7 +12,13 @@ namespace surfvp {
 using sc_core::sc_time;
 
 Ppc440::Ppc440(const sc_core::sc_module_name& name, const Params& params, Software software, Tracer& tracer)
-    : sc_module(name), bus("bus"), mem("mem"), irq("irq"), params_(params), software_(std::move(software)), tracer_(tracer),
+    : sc_module(name),
+      bus("bus"),
+      mem("mem"),
+      irq("irq"),
+      params_(params),
+      software_(std::move(software)),
+      tracer_(tracer),
       line_(params.line_bytes) {
     tlm_utils::tlm_quantumkeeper::set_global_quantum(sc_time(double(params.quantum.ps), sc_core::SC_PS));
     mem.register_invalidate_direct_mem_ptr(this, &Ppc440::invalidate_dmi);
@@ -59,9 +65,10 @@ void Ppc440::mmio(tlm::tlm_command command, uint32_t address, uint8_t* data) {
     keeper_.set(delay);
     if (keeper_.need_sync()) keeper_.sync();
     if (!tx.is_response_ok())
-        throw sw::BusError(fmt::format("{} of the register at {:#010x}: {}", command == tlm::TLM_READ_COMMAND ? "read" : "write",
-                                       address, tx.get_response_string()),
-                           address);
+        throw sw::BusError(
+            fmt::format("{} of the register at {:#010x}: {}", command == tlm::TLM_READ_COMMAND ? "read" : "write",
+                        address, tx.get_response_string()),
+            address);
 }
 
 uint32_t Ppc440::read32(uint32_t address) {
@@ -86,14 +93,16 @@ bool Ppc440::dmi_covers(uint32_t address, size_t bytes) {
         dmi_valid_ = mem->get_direct_mem_ptr(tx, dmi_);
         if (!dmi_valid_) return false;
     }
-    return dmi_.is_read_allowed() && address >= dmi_.get_start_address() && address + bytes - 1 <= dmi_.get_end_address();
+    return dmi_.is_read_allowed() && address >= dmi_.get_start_address() &&
+           address + bytes - 1 <= dmi_.get_end_address();
 }
 
 void Ppc440::invalidate_dmi(sc_dt::uint64, sc_dt::uint64) { dmi_valid_ = false; }
 
 // One line on the memory path, requested at time `at`, or now if the kernel has passed it (a
 // synchronising path such as PLB1 waits for its grant); returns when it is done.
-sc_time Ppc440::line_access(tlm::tlm_command command, uint32_t address, uint8_t* data, size_t bytes, const sc_time& at) {
+sc_time Ppc440::line_access(tlm::tlm_command command, uint32_t address, uint8_t* data, size_t bytes,
+                            const sc_time& at) {
     tlm::tlm_generic_payload& tx = line_tx_;
     tx.set_command(command);
     tx.set_address(address);
@@ -152,8 +161,9 @@ sc_time Ppc440::fill_burst(const std::vector<sw::LineTransfer>& lines, size_t& i
     sc_time data = at;
     const uint64_t cycle = lines[i].at_cycle;
     for (; i < lines.size() && !lines[i].write_back && lines[i].at_cycle == cycle; ++i) {
-        in_flight_.erase(std::remove_if(in_flight_.begin(), in_flight_.end(), [&](const sc_time& t) { return t <= at; }),
-                         in_flight_.end());
+        in_flight_.erase(
+            std::remove_if(in_flight_.begin(), in_flight_.end(), [&](const sc_time& t) { return t <= at; }),
+            in_flight_.end());
         if (in_flight_.size() >= params_.outstanding_fills) {
             const auto oldest = std::min_element(in_flight_.begin(), in_flight_.end());
             at = *oldest;
@@ -185,7 +195,8 @@ uint64_t Ppc440::compute(uint64_t count, const std::vector<sw::LineTransfer>& li
         at += cycles(params_.clock, double(cycle - done));
         done = cycle;
         if (line.write_back) {
-            if (dmi_covers(line.address, line_.size())) std::memcpy(line_.data(), map(line.address, line_.size()), line_.size());
+            if (dmi_covers(line.address, line_.size()))
+                std::memcpy(line_.data(), map(line.address, line_.size()), line_.size());
             line_access(tlm::TLM_WRITE_COMMAND, line.address, line_.data(), line_.size(), at);
             at = std::max(at, sc_core::sc_time_stamp());
             ++stats_.write_backs;
@@ -216,8 +227,10 @@ bool Ppc440::wait_for_irq(uint64_t timeout_ps) {
     if (irq.read()) return true;
     const sc_time began = sc_core::sc_time_stamp();
     waiting_.write(true);
-    if (timeout_ps == kNoTimeout) sc_core::wait(irq.posedge_event());
-    else sc_core::wait(sc_time(double(timeout_ps), sc_core::SC_PS), irq.posedge_event());
+    if (timeout_ps == kNoTimeout)
+        sc_core::wait(irq.posedge_event());
+    else
+        sc_core::wait(sc_time(double(timeout_ps), sc_core::SC_PS), irq.posedge_event());
     waiting_.write(false);
     stats_.irq_wait_time += sc_core::sc_time_stamp() - began;
     if (tracer_.perfetto_on()) tracer_.slice(track_, "wait for irq", began, sc_core::sc_time_stamp());
@@ -247,19 +260,30 @@ void Ppc440::end() {
 }
 
 void Ppc440::register_statistics(Statistics::Scope s) const {
-    s.count("mmio_reads", [this] { return stats_.mmio_reads; }, "accesses", "register reads over PLB1");
-    s.count("mmio_writes", [this] { return stats_.mmio_writes; }, "accesses", "register writes over PLB1");
+    s.count(
+        "mmio_reads", [this] { return stats_.mmio_reads; }, "accesses", "register reads over PLB1");
+    s.count(
+        "mmio_writes", [this] { return stats_.mmio_writes; }, "accesses", "register writes over PLB1");
     const Statistics::Scope m = s / "memory";
-    m.bytes("bytes_read", [this] { return stats_.bytes_read; }, "read on the memory path: copies and line fills");
-    m.bytes("bytes_written", [this] { return stats_.bytes_written; }, "written on the memory path: copies and write-backs");
-    m.count("line_fills", [this] { return stats_.fills; }, "lines", "L1 line fills");
-    m.count("write_backs", [this] { return stats_.write_backs; }, "lines", "L1 write-backs");
-    m.time("fill_stall_s", [this] { return stats_.fill_stall; }, "the CPU waiting for its line fills");
-    m.count("fill_slot_waits", [this] { return stats_.fill_slot_waits; }, "fills",
-            "fills that waited for one of the outstanding ones to finish");
-    s.count("cycles_consumed", [this] { return stats_.cycles_consumed; }, "cycles", "work, without the stalls");
-    s.count("irq_waits", [this] { return stats_.irq_waits; }, "waits", "times the software slept on the interrupt");
-    s.time("irq_wait_s", [this] { return stats_.irq_wait_time; }, "asleep on the interrupt");
+    m.bytes(
+        "bytes_read", [this] { return stats_.bytes_read; }, "read on the memory path: copies and line fills");
+    m.bytes(
+        "bytes_written", [this] { return stats_.bytes_written; }, "written on the memory path: copies and write-backs");
+    m.count(
+        "line_fills", [this] { return stats_.fills; }, "lines", "L1 line fills");
+    m.count(
+        "write_backs", [this] { return stats_.write_backs; }, "lines", "L1 write-backs");
+    m.time(
+        "fill_stall_s", [this] { return stats_.fill_stall; }, "the CPU waiting for its line fills");
+    m.count(
+        "fill_slot_waits", [this] { return stats_.fill_slot_waits; }, "fills",
+        "fills that waited for one of the outstanding ones to finish");
+    s.count(
+        "cycles_consumed", [this] { return stats_.cycles_consumed; }, "cycles", "work, without the stalls");
+    s.count(
+        "irq_waits", [this] { return stats_.irq_waits; }, "waits", "times the software slept on the interrupt");
+    s.time(
+        "irq_wait_s", [this] { return stats_.irq_wait_time; }, "asleep on the interrupt");
 }
 
 }  // namespace surfvp

@@ -32,11 +32,11 @@ class Ppc440 : public sc_core::sc_module, private sw::Hal {
 public:
     struct Params {
         Frequency clock{400e6};
-        Duration quantum{1000000};  // 1 us
-        unsigned line_bytes = 32;   // the L1 line: memory goes in lines of this size
-        unsigned outstanding_fills = 3;  // line fills in flight at once
-        bool critical_word_first = true;  // read by the wiring, which sets the lead
-        Duration critical_word_lead{0};  // how much sooner than the whole line the missed word arrives (0: off)
+        Duration quantum{1000000};         // 1 us
+        unsigned line_bytes = 32;          // the L1 line: memory goes in lines of this size
+        unsigned outstanding_fills = 3;    // line fills in flight at once
+        bool critical_word_first = true;   // read by the wiring, which sets the lead
+        Duration critical_word_lead{0};    // how much sooner than the whole line the missed word arrives (0: off)
         std::vector<std::string> markers;  // names of the software's markers (HAL mark())
     };
     // Its scenario parameters with the Params field each sets (ppc440_params.cpp).
@@ -47,7 +47,7 @@ public:
         uint64_t mmio_reads = 0, mmio_writes = 0;
         uint64_t bytes_read = 0, bytes_written = 0;  // on the memory path: copies, fills, write-backs
         uint64_t fills = 0, write_backs = 0;
-        sc_core::sc_time fill_stall;  // the CPU waiting for its line fills
+        sc_core::sc_time fill_stall;   // the CPU waiting for its line fills
         uint64_t fill_slot_waits = 0;  // fills that waited for one of the outstanding ones to finish
         uint64_t cycles_consumed = 0;  // work, without the stalls
         uint64_t irq_waits = 0;
@@ -102,9 +102,9 @@ private:
     tlm_utils::tlm_quantumkeeper keeper_;
     tlm::tlm_dmi dmi_;  // for map(): reading memory in place
     bool dmi_valid_ = false;
-    std::vector<uint8_t> line_;  // a fill's data (the software reads in place) or a write-back's
+    std::vector<uint8_t> line_;                // a fill's data (the software reads in place) or a write-back's
     std::vector<sc_core::sc_time> in_flight_;  // when each outstanding fill's whole line is in
-    tlm::tlm_generic_payload line_tx_;  // every line access's (a payload allocates on construction)
+    tlm::tlm_generic_payload line_tx_;         // every line access's (a payload allocates on construction)
     bool finished_ = false;
     sc_core::sc_event done_;
     sc_core::sc_time finish_time_;

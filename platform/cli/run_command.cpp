@@ -31,11 +31,13 @@ void print_summary(const Config& config, const fs::path& dir, bool direct) {
     const auto r = nlohmann::json::parse(std::ifstream(dir / "report.json"));
     const char* verdict = r["passed"].get<bool>() ? "passed" : "FAILED";
     if (direct) {
-        std::fprintf(stderr, "surfvp: %s (direct): %s; report in %s\n", config.name.c_str(), verdict, (dir / "report.json").c_str());
+        std::fprintf(stderr, "surfvp: %s (direct): %s; report in %s\n", config.name.c_str(), verdict,
+                     (dir / "report.json").c_str());
         return;
     }
-    std::fprintf(stderr, "surfvp: %s: %s in %.3f ms simulated (%.3f s wall); report in %s\n", config.name.c_str(), verdict,
-                 r["sim_time_s"].get<double>() * 1e3, r["wall_time_s"].get<double>(), (dir / "report.md").c_str());
+    std::fprintf(stderr, "surfvp: %s: %s in %.3f ms simulated (%.3f s wall); report in %s\n", config.name.c_str(),
+                 verdict, r["sim_time_s"].get<double>() * 1e3, r["wall_time_s"].get<double>(),
+                 (dir / "report.md").c_str());
 }
 
 void print_warnings(const Config& config) {
@@ -55,8 +57,10 @@ int run_scenario(const RunOptions& options) {
     const Config config = load_scenario(resolve_scenario(options.scenario), options.sets);
     trace_options(options.trace, "");  // a bad --trace is bad input before anything is written
     if (options.direct && !config.faults.empty())
-        throw ConfigError(fmt::format("{}: faults: --direct has no time, buses or interrupts to inject them into; "
-                                      "run without --direct", config.faults.front().origin));
+        throw ConfigError(
+            fmt::format("{}: faults: --direct has no time, buses or interrupts to inject them into; "
+                        "run without --direct",
+                        config.faults.front().origin));
     check_scenario(config);
     if (!options.compare_to.empty()) check_side(options.compare_to);
     print_warnings(config);
@@ -64,14 +68,17 @@ int run_scenario(const RunOptions& options) {
     const std::string staging = out.staging().string();
     int code = kExitOk;
     try {
-        if (options.direct) code = run_direct(config, staging);
-        else if (verdict_requested(config)) code = run_with_verdict(config, staging, options.trace, options.quiet);
-        else code = write_run(config, staging, simulate_scenario(config, staging, options.trace, options.quiet));
+        if (options.direct)
+            code = run_direct(config, staging);
+        else if (verdict_requested(config))
+            code = run_with_verdict(config, staging, options.trace, options.quiet);
+        else
+            code = write_run(config, staging, simulate_scenario(config, staging, options.trace, options.quiet));
         if (!options.compare_to.empty()) write_comparison(options.compare_to, staging, out.folder().string());
         out.publish();
     } catch (const EnvironmentError& e) {
-        throw EnvironmentError(fmt::format("{}; what was in {} before this run is as it was", out.as_published(e.what()),
-                                           out.folder().string()));
+        throw EnvironmentError(fmt::format("{}; what was in {} before this run is as it was",
+                                           out.as_published(e.what()), out.folder().string()));
     }
     if (!options.quiet) print_summary(config, out.folder(), options.direct);
     return code;
@@ -86,8 +93,10 @@ int validate_scenario(const RunOptions& options) {
     print_warnings(config);
     size_t from_file = 0, from_set = 0;
     for (const auto& e : config.entries()) {
-        if (e.origin == "--set") ++from_set;
-        else if (e.origin != "default") ++from_file;
+        if (e.origin == "--set")
+            ++from_set;
+        else if (e.origin != "default")
+            ++from_file;
     }
     std::printf("%s: ok: scenario '%s', %zu parameters (%zu from the file, %zu from --set, the rest defaults)\n",
                 path.c_str(), config.name.c_str(), config.entries().size(), from_file, from_set);

@@ -12,7 +12,7 @@ struct RunOptions {
     std::string out;            // default: traces/<scenario name>
     std::string trace = "all";  // none | vcd | perfetto | all
     bool quiet = false;
-    bool direct = false;  // no SystemC: the driver and software on the untimed DirectChip
+    bool direct = false;     // no SystemC: the driver and software on the untimed DirectChip
     std::string compare_to;  // a run folder or SWEEP_DIR@N: compare.md and compare.json against it
 };
 

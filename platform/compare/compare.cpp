@@ -24,7 +24,8 @@ namespace {
 
 // A run folder's or sweep's JSON: untrusted (someone else's folder, another version).
 Json read_object(const fs::path& file, const std::string& side) {
-    if (!fs::exists(file)) throw ConfigError(fmt::format("{}: no {} (not a run folder?)", side, file.filename().string()));
+    if (!fs::exists(file))
+        throw ConfigError(fmt::format("{}: no {} (not a run folder?)", side, file.filename().string()));
     Json j = read_json_file(file, "a side of compare");
     if (!j.is_object()) throw ConfigError(fmt::format("{}: {} is not a JSON object", side, file.string()));
     return j;
@@ -57,8 +58,11 @@ Json load_point(const std::string& side, const fs::path& dir, const std::string&
     if (!points.is_array()) throw ConfigError(fmt::format("{}: {} has no list of points", side, file.string()));
     for (const auto& p : points)
         if (number_at(p, "/point", -1) == double(point))
-            return {{"name", side}, {"kind", "sweep point"}, {"parameters", object_or_empty(value_at(p, "/params"))},
-                    {"main", object_or_empty(value_at(p, "/figures"))}, {"all", Json::object()}};
+            return {{"name", side},
+                    {"kind", "sweep point"},
+                    {"parameters", object_or_empty(value_at(p, "/params"))},
+                    {"main", object_or_empty(value_at(p, "/figures"))},
+                    {"all", Json::object()}};
     throw ConfigError(fmt::format("{}: the sweep in {} has no point {}", side, dir.string(), point));
 }
 
@@ -72,8 +76,11 @@ Json load_side(const std::string& side) {
     const fs::path dir(side);
     if (!fs::is_directory(dir)) throw ConfigError(fmt::format("{}: not a run folder nor SWEEP_DIR@POINT", side));
     const Json report = read_object(dir / "report.json", side);
-    return {{"name", side}, {"kind", "run"}, {"parameters", read_parameters(dir / "config.yaml")},
-            {"main", sweep_figures(report)}, {"all", all_figures(report)}};
+    return {{"name", side},
+            {"kind", "run"},
+            {"parameters", read_parameters(dir / "config.yaml")},
+            {"main", sweep_figures(report)},
+            {"all", all_figures(report)}};
 }
 
 // "125MHz" and "125 MHz" are one value: compared as the parameter reads them.
@@ -132,8 +139,9 @@ std::string rows_markdown(const Json& table, size_t sides) {
             const Json& c = row[i];
             md += " | " + cell(c["value"]);
             if (i > 0 && c.contains("delta") && c["delta"].get<double>() != 0)
-                md += c["percent"].is_null() ? fmt::format(" ({:+.4g})", c["delta"].get<double>())
-                                             : fmt::format(" ({:+.4g}, {:+.2f} %)", c["delta"].get<double>(), c["percent"].get<double>());
+                md += c["percent"].is_null()
+                          ? fmt::format(" ({:+.4g})", c["delta"].get<double>())
+                          : fmt::format(" ({:+.4g}, {:+.2f} %)", c["delta"].get<double>(), c["percent"].get<double>());
         }
         md += " |\n";
     }
@@ -181,7 +189,8 @@ Json compare_runs(const std::vector<std::string>& names) {
     for (const Json& s : sides) {
         const Json& m = s["main"];
         const auto flag = [&m](const char* key) { return m.contains(key) && m[key].is_boolean() ? m[key] : Json(); };
-        budgets.push_back({{"frame_rate", flag("budget_met")}, {"power", flag("within_power_budget")}, {"fits_fpga", flag("fits")}});
+        budgets.push_back(
+            {{"frame_rate", flag("budget_met")}, {"power", flag("within_power_budget")}, {"fits_fpga", flag("fits")}});
     }
     Json side_list = Json::array();
     for (const Json& s : sides) side_list.push_back({{"name", s["name"]}, {"kind", s["kind"]}});
@@ -200,11 +209,13 @@ std::string compare_markdown(const Json& c) {
     md += "## Budgets\n\n" + header(c);
     for (const char* b : {"frame_rate", "power", "fits_fpga"}) {
         md += fmt::format("| {} |", b);
-        for (const auto& s : c["budgets"]) md += " " + (s[b].is_null() ? std::string("-") : s[b].get<bool>() ? "met" : "**missed**") + " |";
+        for (const auto& s : c["budgets"])
+            md += " " + (s[b].is_null() ? std::string("-") : s[b].get<bool>() ? "met" : "**missed**") + " |";
         md += "\n";
     }
     md += "\n## Parameters that differ\n\n";
-    if (c["parameters"].empty()) md += "None.\n";
+    if (c["parameters"].empty())
+        md += "None.\n";
     else {
         md += header(c);
         for (const auto& [k, row] : c["parameters"].items()) {
@@ -215,8 +226,10 @@ std::string compare_markdown(const Json& c) {
     }
     md += "\n## Figures\n\n" + header(c) + rows_markdown(c["figures"], n);
     if (!c["other_figures"].empty())
-        md += fmt::format("\n## Every other figure that differs ({})\n\n<details><summary>report.json paths</summary>\n\n{}{}\n</details>\n",
-                          c["other_figures"].size(), header(c), rows_markdown(c["other_figures"], n));
+        md += fmt::format(
+            "\n## Every other figure that differs ({})\n\n<details><summary>report.json "
+            "paths</summary>\n\n{}{}\n</details>\n",
+            c["other_figures"].size(), header(c), rows_markdown(c["other_figures"], n));
     return md;
 }
 

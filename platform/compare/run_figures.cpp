@@ -25,8 +25,9 @@ void flatten(const Json& j, const std::string& path, const std::set<std::string>
 }  // namespace
 
 Json all_figures(const Json& report) {
-    std::set<std::string> skip = {"statistics", "per_frame", "workload", "verdict", "checks", "outputs", "scenario",
-                                  "busy_series", "line_fifo_series", "maxima_fifo_series", "schedules"};
+    std::set<std::string> skip = {"statistics", "per_frame", "workload",    "verdict",          "checks",
+                                  "outputs",    "scenario",  "busy_series", "line_fifo_series", "maxima_fifo_series",
+                                  "schedules"};
     for (const char* legend : {"/wall_clock_fields", "/simulation_fields"})
         if (const Json& fields = value_at(report, legend); fields.is_array())
             for (const auto& f : fields)

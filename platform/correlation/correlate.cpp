@@ -115,11 +115,14 @@ std::string plot(const std::vector<Point>& points, size_t schedule, const Sets& 
     auto py = [&](double y) { return H - B - y / y1 * (H - T - B); };
     const double lo = paper::kFps * (1 - paper::kAbout), hi = paper::kFps * (1 + paper::kAbout);
     std::string svg = fmt::format(
-        "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{0}\" height=\"{1}\" font-family=\"sans-serif\" font-size=\"12\">"
-        "<rect width=\"100%\" height=\"100%\" fill=\"white\"/><text x=\"{2}\" y=\"22\" font-size=\"14\">frames/s against the "
+        "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{0}\" height=\"{1}\" font-family=\"sans-serif\" "
+        "font-size=\"12\">"
+        "<rect width=\"100%\" height=\"100%\" fill=\"white\"/><text x=\"{2}\" y=\"22\" font-size=\"14\">frames/s "
+        "against the "
         "FHG clock (100 keypoints a frame); shaded: the paper's about 10</text>"
         "<rect x=\"{2}\" y=\"{3:.1f}\" width=\"{4:.1f}\" height=\"{5:.1f}\" fill=\"#dfe9df\"/>"
-        "<line x1=\"{2}\" y1=\"{6}\" x2=\"{7}\" y2=\"{6}\" stroke=\"black\"/><line x1=\"{2}\" y1=\"{8}\" x2=\"{2}\" y2=\"{6}\" "
+        "<line x1=\"{2}\" y1=\"{6}\" x2=\"{7}\" y2=\"{6}\" stroke=\"black\"/><line x1=\"{2}\" y1=\"{8}\" x2=\"{2}\" "
+        "y2=\"{6}\" "
         "stroke=\"black\"/><text x=\"{9}\" y=\"{10}\" text-anchor=\"middle\">fhg.clock (MHz)</text>",
         W, H, L, py(hi), W - L - R, py(lo) - py(hi), H - B, W - R, T, (L + W - R) / 2, H - 10);
     for (double t = 0; t <= y1; t += 2)  // frames/s in steps of 2
@@ -135,17 +138,20 @@ std::string plot(const std::vector<Point>& points, size_t schedule, const Sets& 
         const char* colour = colours[k % 6];
         svg += fmt::format("<polyline points=\"{}\" fill=\"none\" stroke=\"{}\" stroke-width=\"2\"/>", poly, colour);
         for (const auto& [x, y] : pts)
-            svg += fmt::format("<circle cx=\"{:.1f}\" cy=\"{:.1f}\" r=\"3\" fill=\"{}\"><title>{}: {:.2f} frames/s at {:g} MHz</title>"
-                               "</circle>",
-                               px(x), py(y), colour, name, y, x);
-        svg += fmt::format("<text x=\"{}\" y=\"{}\" fill=\"{}\">{}</text>", W - R + 10, T + 16 + 18 * double(k), colour, name);
+            svg += fmt::format(
+                "<circle cx=\"{:.1f}\" cy=\"{:.1f}\" r=\"3\" fill=\"{}\"><title>{}: {:.2f} frames/s at {:g} MHz</title>"
+                "</circle>",
+                px(x), py(y), colour, name, y, x);
+        svg += fmt::format("<text x=\"{}\" y=\"{}\" fill=\"{}\">{}</text>", W - R + 10, T + 16 + 18 * double(k), colour,
+                           name);
         ++k;
     }
     if (default_fps > 0)
-        svg += fmt::format("<circle cx=\"{:.1f}\" cy=\"{:.1f}\" r=\"7\" fill=\"none\" stroke=\"black\"><title>the scenario: "
-                           "{:.2f} frames/s</title></circle><text x=\"{:.1f}\" y=\"{:.1f}\">the scenario</text>",
-                           px(std::stod(defaults[0].second)), py(default_fps), default_fps, px(std::stod(defaults[0].second)) + 9,
-                           py(default_fps) + 16);
+        svg += fmt::format(
+            "<circle cx=\"{:.1f}\" cy=\"{:.1f}\" r=\"7\" fill=\"none\" stroke=\"black\"><title>the scenario: "
+            "{:.2f} frames/s</title></circle><text x=\"{:.1f}\" y=\"{:.1f}\">the scenario</text>",
+            px(std::stod(defaults[0].second)), py(default_fps), default_fps, px(std::stod(defaults[0].second)) + 9,
+            py(default_fps) + 16);
     return svg + "</svg>";
 }
 
@@ -170,14 +176,17 @@ std::string clock_runs(const Json& grid) {
 
 std::string markdown(const Json& r) {
     std::string md = fmt::format(
-        "# Correlation: where the VP reproduces the paper ({})\n\nThe unknowns the paper's figures depend on, over their "
+        "# Correlation: where the VP reproduces the paper ({})\n\nThe unknowns the paper's figures depend on, over "
+        "their "
         "bands; kept where the VP reproduces the paper within its precision (docs/correlation.md): the basic script "
         "{:.1f} % to {:.1f} % over note 4's optimal state, and {:.0f} to {:.0f} frames/s at 1024x768 with around 100 "
         "keypoints.\n\n## The schedule: bus word, line FIFO, read buses\n\n"
-        "| fhg.bus_word | fhg.line_fifo | fhg.read_buses | basic script | over note 4's optimum | RAMB36 (of the chip) | "
+        "| fhg.bus_word | fhg.line_fifo | fhg.read_buses | basic script | over note 4's optimum | RAMB36 (of the chip) "
+        "| "
         "reproduces |\n|---|---|---|---:|---:|---:|---|\n",
         r["scenario"].get<std::string>(), 100 * r["paper"]["overhead"][0].get<double>(),
-        100 * r["paper"]["overhead"][1].get<double>(), r["paper"]["fps"][0].get<double>(), r["paper"]["fps"][1].get<double>());
+        100 * r["paper"]["overhead"][1].get<double>(), r["paper"]["fps"][0].get<double>(),
+        r["paper"]["fps"][1].get<double>());
     for (const Json& s : r["schedules"]) {
         if (s.contains("refused")) {
             md += fmt::format("| {} | {} | {} | refused: {} | | | no |\n", s["fhg.bus_word"].get<std::string>(),
@@ -185,27 +194,33 @@ std::string markdown(const Json& r) {
                               s["refused"].get<std::string>());
             continue;
         }
-        md += fmt::format("| {} | {} | {} | {} cycles | {:.1f} % | {:g}{} | {} |\n", s["fhg.bus_word"].get<std::string>(),
-                          s["fhg.line_fifo"].get<std::string>(), s["fhg.read_buses"].get<std::string>(),
-                          s["script_cycles"].get<int>(), 100 * s["overhead"].get<double>(), s["ramb36"].get<double>(),
-                          s["fits"].get<bool>() ? "" : " (does not fit)", s["reproduces"].get<bool>() ? "**yes**" : "no");
+        md +=
+            fmt::format("| {} | {} | {} | {} cycles | {:.1f} % | {:g}{} | {} |\n", s["fhg.bus_word"].get<std::string>(),
+                        s["fhg.line_fifo"].get<std::string>(), s["fhg.read_buses"].get<std::string>(),
+                        s["script_cycles"].get<int>(), 100 * s["overhead"].get<double>(), s["ramb36"].get<double>(),
+                        s["fits"].get<bool>() ? "" : " (does not fit)", s["reproduces"].get<bool>() ? "**yes**" : "no");
     }
-    md += "\n## The frame rate, for the schedules that reproduce the script\n\nThe FHG clocks at which the rate is within "
-          "the paper's precision, for each CPU clock, APU FPU ratio and keypoint count (2-frame re-simulations):\n\n"
-          "| block cycles | cpu.clock | cpu.fpu_ratio | surf.target_keypoints | fhg.clock that reproduces | frames/s there |\n"
-          "|---:|---|---|---|---|---|\n";
+    md +=
+        "\n## The frame rate, for the schedules that reproduce the script\n\nThe FHG clocks at which the rate is "
+        "within "
+        "the paper's precision, for each CPU clock, APU FPU ratio and keypoint count (2-frame re-simulations):\n\n"
+        "| block cycles | cpu.clock | cpu.fpu_ratio | surf.target_keypoints | fhg.clock that reproduces | frames/s "
+        "there |\n"
+        "|---:|---|---|---|---|---|\n";
     for (const Json& g : r["region"]) {
         const bool any = !g["fhg_clocks"].empty();
-        md += fmt::format("| {} | {} | {} | {} | {} | {} |\n", g["block_cycles"].get<int>(), g["cpu.clock"].get<std::string>(),
-                          g["cpu.fpu_ratio"].get<std::string>(), g["surf.target_keypoints"].get<std::string>(),
-                          any ? clock_runs(g["grid"]) : "none",
-                          any ? fmt::format("{:.2f} to {:.2f}", g["fps"][0].get<double>(), g["fps"][1].get<double>()) : "-");
+        md += fmt::format(
+            "| {} | {} | {} | {} | {} | {} |\n", g["block_cycles"].get<int>(), g["cpu.clock"].get<std::string>(),
+            g["cpu.fpu_ratio"].get<std::string>(), g["surf.target_keypoints"].get<std::string>(),
+            any ? clock_runs(g["grid"]) : "none",
+            any ? fmt::format("{:.2f} to {:.2f}", g["fps"][0].get<double>(), g["fps"][1].get<double>()) : "-");
     }
     const Json& d = r["defaults"];
-    md += fmt::format("\n## The scenario's own values\n\n{}: basic script {:.1f} % over the optimum, {:.2f} frames/s. **{}**\n",
-                      d["label"].get<std::string>(), 100 * d["overhead"].get<double>(), d["fps"].get<double>(),
-                      d["inside"].get<bool>() ? "Inside the region: the defaults reproduce the paper."
-                                              : "Outside the region: " + d["why"].get<std::string>() + ".");
+    md += fmt::format(
+        "\n## The scenario's own values\n\n{}: basic script {:.1f} % over the optimum, {:.2f} frames/s. **{}**\n",
+        d["label"].get<std::string>(), 100 * d["overhead"].get<double>(), d["fps"].get<double>(),
+        d["inside"].get<bool>() ? "Inside the region: the defaults reproduce the paper."
+                                : "Outside the region: " + d["why"].get<std::string>() + ".");
     if (!r["failed_points"].empty())
         md += fmt::format("\n{} points failed (correlate.json says why).\n", r["failed_points"].size());
     return md + "\n![frames/s against the FHG clock](correlate.svg)\n";
@@ -216,12 +231,16 @@ std::string markdown(const Json& r) {
 int correlate_command(const CorrelateOptions& o) {
     const Config config = load_scenario(resolve_scenario(o.scenario), o.sets);
     if (config.choice("run.workload") != "surf")
-        throw ConfigError(fmt::format("{}: correlate needs a SURF scenario (run.workload: surf)", config.where("run.workload")));
+        throw ConfigError(
+            fmt::format("{}: correlate needs a SURF scenario (run.workload: surf)", config.where("run.workload")));
     check_scenario(config);
-    const unsigned frames = unsigned(std::min(std::max(config.count("verdict.frames"), config.count("soc.accelerators") + 1),
-                                              config.count("surf.frames")));
-    const Config reference = with(config, {{"surf.frames", std::to_string(frames)}, {"run.parallel", "off"},
-                                           {"verdict.band", "off"}, {"verdict.break_even", "off"}, {"verdict.software", "off"}});
+    const unsigned frames = unsigned(std::min(
+        std::max(config.count("verdict.frames"), config.count("soc.accelerators") + 1), config.count("surf.frames")));
+    const Config reference = with(config, {{"surf.frames", std::to_string(frames)},
+                                           {"run.parallel", "off"},
+                                           {"verdict.band", "off"},
+                                           {"verdict.break_even", "off"},
+                                           {"verdict.software", "off"}});
 
     // The schedules, from their sequences alone.
     Json schedules = Json::array();
@@ -230,7 +249,8 @@ int correlate_command(const CorrelateOptions& o) {
     for (const std::string& word : words)
         for (const std::string& fifo : fifos)
             for (const char* buses : {"2", "4", "6"})
-                schedules.push_back(schedule_row(config, {{"fhg.bus_word", word}, {"fhg.line_fifo", fifo}, {"fhg.read_buses", buses}}));
+                schedules.push_back(
+                    schedule_row(config, {{"fhg.bus_word", word}, {"fhg.line_fifo", fifo}, {"fhg.read_buses", buses}}));
 
     // The frame rate for each block-cycle count among the reproducing schedules (the FHG's
     // timing depends on nothing else of the schedule), over the other unknowns.
@@ -238,18 +258,27 @@ int correlate_command(const CorrelateOptions& o) {
     for (size_t i = 0; i < schedules.size(); ++i)
         if (schedules[i]["reproduces"].get<bool>()) representative.emplace(schedules[i]["block_cycles"].get<int>(), i);
     std::vector<Point> points;
-    const std::vector<std::string> cpus = band_values("cpu.clock", config), ratios = band_values("cpu.fpu_ratio", config);
+    const std::vector<std::string> cpus = band_values("cpu.clock", config),
+                                   ratios = band_values("cpu.fpu_ratio", config);
     const std::vector<std::string> keypoints{"90", "100", "110"};  // around the paper's 100
     for (const auto& [cycles, i] : representative)
         for (double hz : fhg_clocks(config))
             for (const std::string& cpu : cpus)
                 for (const std::string& ratio : ratios)
                     for (const std::string& kp : keypoints)
-                        points.push_back({i, {{"fhg.clock", mhz(hz)}, {"cpu.clock", cpu}, {"cpu.fpu_ratio", ratio}, {"surf.target_keypoints", kp}}, {}});
-    const Sets schedule_keys{{"fhg.bus_word", config.choice("fhg.bus_word")}, {"fhg.line_fifo", config.choice("fhg.line_fifo")},
+                        points.push_back({i,
+                                          {{"fhg.clock", mhz(hz)},
+                                           {"cpu.clock", cpu},
+                                           {"cpu.fpu_ratio", ratio},
+                                           {"surf.target_keypoints", kp}},
+                                          {}});
+    const Sets schedule_keys{{"fhg.bus_word", config.choice("fhg.bus_word")},
+                             {"fhg.line_fifo", config.choice("fhg.line_fifo")},
                              {"fhg.read_buses", config.value("fhg.read_buses")}};
-    const Sets defaults{{"fhg.clock", mhz(config.frequency("fhg.clock").hz)}, {"cpu.clock", config.value("cpu.clock")},
-                        {"cpu.fpu_ratio", config.value("cpu.fpu_ratio")}, {"surf.target_keypoints", config.value("surf.target_keypoints")}};
+    const Sets defaults{{"fhg.clock", mhz(config.frequency("fhg.clock").hz)},
+                        {"cpu.clock", config.value("cpu.clock")},
+                        {"cpu.fpu_ratio", config.value("cpu.fpu_ratio")},
+                        {"surf.target_keypoints", config.value("surf.target_keypoints")}};
     Json default_point;
 
     OutputFolder out(o.out.empty() ? fs::path("traces") / ("correlate_" + config.name) : fs::path(o.out));
@@ -265,7 +294,9 @@ int correlate_command(const CorrelateOptions& o) {
         pool.submit(reference, [&](const Json& r) { default_point = r; });
         ProgressLine progress(o.quiet, "correlate", 0.0, 0.5, 5.0);
         pool.run([&](size_t done, size_t total) {
-            progress.update([&](double wall) { return fmt::format("correlate: {}/{} re-simulations, {:.1f} s", done, total, wall); });
+            progress.update([&](double wall) {
+                return fmt::format("correlate: {}/{} re-simulations, {:.1f} s", done, total, wall);
+            });
         });
     }
 
@@ -286,12 +317,17 @@ int correlate_command(const CorrelateOptions& o) {
         row["limit"] = p.result["limit"];
         row["reproduces"] = within_about(fps, paper::kFps);
         all.push_back(row);
-        const std::string key = fmt::format("{}|{}|{}|{}", p.schedule, p.sets[1].second, p.sets[2].second, p.sets[3].second);
+        const std::string key =
+            fmt::format("{}|{}|{}|{}", p.schedule, p.sets[1].second, p.sets[2].second, p.sets[3].second);
         auto [it, fresh] = group_of.emplace(key, region.size());
         if (fresh)
-            region.push_back({{"block_cycles", schedules[p.schedule]["block_cycles"]}, {"cpu.clock", p.sets[1].second},
-                              {"cpu.fpu_ratio", p.sets[2].second}, {"surf.target_keypoints", p.sets[3].second},
-                              {"fhg_clocks", Json::array()}, {"fps", Json::array({1e300, 0.0})}, {"grid", Json::array()}});
+            region.push_back({{"block_cycles", schedules[p.schedule]["block_cycles"]},
+                              {"cpu.clock", p.sets[1].second},
+                              {"cpu.fpu_ratio", p.sets[2].second},
+                              {"surf.target_keypoints", p.sets[3].second},
+                              {"fhg_clocks", Json::array()},
+                              {"fps", Json::array({1e300, 0.0})},
+                              {"grid", Json::array()}});
         Json& g = region[it->second];
         g["grid"].push_back({{"fhg.clock", p.sets[0].second}, {"fps", fps}, {"reproduces", row["reproduces"]}});
         if (!row["reproduces"].get<bool>()) continue;
@@ -303,16 +339,22 @@ int correlate_command(const CorrelateOptions& o) {
     const Json own = schedule_row(config, schedule_keys);
     const double own_fps = default_point.contains("error") ? 0 : default_point.value("fps", 0.0);
     std::string why;
-    if (!own["reproduces"].get<bool>()) why = "its basic script is not about 11 % over the optimum";
-    else if (!within_about(own_fps, paper::kFps)) why = fmt::format("its rate, {:.2f} frames/s, is not about 10", own_fps);
+    if (!own["reproduces"].get<bool>())
+        why = "its basic script is not about 11 % over the optimum";
+    else if (!within_about(own_fps, paper::kFps))
+        why = fmt::format("its rate, {:.2f} frames/s, is not about 10", own_fps);
     const Json defaults_json = {{"label", point_label(schedule_keys) + ", " + point_label(defaults)},
-                                {"overhead", own.value("overhead", 0.0)}, {"fps", own_fps}, {"inside", why.empty()}, {"why", why}};
+                                {"overhead", own.value("overhead", 0.0)},
+                                {"fps", own_fps},
+                                {"inside", why.empty()},
+                                {"why", why}};
 
     Json r = {{"surfvp_version", SURFVP_VERSION},
               {"scenario", config.name},
               {"frames", frames},
-              {"paper", {{"fps", {paper::kFps * (1 - paper::kAbout), paper::kFps * (1 + paper::kAbout)}},
-                         {"overhead", {paper::kOverhead * (1 - paper::kAbout), paper::kOverhead * (1 + paper::kAbout)}}}},
+              {"paper",
+               {{"fps", {paper::kFps * (1 - paper::kAbout), paper::kFps * (1 + paper::kAbout)}},
+                {"overhead", {paper::kOverhead * (1 - paper::kAbout), paper::kOverhead * (1 + paper::kAbout)}}}},
               {"schedules", schedules},
               {"region", region},
               {"points", all},
@@ -321,8 +363,10 @@ int correlate_command(const CorrelateOptions& o) {
     const fs::path staging = out.staging();
     write_file_atomically((staging / "correlate.json").string(), r.dump(2) + "\n");
     write_file_atomically((staging / "correlate.md").string(), markdown(r));
-    const size_t drawn = representative.count(own.value("block_cycles", 0)) ? representative.at(own["block_cycles"].get<int>())
-                                                                             : representative.empty() ? 0 : representative.begin()->second;
+    const size_t drawn = representative.count(own.value("block_cycles", 0))
+                             ? representative.at(own["block_cycles"].get<int>())
+                         : representative.empty() ? 0
+                                                  : representative.begin()->second;
     write_file_atomically((staging / "correlate.svg").string(), plot(points, drawn, defaults, own_fps));
     out.publish();
     if (!o.quiet)

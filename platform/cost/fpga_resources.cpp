@@ -32,10 +32,12 @@ BlockResources fhg_block(const Config& c) {
     const Fhg::Params p = fhg_params(c);
     const fhg::Sequence& seq = fhg::cached_sequence(p.sequence);
     const auto& s = p.sequence;
-    const unsigned integral_bits = 32;  // an integral value travels and is kept as a 32-bit word (iig.sum_bits of it used)
+    const unsigned integral_bits =
+        32;  // an integral value travels and is kept as a 32-bit word (iig.sum_bits of it used)
     const fhg::LineFifoShape shape = fhg::line_fifo_shape(s.line_fifo);
-    const unsigned line = shape.banks * (shape.aligned_pairs ? ramb36_for(ceil_div(p.max_width, 2), 2 * integral_bits)
-                                                             : ramb36_for(ceil_div(p.max_width, shape.banks), integral_bits));
+    const unsigned line =
+        shape.banks * (shape.aligned_pairs ? ramb36_for(ceil_div(p.max_width, 2), 2 * integral_bits)
+                                           : ramb36_for(ceil_div(p.max_width, shape.banks), integral_bits));
     const unsigned fifo = s.fifo_lines * line;
     const unsigned maxima = ramb36_for(p.maxima_fifo_depth, 32);
     const unsigned control_bits = s.read_buses * (log2_ceil(s.fifo_lines) + 6 + 1) +
@@ -50,18 +52,27 @@ BlockResources fhg_block(const Config& c) {
     const double acc = p.precision.accumulator_bits, det = p.precision.det_bits;
     const double luts = s.triple_macs * 4 * acc + 6 * r + 26 * det + 400;
     const double ffs = s.triple_macs * 6 * acc + 8 * r + 27 * det + 400;
-    return {"fhg", double(fifo + maxima + sequence + rows), double(dsp), luts, ffs,
-            fmt::format("line FIFO {} x {} RAMB36 ({}), maxima FIFO {}, sequence {} ({} cycles x {} bit), determinant rows {} x {}; "
+    return {"fhg",
+            double(fifo + maxima + sequence + rows),
+            double(dsp),
+            luts,
+            ffs,
+            fmt::format("line FIFO {} x {} RAMB36 ({}), maxima FIFO {}, sequence {} ({} cycles x {} bit), determinant "
+                        "rows {} x {}; "
                         "DSP48E for Dxx*Dyy, w*Dxy and (w*Dxy)^2 at {} bit",
-                        s.fifo_lines, line, fhg::line_fifo_name(s.line_fifo), maxima, sequence, seq.interval, control_bits, p.det_row_buffers,
-                        ramb36_for(ceil_div(p.max_width, 2), record_bits), r)};
+                        s.fifo_lines, line, fhg::line_fifo_name(s.line_fifo), maxima, sequence, seq.interval,
+                        control_bits, p.det_row_buffers, ramb36_for(ceil_div(p.max_width, 2), record_bits), r)};
 }
 
 // The IIG of one pair: its line buffers of integral words, a row-sum adder and a column adder.
 BlockResources iig_block(const Config& c) {
     const unsigned width = unsigned(c.count("iig.max_width")), sum = c.bits("iig.sum_bits");
     const unsigned ram = unsigned(c.count("iig.line_buffers")) * ramb36_for(width, 32);
-    return {"iig", double(ram), 0, 4.0 * sum + 200, 6.0 * sum + 200,
+    return {"iig",
+            double(ram),
+            0,
+            4.0 * sum + 200,
+            6.0 * sum + 200,
             fmt::format("{} line buffers of {} integral words", c.count("iig.line_buffers"), width)};
 }
 
@@ -122,7 +133,8 @@ FpgaResources fpga_resources(const Config& c) {
 nlohmann::ordered_json resources_json(const FpgaResources& r) {
     using Json = nlohmann::ordered_json;
     auto figures = [](const BlockResources& b) {
-        return Json{{"ramb36", b.ramb36}, {"dsp48e", b.dsp48e}, {"luts", std::round(b.luts)}, {"ffs", std::round(b.ffs)}};
+        return Json{
+            {"ramb36", b.ramb36}, {"dsp48e", b.dsp48e}, {"luts", std::round(b.luts)}, {"ffs", std::round(b.ffs)}};
     };
     Json blocks = Json::object();
     for (const BlockResources& b : r.blocks) {
@@ -130,10 +142,16 @@ nlohmann::ordered_json resources_json(const FpgaResources& r) {
         j["basis"] = b.basis;
         blocks[b.block] = j;
     }
-    Json share = {{"ramb36", r.total.ramb36 / r.ramb36_capacity}, {"dsp48e", r.total.dsp48e / r.dsp48e_capacity},
-                  {"luts", r.total.luts / r.lut_capacity}, {"ffs", r.total.ffs / r.ff_capacity}};
+    Json share = {{"ramb36", r.total.ramb36 / r.ramb36_capacity},
+                  {"dsp48e", r.total.dsp48e / r.dsp48e_capacity},
+                  {"luts", r.total.luts / r.lut_capacity},
+                  {"ffs", r.total.ffs / r.ff_capacity}};
     return {{"device", r.device},
-            {"capacity", {{"ramb36", r.ramb36_capacity}, {"dsp48e", r.dsp48e_capacity}, {"luts", r.lut_capacity}, {"ffs", r.ff_capacity}}},
+            {"capacity",
+             {{"ramb36", r.ramb36_capacity},
+              {"dsp48e", r.dsp48e_capacity},
+              {"luts", r.lut_capacity},
+              {"ffs", r.ff_capacity}}},
             {"total", figures(r.total)},
             {"share", share},
             {"fits", r.fits()},

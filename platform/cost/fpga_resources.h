@@ -14,9 +14,9 @@
 namespace surfvp {
 
 struct BlockResources {
-    std::string block;     // "fhg (x2)": a pair's blocks count once per pair
+    std::string block;  // "fhg (x2)": a pair's blocks count once per pair
     double ramb36 = 0, dsp48e = 0, luts = 0, ffs = 0;
-    std::string basis;     // how the figures were reached, in words
+    std::string basis;  // how the figures were reached, in words
 };
 
 struct FpgaResources {

@@ -53,7 +53,8 @@ Json power_estimate(const Config& c, const Json& r, const FpgaResources& res) {
     add("ppc440", c.real("power.ppc440_mw_per_mhz") * 1e-3 * cpu_hz * 1e-6 * cpu_s,
         fmt::format("{:.3f} s computing at {:g} MHz x power.ppc440_mw_per_mhz", cpu_s, cpu_hz * 1e-6));
     const double fpu_hz = cpu_hz / double(c.count("cpu.fpu_ratio"));
-    add("apu fpu", cells(res, "apu fpu") * cell * fpu_hz * cpu_s, "its LUT-FF pairs x power.logic_pj_per_cell_cycle, while the CPU computes");
+    add("apu fpu", cells(res, "apu fpu") * cell * fpu_hz * cpu_s,
+        "its LUT-FF pairs x power.logic_pj_per_cell_cycle, while the CPU computes");
     // The accelerators while they compute: their logic cells each cycle, the FHG's line-FIFO
     // reads (a quad word reads two lines, other words one) and writes, its three products per
     // determinant.
@@ -64,12 +65,15 @@ Json power_estimate(const Config& c, const Json& r, const FpgaResources& res) {
     const double fhg_cycles = fhg_s * fhg_hz;
     const double determinants = fhg_cycles / Fhg::block_cycles(fhg::cached_sequence(fhg.sequence), fhg) * 18;
     const double lines_per_word = fhg.sequence.bus_word == fhg::BusWord::quad ? 2 : 1;
-    const double bram_accesses = fhg_cycles * fhg.sequence.read_buses * lines_per_word + iig_s * iig_hz;  // reads + line writes
-    add("fhg", cells(res, "fhg") / pairs * cell * fhg_cycles + bram_accesses * c.real("power.bram_pj_per_access") * pj +
-                   determinants * 3 * c.real("power.dsp_pj_per_product") * pj,
+    const double bram_accesses =
+        fhg_cycles * fhg.sequence.read_buses * lines_per_word + iig_s * iig_hz;  // reads + line writes
+    add("fhg",
+        cells(res, "fhg") / pairs * cell * fhg_cycles + bram_accesses * c.real("power.bram_pj_per_access") * pj +
+            determinants * 3 * c.real("power.dsp_pj_per_product") * pj,
         fmt::format("{:.3g} cycles computing, {:.3g} block-RAM accesses, {:.3g} determinants x 3 products", fhg_cycles,
                     bram_accesses, determinants));
-    add("iig", cells(res, "iig") / pairs * cell * iig_s * iig_hz, fmt::format("{:.3g} cycles computing", iig_s * iig_hz));
+    add("iig", cells(res, "iig") / pairs * cell * iig_s * iig_hz,
+        fmt::format("{:.3g} cycles computing", iig_s * iig_hz));
     // Buses: every bit moved and every burst arbitrated; DDR2: every bit read or written.
     double bus_bits = 0, bursts = 0;
     if (r.contains("buses"))
@@ -80,8 +84,11 @@ Json power_estimate(const Config& c, const Json& r, const FpgaResources& res) {
             }
     add("buses", bus_bits * c.real("power.bus_pj_per_bit") * pj + bursts * c.real("power.bus_pj_per_burst") * pj,
         fmt::format("{:.3g} bits in {:.3g} bursts on the PLBs", bus_bits, bursts));
-    const double ddr_bits = r.contains("memory") ? 8.0 * (r["memory"].value("bytes_read", 0.0) + r["memory"].value("bytes_written", 0.0)) : 0;
-    add("ddr traffic", ddr_bits * c.real("power.ddr_pj_per_bit") * pj, fmt::format("{:.3g} bits read and written", ddr_bits));
+    const double ddr_bits = r.contains("memory")
+                                ? 8.0 * (r["memory"].value("bytes_read", 0.0) + r["memory"].value("bytes_written", 0.0))
+                                : 0;
+    add("ddr traffic", ddr_bits * c.real("power.ddr_pj_per_bit") * pj,
+        fmt::format("{:.3g} bits read and written", ddr_bits));
     const double watts = seconds > 0 ? total_j / seconds : 0.0;
     const double budget = c.real("power.budget_w");
     return {{"watts", watts},
@@ -105,7 +112,10 @@ Json cost_band(const Config& config, const Json& report) {
             const double watts = power_estimate(c, report, res)["watts"].get<double>();
             low_w = std::min(low_w, watts);
             high_w = std::max(high_w, watts);
-            entry[side] = {{"value", value}, {"watts", watts}, {"ramb36", res.total.ramb36}, {"luts", res.total.luts},
+            entry[side] = {{"value", value},
+                           {"watts", watts},
+                           {"ramb36", res.total.ramb36},
+                           {"luts", res.total.luts},
                            {"fits", res.fits()}};
         }
         parameters.push_back(entry);

@@ -22,7 +22,9 @@ namespace {
 
 // The bytes an IIG frame reads and writes from its first address on.
 uint64_t source_bytes(const IigRegisters::Frame& i) { return uint64_t(i.src_stride) * (i.height - 1) + i.width; }
-uint64_t integral_bytes(const IigRegisters::Frame& i) { return uint64_t(i.dst_stride) * (i.height - 1) + 4ull * i.width; }
+uint64_t integral_bytes(const IigRegisters::Frame& i) {
+    return uint64_t(i.dst_stride) * (i.height - 1) + 4ull * i.width;
+}
 
 }  // namespace
 
@@ -32,13 +34,16 @@ DirectChip::Pair::Pair(DirectChip& chip, const IigRegisters::Limits& iig_limits,
                            integral = f;
                            chip.run_integral(*this);
                        },
-                       [this] { iig.end(true, iig::ERR_ABORTED, 0); }, {}, {}}),
+                       [this] { iig.end(true, iig::ERR_ABORTED, 0); },
+                       {},
+                       {}}),
       fhg(fhg_limits, {[this](const FhgRegisters::Frame& f) {
                            stop_listening();  // first: rows still being computed read the frame before
                            determinants = f;
                            next_row = 0;
                        },
-                       [this] { fhg.status().end(true, f::ERR_ABORTED); }, {},
+                       [this] { fhg.status().end(true, f::ERR_ABORTED); },
+                       {},
                        [this] {  // RESET: a frame still listening is aborted at once (no time here)
                            if (fhg.status().busy()) fhg.status().end(true, f::ERR_ABORTED);
                            stop_listening();
@@ -108,8 +113,10 @@ uint64_t DirectChip::compute(uint64_t cycles, const std::vector<sw::LineTransfer
         size_t n = 0;
         const uint64_t at = lines[i].at_cycle;
         for (; i < lines.size() && lines[i].at_cycle == at && !lines[i].write_back; ++i) ++n;
-        if (n) stall += fills_.burst_stall(n).to_seconds();
-        else ++i;  // a write-back: posted
+        if (n)
+            stall += fills_.burst_stall(n).to_seconds();
+        else
+            ++i;  // a write-back: posted
     }
     const uint64_t spent = cycles + uint64_t(std::llround(stall * cpu_hz_));
     cycles_ += spent;
@@ -184,7 +191,8 @@ bool DirectChip::integrate(const IigRegisters::Frame& i, FrameBuffer<uint32_t>& 
     const IntegralCore integral_core(sum_bits_);
     for (uint32_t y = 0; y < i.height; ++y) {
         const uint32_t* above = y ? &integral[size_t(y - 1) * i.width] : nullptr;
-        if (!integral_core.row(memory_.get() + i.src + size_t(y) * i.src_stride, above, &integral[size_t(y) * i.width], int(i.width)))
+        if (!integral_core.row(memory_.get() + i.src + size_t(y) * i.src_stride, above, &integral[size_t(y) * i.width],
+                               int(i.width)))
             return false;
         store_be32_run(memory_.get() + i.dst + size_t(y) * i.dst_stride, &integral[size_t(y) * i.width], i.width);
     }
@@ -207,7 +215,7 @@ void DirectChip::run_integral(Pair& p) {
     const bool to_fhg = streams && p.determinants.width == i.width && p.determinants.height == i.height;
     if (to_fhg) p.stop_listening();  // a second stream replaces the first
     FrameBuffer<uint32_t>& integral = to_fhg ? p.lines : p.making;
-    integral.resize(size_t(i.width) * i.height);  // every word is written before it is read
+    integral.resize(size_t(i.width) * i.height);            // every word is written before it is read
     auto done = std::make_shared<std::atomic<bool>>(true);  // this image's: the stream's rows wait for it
     if (worker_ && IntegralCore(sum_bits_).fits(memory_.get() + i.src, int(i.width), int(i.height), i.src_stride)) {
         done->store(false, std::memory_order_relaxed);
@@ -280,7 +288,9 @@ void DirectChip::settle(uint64_t address, uint64_t bytes) {
         Pair& p = *pair;
         if (!p.integrating) continue;
         const IigRegisters::Frame& i = p.integrating_frame;
-        const auto reaches = [&](uint64_t begin, uint64_t length) { return address < begin + length && begin < address + bytes; };
+        const auto reaches = [&](uint64_t begin, uint64_t length) {
+            return address < begin + length && begin < address + bytes;
+        };
         if (reaches(i.src, source_bytes(i)) || reaches(i.dst, integral_bytes(i))) {
             worker_->wait(p.integral_job);
             p.integrating = false;

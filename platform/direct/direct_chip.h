@@ -74,7 +74,7 @@ private:
         // The IIG's integral image when it is not streamed (or streamed to an FHG of another
         // size); kept from frame to frame, so a frame does not allocate one.
         FrameBuffer<uint32_t> making;
-        uint32_t next_row = 0;        // the FHG's next block row to report; its frame has work while BUSY
+        uint32_t next_row = 0;  // the FHG's next block row to report; its frame has work while BUSY
         // The stream's rows from first_row on, computed into memory when the integral image
         // came: rows up to end_row (those after a row beyond memory are not), row r's
         // candidates in found[r]. With run.parallel row r is the worker's job jobs[r] (the

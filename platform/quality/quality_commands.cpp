@@ -29,14 +29,16 @@ void add_surf_options(CLI::App& command, SurfSettings& surf) {
     command.add_option("--init-step", surf.init_step, "Sampling step of octave 0: 1 (the chip) or 2 (OpenSURF)")
         ->check(CLI::Range(1, 2))
         ->capture_default_str();
-    command.add_option("--haar", surf.haar,
-                       "Haar wavelets of orientation and descriptor: exact (sub-pixel, the float reference) or rounded "
-                       "(whole pixels, the chip's software: surf.haar)")
+    command
+        .add_option("--haar", surf.haar,
+                    "Haar wavelets of orientation and descriptor: exact (sub-pixel, the float reference) or rounded "
+                    "(whole pixels, the chip's software: surf.haar)")
         ->check(CLI::IsMember({"exact", "rounded"}))
         ->capture_default_str();
-    command.add_flag("--paper", surf.paper,
-                     "The paper's SURF: 4 filter sizes per octave, --max-offset 0.5, --descriptor surf (with --octaves 2 "
-                     "--haar rounded: the chip's software in float); options given beside it win");
+    command.add_flag(
+        "--paper", surf.paper,
+        "The paper's SURF: 4 filter sizes per octave, --max-offset 0.5, --descriptor surf (with --octaves 2 "
+        "--haar rounded: the chip's software in float); options given beside it win");
     command
         .add_option_function<int>(
             "--intervals", [&surf](const int& n) { surf.intervals = n; },
@@ -45,7 +47,8 @@ void add_surf_options(CLI::App& command, SurfSettings& surf) {
     command
         .add_option_function<std::string>(
             "--descriptor", [&surf](const std::string& d) { surf.descriptor = d; },
-            "Descriptor sampling: msurf (default; OpenSURF's overlapping sub-regions) or surf (Bay's; the chip's software)")
+            "Descriptor sampling: msurf (default; OpenSURF's overlapping sub-regions) or surf (Bay's; the chip's "
+            "software)")
         ->check(CLI::IsMember({"surf", "msurf"}));
     command
         .add_option_function<float>(
@@ -70,7 +73,8 @@ CLI::Option* add_matching_options(CLI::App& command, std::optional<double>& radi
 }
 
 CLI::App* add_surf_command(CLI::App& app, SurfCommand& c) {
-    CLI::App* command = app.add_subcommand("surf", "Run the float reference SURF on an image and write a keypoint file");
+    CLI::App* command =
+        app.add_subcommand("surf", "Run the float reference SURF on an image and write a keypoint file");
     command->add_option("image", c.image, "Image file (any format OpenCV reads; colour is converted to grey)")
         ->required();
     command->add_option("--out,-o", c.out, "Keypoint file to write (Mikolajczyk format, plus FILE.meta)")->required();
@@ -86,8 +90,8 @@ CLI::App* add_eval_command(CLI::App& app, EvalCommand& c) {
         "eval", "Distinguishability of two keypoint files; with --homography also repeatability and precision");
     command->add_option("a", c.a, "Keypoint file of image A")->required();
     command->add_option("b", c.b, "Keypoint file of image B")->required();
-    CLI::Option* h = command->add_option(
-        "--homography,-H", c.homography, "Homography A -> B (Oxford text H1to3p, or OpenCV XML/YAML/JSON)");
+    CLI::Option* h = command->add_option("--homography,-H", c.homography,
+                                         "Homography A -> B (Oxford text H1to3p, or OpenCV XML/YAML/JSON)");
     h->type_name("FILE");
     CLI::Option* images = command->add_option("--images", c.images, "Images A and B (repeatability needs their sizes)")
                               ->expected(2)
@@ -105,16 +109,18 @@ CLI::App* add_eval_command(CLI::App& app, EvalCommand& c) {
 CLI::App* add_eval_seq_command(CLI::App& app, EvalSeqCommand& c) {
     CLI::App* command = app.add_subcommand(
         "eval-seq", "Run SURF on every frame of a sequence and average distinguishability over frame pairs");
-    command->add_option("source", c.source,
-                        "Video, folder of images (a ViSP folder with Images/ works too) or list file (.txt/.lst)")
+    command
+        ->add_option("source", c.source,
+                     "Video, folder of images (a ViSP folder with Images/ works too) or list file (.txt/.lst)")
         ->required();
     command->add_option("--frames", c.frames, "Use the first N frames only (0 = all)")->capture_default_str();
     command->add_option("--gap", c.gaps, "Compare frames i and i+K (repeatable; default 1)")
         ->check(CLI::PositiveNumber)
         ->type_name("K");
     add_surf_options(*command, c.surf);
-    CLI::Option* poses = command->add_option(
-        "--poses", c.poses, "Folder of Camera_<n>.txt cMo pose files (ViSP): also ground-truth F; frame n is the "
+    CLI::Option* poses =
+        command->add_option("--poses", c.poses,
+                            "Folder of Camera_<n>.txt cMo pose files (ViSP): also ground-truth F; frame n is the "
                             "image whose name ends in n");
     poses->type_name("DIR");
     CLI::Option* intrinsics = command->add_option("--intrinsics", c.intrinsics, "Camera intrinsics for --poses")
@@ -124,16 +130,20 @@ CLI::App* add_eval_seq_command(CLI::App& app, EvalSeqCommand& c) {
     poses->needs(intrinsics);
     intrinsics->needs(poses);
     add_matching_options(*command, c.radius, c.laplacian);
-    command->add_flag("--table", c.table,
-                      "The four rows of the paper's Table II: limited search (--radius, default 200) Y/N x "
-                      "Laplacian Y/N")
+    command
+        ->add_flag("--table", c.table,
+                   "The four rows of the paper's Table II: limited search (--radius, default 200) Y/N x "
+                   "Laplacian Y/N")
         ->excludes("--laplacian");
     command->add_flag("--per-pair", c.per_pair, "Also list every pair's figures in the JSON");
-    CLI::Option* write = command->add_option("--keypoints", c.keypoints_dir, "Also write each frame's keypoint file into this folder")
-                             ->type_name("DIR");
-    command->add_option("--keypoints-from", c.keypoints_from,
-                        "Evaluate the keypoint files in DIR instead of running SURF (sorted by name, one per frame: a run's "
-                        "keypoints/ folder, or another detector's)")
+    CLI::Option* write =
+        command->add_option("--keypoints", c.keypoints_dir, "Also write each frame's keypoint file into this folder")
+            ->type_name("DIR");
+    command
+        ->add_option(
+            "--keypoints-from", c.keypoints_from,
+            "Evaluate the keypoint files in DIR instead of running SURF (sorted by name, one per frame: a run's "
+            "keypoints/ folder, or another detector's)")
         ->type_name("DIR")
         ->excludes(write)
         ->excludes("--threshold")
@@ -148,8 +158,8 @@ CLI::App* add_eval_seq_command(CLI::App& app, EvalSeqCommand& c) {
 }
 
 CLI::App* add_draw_command(CLI::App& app, DrawCommand& c) {
-    CLI::App* command = app.add_subcommand(
-        "draw", "Draw a keypoint file on its image: circles of radius 2.5 s with the orientation");
+    CLI::App* command =
+        app.add_subcommand("draw", "Draw a keypoint file on its image: circles of radius 2.5 s with the orientation");
     command->add_option("image", c.image, "The image the keypoints were found on")->required();
     command->add_option("keypoints", c.keypoints, "Keypoint file")->required();
     command->add_option("--out,-o", c.out, "Image to write; the extension picks the format (.png)")->required();

@@ -36,8 +36,10 @@ cv::Size image_size(const std::string& file) {
 void warn_unsigned(const std::string& file, const surf::Keypoints& keypoints) {
     for (const auto& k : keypoints) {
         if (k.laplacian == 0) {
-            std::fprintf(stderr, "surfvp: note: %s has keypoints without a Laplacian sign; --laplacian matches "
-                                 "them only with each other\n", file.c_str());
+            std::fprintf(stderr,
+                         "surfvp: note: %s has keypoints without a Laplacian sign; --laplacian matches "
+                         "them only with each other\n",
+                         file.c_str());
             return;
         }
     }

@@ -8,10 +8,14 @@ namespace surfvp::quality {
 
 inline const char* status_name(eval::DistinguishabilityStatus status) {
     switch (status) {
-        case eval::DistinguishabilityStatus::ok: return "ok";
-        case eval::DistinguishabilityStatus::no_candidates: return "no_candidates";
-        case eval::DistinguishabilityStatus::too_few_candidates: return "too_few_candidates";
-        case eval::DistinguishabilityStatus::no_fundamental: return "no_fundamental";
+        case eval::DistinguishabilityStatus::ok:
+            return "ok";
+        case eval::DistinguishabilityStatus::no_candidates:
+            return "no_candidates";
+        case eval::DistinguishabilityStatus::too_few_candidates:
+            return "too_few_candidates";
+        case eval::DistinguishabilityStatus::no_fundamental:
+            return "no_fundamental";
     }
     return "unknown";
 }

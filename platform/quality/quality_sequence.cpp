@@ -35,8 +35,7 @@ struct Frames {
 // A ViSP sequence folder (Castle-simu: Images/, CameraPose/, Depth/, ...) has no images of its
 // own; its frames are in Images/.
 fs::path image_source(const fs::path& source) {
-    if (fs::is_directory(source) && fs::is_directory(source / "Images") &&
-        eval::list_image_folder(source).empty())
+    if (fs::is_directory(source) && fs::is_directory(source / "Images") && eval::list_image_folder(source).empty())
         return source / "Images";
     return source;
 }
@@ -59,8 +58,8 @@ std::map<unsigned, fs::path> pose_files(const fs::path& folder) {
         if (file.extension() != ".txt" || file.filename().string().rfind("Camera_", 0) != 0) continue;
         const auto n = trailing_number(file);
         if (n && !files.emplace(*n, file).second)
-            throw ConfigError("--poses " + folder.string() + ": two pose files for frame " + std::to_string(*n) +
-                              ": " + files[*n].filename().string() + " and " + file.filename().string());
+            throw ConfigError("--poses " + folder.string() + ": two pose files for frame " + std::to_string(*n) + ": " +
+                              files[*n].filename().string() + " and " + file.filename().string());
     }
     if (files.empty()) throw ConfigError("--poses " + folder.string() + ": no Camera_<n>.txt pose files");
     return files;
@@ -141,8 +140,7 @@ void check_keypoint_names(const Frames& frames, const EvalSeqCommand& c) {
 
 FrameKeypoints detect_frames(const Frames& frames, const EvalSeqCommand& c) {
     if (!c.keypoints_dir.empty()) check_keypoint_names(frames, c);
-    if (!c.keypoints_dir.empty())
-        read_input("--keypoints", [&] { fs::create_directories(c.keypoints_dir); });
+    if (!c.keypoints_dir.empty()) read_input("--keypoints", [&] { fs::create_directories(c.keypoints_dir); });
     const auto start = std::chrono::steady_clock::now();
     FrameKeypoints out;
     eval::SequenceReader reader(frames.sequence);
@@ -171,8 +169,8 @@ FrameKeypoints read_frame_keypoints(const Frames& frames, const EvalSeqCommand& 
     });
     std::sort(files.begin(), files.end());
     if (files.size() != frames.sequence.frames.size())
-        throw ConfigError(fmt::format("--keypoints-from {}: {} keypoint files for {} frames of {}", c.keypoints_from, files.size(),
-                                      frames.sequence.frames.size(), c.source));
+        throw ConfigError(fmt::format("--keypoints-from {}: {} keypoint files for {} frames of {}", c.keypoints_from,
+                                      files.size(), frames.sequence.frames.size(), c.source));
     FrameKeypoints out;
     for (const fs::path& file : files) {
         out.keypoints.push_back(read_input("--keypoints-from", [&] { return eval::load_keypoints(file); }));
@@ -282,8 +280,9 @@ void print_summary(const ordered_json& out) {
     const auto& k = out["surf"]["keypoints"];
     std::fprintf(stderr, "%zu frames, %.1f keypoints per frame (%zu..%zu), %s\n", out["frames"].get<std::size_t>(),
                  k["mean"].get<double>(), k["min"].get<std::size_t>(), k["max"].get<std::size_t>(),
-                 out["surf"].contains("seconds") ? fmt::format("SURF {:.1f} s", out["surf"]["seconds"].get<double>()).c_str()
-                                                 : ("from " + out["surf"]["keypoints_from"].get<std::string>()).c_str());
+                 out["surf"].contains("seconds")
+                     ? fmt::format("SURF {:.1f} s", out["surf"]["seconds"].get<double>()).c_str()
+                     : ("from " + out["surf"]["keypoints_from"].get<std::string>()).c_str());
     for (const auto& gap : out["gaps"]) {
         for (const auto& row : gap["rows"]) {
             const auto& radius = row["search_radius"];
@@ -306,7 +305,8 @@ int run_eval_seq(const EvalSeqCommand& command) {
     EvalSeqCommand c = command;
     if (c.gaps.empty()) c.gaps = {1};
     const Frames frames = open_frames(c);
-    const FrameKeypoints detected = c.keypoints_from.empty() ? detect_frames(frames, c) : read_frame_keypoints(frames, c);
+    const FrameKeypoints detected =
+        c.keypoints_from.empty() ? detect_frames(frames, c) : read_frame_keypoints(frames, c);
 
     ordered_json out;
     out["source"] = c.source;
@@ -317,7 +317,8 @@ int run_eval_seq(const EvalSeqCommand& command) {
     out["poses"] = c.poses.empty() ? ordered_json(nullptr) : ordered_json(c.poses);
     out["intrinsics"] = c.poses.empty() ? ordered_json(nullptr) : ordered_json(c.intrinsics);
     out["surf"] = surf_json(c.surf, detected);
-    if (!c.keypoints_from.empty()) out["surf"] = {{"keypoints_from", c.keypoints_from}, {"keypoints", out["surf"]["keypoints"]}};
+    if (!c.keypoints_from.empty())
+        out["surf"] = {{"keypoints_from", c.keypoints_from}, {"keypoints", out["surf"]["keypoints"]}};
     out["gaps"] = ordered_json::array();
     for (const std::size_t gap : c.gaps) {
         ordered_json table = ordered_json::array();

@@ -37,7 +37,8 @@ Detection detect(const cv::Mat& gray, const SurfSettings& settings, const std::s
     Detection detection;
     detection.keypoints = surf::detect_and_describe(gray, params);
     detection.threshold = params.threshold;
-    detection.milliseconds = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    detection.milliseconds =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     return detection;
 }
 

@@ -37,8 +37,8 @@ struct SurfSettings {
 
 struct Detection {
     surf::Keypoints keypoints;
-    float threshold = 0;          // the one used
-    double milliseconds = 0;      // threshold search + detect + describe
+    float threshold = 0;      // the one used
+    double milliseconds = 0;  // threshold search + detect + describe
 };
 
 // Runs the reference SURF on an 8-bit grey image; `name` names it in errors (ConfigError).
@@ -53,25 +53,25 @@ struct SurfCommand {
 
 struct EvalCommand {
     std::string a, b;
-    std::string homography;            // empty: distinguishability only
-    std::vector<std::string> images;   // IMG_A IMG_B, needed with the homography
+    std::string homography;           // empty: distinguishability only
+    std::vector<std::string> images;  // IMG_A IMG_B, needed with the homography
     std::optional<double> radius;
     bool laplacian = false;
 };
 
 struct EvalSeqCommand {
     std::string source;
-    std::size_t frames = 0;            // 0: all
-    std::vector<std::size_t> gaps;     // empty: {1}
+    std::size_t frames = 0;         // 0: all
+    std::vector<std::size_t> gaps;  // empty: {1}
     SurfSettings surf;
-    std::string poses;                 // empty: RANSAC only
-    std::vector<double> intrinsics;    // fx fy u0 v0, with poses
+    std::string poses;               // empty: RANSAC only
+    std::vector<double> intrinsics;  // fx fy u0 v0, with poses
     std::optional<double> radius;
     bool laplacian = false;
-    bool table = false;                // the four rows of Table II
-    bool per_pair = false;             // each pair's figures in the JSON as well
-    std::string keypoints_dir;         // empty: keypoints are not written
-    std::string keypoints_from;        // set: each frame's keypoints from this folder's files, no SURF
+    bool table = false;          // the four rows of Table II
+    bool per_pair = false;       // each pair's figures in the JSON as well
+    std::string keypoints_dir;   // empty: keypoints are not written
+    std::string keypoints_from;  // set: each frame's keypoints from this folder's files, no SURF
     bool quiet = false;
 };
 
@@ -93,7 +93,7 @@ auto read_input(const std::string& context, Read&& read) -> decltype(read()) {
     try {
         return read();
     } catch (const ConfigError&) {
-        throw;  // already the user's message
+        throw;                               // already the user's message
     } catch (const std::runtime_error& e) {  // ImageError, FormatError, cannot open
         throw ConfigError(context.empty() ? e.what() : context + ": " + e.what());
     } catch (const std::invalid_argument& e) {

@@ -24,8 +24,8 @@ struct Row {
 };
 
 Json row_json(const Row& r) {
-    Json j = {{"figure", r.figure}, {"paper", r.paper}, {"paper_says", r.paper_says}, {"unit", r.unit},
-              {"low", r.low},       {"high", r.high}};
+    Json j = {{"figure", r.figure}, {"paper", r.paper}, {"paper_says", r.paper_says},
+              {"unit", r.unit},     {"low", r.low},     {"high", r.high}};
     j["vp"] = r.vp ? Json(*r.vp) : Json();
     j["difference"] = r.vp ? Json(*r.vp - r.paper) : Json();
     j["within"] = r.vp && r.comparable ? Json(*r.vp >= r.low && *r.vp <= r.high) : Json();
@@ -38,7 +38,12 @@ const Json& first_fhg(const Json& report) { return report["fhg"].is_array() ? re
 Row frame_rate(const Json& r) {
     Row row{"frames/s at 1024x768 with ~100 descriptors",
             "approximately 10 images (1024x768 pixels) per second, around 100 descriptors per image (§I, note 1; §V)",
-            "frames/s", kPaperFps, kPaperFps * (1 - kAbout), kPaperFps * (1 + kAbout), {}, ""};
+            "frames/s",
+            kPaperFps,
+            kPaperFps * (1 - kAbout),
+            kPaperFps * (1 + kAbout),
+            {},
+            ""};
     if (!r.contains("throughput_fps")) {
         row.note = "the run has no frame rate (fewer than two frames)";
         return row;
@@ -51,7 +56,8 @@ Row frame_rate(const Json& r) {
         row.note = fmt::format("not comparable: the run's frames are {}x{}", width, height);
     } else if (std::abs(keypoints / kPaperDescriptors - 1) > kAbout) {
         row.comparable = false;
-        row.note = fmt::format("not comparable: {:.1f} keypoints per frame, not around 100 (surf.target_keypoints)", keypoints);
+        row.note = fmt::format("not comparable: {:.1f} keypoints per frame, not around 100 (surf.target_keypoints)",
+                               keypoints);
     } else {
         row.note = fmt::format("{:.1f} keypoints per frame", keypoints);
     }
@@ -60,9 +66,15 @@ Row frame_rate(const Json& r) {
 
 // Note 4's optimal state: the buses busy every cycle with the words the basic script carries.
 Row script_overhead(const Json& r) {
-    Row row{"basic script over the optimal state (note 4)",
-            "approximately 11 % increase in determinant block processing time compared to optimal state (§III-C, note 4)",
-            "%", 100 * kPaperOverhead, 100 * kPaperOverhead * (1 - kAbout), 100 * kPaperOverhead * (1 + kAbout), {}, ""};
+    Row row{
+        "basic script over the optimal state (note 4)",
+        "approximately 11 % increase in determinant block processing time compared to optimal state (§III-C, note 4)",
+        "%",
+        100 * kPaperOverhead,
+        100 * kPaperOverhead * (1 - kAbout),
+        100 * kPaperOverhead * (1 + kAbout),
+        {},
+        ""};
     if (!r.contains("fhg") || !first_fhg(r).contains("schedules")) {
         row.note = "the run has no FHG";
         return row;
@@ -70,11 +82,12 @@ Row script_overhead(const Json& r) {
     const Json& s = first_fhg(r)["schedules"];
     const Json& basic = s["basic"];
     row.vp = 100 * basic["idle_bus_overhead"].get<double>();
-    row.note = fmt::format("{} cycles against {} words over {} buses ({} cycles); over the structural bound ({} cycles: {}) "
-                           "{:+.1f} %",
-                           basic["cycles_per_block"].get<int>(), basic["words"].get<int>(), s["machine"]["read_buses"].get<int>(),
-                           basic["busy_bus_cycles"].get<int>(), s["optimal"]["cycles_per_block"].get<int>(),
-                           s["optimal"]["limit"].get<std::string>(), 100 * basic["overhead"].get<double>());
+    row.note = fmt::format(
+        "{} cycles against {} words over {} buses ({} cycles); over the structural bound ({} cycles: {}) "
+        "{:+.1f} %",
+        basic["cycles_per_block"].get<int>(), basic["words"].get<int>(), s["machine"]["read_buses"].get<int>(),
+        basic["busy_bus_cycles"].get<int>(), s["optimal"]["cycles_per_block"].get<int>(),
+        s["optimal"]["limit"].get<std::string>(), 100 * basic["overhead"].get<double>());
     if (s["scheduler"] != "basic") row.note += "; the run itself uses the improved script (fhg.scheduler)";
     return row;
 }
@@ -92,7 +105,12 @@ Row power(const Json& r) {
 
 Row distinguishability() {
     Row row{"Table II: FPGA distinguishability against CPU SURF",
-            "FPGA 0.53 / 0.53 / 0.27 / 0.26 against CPU 0.62 / 0.61 / 0.43 / 0.43 (§IV-A, Table II)", "", -0.09, 0, 0, {},
+            "FPGA 0.53 / 0.53 / 0.27 / 0.26 against CPU 0.62 / 0.61 / 0.43 / 0.43 (§IV-A, Table II)",
+            "",
+            -0.09,
+            0,
+            0,
+            {},
             "not measured by a timing run: `surfvp table2` measures it (docs/table2.md)"};
     row.comparable = false;
     return row;
@@ -128,14 +146,17 @@ Json correlation_json(const Json& report) {
 
 std::string correlation_markdown(const Json& correlation) {
     std::string md =
-        "\n## Correlation with the published chip\n\nEach figure the paper states about its chip beside the VP's at this "
+        "\n## Correlation with the published chip\n\nEach figure the paper states about its chip beside the VP's at "
+        "this "
         "scenario's settings; \"about\" is read as within 10 % (docs/correlation.md).\n\n"
-        "| figure | paper | within the paper's precision | VP | difference | reproduced | note |\n|---|---|---|---:|---:|---|---|\n";
+        "| figure | paper | within the paper's precision | VP | difference | reproduced | note "
+        "|\n|---|---|---|---:|---:|---|---|\n";
     for (const Json& row : correlation) {
-        const std::string difference = row["difference"].is_null() ? "-" : fmt::format("{:+.2f}", row["difference"].get<double>());
+        const std::string difference =
+            row["difference"].is_null() ? "-" : fmt::format("{:+.2f}", row["difference"].get<double>());
         md += fmt::format("| {} | {} | {} | {} | {} | {} | {} |\n", row["figure"].get<std::string>(),
-                          row["paper_says"].get<std::string>(), range_text(row), figure_text(row, row["vp"]), difference,
-                          within_text(row), row["note"].get<std::string>());
+                          row["paper_says"].get<std::string>(), range_text(row), figure_text(row, row["vp"]),
+                          difference, within_text(row), row["note"].get<std::string>());
     }
     return md;
 }
@@ -144,10 +165,11 @@ std::string correlation_html(const Json& correlation) {
     std::string rows;
     for (const Json& row : correlation) {
         const std::string within = row["within"].is_null() ? "-" : row["within"].get<bool>() ? "yes" : "NO";
-        rows += fmt::format("<tr><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>",
-                            xml_escape(row["figure"].get<std::string>()), xml_escape(row["paper_says"].get<std::string>()),
-                            xml_escape(range_text(row)), xml_escape(figure_text(row, row["vp"])), within,
-                            xml_escape(row["note"].get<std::string>()));
+        rows +=
+            fmt::format("<tr><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>",
+                        xml_escape(row["figure"].get<std::string>()), xml_escape(row["paper_says"].get<std::string>()),
+                        xml_escape(range_text(row)), xml_escape(figure_text(row, row["vp"])), within,
+                        xml_escape(row["note"].get<std::string>()));
     }
     return "<h2>Correlation with the published chip</h2><table id=\"correlation\"><tr><th>figure</th><th>paper</th>"
            "<th>within its precision</th><th>VP</th><th>reproduced</th><th>note</th></tr>" +

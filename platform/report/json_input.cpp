@@ -13,7 +13,8 @@ Json parse_json(const std::string& text, const std::string& where) {
     // The parser is not recursive, but everything that walks the value after it is: the depth
     // is refused while parsing, before anything deeper exists.
     const Json::parser_callback_t bounded = [&where](int depth, Json::parse_event_t, Json&) {
-        if (depth > kMaxJsonDepth) throw ConfigError(fmt::format("{}: nested deeper than {} levels", where, kMaxJsonDepth));
+        if (depth > kMaxJsonDepth)
+            throw ConfigError(fmt::format("{}: nested deeper than {} levels", where, kMaxJsonDepth));
         return true;
     };
     try {
@@ -27,7 +28,8 @@ Json read_json_file(const fs::path& file, const std::string& what) {
     std::error_code error;
     const fs::file_status status = fs::status(file, error);
     if (!fs::exists(status)) throw ConfigError(fmt::format("{}: no such file ({})", file.string(), what));
-    if (!fs::is_regular_file(status)) throw ConfigError(fmt::format("{}: is not a regular file ({})", file.string(), what));
+    if (!fs::is_regular_file(status))
+        throw ConfigError(fmt::format("{}: is not a regular file ({})", file.string(), what));
     if (fs::file_size(file, error) > kMaxJsonBytes)
         throw ConfigError(fmt::format("{}: larger than {} MiB, not {}", file.string(), kMaxJsonBytes >> 20, what));
     std::ifstream in(file, std::ios::binary);
@@ -46,8 +48,8 @@ const Json& value_at(const Json& j, std::string_view pointer) {
             const auto it = at->find(key);
             if (it == at->end()) return none;
             at = &*it;
-        } else if (at->is_array() && !key.empty() && key.find_first_not_of("0123456789") == std::string::npos && key.size() < 10 &&
-                   std::stoul(key) < at->size()) {
+        } else if (at->is_array() && !key.empty() && key.find_first_not_of("0123456789") == std::string::npos &&
+                   key.size() < 10 && std::stoul(key) < at->size()) {
             at = &(*at)[std::stoul(key)];
         } else {
             return none;

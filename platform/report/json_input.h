@@ -10,7 +10,7 @@
 
 namespace surfvp {
 
-constexpr int kMaxJsonDepth = 64;                  // surfvp's own reports nest 7 deep
+constexpr int kMaxJsonDepth = 64;                   // surfvp's own reports nest 7 deep
 constexpr std::uintmax_t kMaxJsonBytes = 1u << 30;  // a report.json of 1,000 frames is ~50 MiB
 
 // Throws ConfigError "WHERE: not valid JSON ..." / "nested deeper than ...".

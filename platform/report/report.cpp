@@ -21,7 +21,8 @@ std::string mib(double bytes) {
 }
 
 // Each path's traffic (in total, per frame, MB/s over the run) and each master that used the bus.
-void bus_section(std::string& md, const std::string& name, const nlohmann::ordered_json& bus, double seconds, double frames) {
+void bus_section(std::string& md, const std::string& name, const nlohmann::ordered_json& bus, double seconds,
+                 double frames) {
     md += fmt::format("\n### {} ({} bit at {} MHz)\n\n", name, bus["width_bits"].get<unsigned>(),
                       bus["clock_hz"].get<double>() / 1e6);
     md += "| path | bursts | bytes | per frame | MB/s | busy | utilisation |\n|---|---:|---:|---:|---:|---:|---:|\n";
@@ -29,15 +30,18 @@ void bus_section(std::string& md, const std::string& name, const nlohmann::order
         const auto& p = bus[path];
         const double bytes = p["bytes"].get<double>();
         md += fmt::format("| {} | {} | {} | {} | {:.1f} | {} | {} |\n", path, p["bursts"].get<uint64_t>(), mib(bytes),
-                          mib(bytes / frames), seconds > 0 ? bytes / seconds / 1e6 : 0.0, ms(p["busy_s"]), percent(p["utilisation"]));
+                          mib(bytes / frames), seconds > 0 ? bytes / seconds / 1e6 : 0.0, ms(p["busy_s"]),
+                          percent(p["utilisation"]));
     }
-    md += "\n| master | bursts | read | written | per frame (read + written) | busy | waited | mean wait | max wait | "
-          "bursts by wait (bus cycles) | errors |\n|---|---:|---:|---:|---:|---:|---:|---:|---:|---|---:|\n";
+    md +=
+        "\n| master | bursts | read | written | per frame (read + written) | busy | waited | mean wait | max wait | "
+        "bursts by wait (bus cycles) | errors |\n|---|---:|---:|---:|---:|---:|---:|---:|---:|---|---:|\n";
     for (const auto& [master, m] : bus["masters"].items()) {
         if (m["bursts"].get<uint64_t>() == 0 && m["errors"].get<uint64_t>() == 0) continue;  // idle: no row
         std::string histogram;
         for (const auto& [bin, n] : m["bursts_by_wait_cycles"].items())
-            if (n.get<uint64_t>()) histogram += fmt::format("{}{}: {}", histogram.empty() ? "" : ", ", bin, n.get<uint64_t>());
+            if (n.get<uint64_t>())
+                histogram += fmt::format("{}{}: {}", histogram.empty() ? "" : ", ", bin, n.get<uint64_t>());
         const double bursts = std::max(1.0, m["bursts"].get<double>());
         const double read = m["bytes_read"].get<double>(), written = m["bytes_written"].get<double>();
         md += fmt::format("| {} | {} | {} | {} | {} | {} | {} | {:.1f} ns | {:.1f} ns | {} | {} |\n", master,
@@ -56,31 +60,38 @@ std::string memory_section(const nlohmann::ordered_json& mem, double seconds, do
         mib(read), mib(written), mib((read + written) / frames), seconds > 0 ? (read + written) / seconds / 1e6 : 0.0,
         ms(mem["busy_s"]), percent(mem["utilisation"]));
     for (const auto& [port, p] : mem["ports"].items())
-        md += fmt::format("| {} | {} | {} | {} | {} | {} |\n", port, p["reads"].get<uint64_t>(), p["writes"].get<uint64_t>(),
-                          mib(p["bytes_read"].get<double>()), mib(p["bytes_written"].get<double>()), ms(p["wait_s"]));
+        md += fmt::format("| {} | {} | {} | {} | {} | {} |\n", port, p["reads"].get<uint64_t>(),
+                          p["writes"].get<uint64_t>(), mib(p["bytes_read"].get<double>()),
+                          mib(p["bytes_written"].get<double>()), ms(p["wait_s"]));
     return md;
 }
 
 // Per resource: its frame period, busy, each wait, idle, and what it alone would allow.
 std::string time_table(const nlohmann::ordered_json& table, const nlohmann::ordered_json& periods, bool budget) {
     std::string md = fmt::format(
-        "\nWhere each resource's frame goes, in ms per frame over the whole run: busy (its own work) + each wait + idle = "
-        "its period, the simulated time per frame ({:.2f} ms, filling and draining the pipeline included; an accelerator "
+        "\nWhere each resource's frame goes, in ms per frame over the whole run: busy (its own work) + each wait + "
+        "idle = "
+        "its period, the simulated time per frame ({:.2f} ms, filling and draining the pipeline included; an "
+        "accelerator "
         "pair's is the frames it takes, pairs x that). Its load is its busy time against the steady-state period "
         "({:.2f} ms, 1 / frames per second); what it alone would allow is 1 / its busy time per frame. The blocks' own "
         "statistics count the same way: `fhg.utilisation` is the FHG's busy share of the run.\n\n"
         "| resource | period | busy | waiting | idle | busy share | load | alone | {}",
         periods["run"].get<double>(), periods["steady"].get<double>(),
-        budget ? "slack |\n|---|---:|---:|---|---:|---:|---:|---:|---:|\n" : "\n|---|---:|---:|---|---:|---:|---:|---:|\n");
+        budget ? "slack |\n|---|---:|---:|---|---:|---:|---:|---:|---:|\n"
+               : "\n|---|---:|---:|---|---:|---:|---:|---:|\n");
     for (const auto& [name, row] : table.items()) {
         std::string waits;
         for (const auto& [cause, ms] : row["waits_ms"].items())
-            if (ms.get<double>() >= 0.005) waits += fmt::format("{}{} {:.2f}", waits.empty() ? "" : "; ", cause, ms.get<double>());
-        const std::string alone = row["alone_fps"].is_null() ? "-" : fmt::format("{:.2f} frames/s", row["alone_fps"].get<double>());
+            if (ms.get<double>() >= 0.005)
+                waits += fmt::format("{}{} {:.2f}", waits.empty() ? "" : "; ", cause, ms.get<double>());
+        const std::string alone =
+            row["alone_fps"].is_null() ? "-" : fmt::format("{:.2f} frames/s", row["alone_fps"].get<double>());
         md += fmt::format("| {} | {:.2f} | {:.2f} | {} | {:.2f} | {} | {} | {} |", name, row["period_ms"].get<double>(),
                           row["busy_ms"].get<double>(), waits.empty() ? "-" : waits, row["idle_ms"].get<double>(),
                           percent(row["busy_share"]), percent(row["load"]), alone);
-        if (budget) md += row.contains("slack") ? fmt::format(" {:+.1f} % |", 100 * row["slack"].get<double>()) : " - |";
+        if (budget)
+            md += row.contains("slack") ? fmt::format(" {:+.1f} % |", 100 * row["slack"].get<double>()) : " - |";
         md += "\n";
     }
     return md;
@@ -122,23 +133,27 @@ std::string frames_section(const nlohmann::ordered_json& r) {
         md += fmt::format("| budget | {:.2f} frames/s: **{}** |\n", r["budget"]["fps"].get<double>(),
                           r["budget"]["met"].get<bool>() ? "met" : "MISSED");
     md += fmt::format("| latency (hardware start to descriptors) | {:.2f} ms |\n", r["latency_ms"].get<double>());
-    md += fmt::format("| keypoints per frame | {:.1f} mean; min {}, median {}, max {} |\n", r["keypoints_per_frame"].get<double>(),
-                      r["keypoints_per_frame_range"][0].dump(), median_keypoints(r), r["keypoints_per_frame_range"][1].dump());
+    md += fmt::format("| keypoints per frame | {:.1f} mean; min {}, median {}, max {} |\n",
+                      r["keypoints_per_frame"].get<double>(), r["keypoints_per_frame_range"][0].dump(),
+                      median_keypoints(r), r["keypoints_per_frame_range"][1].dump());
     if (r.contains("threshold_rule"))
         md += fmt::format("| determinant threshold | {:.3f}: {} |\n", r["threshold"].get<double>(),
                           r["threshold_rule"].get<std::string>());
-    md += fmt::format("| software per keypoint | {:.1f} us ({:.0f} CPU cycles, its line-fill stalls included; the CPU "
-                      "section's cycles of computation leave them out) |\n",
-                      r["software_time_per_keypoint_us"].get<double>(), r["software_cycles_per_keypoint"].get<double>());
+    md += fmt::format(
+        "| software per keypoint | {:.1f} us ({:.0f} CPU cycles, its line-fill stalls included; the CPU "
+        "section's cycles of computation leave them out) |\n",
+        r["software_time_per_keypoint_us"].get<double>(), r["software_cycles_per_keypoint"].get<double>());
     if (r.contains("limit")) {
         md += fmt::format("| limited by | **{}** ({}) |\n", r["limit"]["resource"].get<std::string>(),
                           r["limit"]["cause"].get<std::string>());
         md += fmt::format("\n**What limits the frame rate:** {}.\n", r["limit"]["reason"].get<std::string>());
         md += time_table(r["time_per_frame"], r["time_per_frame_period_ms"], !r["budget"].is_null());
     }
-    md += "\nMean phase times (integral image and determinants: from the task's hardware start, in parallel; "
-          "descriptors: from the determinants' end to the last descriptor):\n\n| phase | ms |\n|---|---:|\n";
-    for (const auto& [name, ms] : r["phases_ms"].items()) md += fmt::format("| {} | {:.2f} |\n", name, ms.get<double>());
+    md +=
+        "\nMean phase times (integral image and determinants: from the task's hardware start, in parallel; "
+        "descriptors: from the determinants' end to the last descriptor):\n\n| phase | ms |\n|---|---:|\n";
+    for (const auto& [name, ms] : r["phases_ms"].items())
+        md += fmt::format("| {} | {:.2f} |\n", name, ms.get<double>());
     return md;
 }
 
@@ -153,40 +168,49 @@ std::string check_outcome(const nlohmann::ordered_json& c) {
     if (!c["met"].get<bool>()) return "MISSED";
     if (c.value("budget_met", true)) return "met";
     if (c.value("goal", "") == "keep") return "the rate kept within 0.1 %";
-    return fmt::format("relieved (now held below the budget by {})", c["limit"].is_null() ? "?" : c["limit"].get<std::string>());
+    return fmt::format("relieved (now held below the budget by {})",
+                       c["limit"].is_null() ? "?" : c["limit"].get<std::string>());
 }
 
 // One break-even search as a table row: "up to" or "down to" the value, its rate there, its
 // whole-run check.
 std::string break_even_row(const nlohmann::ordered_json& b) {
     if (b["value"].is_null())
-        return fmt::format("| `{}` | {} | none | - | {} |\n", b["parameter"].get<std::string>(), b["default"].get<std::string>(),
-                           b["note"].get<std::string>());
+        return fmt::format("| `{}` | {} | none | - | {} |\n", b["parameter"].get<std::string>(),
+                           b["default"].get<std::string>(), b["note"].get<std::string>());
     const auto& c = b["check"];
-    const std::string check = c.is_null() ? "-" : c.contains("error") ? "failed: " + c["error"].get<std::string>()
-                                                : fmt::format("{:.3f} frames/s over {} frames: {}", c["fps"].get<double>(),
-                                                              c["frames"].get<uint64_t>(), check_outcome(c));
-    return fmt::format("| `{}` | {} | **{} {}** | {:.3f} | {} |\n", b["parameter"].get<std::string>(), b["default"].get<std::string>(),
-                       b.value("searched", "up") + " to", b["value"].get<std::string>(), b["fps"].get<double>(), check);
+    const std::string check = c.is_null() ? "-"
+                              : c.contains("error")
+                                  ? "failed: " + c["error"].get<std::string>()
+                                  : fmt::format("{:.3f} frames/s over {} frames: {}", c["fps"].get<double>(),
+                                                c["frames"].get<uint64_t>(), check_outcome(c));
+    return fmt::format("| `{}` | {} | **{} {}** | {:.3f} | {} |\n", b["parameter"].get<std::string>(),
+                       b["default"].get<std::string>(), b.value("searched", "up") + " to",
+                       b["value"].get<std::string>(), b["fps"].get<double>(), check);
 }
 
 // Each limit in turn: what limits, its headroom, what was relieved to reach it, its break-even.
 std::string chain_section(const nlohmann::ordered_json& chain) {
-    std::string md = "\nThe chain of limits: each limit's break-even (the value that just meets the budget, found by "
-                     "re-simulation and checked by a run of the whole scenario), then the limit relieved at it and the next "
-                     "one named with its headroom (the frame rate it alone would allow against the budget).\n";
+    std::string md =
+        "\nThe chain of limits: each limit's break-even (the value that just meets the budget, found by "
+        "re-simulation and checked by a run of the whole scenario), then the limit relieved at it and the next "
+        "one named with its headroom (the frame rate it alone would allow against the budget).\n";
     for (size_t k = 0; k < chain.size(); ++k) {
         const auto& step = chain[k];
         std::vector<std::string> relieved;
         for (const auto& r : step["relieved"])
-            relieved.push_back(fmt::format("`{}` = {}", r["parameter"].get<std::string>(), r["value"].get<std::string>()));
-        const std::string headroom = step["headroom"].is_null()
-                                         ? ""
-                                         : fmt::format(", alone {:.2f} frames/s, headroom {:+.1f} %", step["alone_fps"].get<double>(),
-                                                       100 * step["headroom"].get<double>());
-        md += fmt::format("\n{}. **{}** ({}{}){}:\n\n", k + 1, step["resource"].get<std::string>(), step["cause"].get<std::string>(),
-                          headroom, relieved.empty() ? "" : fmt::format(", with {}", fmt::join(relieved, " and ")));
-        if (step.value("searched", true)) md += "| parameter | now | break-even | frames/s there | check |\n|---|---|---|---:|---|\n";
+            relieved.push_back(
+                fmt::format("`{}` = {}", r["parameter"].get<std::string>(), r["value"].get<std::string>()));
+        const std::string headroom =
+            step["headroom"].is_null()
+                ? ""
+                : fmt::format(", alone {:.2f} frames/s, headroom {:+.1f} %", step["alone_fps"].get<double>(),
+                              100 * step["headroom"].get<double>());
+        md += fmt::format("\n{}. **{}** ({}{}){}:\n\n", k + 1, step["resource"].get<std::string>(),
+                          step["cause"].get<std::string>(), headroom,
+                          relieved.empty() ? "" : fmt::format(", with {}", fmt::join(relieved, " and ")));
+        if (step.value("searched", true))
+            md += "| parameter | now | break-even | frames/s there | check |\n|---|---|---|---:|---|\n";
         if (!step.value("searched", true)) {
             md += "The chain ends here: this limit is named with its headroom; its break-even is not searched.\n";
             continue;
@@ -202,11 +226,13 @@ std::string chain_section(const nlohmann::ordered_json& chain) {
 std::string band_rows(const nlohmann::ordered_json& band, const char* what) {
     std::string md;
     if (!band["flipping"].empty())
-        md += fmt::format("Values that flip the verdict: {}.\n", fmt::join(band["flipping"].get<std::vector<std::string>>(), ", "));
+        md += fmt::format("Values that flip the verdict: {}.\n",
+                          fmt::join(band["flipping"].get<std::vector<std::string>>(), ", "));
     if (!band["failed_points"].empty())
         md += fmt::format("Values the platform refused (see report.json): {}.\n",
                           fmt::join(band["failed_points"].get<std::vector<std::string>>(), ", "));
-    md += fmt::format("\n| {} | now | low | frames/s | high | frames/s | effect |\n|---|---|---|---:|---|---:|---:|\n", what);
+    md += fmt::format("\n| {} | now | low | frames/s | high | frames/s | effect |\n|---|---|---|---:|---|---:|---:|\n",
+                      what);
     size_t shown = 0;
     for (const auto& a : band["axes"]) {
         if (shown++ == 12) break;
@@ -214,7 +240,8 @@ std::string band_rows(const nlohmann::ordered_json& band, const char* what) {
                           a["value"].get<std::string>(), a["low"]["value"].get<std::string>(), fps_or_dash(a["low"]),
                           a["high"]["value"].get<std::string>(), fps_or_dash(a["high"]), a["effect_fps"].get<double>());
     }
-    if (band["axes"].size() > 12) md += fmt::format("\n({} more with smaller effects in report.json.)\n", band["axes"].size() - 12);
+    if (band["axes"].size() > 12)
+        md += fmt::format("\n({} more with smaller effects in report.json.)\n", band["axes"].size() - 12);
     return md;
 }
 
@@ -222,28 +249,31 @@ std::string band_rows(const nlohmann::ordered_json& band, const char* what) {
 // which unknowns its variance comes from.
 std::string doubt_section(const nlohmann::ordered_json& d) {
     if (!d.contains("fps"))
-        return fmt::format("\nThe joint sample of the unknowns gave no rate ({} of {} points failed; see report.json).\n",
-                           d["failed_points"].size(), d["points"].get<size_t>());
+        return fmt::format(
+            "\nThe joint sample of the unknowns gave no rate ({} of {} points failed; see report.json).\n",
+            d["failed_points"].size(), d["points"].get<size_t>());
     const auto& f = d["fps"];
     std::string md = fmt::format(
         "\nThe doubt, jointly: the {} unknowns about the chip sampled together over their bands ({} points, a Latin "
-        "hypercube, {}-frame runs): **{:.2f} frames/s at the 5th percentile, {:.2f} at the median, {:.2f} at the 95th** "
+        "hypercube, {}-frame runs): **{:.2f} frames/s at the 5th percentile, {:.2f} at the median, {:.2f} at the "
+        "95th** "
         "(all points {:.2f} to {:.2f}){}.{}\n",
         d["unknowns"].get<size_t>(), d["points"].get<size_t>(), d["frames"].get<unsigned>(), f["p5"].get<double>(),
         f["p50"].get<double>(), f["p95"].get<double>(), f["min"].get<double>(), f["max"].get<double>(),
-        d.contains("probability_met") ? fmt::format("; **the budget is met with probability {:.0f} %**",
-                                                     100 * d["probability_met"].get<double>())
-                                      : "",
+        d.contains("probability_met")
+            ? fmt::format("; **the budget is met with probability {:.0f} %**", 100 * d["probability_met"].get<double>())
+            : "",
         d["failed_points"].empty() ? "" : fmt::format(" {} points failed (report.json).", d["failed_points"].size()));
-    md += fmt::format("\nWhich unknowns the frame rate's variance comes from (Sobol indices of a surrogate fitted to the points, "
-                      "R^2 = {:.3f}: {}): first-order is the share of the variance an unknown explains alone, total adds "
-                      "its interactions with the others.\n\n| unknown | first-order | total |\n|---|---:|---:|\n",
-                      d["surrogate"]["r2"].get<double>(), d["surrogate"]["method"].get<std::string>());
+    md += fmt::format(
+        "\nWhich unknowns the frame rate's variance comes from (Sobol indices of a surrogate fitted to the points, "
+        "R^2 = {:.3f}: {}): first-order is the share of the variance an unknown explains alone, total adds "
+        "its interactions with the others.\n\n| unknown | first-order | total |\n|---|---:|---:|\n",
+        d["surrogate"]["r2"].get<double>(), d["surrogate"]["method"].get<std::string>());
     size_t shown = 0;
     for (const auto& s : d["sensitivity"]) {
         if (shown++ == 8) break;
-        md += fmt::format("| `{}` | {:.3f} | {:.3f} |\n", s["parameter"].get<std::string>(), s["first_order"].get<double>(),
-                          s["total"].get<double>());
+        md += fmt::format("| `{}` | {:.3f} | {:.3f} |\n", s["parameter"].get<std::string>(),
+                          s["first_order"].get<double>(), s["total"].get<double>());
     }
     return md;
 }
@@ -251,30 +281,37 @@ std::string doubt_section(const nlohmann::ordered_json& d) {
 // The verdict and its doubt: the statement, the break-even values, the assumption band.
 std::string verdict_section(const nlohmann::ordered_json& v) {
     std::string md = "\n## Verdict\n";  // its statement heads the report
-    if (v.contains("limit")) md += fmt::format("\nLimited by {}: {}.\n", v["limit"]["resource"].get<std::string>(),
-                                               v["limit"]["reason"].get<std::string>());
+    if (v.contains("limit"))
+        md += fmt::format("\nLimited by {}: {}.\n", v["limit"]["resource"].get<std::string>(),
+                          v["limit"]["reason"].get<std::string>());
     if (v.contains("chain")) md += chain_section(v["chain"]);
     if (v.contains("doubt")) md += doubt_section(v["doubt"]);
     if (v.contains("band")) {
         const auto& band = v["band"];
-        md += fmt::format("\nThe unknowns one at a time ({} of them, each at its low and its high): **{:.2f} to {:.2f} frames/s** "
-                          "(the run's rate plus each change's effect, measured in {}-frame runs against a reference of {:.3f} "
-                          "frames/s).\n",
-                          band["axes"].size(), band["low_fps"].get<double>(), band["high_fps"].get<double>(),
-                          band["frames"].get<unsigned>(), band["reference_fps"].get<double>());
+        md += fmt::format(
+            "\nThe unknowns one at a time ({} of them, each at its low and its high): **{:.2f} to {:.2f} frames/s** "
+            "(the run's rate plus each change's effect, measured in {}-frame runs against a reference of {:.3f} "
+            "frames/s).\n",
+            band["axes"].size(), band["low_fps"].get<double>(), band["high_fps"].get<double>(),
+            band["frames"].get<unsigned>(), band["reference_fps"].get<double>());
         md += band_rows(band, "unknown") + "\n![tornado](tornado.svg)\n";
     }
     if (v.contains("changes") && !v["changes"]["axes"].empty())
-        md += "\nWhat a review can change (design choices and the workload, each at its low and its high, one at a time; "
-              "not part of the doubt):\n" + band_rows(v["changes"], "setting");
+        md +=
+            "\nWhat a review can change (design choices and the workload, each at its low and its high, one at a time; "
+            "not part of the doubt):\n" +
+            band_rows(v["changes"], "setting");
     if (v.contains("software")) {
-        md += "\nSettings the CPU's time rests on, the software's and the FPU's (each alone, the rest as the scenario; CPU time from the "
-              "calibrated PPC440 cost model, sw/cpu_cost/calibration.md):\n\n"
-              "| setting | frames/s | CPU ms per frame | CPU alone, frames/s | keypoints per frame | limit |\n"
-              "|---|---:|---:|---:|---:|---|\n";
+        md +=
+            "\nSettings the CPU's time rests on, the software's and the FPU's (each alone, the rest as the scenario; "
+            "CPU time from the "
+            "calibrated PPC440 cost model, sw/cpu_cost/calibration.md):\n\n"
+            "| setting | frames/s | CPU ms per frame | CPU alone, frames/s | keypoints per frame | limit |\n"
+            "|---|---:|---:|---:|---:|---|\n";
         for (const auto& row : v["software"]) {
             if (row.contains("error")) {
-                md += fmt::format("| {} | refused: {} | | | | |\n", row["setting"].get<std::string>(), row["error"].get<std::string>());
+                md += fmt::format("| {} | refused: {} | | | | |\n", row["setting"].get<std::string>(),
+                                  row["error"].get<std::string>());
                 continue;
             }
             md += fmt::format("| {} | {:.2f} | {:.1f} | {:.2f} | {:.0f} | {} |\n", row["setting"].get<std::string>(),
@@ -295,24 +332,30 @@ std::string accelerators_section(const nlohmann::ordered_json& r) {
         const auto& sc = f["schedules"];
         const auto& basic = sc["basic"];
         md += fmt::format(
-            "\n## SSA FHG\n\n**{} cycles per determinant block** (limited by the {}; schedule `{}`, line FIFO `{}`: basic "
-            "{}, improved {}). The basic script is {:+.1f} % over the paper's optimal state (its note 4: the read buses busy "
-            "every cycle with the {} words it carries, {} cycles) and {:+.1f} % over the structural bound ({} cycles, set by "
-            "{}). Holding frames {}: computing (busy) {}, waiting for integral lines {}, for the determinant writer {}. "
+            "\n## SSA FHG\n\n**{} cycles per determinant block** (limited by the {}; schedule `{}`, line FIFO `{}`: "
+            "basic "
+            "{}, improved {}). The basic script is {:+.1f} % over the paper's optimal state (its note 4: the read "
+            "buses busy "
+            "every cycle with the {} words it carries, {} cycles) and {:+.1f} % over the structural bound ({} cycles, "
+            "set by "
+            "{}). Holding frames {}: computing (busy) {}, waiting for integral lines {}, for the determinant writer "
+            "{}. "
             "Line FIFO high-water {} lines; maxima FIFO high-water {} words; {} candidates, {} dropped; {} errors.\n",
-            f["cycles_per_block"].get<unsigned>(), f["block_limit"].get<std::string>(), sc["scheduler"].get<std::string>(),
-            sc["machine"]["line_fifo"].get<std::string>(), basic["cycles_per_block"].get<unsigned>(),
-            sc["improved"]["cycles_per_block"].get<unsigned>(), 100 * basic["idle_bus_overhead"].get<double>(),
-            basic["words"].get<int>(), basic["busy_bus_cycles"].get<int>(), 100 * basic["overhead"].get<double>(),
-            sc["optimal"]["cycles_per_block"].get<unsigned>(), sc["optimal"]["limit"].get<std::string>(), ms(f["busy_s"]),
-            ms(f["computing_s"]), ms(f["waiting_for_lines_s"]), ms(f["waiting_for_writer_s"]),
+            f["cycles_per_block"].get<unsigned>(), f["block_limit"].get<std::string>(),
+            sc["scheduler"].get<std::string>(), sc["machine"]["line_fifo"].get<std::string>(),
+            basic["cycles_per_block"].get<unsigned>(), sc["improved"]["cycles_per_block"].get<unsigned>(),
+            100 * basic["idle_bus_overhead"].get<double>(), basic["words"].get<int>(),
+            basic["busy_bus_cycles"].get<int>(), 100 * basic["overhead"].get<double>(),
+            sc["optimal"]["cycles_per_block"].get<unsigned>(), sc["optimal"]["limit"].get<std::string>(),
+            ms(f["busy_s"]), ms(f["computing_s"]), ms(f["waiting_for_lines_s"]), ms(f["waiting_for_writer_s"]),
             f["line_fifo_high_water"].get<uint64_t>(), f["maxima_fifo_high_water"].get<uint64_t>(),
             f["candidates"].get<uint64_t>(), f["candidates_dropped"].get<uint64_t>(), f["errors"].get<uint64_t>());
     }
     if (r.contains("iig") && r["iig"].contains("computing_s")) {
         const auto& i = r["iig"];
         md += fmt::format(
-            "\n## SSA IIG\n\nHolding frames {}: computing (busy) {}, waiting for the image {}, blocked by its integral write {}, by PixelBus "
+            "\n## SSA IIG\n\nHolding frames {}: computing (busy) {}, waiting for the image {}, blocked by its integral "
+            "write {}, by PixelBus "
             "back-pressure {} (its sender stalled {}); {} errors.\n",
             ms(i["busy_s"]), ms(i["computing_s"]), ms(i["waiting_for_image_s"]), ms(i["blocked_by_write_s"]),
             ms(i["blocked_by_pixelbus_s"]), ms(i["send_stalled_s"]), i["errors"].get<uint64_t>());
@@ -333,28 +376,33 @@ std::string software_stage_section(const nlohmann::ordered_json& st) {
         rejected["interpolation"].get<uint64_t>(), rejected["border"].get<uint64_t>());
     const double total = std::max(1.0, st["total_cycles"].get<double>());
     for (const auto& [step, cycles] : st["cycles_by_step"].items())
-        md += fmt::format("| {} | {:.0f} | {:.0f} | {} |\n", step, cycles.get<double>(), cycles.get<double>() / keypoints,
-                          percent(cycles.get<double>() / total));
+        md += fmt::format("| {} | {:.0f} | {:.0f} | {} |\n", step, cycles.get<double>(),
+                          cycles.get<double>() / keypoints, percent(cycles.get<double>() / total));
     md += "\n| unit of work | count | cycles |\n|---|---:|---:|\n";
     for (const auto& [unit, u] : st["cycles_by_unit"].items())
-        if (unit != "cache_miss") md += fmt::format("| {} | {} | {:.0f} |\n", unit, u["count"].get<uint64_t>(), u["cycles"].get<double>());
+        if (unit != "cache_miss")
+            md += fmt::format("| {} | {} | {:.0f} |\n", unit, u["count"].get<uint64_t>(), u["cycles"].get<double>());
     std::string classes;
     for (const auto& [cls, n] : st["instructions_by_class"].items())
         classes += fmt::format("{}{} {}", classes.empty() ? "" : ", ", cls, n.get<uint64_t>());
     const auto& cal = st["calibration"];
     const auto& l1 = st["dcache"];
     md += fmt::format(
-        "\nPPC440 instructions: {} ({:.0f} per keypoint; {}), {} calls into libm. Prices from the calibration of this code "
-        "built with `{} {}` under `{}`, fitted on {} (sw/cpu_cost/calibration.md). L1 data cache: {} line accesses, hit "
+        "\nPPC440 instructions: {} ({:.0f} per keypoint; {}), {} calls into libm. Prices from the calibration of this "
+        "code "
+        "built with `{} {}` under `{}`, fitted on {} (sw/cpu_cost/calibration.md). L1 data cache: {} line accesses, "
+        "hit "
         "rate {}, {} fills (timed on the memory path, under CPU above).\n",
         st["instructions"].get<uint64_t>(), st["instructions"].get<double>() / keypoints, classes,
         st["libm_calls"].get<uint64_t>(), cal.value("toolchain", "?"), cal.value("flags", "?"), cal.value("iss", "?"),
-        cal.value("fitted_on", "?"), l1["accesses"].get<uint64_t>(), percent(l1["hit_rate"]), l1["misses"].get<uint64_t>());
+        cal.value("fitted_on", "?"), l1["accesses"].get<uint64_t>(), percent(l1["hit_rate"]),
+        l1["misses"].get<uint64_t>());
     if (st.contains("fpu")) {
         const auto& fpu = st["fpu"];
         const double work = fpu["work_cycles_per_keypoint"], other = fpu["other_work_cycles_per_keypoint"];
         md += fmt::format(
-            "\nFPU: the {}-precision APU FPU (`fpu.precision`). The {}-precision one would take {:.0f} cycles of work a "
+            "\nFPU: the {}-precision APU FPU (`fpu.precision`). The {}-precision one would take {:.0f} cycles of work "
+            "a "
             "keypoint against {:.0f} ({:+.1f} %), fills aside (sw/cpu_cost/README.md: one stream, two FPUs).\n",
             fpu["precision"].get<std::string>(), fpu["other_precision"].get<std::string>(), other, work,
             work > 0 ? 100 * (other / work - 1) : 0.0);
@@ -370,8 +418,9 @@ std::string workload_section(const nlohmann::ordered_json& w) {
         if (key == "per_frame") {
             const std::vector<double> kp = sorted_keypoints(value);
             if (!kp.empty())
-                md += fmt::format("| frames | {} in `frames.csv`; keypoints per frame min {:.0f}, median {:.0f}, max {:.0f}{} |\n",
-                                  kp.size(), kp.front(), kp[kp.size() / 2], kp.back(), threshold_range(value));
+                md += fmt::format(
+                    "| frames | {} in `frames.csv`; keypoints per frame min {:.0f}, median {:.0f}, max {:.0f}{} |\n",
+                    kp.size(), kp.front(), kp[kp.size() / 2], kp.back(), threshold_range(value));
             continue;
         }
         md += fmt::format("| {} | {} |\n", key, value.is_string() ? value.get<std::string>() : value.dump());
@@ -386,8 +435,10 @@ std::string files_section(const nlohmann::ordered_json& outputs) {
         std::string name = f.get<std::string>();
         for (char& c : name)
             if (c >= '0' && c <= '9') c = 'N';
-        if (!patterns.empty() && patterns.back().first == name) ++patterns.back().second;
-        else patterns.emplace_back(name, 1);
+        if (!patterns.empty() && patterns.back().first == name)
+            ++patterns.back().second;
+        else
+            patterns.emplace_back(name, 1);
     }
     std::string md = "\n## Files\n\n";
     for (const auto& [name, n] : patterns)
@@ -438,9 +489,11 @@ std::string cpu_section(const nlohmann::ordered_json& r) {
         cpu["mmio_reads"].get<uint64_t>(), cpu["mmio_writes"].get<uint64_t>(), cpu["cycles_consumed"].get<uint64_t>(),
         cpu["irq_waits"].get<uint64_t>(), ms(cpu["irq_wait_s"]),
         cpu_mem["path"].get<std::string>() == "mci" ? "the memory controller interface (MCI)" : "PLB1",
-        mib(cpu_mem["bytes_read"].get<double>()), cpu_mem["line_fills"].get<uint64_t>(), mib(cpu_mem["bytes_written"].get<double>()),
-        cpu_mem["write_backs"].get<uint64_t>(), ms(cpu_mem["fill_stall_s"]), ms(cpu_mem["ddr_wait_s"]));
-    if (r.contains("workload") && r["workload"].contains("software_stage") && !r["workload"]["software_stage"].is_null())
+        mib(cpu_mem["bytes_read"].get<double>()), cpu_mem["line_fills"].get<uint64_t>(),
+        mib(cpu_mem["bytes_written"].get<double>()), cpu_mem["write_backs"].get<uint64_t>(),
+        ms(cpu_mem["fill_stall_s"]), ms(cpu_mem["ddr_wait_s"]));
+    if (r.contains("workload") && r["workload"].contains("software_stage") &&
+        !r["workload"]["software_stage"].is_null())
         md += software_stage_section(r["workload"]["software_stage"]);
     return md;
 }
@@ -450,8 +503,8 @@ std::string simulation_section(const nlohmann::ordered_json& r) {
     md += fmt::format("| simulated time | {} |\n", ms(r["sim_time_s"]));
     md += fmt::format("| wall time | {} |\n", ms(r["wall_time_s"]));
     md += fmt::format("| real-time factor (simulated / wall) | {:.4g} |\n", r["real_time_factor"].get<double>());
-    md += fmt::format("| TLM transactions on the PLBs | {} ({:.3g} per wall second) |\n", r["transactions"].get<uint64_t>(),
-                      r["transactions_per_second"].get<double>());
+    md += fmt::format("| TLM transactions on the PLBs | {} ({:.3g} per wall second) |\n",
+                      r["transactions"].get<uint64_t>(), r["transactions_per_second"].get<double>());
     return md;
 }
 
@@ -461,21 +514,25 @@ std::string simulation_section(const nlohmann::ordered_json& r) {
 std::string faults_section(const nlohmann::ordered_json& f) {
     const auto& d = f["driver"];
     std::string md = fmt::format(
-        "\n## Injected faults\n\n{} given, {} struck, {} detected, {} recovered (their pair finished a later frame, or the "
-        "frame itself went on); {} frames lost. The driver's watchdog expired {} times, {} interrupts had nothing to serve, "
-        "{} pair resets.\n\n| fault | given at | struck | frame | detected | recovered | outcome |\n|---|---|---:|---:|---|---|---|\n",
-        f["given"].get<size_t>(), f["injected"].get<size_t>(), f["detected"].get<size_t>(), f["recovered"].get<size_t>(),
-        f["tasks_lost"].get<size_t>(), d["watchdog_expiries"].get<uint64_t>(), d["spurious_interrupts"].get<uint64_t>(),
-        d["pair_resets"].get<uint64_t>());
+        "\n## Injected faults\n\n{} given, {} struck, {} detected, {} recovered (their pair finished a later frame, or "
+        "the "
+        "frame itself went on); {} frames lost. The driver's watchdog expired {} times, {} interrupts had nothing to "
+        "serve, "
+        "{} pair resets.\n\n| fault | given at | struck | frame | detected | recovered | outcome "
+        "|\n|---|---|---:|---:|---|---|---|\n",
+        f["given"].get<size_t>(), f["injected"].get<size_t>(), f["detected"].get<size_t>(),
+        f["recovered"].get<size_t>(), f["tasks_lost"].get<size_t>(), d["watchdog_expiries"].get<uint64_t>(),
+        d["spurious_interrupts"].get<uint64_t>(), d["pair_resets"].get<uint64_t>());
     auto yes = [](const nlohmann::ordered_json& j, const char* key) { return j.value(key, false) ? "yes" : "**no**"; };
     for (const auto& x : f["list"]) {
         if (!x["struck"].get<bool>()) {
-            md += fmt::format("| {} | {} | **never** | | | | |\n", x["fault"].get<std::string>(), x["origin"].get<std::string>());
+            md += fmt::format("| {} | {} | **never** | | | | |\n", x["fault"].get<std::string>(),
+                              x["origin"].get<std::string>());
             continue;
         }
         md += fmt::format("| {} | {} | {:.3f} ms | {} | {} | {} | {} |\n", x["fault"].get<std::string>(),
-                          x["origin"].get<std::string>(), x["at_ms"].get<double>(), x["frame"].get<int64_t>(), yes(x, "detected"),
-                          yes(x, "recovered"), x.value("outcome", ""));
+                          x["origin"].get<std::string>(), x["at_ms"].get<double>(), x["frame"].get<int64_t>(),
+                          yes(x, "detected"), yes(x, "recovered"), x.value("outcome", ""));
     }
     return md;
 }
@@ -486,27 +543,30 @@ std::string resources_section(const nlohmann::ordered_json& f) {
     const auto& total = f["total"];
     std::string md = fmt::format("\n## FPGA resources ({})\n\n", f["device"].get<std::string>());
     md += f["fits"].get<bool>() ? std::string("The configuration fits the device.\n\n")
-                                : fmt::format("**The configuration does not fit the device**: {}.\n\n", fmt::join(f["over"].get<std::vector<std::string>>(), "; "));
+                                : fmt::format("**The configuration does not fit the device**: {}.\n\n",
+                                              fmt::join(f["over"].get<std::vector<std::string>>(), "; "));
     md += "| block | RAMB36 | DSP48E | LUT | FF | basis |\n|---|---:|---:|---:|---:|---|\n";
     for (const auto& [name, b] : f["blocks"].items())
-        md += fmt::format("| {} | {:g} | {:g} | {:g} | {:g} | {} |\n", name, b["ramb36"].get<double>(), b["dsp48e"].get<double>(),
-                          b["luts"].get<double>(), b["ffs"].get<double>(), b["basis"].get<std::string>());
+        md += fmt::format("| {} | {:g} | {:g} | {:g} | {:g} | {} |\n", name, b["ramb36"].get<double>(),
+                          b["dsp48e"].get<double>(), b["luts"].get<double>(), b["ffs"].get<double>(),
+                          b["basis"].get<std::string>());
     auto of = [&](const char* k) {
         return fmt::format("{:g} of {:g} ({:.0f} %)", total[k].get<double>(), cap[k].get<double>(),
                            100 * total[k].get<double>() / cap[k].get<double>());
     };
-    md += fmt::format("| **total** | {} | {} | {} | {} | estimates: docs/resources.md |\n", of("ramb36"), of("dsp48e"), of("luts"),
-                      of("ffs"));
+    md += fmt::format("| **total** | {} | {} | {} | {} | estimates: docs/resources.md |\n", of("ramb36"), of("dsp48e"),
+                      of("luts"), of("ffs"));
     return md;
 }
 
 // Watts per block over the run and joules per frame, against the power budget.
 std::string power_section(const nlohmann::ordered_json& p) {
-    std::string md = fmt::format("\n## Power and energy\n\n**{:.2f} W** over the run, **{:.3f} J per frame**; {} the {:g} W budget "
-                                 "(power.budget_w). Estimates from what the run did: docs/power.md.\n\n"
-                                 "| block | W | basis |\n|---|---:|---|\n",
-                                 p["watts"].get<double>(), p["joules_per_frame"].get<double>(),
-                                 p["within_budget"].get<bool>() ? "within" : "**over**", p["budget_w"].get<double>());
+    std::string md = fmt::format(
+        "\n## Power and energy\n\n**{:.2f} W** over the run, **{:.3f} J per frame**; {} the {:g} W budget "
+        "(power.budget_w). Estimates from what the run did: docs/power.md.\n\n"
+        "| block | W | basis |\n|---|---:|---|\n",
+        p["watts"].get<double>(), p["joules_per_frame"].get<double>(),
+        p["within_budget"].get<bool>() ? "within" : "**over**", p["budget_w"].get<double>());
     for (const auto& [name, b] : p["blocks"].items())
         md += fmt::format("| {} | {:.3f} | {} |\n", name, b["watts"].get<double>(), b["basis"].get<std::string>());
     if (p.contains("band")) {
@@ -515,14 +575,16 @@ std::string power_section(const nlohmann::ordered_json& p) {
         for (const auto& e : p["band"]["parameters"]) {
             const double lo = e["low"]["watts"], hi = e["high"]["watts"];
             const double ram_lo = e["low"]["ramb36"], ram_hi = e["high"]["ramb36"];
-            spread.push_back({std::abs(hi - lo), fmt::format("`{}` {} .. {}: {:.2f} .. {:.2f} W{}", e["parameter"].get<std::string>(),
-                                                             e["low"]["value"].get<std::string>(),
-                                                             e["high"]["value"].get<std::string>(), lo, hi,
-                                                             ram_lo == ram_hi ? "" : fmt::format(", {:g} .. {:g} RAMB36", ram_lo, ram_hi))});
+            spread.push_back(
+                {std::abs(hi - lo),
+                 fmt::format("`{}` {} .. {}: {:.2f} .. {:.2f} W{}", e["parameter"].get<std::string>(),
+                             e["low"]["value"].get<std::string>(), e["high"]["value"].get<std::string>(), lo, hi,
+                             ram_lo == ram_hi ? "" : fmt::format(", {:g} .. {:g} RAMB36", ram_lo, ram_hi))});
         }
         std::stable_sort(spread.begin(), spread.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
-        md += fmt::format("\nOver the assumption band of the cost parameters, one at a time: **{:.2f} to {:.2f} W**. Widest:\n\n",
-                          p["band"]["watts_range"][0].get<double>(), p["band"]["watts_range"][1].get<double>());
+        md += fmt::format(
+            "\nOver the assumption band of the cost parameters, one at a time: **{:.2f} to {:.2f} W**. Widest:\n\n",
+            p["band"]["watts_range"][0].get<double>(), p["band"]["watts_range"][1].get<double>());
         for (size_t i = 0; i < spread.size() && i < 5; ++i) md += "- " + spread[i].second + "\n";
     }
     return md;
@@ -554,8 +616,11 @@ std::string report_markdown(const nlohmann::ordered_json& r) {
     if (r.contains("workload")) md += workload_section(r["workload"]);
     md += files_section(r["outputs"]);
     md += simulation_section(r);
-    md += "\n## Every statistic\n\n<details><summary>As the blocks registered them; report.json holds the same under each "
-          "path.</summary>\n\n" + statistics_markdown(r) + "\n</details>\n";
+    md +=
+        "\n## Every statistic\n\n<details><summary>As the blocks registered them; report.json holds the same under "
+        "each "
+        "path.</summary>\n\n" +
+        statistics_markdown(r) + "\n</details>\n";
     return md;
 }
 

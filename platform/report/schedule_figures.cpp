@@ -28,10 +28,14 @@ nlohmann::ordered_json schedule_figures(const Fhg::Params& p) {
     const fhg::Sequence& improved = fhg::cached_sequence(machine);
     const fhg::Sequence& used = p.sequence.scheduler == fhg::Scheduler::basic ? basic : improved;
     const auto& s = p.sequence;
-    return {{"machine", {{"read_buses", s.read_buses}, {"bus_word", fhg::bus_word_name(s.bus_word)},
-                         {"bus_word_bits", 32 * fhg::word_shape(s.bus_word).size()}, {"reuse", s.reuse},
-                         {"line_fifo", fhg::line_fifo_name(s.line_fifo)}, {"triple_macs", s.triple_macs},
-                         {"x3_cycles", s.x3_cycles}}},
+    return {{"machine",
+             {{"read_buses", s.read_buses},
+              {"bus_word", fhg::bus_word_name(s.bus_word)},
+              {"bus_word_bits", 32 * fhg::word_shape(s.bus_word).size()},
+              {"reuse", s.reuse},
+              {"line_fifo", fhg::line_fifo_name(s.line_fifo)},
+              {"triple_macs", s.triple_macs},
+              {"x3_cycles", s.x3_cycles}}},
             {"reads_per_block", basic.reads_per_block},
             {"distinct_reads_per_block", basic.distinct_reads_per_block},
             {"basic", schedule_json(basic)},

@@ -11,27 +11,34 @@ namespace {
 std::vector<std::string> levels(const std::string& path) {
     std::vector<std::string> out;
     size_t from = 0;
-    for (size_t dot; (dot = path.find('.', from)) != std::string::npos; from = dot + 1) out.push_back(path.substr(from, dot - from));
+    for (size_t dot; (dot = path.find('.', from)) != std::string::npos; from = dot + 1)
+        out.push_back(path.substr(from, dot - from));
     out.push_back(path.substr(from));
     return out;
 }
 
 nlohmann::ordered_json value_of(const Statistic& s, double elapsed_s) {
     switch (s.kind) {
-        case StatKind::text: return s.text();
+        case StatKind::text:
+            return s.text();
         case StatKind::histogram: {
             nlohmann::ordered_json bins = nlohmann::ordered_json::object();
             for (const auto& [name, n] : s.bins()) bins[name] = n;
             return bins;
         }
-        case StatKind::series: return {{"bin_s", double(s.series->bin_ps()) * 1e-12}, {"values", s.series->values()}};
-        case StatKind::count: case StatKind::bytes: case StatKind::high_water: return uint64_t(std::llround(s.number(elapsed_s)));
+        case StatKind::series:
+            return {{"bin_s", double(s.series->bin_ps()) * 1e-12}, {"values", s.series->values()}};
+        case StatKind::count:
+        case StatKind::bytes:
+        case StatKind::high_water:
+            return uint64_t(std::llround(s.number(elapsed_s)));
         case StatKind::value: {
             const double v = s.number(elapsed_s);
             if (v == std::floor(v) && std::fabs(v) < 9e15) return int64_t(v);
             return v;
         }
-        default: return s.number(elapsed_s);
+        default:
+            return s.number(elapsed_s);
     }
 }
 
@@ -71,11 +78,13 @@ std::string cell(const nlohmann::ordered_json& v, const std::string& kind) {
     if (kind == "series") {
         double peak = 0;
         for (const auto& x : v["values"]) peak = std::max(peak, x.get<double>());
-        return fmt::format("{} bins of {:g} ms, peak {:g} (report.html)", v["values"].size(), v["bin_s"].get<double>() * 1e3, peak);
+        return fmt::format("{} bins of {:g} ms, peak {:g} (report.html)", v["values"].size(),
+                           v["bin_s"].get<double>() * 1e3, peak);
     }
     if (v.is_object()) {
         std::string bins;
-        for (const auto& [name, n] : v.items()) bins += fmt::format("{}{}: {}", bins.empty() ? "" : ", ", name, n.dump());
+        for (const auto& [name, n] : v.items())
+            bins += fmt::format("{}{}: {}", bins.empty() ? "" : ", ", name, n.dump());
         return bins;
     }
     if (kind == "ratio") return fmt::format("{:.1f} %", 100 * v.get<double>());
@@ -112,8 +121,8 @@ std::string statistics_markdown(const nlohmann::ordered_json& report) {
         const nlohmann::ordered_json* v = find(report, path);
         if (!v) continue;
         const std::string kind = about["kind"];
-        md += fmt::format("| `{}` | {} | {} | {} | {} |\n", path, cell(*v, kind), about["unit"].get<std::string>(), kind,
-                          about["meaning"].get<std::string>());
+        md += fmt::format("| `{}` | {} | {} | {} | {} |\n", path, cell(*v, kind), about["unit"].get<std::string>(),
+                          kind, about["meaning"].get<std::string>());
     }
     return md;
 }

@@ -28,8 +28,8 @@ constexpr const char* kRunList = ".surfvp-files";  // in a run folder: the files
 
 // What an older surfvp (before the run folders) wrote at the folder's top, by fixed names: a
 // folder it left is replaced once by the links. Its manifest's names are never acted on.
-const std::set<std::string> kLegacyOutputs = {"report.json", "report.md",   "report.html", "config.yaml",
-                                              "frames.csv",  "tornado.svg", "trace.vcd",   "trace.perfetto.json",
+const std::set<std::string> kLegacyOutputs = {"report.json", "report.md",       "report.html",    "config.yaml",
+                                              "frames.csv",  "tornado.svg",     "trace.vcd",      "trace.perfetto.json",
                                               "trace.gtkw",  "trace.tasks.txt", ".surfvp-outputs"};
 constexpr const char* kLegacyStagingPrefix = ".partial-";
 
@@ -96,7 +96,8 @@ std::string first_line(const fs::path& file) {
 std::set<std::string> files_of(const fs::path& dir) {
     std::set<std::string> files;
     std::error_code error;
-    for (auto it = fs::recursive_directory_iterator(dir, error); !error && it != fs::recursive_directory_iterator(); it.increment(error))
+    for (auto it = fs::recursive_directory_iterator(dir, error); !error && it != fs::recursive_directory_iterator();
+         it.increment(error))
         if (type_of(it->path()) == fs::file_type::regular && it->path().filename() != kRunList)
             files.insert(it->path().lexically_relative(dir).string());
     return files;
@@ -110,7 +111,8 @@ void remove_run(const fs::path& run) {
     const std::string listed((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
     if (in.is_open()) {
         std::set<std::string> ours;
-        for (size_t at = 0, end; (end = listed.find('\n', at)) != std::string::npos; at = end + 1) ours.insert(listed.substr(at, end - at));
+        for (size_t at = 0, end; (end = listed.find('\n', at)) != std::string::npos; at = end + 1)
+            ours.insert(listed.substr(at, end - at));
         std::vector<std::string> theirs;
         for (const std::string& f : files_of(run))
             if (!ours.count(f)) theirs.push_back(f);
@@ -137,7 +139,8 @@ void remove_runs_but(const fs::path& runs, const std::string& kept) {
 bool legacy_folder(const fs::path& dir) {
     static const std::regex keypoints(R"(frame_[0-9]+\.(surf|key))");
     std::error_code error;
-    for (auto it = fs::recursive_directory_iterator(dir, error); !error && it != fs::recursive_directory_iterator(); it.increment(error)) {
+    for (auto it = fs::recursive_directory_iterator(dir, error); !error && it != fs::recursive_directory_iterator();
+         it.increment(error)) {
         const fs::file_type t = type_of(it->path());
         const std::string name = it->path().filename().string();
         if (hidden(it->path()) || (t != fs::file_type::directory && t != fs::file_type::regular) ||
@@ -152,27 +155,31 @@ bool legacy_folder(const fs::path& dir) {
 OutputFolder::OutputFolder(const fs::path& folder) : folder_(folder) {
     std::error_code error;
     fs::create_directories(folder_, error);
-    if (error || !fs::is_directory(folder_)) refuse(folder_, "cannot create the folder: " + (error ? error.message() : "a file is in the way"));
+    if (error || !fs::is_directory(folder_))
+        refuse(folder_, "cannot create the folder: " + (error ? error.message() : "a file is in the way"));
     lock();
     // Holding the lock, every run folder but the current one is a killed run's; a real folder
     // only (a link there is not surfvp's, and removing through it would reach outside).
     const fs::path runs = folder_ / kRuns;
     if (type_of(runs) == fs::file_type::not_found) fs::create_directory(runs, error);
     if (type_of(runs) != fs::file_type::directory)
-        throw ConfigError(fmt::format("--out {}: {} is not a folder surfvp made (a link or a file); remove it", folder_.string(),
-                                      runs.string()));
+        throw ConfigError(fmt::format("--out {}: {} is not a folder surfvp made (a link or a file); remove it",
+                                      folder_.string(), runs.string()));
     remove_runs_but(runs, current_run(folder_));
     for (const auto& entry : fs::directory_iterator(folder_, error)) {
         const std::string name = entry.path().filename().string();
         const fs::file_type type = type_of(entry.path());
-        if ((name.rfind(kLegacyStagingPrefix, 0) == 0 && type == fs::file_type::directory) ||  // an older surfvp's killed run
-            ((name.rfind(".surfvp-link-", 0) == 0 || name.rfind(".surfvp-current-", 0) == 0) && type == fs::file_type::symlink))
+        if ((name.rfind(kLegacyStagingPrefix, 0) == 0 &&
+             type == fs::file_type::directory) ||  // an older surfvp's killed run
+            ((name.rfind(".surfvp-link-", 0) == 0 || name.rfind(".surfvp-current-", 0) == 0) &&
+             type == fs::file_type::symlink))
             fs::remove_all(entry.path(), error);  // a killed run's link not yet in place
         else if (!output_of_link(entry.path()).empty() && !fs::exists(entry.path(), error))
             fs::remove(entry.path(), error);  // killed between its links and their switch
     }
     const auto now = std::chrono::system_clock::now().time_since_epoch();
-    staging_ = runs / fmt::format("{}-{}", ::getpid(), std::chrono::duration_cast<std::chrono::microseconds>(now).count());
+    staging_ =
+        runs / fmt::format("{}-{}", ::getpid(), std::chrono::duration_cast<std::chrono::microseconds>(now).count());
     fs::create_directory(staging_, error);
     if (error) refuse(folder_, "cannot create " + staging_.string() + ": " + error.message());
 }
@@ -184,7 +191,8 @@ void OutputFolder::lock() {
     const fs::path lock = folder_ / kLock;
     const fs::file_type type = type_of(lock);
     if (type != fs::file_type::not_found && type != fs::file_type::regular)
-        throw ConfigError(fmt::format("--out {}: {} is not a regular file (surfvp's lock is); remove it", folder_.string(), lock.string()));
+        throw ConfigError(fmt::format("--out {}: {} is not a regular file (surfvp's lock is); remove it",
+                                      folder_.string(), lock.string()));
     lock_ = ::open(lock.c_str(), O_RDWR | O_CREAT | O_CLOEXEC | O_NOFOLLOW, 0644);
     const bool foreign = lock_ < 0 && errno == EACCES;
     if (foreign) lock_ = ::open(lock.c_str(), O_RDONLY | O_CLOEXEC | O_NOFOLLOW);
@@ -198,11 +206,13 @@ void OutputFolder::lock() {
     };
     if (::flock(lock_, LOCK_EX | LOCK_NB) != 0) busy();
     if (!foreign && !previous.empty())  // a run that ends empties its lock: this one's was killed
-        std::fprintf(stderr, "surfvp: warning: --out %s: took over the stale lock of a run that did not finish (pid %s, %s)\n",
+        std::fprintf(stderr,
+                     "surfvp: warning: --out %s: took over the stale lock of a run that did not finish (pid %s, %s)\n",
                      folder_.c_str(), previous.c_str(), alive(previous) ? "no longer holding it" : "no longer running");
     if (foreign) {
         std::fprintf(stderr, "surfvp: warning: --out %s: took over the stale lock of another user's run (pid %s, %s)\n",
-                     folder_.c_str(), previous.empty() ? "?" : previous.c_str(), alive(previous) ? "no longer holding it" : "no longer running");
+                     folder_.c_str(), previous.empty() ? "?" : previous.c_str(),
+                     alive(previous) ? "no longer holding it" : "no longer running");
         if (::unlink(lock.c_str()) != 0) return;  // a folder that keeps others' files (sticky): locked through theirs
         ::close(lock_);
         lock_ = ::open(lock.c_str(), O_RDWR | O_CREAT | O_EXCL | O_CLOEXEC | O_NOFOLLOW, 0644);
@@ -217,7 +227,7 @@ OutputFolder::~OutputFolder() {
     std::error_code ignored;
     if (!published_) fs::remove_all(staging_, ignored);
     [[maybe_unused]] const int emptied = ::ftruncate(lock_, 0);  // finished: nothing stale (another user's stays)
-    ::close(lock_);  // releases the lock
+    ::close(lock_);                                              // releases the lock
 }
 
 void OutputFolder::publish() {
@@ -225,8 +235,8 @@ void OutputFolder::publish() {
     std::set<std::string> names;
     std::error_code error;
     for (const auto& entry : fs::directory_iterator(staging_, error)) names.insert(entry.path().filename().string());
-    for (auto it = fs::recursive_directory_iterator(staging_, error); !error && it != fs::recursive_directory_iterator();
-         it.increment(error))
+    for (auto it = fs::recursive_directory_iterator(staging_, error);
+         !error && it != fs::recursive_directory_iterator(); it.increment(error))
         if (it->path().extension() == ".gtkw") name_published_files(it->path());
     if (error) refuse(folder_, fmt::format("cannot read {}: {}", staging_.string(), error.message()));
     std::string list;
@@ -246,8 +256,9 @@ void OutputFolder::publish() {
 void OutputFolder::link_outputs(const std::set<std::string>& names) const {
     for (const std::string& name : names)
         if (type_of(folder_ / name) == fs::file_type::directory && !legacy_folder(folder_ / name))
-            throw ConfigError(fmt::format("--out {}: {} is a folder surfvp did not write; move it away, or give another --out",
-                                          folder_.string(), (folder_ / name).string()));
+            throw ConfigError(
+                fmt::format("--out {}: {} is a folder surfvp did not write; move it away, or give another --out",
+                            folder_.string(), (folder_ / name).string()));
     for (const std::string& name : names) {
         const fs::path at = folder_ / name;
         if (!output_of_link(at).empty()) continue;
@@ -267,7 +278,8 @@ void OutputFolder::link_outputs(const std::set<std::string>& names) const {
 void OutputFolder::switch_current() const {
     const fs::path next = folder_ / fmt::format(".surfvp-current-{}", ::getpid()), current = folder_ / kCurrent;
     if (type_of(current) == fs::file_type::directory)
-        throw ConfigError(fmt::format("--out {}: {} is a folder, not surfvp's link; remove it", folder_.string(), current.string()));
+        throw ConfigError(
+            fmt::format("--out {}: {} is a folder, not surfvp's link; remove it", folder_.string(), current.string()));
     std::error_code error;
     fs::remove(next, error);
     fs::create_symlink(fs::path(kRuns) / staging_.filename(), next, error);
@@ -283,7 +295,8 @@ void OutputFolder::remove_stale(const std::set<std::string>& names) const {
     for (const auto& entry : fs::directory_iterator(folder_, error)) {
         const std::string name = entry.path().filename().string(), output = output_of_link(entry.path());
         if ((!output.empty() && !names.count(output)) ||
-            (output.empty() && kLegacyOutputs.count(name) && !names.count(name) && type_of(entry.path()) == fs::file_type::regular))
+            (output.empty() && kLegacyOutputs.count(name) && !names.count(name) &&
+             type_of(entry.path()) == fs::file_type::regular))
             gone.push_back(entry.path());
     }
     for (const fs::path& p : gone) fs::remove_all(p, error);

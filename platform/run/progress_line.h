@@ -28,7 +28,8 @@ public:
         if (quiet_ || now < delay_ || now - last_ < every_) return;
         last_ = now;
         shown_ = true;
-        std::fprintf(stderr, "%ssurfvp: %s: %s%s", tty_ ? "\r" : "", name_.c_str(), text(now).c_str(), tty_ ? "" : "\n");
+        std::fprintf(stderr, "%ssurfvp: %s: %s%s", tty_ ? "\r" : "", name_.c_str(), text(now).c_str(),
+                     tty_ ? "" : "\n");
     }
 
 private:

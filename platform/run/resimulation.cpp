@@ -43,14 +43,16 @@ void Resimulation::prepare(const Config& config) {
 }
 
 Json Resimulation::point_summary(const Json& r) {
-    Json s = {{"fps", r.value("throughput_fps", 0.0)}, {"passed", r["passed"]},
+    Json s = {{"fps", r.value("throughput_fps", 0.0)},
+              {"passed", r["passed"]},
               {"limit", r.contains("limit") ? r["limit"]["resource"] : Json()},
               {"limit_cause", r.contains("limit") ? r["limit"]["cause"] : Json()},
               {"keypoints_per_frame", r.value("keypoints_per_frame", 0.0)}};
     if (r.contains("time_per_frame") && r["time_per_frame"].contains("cpu")) {
         s["cpu_ms_per_frame"] = r["time_per_frame"]["cpu"]["busy_ms"];
         s["cpu_alone_fps"] = r["time_per_frame"]["cpu"]["alone_fps"];
-        s["cpu_fill_stall_ms"] = r["cpu"]["memory"]["fill_stall_s"].get<double>() / r["frames_done"].get<double>() * 1e3;
+        s["cpu_fill_stall_ms"] =
+            r["cpu"]["memory"]["fill_stall_s"].get<double>() / r["frames_done"].get<double>() * 1e3;
     }
     if (r.contains("time_per_frame")) {  // what each resource alone would allow (the verdict's chain and doubt)
         Json alone = Json::object();
@@ -62,11 +64,14 @@ Json Resimulation::point_summary(const Json& r) {
     return s;
 }
 
-void Resimulation::submit(Config config, Done done, Summarise summarise, std::string out, std::string trace, bool urgent) {
+void Resimulation::submit(Config config, Done done, Summarise summarise, std::string out, std::string trace,
+                          bool urgent) {
     ++submitted_;
     Job job{std::move(config), std::move(done), std::move(summarise), std::move(out), std::move(trace), {}};
-    if (urgent) queue_.push_front(std::move(job));
-    else queue_.push_back(std::move(job));
+    if (urgent)
+        queue_.push_front(std::move(job));
+    else
+        queue_.push_back(std::move(job));
 }
 
 void Resimulation::submit_work(Config config, Done done, Work work) {
@@ -86,7 +91,8 @@ void Resimulation::start(Job job) {
         int code = 3;
         Json out;
         try {
-            out = job.work ? job.work(job.config) : job.summarise(simulate_scenario(job.config, job.out, job.trace, true));
+            out = job.work ? job.work(job.config)
+                           : job.summarise(simulate_scenario(job.config, job.out, job.trace, true));
             code = 0;
         } catch (const ConfigError& e) {
             out = {{"error", e.what()}, {"exit", 2}};

@@ -53,9 +53,7 @@ double process_age_s() {
     return double(now.tv_sec) + now.tv_nsec * 1e-9 - double(ticks) / double(sysconf(_SC_CLK_TCK));
 }
 
-double since(WallClock::time_point start) {
-    return std::chrono::duration<double>(WallClock::now() - start).count();
-}
+double since(WallClock::time_point start) { return std::chrono::duration<double>(WallClock::now() - start).count(); }
 
 }  // namespace
 
@@ -95,8 +93,8 @@ Outcome simulate(Soc& soc, const Config& config, ProgressLine& progress) {
         const Progress p = soc.workload().progress();
         const double sim_s = sc_core::sc_time_stamp().to_seconds();
         progress.update([&](double wall_s) {
-            return fmt::format("{}/{} {}, {:.3f} ms simulated, {:.1f} s wall, {:.3g}x real time", p.done, p.total, p.unit,
-                               sim_s * 1e3, wall_s, sim_s / wall_s);
+            return fmt::format("{}/{} {}, {:.3f} ms simulated, {:.1f} s wall, {:.3g}x real time", p.done, p.total,
+                               p.unit, sim_s * 1e3, wall_s, sim_s / wall_s);
         });
     }
     if (!soc.cpu().error().empty()) return {soc.cpu().finish_time(), "software error: " + soc.cpu().error()};
@@ -166,7 +164,9 @@ Config config_as_run(const Config& config, const nlohmann::ordered_json& report)
 std::string with_origins(const Config& config, const std::string& message) {
     std::vector<std::string> origins;
     auto word_at = [&](size_t at, size_t length) {
-        auto inside = [&](size_t i) { return i < message.size() && (std::isalnum((unsigned char)message[i]) || message[i] == '_'); };
+        auto inside = [&](size_t i) {
+            return i < message.size() && (std::isalnum((unsigned char)message[i]) || message[i] == '_');
+        };
         return (at == 0 || !inside(at - 1)) && !inside(at + length);
     };
     for (const Config::Entry& e : config.entries()) {
@@ -219,8 +219,8 @@ int run_direct(const Config& config, const fs::path& dir) {
     if (!failure.empty()) r["failure"] = failure;
     r["checks"] = checks;
     const nlohmann::ordered_json summary = workload->summary();  // what has a meaning without time
-    for (const char* key : {"image", "frames", "frames_done", "keypoints_per_frame", "keypoints_per_frame_range", "threshold",
-                            "threshold_rule", "frame_wall_s"})
+    for (const char* key : {"image", "frames", "frames_done", "keypoints_per_frame", "keypoints_per_frame_range",
+                            "threshold", "threshold_rule", "frame_wall_s"})
         if (summary.contains(key)) r[key] = summary[key];
     r["software_cycles"] = chip.cycles_consumed();
     r["startup_s"] = startup_s;  // from the process's start to the software's (as the VP's)
@@ -233,11 +233,13 @@ int run_direct(const Config& config, const fs::path& dir) {
     return passed ? kExitOk : kExitFailed;
 }
 
-nlohmann::ordered_json simulate_scenario(const Config& config, const std::string& out, const std::string& trace, bool quiet) {
+nlohmann::ordered_json simulate_scenario(const Config& config, const std::string& out, const std::string& trace,
+                                         bool quiet) {
     const Tracer::Options traces = trace_options(trace, out);
     Tracer tracer(traces);
     Soc soc(config, tracer);
-    soc.workload().attach_memory([&soc](uint64_t address, uint64_t bytes) { return soc.memory().backdoor(address, bytes); });
+    soc.workload().attach_memory(
+        [&soc](uint64_t address, uint64_t bytes) { return soc.memory().backdoor(address, bytes); });
     if (!out.empty()) soc.workload().write_into(out);
 
     const double startup_s = process_age_s();
@@ -282,7 +284,7 @@ void check_scenario(const Config& config) {
     try {
         const Fhg::Params fhg = fhg_params(config);
         const fhg::HessianCore precision(fhg.precision);  // the FHG's fixed-point formats
-        fhg::cached_sequence(fhg.sequence);                // its read sequence (the FHG takes it from the cache)
+        fhg::cached_sequence(fhg.sequence);               // its read sequence (the FHG takes it from the cache)
         make_workload(config);  // what the workload checks as it is made (its buffers in memory)
     } catch (const std::invalid_argument& e) {
         throw ConfigError(with_origins(config, e.what()));

@@ -13,8 +13,14 @@
 
 namespace surfvp {
 
-enum ExitCode { kExitOk = 0, kExitFailed = 1, kExitBadInput = 2, kExitInternal = 3, kExitEnvironment = 4,
-               kExitOutOfMemory = 5 };
+enum ExitCode {
+    kExitOk = 0,
+    kExitFailed = 1,
+    kExitBadInput = 2,
+    kExitInternal = 3,
+    kExitEnvironment = 4,
+    kExitOutOfMemory = 5
+};
 
 // Everything about a loaded scenario that needs no simulation and no SystemC: the parameters'
 // consistency, the files it names, the workload's layout. run and validate call it before
@@ -28,7 +34,8 @@ Tracer::Options trace_options(const std::string& mode, const std::string& dir);
 // One simulation of `config` on the VP and its report (not yet written), with the traces
 // (`trace`: none, vcd, perfetto, all) and the workload's files written into `out` (nothing
 // when `out` is empty). Throws ConfigError for bad input.
-nlohmann::ordered_json simulate_scenario(const Config& config, const std::string& out, const std::string& trace, bool quiet);
+nlohmann::ordered_json simulate_scenario(const Config& config, const std::string& out, const std::string& trace,
+                                         bool quiet);
 
 // One run of `config` on the untimed DirectChip (no SystemC) into `dir`: report.json,
 // config.yaml and the workload's files (its keypoints byte for byte the VP's); returns the

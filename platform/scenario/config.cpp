@@ -18,7 +18,8 @@ void Config::set(const std::string& key, const std::string& value, const std::st
         try {
             parse_value(*e.spec, value);
         } catch (const UnitError& error) {
-            throw ConfigError(fmt::format("{}: {}: {} (expected {})", origin, key, error.what(), describe_kind(*e.spec)));
+            throw ConfigError(
+                fmt::format("{}: {}: {} (expected {})", origin, key, error.what(), describe_kind(*e.spec)));
         }
         e.value = value;
         e.origin = origin;
@@ -76,8 +77,12 @@ void Config::set_effect(const std::string& key, const std::string& what) {
         if (e.spec->key == key) e.effect = what;
 }
 
-Frequency Config::frequency(const std::string& key) const { return parse_frequency(entry(key, ParamKind::frequency).value); }
-Duration Config::duration(const std::string& key) const { return parse_duration(entry(key, ParamKind::duration).value); }
+Frequency Config::frequency(const std::string& key) const {
+    return parse_frequency(entry(key, ParamKind::frequency).value);
+}
+Duration Config::duration(const std::string& key) const {
+    return parse_duration(entry(key, ParamKind::duration).value);
+}
 unsigned Config::bits(const std::string& key) const { return parse_bits(entry(key, ParamKind::bits).value); }
 Bytes Config::bytes(const std::string& key) const { return parse_bytes(entry(key, ParamKind::bytes).value); }
 uint64_t Config::cycles(const std::string& key) const { return parse_cycles(entry(key, ParamKind::cycles).value); }
@@ -105,7 +110,8 @@ uint32_t Config::address(const std::string& key) const {
 
 std::string Config::to_yaml() const {
     YAML::Emitter out;
-    out << YAML::Comment(fmt::format("surfvp effective configuration of '{}': every parameter, with where its value came from", name));
+    out << YAML::Comment(
+        fmt::format("surfvp effective configuration of '{}': every parameter, with where its value came from", name));
     out << YAML::BeginMap;
     // Double-quoted: escapes keep any text as it was (a lone \r in a plain scalar read back as
     // a line break; found by tests/fuzz scenario).
@@ -126,7 +132,8 @@ std::string Config::to_yaml() const {
             if (e.spec->key.compare(0, dot, section) != 0 || dot != section.size()) continue;
             out << YAML::Key << e.spec->key.substr(dot + 1) << YAML::Value << e.value
                 << YAML::Comment((e.origin == "default" ? "default " + e.spec->source : e.origin) +
-                                 (e.note.empty() ? "" : "; no effect: " + e.note) + (e.effect.empty() ? "" : "; " + e.effect));
+                                 (e.note.empty() ? "" : "; no effect: " + e.note) +
+                                 (e.effect.empty() ? "" : "; " + e.effect));
         }
         out << YAML::EndMap;
     }

@@ -65,9 +65,9 @@ public:
     void note(const std::string& key, const std::string& why);
     void set_effect(const std::string& key, const std::string& what);
 
-    std::string name;         // the scenario's name (its file's stem unless it says)
-    std::string description;  // its one-line description
-    std::string file;         // the scenario file, as given
+    std::string name;           // the scenario's name (its file's stem unless it says)
+    std::string description;    // its one-line description
+    std::string file;           // the scenario file, as given
     std::vector<Fault> faults;  // to inject (the scenario's faults:, docs/faults.md)
 
     // The configuration as a scenario YAML that reproduces it, each value commented with

@@ -28,49 +28,55 @@ void check_consistency(const Config& c) {
     const uint64_t pairs = c.count("soc.accelerators");
     const uint64_t needed = map::irq::fhg(unsigned(pairs) - 1) + 1;
     if (c.count("intc.inputs") < needed)
-        throw ConfigError(fmt::format("{}: {} inputs are too few for {} accelerator pairs (soc.accelerators): they need {}",
-                                      c.where("intc.inputs"), c.count("intc.inputs"), pairs, needed));
+        throw ConfigError(
+            fmt::format("{}: {} inputs are too few for {} accelerator pairs (soc.accelerators): they need {}",
+                        c.where("intc.inputs"), c.count("intc.inputs"), pairs, needed));
     // A line FIFO clocked at a multiple of the FHG's clock must be one the block RAM can run.
     const fhg::LineFifo fifo = fhg_params(c).sequence.line_fifo;
     const int multiple = fhg::line_fifo_shape(fifo).clock_multiple;
     if (multiple > 1 && c.frequency("fhg.clock").hz * multiple > c.frequency("fpga.bram_fmax").hz)
-        throw ConfigError(fmt::format("{}: {} clocks the line FIFO's block RAM at {} x fhg.clock = {:g} MHz, above "
-                                      "fpga.bram_fmax = {:g} MHz (from {}); lower fhg.clock (from {}) or choose tdp or banked",
-                                      c.where("fhg.line_fifo"), fhg::line_fifo_name(fifo), multiple,
-                                      c.frequency("fhg.clock").hz * multiple / 1e6, c.frequency("fpga.bram_fmax").hz / 1e6,
-                                      c.source_of("fpga.bram_fmax"), c.source_of("fhg.clock")));
+        throw ConfigError(fmt::format(
+            "{}: {} clocks the line FIFO's block RAM at {} x fhg.clock = {:g} MHz, above "
+            "fpga.bram_fmax = {:g} MHz (from {}); lower fhg.clock (from {}) or choose tdp or banked",
+            c.where("fhg.line_fifo"), fhg::line_fifo_name(fifo), multiple, c.frequency("fhg.clock").hz * multiple / 1e6,
+            c.frequency("fpga.bram_fmax").hz / 1e6, c.source_of("fpga.bram_fmax"), c.source_of("fhg.clock")));
     if (c.choice("run.workload") != "surf") return;
 
     // surf.width and surf.height resize together: one alone would be ignored.
     if ((c.count("surf.width") == 0) != (c.count("surf.height") == 0)) {
         const std::string zero = c.count("surf.width") == 0 ? "surf.width" : "surf.height";
         const std::string other = zero == "surf.width" ? "surf.height" : "surf.width";
-        throw ConfigError(fmt::format("{}: {} with {} = 0 (from {}): frames are resized only when both are set; set both, "
-                                      "or both to 0 to keep the frames as they are",
-                                      c.where(other), c.count(other), zero, c.source_of(zero)));
+        throw ConfigError(
+            fmt::format("{}: {} with {} = 0 (from {}): frames are resized only when both are set; set both, "
+                        "or both to 0 to keep the frames as they are",
+                        c.where(other), c.count(other), zero, c.source_of(zero)));
     }
     if (c.choice("surf.threshold_control") == "track" && c.count("surf.target_keypoints") == 0)
-        throw ConfigError(fmt::format("{}: track holds the keypoints per frame near surf.target_keypoints, which is 0 (from "
-                                      "{}): set a target, or surf.threshold_control = hold",
-                                      c.where("surf.threshold_control"), c.source_of("surf.target_keypoints")));
+        throw ConfigError(
+            fmt::format("{}: track holds the keypoints per frame near surf.target_keypoints, which is 0 (from "
+                        "{}): set a target, or surf.threshold_control = hold",
+                        c.where("surf.threshold_control"), c.source_of("surf.target_keypoints")));
     const uint64_t frames = c.count("surf.frames");
     for (const char* key : {"eval.homography", "eval.poses"})
         if (!c.text(key).empty() && frames < 2)
-            throw ConfigError(fmt::format("{}: the evaluation compares frames, and surf.frames is {} (from {}): it needs at "
-                                          "least 2",
-                                          c.where(key), frames, c.source_of("surf.frames")));
+            throw ConfigError(
+                fmt::format("{}: the evaluation compares frames, and surf.frames is {} (from {}): it needs at "
+                            "least 2",
+                            c.where(key), frames, c.source_of("surf.frames")));
     // A frame rate needs one whole round of the pairs after the first frame.
     if (c.real("budget.fps") > 0 && frames <= pairs)
-        throw ConfigError(fmt::format("{}: {} frames cannot give a frame rate with {} accelerator pair(s): the steady-state "
-                                      "rate needs {}; set more frames or budget.fps = 0 (from {})",
-                                      c.where("surf.frames"), frames, pairs, pairs + 1, c.source_of("budget.fps")));
+        throw ConfigError(
+            fmt::format("{}: {} frames cannot give a frame rate with {} accelerator pair(s): the steady-state "
+                        "rate needs {}; set more frames or budget.fps = 0 (from {})",
+                        c.where("surf.frames"), frames, pairs, pairs + 1, c.source_of("budget.fps")));
 }
 
 std::vector<Ineffective> ineffective_parameters(const Config& c) {
     std::vector<Ineffective> out;
     const std::string workload = c.choice("run.workload");
-    const bool verdict = workload == "surf" && (c.choice("verdict.band") == "on" || c.choice("verdict.break_even") == "on" ||
-                                                c.choice("verdict.software") == "on");
+    const bool verdict =
+        workload == "surf" && (c.choice("verdict.band") == "on" || c.choice("verdict.break_even") == "on" ||
+                               c.choice("verdict.software") == "on");
     for (const Config::Entry& e : c.entries()) {
         const std::string& key = e.spec->key;
         if (e.origin == "default" || at_default(e)) continue;

@@ -25,7 +25,9 @@ std::string at(const std::string& path, const YAML::Node& node) {
 std::string scalar(const std::string& path, const std::string& key, const YAML::Node& node) {
     if (!node.IsScalar())
         throw ConfigError(fmt::format("{}: {}: expected a single value, found a {}", at(path, node), key,
-                                      node.IsMap() ? "map" : node.IsSequence() ? "list" : "null"));
+                                      node.IsMap()        ? "map"
+                                      : node.IsSequence() ? "list"
+                                                          : "null"));
     if (!is_utf8(node.Scalar())) throw ConfigError(fmt::format("{}: {}: not UTF-8 text", at(path, node), key));
     return node.Scalar();
 }
@@ -34,7 +36,9 @@ std::string scalar(const std::string& path, const std::string& key, const YAML::
 std::string key_of(const std::string& path, const YAML::Node& key) {
     if (!key.IsScalar() || key.Scalar().empty())
         throw ConfigError(fmt::format("{}: a key must be a plain name, not a {}", at(path, key),
-                                      key.IsMap() ? "map" : key.IsSequence() ? "list" : "empty value"));
+                                      key.IsMap()        ? "map"
+                                      : key.IsSequence() ? "list"
+                                                         : "empty value"));
     return key.Scalar();
 }
 
@@ -47,7 +51,9 @@ void apply_section(Config& config, const std::string& path, const std::string& s
         const std::string key = section + "." + key_of(path, item.first);
         // yaml-cpp keeps both of two equal keys: the second would silently win.
         const auto [first, fresh] = seen.emplace(key, at(path, item.first));
-        if (!fresh) throw ConfigError(fmt::format("{}: {} is set twice (first at {})", at(path, item.first), key, first->second));
+        if (!fresh)
+            throw ConfigError(
+                fmt::format("{}: {} is set twice (first at {})", at(path, item.first), key, first->second));
         const std::string value = relative_to_file(path, key, scalar(path, key, item.second));
         config.set(key, value, at(path, item.second.IsNull() ? item.first : item.second));
     }
@@ -62,7 +68,11 @@ bool is_utf8(std::string_view text) {
     for (size_t i = 0; i < text.size();) {
         const auto byte = [&](size_t k) { return k < text.size() ? uint8_t(text[k]) : uint8_t(0); };
         const uint8_t lead = byte(i);
-        const size_t length = lead < 0x80 ? 1 : (lead >> 5) == 0x6 ? 2 : (lead >> 4) == 0xE ? 3 : (lead >> 3) == 0x1E ? 4 : 0;
+        const size_t length = lead < 0x80           ? 1
+                              : (lead >> 5) == 0x6  ? 2
+                              : (lead >> 4) == 0xE  ? 3
+                              : (lead >> 3) == 0x1E ? 4
+                                                    : 0;
         if (length == 0) return false;
         uint32_t code = length == 1 ? lead : lead & (0x7F >> length);
         for (size_t k = 1; k < length; ++k) {
@@ -79,12 +89,14 @@ bool is_utf8(std::string_view text) {
 // The default output folder is traces/<name>: a name is one folder's name, so that no
 // scenario (nor sweep) writes outside traces/.
 void check_folder_name(const std::string& where, const std::string& name) {
-    const bool plain = !name.empty() && name != "." && name != ".." &&
-                       std::none_of(name.begin(), name.end(), [](unsigned char c) { return c == '/' || c == '\\' || c < ' '; });
+    const bool plain =
+        !name.empty() && name != "." && name != ".." &&
+        std::none_of(name.begin(), name.end(), [](unsigned char c) { return c == '/' || c == '\\' || c < ' '; });
     if (!plain)
-        throw ConfigError(fmt::format("{}: name '{}' cannot name the output folder traces/<name>: it must not be empty, "
-                                      "'.' or '..', nor hold '/', '\\' or control characters",
-                                      where, name));
+        throw ConfigError(
+            fmt::format("{}: name '{}' cannot name the output folder traces/<name>: it must not be empty, "
+                        "'.' or '..', nor hold '/', '\\' or control characters",
+                        where, name));
 }
 
 std::string relative_to_file(const std::string& file, const std::string& key, const std::string& value) {
@@ -112,8 +124,8 @@ YAML::Node load_yaml_file(const std::string& path, const std::string& what) {
     }
     // Two files pasted into one: which one was meant is not ours to guess.
     if (documents.size() > 1)
-        throw ConfigError(fmt::format("{}: holds {} YAML documents (the second starts near line {}); a {} is one",
-                                      path, documents.size(), documents[1].Mark().line + 1, what));
+        throw ConfigError(fmt::format("{}: holds {} YAML documents (the second starts near line {}); a {} is one", path,
+                                      documents.size(), documents[1].Mark().line + 1, what));
     return documents.empty() ? YAML::Node() : documents[0];
 }
 
@@ -123,8 +135,8 @@ Config load_scenario(const std::string& path, const std::vector<std::string>& ov
     config.name = fs::path(path).stem().string();
     const YAML::Node root = load_yaml_file(path, "scenario");
     if (!root.IsNull() && !root.IsMap())
-        throw ConfigError(fmt::format("{}: a scenario is a map of sections (name:, description:, cpu:, plb1:, ...)",
-                                      at(path, root)));
+        throw ConfigError(
+            fmt::format("{}: a scenario is a map of sections (name:, description:, cpu:, plb1:, ...)", at(path, root)));
     std::map<std::string, std::string> seen;  // every key given, and where
     for (const auto& item : root) {
         const std::string key = key_of(path, item.first);
@@ -170,8 +182,10 @@ void apply_overrides(Config& config, const std::vector<std::string>& overrides) 
         if (const auto it = given.find(key); it != given.end())
             throw ConfigError(fmt::format("--set {}: given twice ('{}', then '{}')", key, it->second, value));
         given.emplace(key, value);
-        if (key == "faults") config.faults = parse_faults_option(value);  // the whole list, in place of the scenario's
-        else config.set(key, value, "--set");
+        if (key == "faults")
+            config.faults = parse_faults_option(value);  // the whole list, in place of the scenario's
+        else
+            config.set(key, value, "--set");
     }
 }
 

@@ -32,14 +32,13 @@ Shard parse_shard(const std::string& text) {
     if (text.empty()) return {};
     static const std::regex form(R"(([0-9]{1,6})/([0-9]{1,6}))");
     std::smatch m;
-    if (!std::regex_match(text, m, form) || std::stoul(m[2]) == 0 || std::stoul(m[1]) == 0 || std::stoul(m[1]) > std::stoul(m[2]))
+    if (!std::regex_match(text, m, form) || std::stoul(m[2]) == 0 || std::stoul(m[1]) == 0 ||
+        std::stoul(m[1]) > std::stoul(m[2]))
         throw ConfigError(fmt::format("--shard '{}': expected K/N with 1 <= K <= N, e.g. 2/8", text));
     return {std::stoul(m[1]), std::stoul(m[2])};
 }
 
-std::string database_name(const Shard& s) {
-    return s.n == 1 ? "sweep.db" : fmt::format("shard-{}-of-{}.db", s.k, s.n);
-}
+std::string database_name(const Shard& s) { return s.n == 1 ? "sweep.db" : fmt::format("shard-{}-of-{}.db", s.k, s.n); }
 
 // The sweep databases in `dir`: sweep.db and shard-K-of-N.db, whatever they hold.
 std::vector<fs::path> sweep_databases(const fs::path& dir) {
@@ -73,10 +72,12 @@ void remove_results(const fs::path& dir) {
         const std::string name = entry.path().filename().string();
         const bool plot = name.size() > 9 && name.rfind("plot_", 0) == 0 && name.substr(name.size() - 4) == ".svg" &&
                           find_parameter(name.substr(5, name.size() - 9));
-        if (plot || name == "results.csv" || name == "results.json" || name == "pareto.svg") files.push_back(entry.path());
+        if (plot || name == "results.csv" || name == "results.json" || name == "pareto.svg")
+            files.push_back(entry.path());
     }
     for (const fs::path& f : files)
-        if (!fs::remove(f, ec) && ec) throw EnvironmentError(fmt::format("{}: cannot remove it: {}", f.string(), ec.message()));
+        if (!fs::remove(f, ec) && ec)
+            throw EnvironmentError(fmt::format("{}: cannot remove it: {}", f.string(), ec.message()));
 }
 
 // The folder's databases against this sweep, before one is opened. One of another sweep is
@@ -90,9 +91,10 @@ void prepare_folder(const fs::path& dir, const fs::path& mine, const SweepPlan& 
         const std::string theirs = SweepStore::fingerprint_of(db.string());
         const bool other = !theirs.empty() && theirs != plan.fingerprint;
         if (other && !fresh)
-            throw ConfigError(fmt::format("{}: holds the points of another sweep: {}; give --fresh to discard them and start "
-                                          "over, or another --out",
-                                          db.string(), fmt::join(sweep_changes(theirs, plan.fingerprint), "; ")));
+            throw ConfigError(
+                fmt::format("{}: holds the points of another sweep: {}; give --fresh to discard them and start "
+                            "over, or another --out",
+                            db.string(), fmt::join(sweep_changes(theirs, plan.fingerprint), "; ")));
         if (fresh && (other || whole || db == mine)) {
             remove_database(db);
             discarded_sweep_db = discarded_sweep_db || db.filename() == "sweep.db";
@@ -103,7 +105,8 @@ void prepare_folder(const fs::path& dir, const fs::path& mine, const SweepPlan& 
 
 std::string clock(double seconds) {
     const auto s = long(seconds + 0.5);
-    return s >= 3600 ? fmt::format("{}:{:02}:{:02}", s / 3600, s / 60 % 60, s % 60) : fmt::format("{}:{:02}", s / 60, s % 60);
+    return s >= 3600 ? fmt::format("{}:{:02}:{:02}", s / 3600, s / 60 % 60, s % 60)
+                     : fmt::format("{}:{:02}", s / 60, s % 60);
 }
 
 // "[#######.............] 12/40 points, 1 not run, 0:35 gone, 1:10 to go"
@@ -118,7 +121,8 @@ std::string progress_text(size_t done, size_t total, size_t errors, double wall)
 
 // What a point's child hands back: its row's figures, not its whole report.
 Json sweep_summary(const Json& report) {
-    Json s = {{"figures", sweep_figures(report)}, {"passed", report.value("passed", false)},
+    Json s = {{"figures", sweep_figures(report)},
+              {"passed", report.value("passed", false)},
               {"wall_time_s", report.value("wall_time_s", 0.0)}};
     if (report.contains("failure")) s["failure"] = report["failure"];
     return s;
@@ -132,7 +136,8 @@ Json params_of(const SweepPoint& p) {
 
 void write_results(const fs::path& dir, const SweepStore& store, const Json& notes = Json::object()) {
     const std::string name = store.meta("name");
-    if (!is_utf8(name)) throw ConfigError(fmt::format("{}: its record of the sweep's name is not UTF-8 text", store.file()));
+    if (!is_utf8(name))
+        throw ConfigError(fmt::format("{}: its record of the sweep's name is not UTF-8 text", store.file()));
     write_sweep_results(dir.string(), name, store.axes(), store.rows(), notes);
 }
 
@@ -170,19 +175,22 @@ int submit_to_slurm(const SweepOptions& options, const SweepPlan& plan, const fs
         "#SBATCH --output={logs}/shard-%a.log\n"
         "exec {self} sweep {file} --out {folder} --jobs {jobs} --quiet --shard \"$SLURM_ARRAY_TASK_ID/{n}\"\n",
         fmt::arg("name", plan.name), fmt::arg("n", n), fmt::arg("jobs", jobs), fmt::arg("logs", quoted(logs.string())),
-        fmt::arg("self", quoted(self.string())), fmt::arg("file", quoted(file.string())), fmt::arg("folder", quoted(folder.string())));
+        fmt::arg("self", quoted(self.string())), fmt::arg("file", quoted(file.string())),
+        fmt::arg("folder", quoted(folder.string())));
     const fs::path array = logs / "array.sh";
     write_file_atomically(array.string(), script);
     // The job names go on the command line, quoted: a sweep's name may hold spaces or quotes,
     // which neither an #SBATCH line nor the shell would take as they are.
-    const std::string id =
-        run_tool(fmt::format("sbatch --parsable --job-name={} {}", quoted("surfvp-" + plan.name), quoted(array.string())));
+    const std::string id = run_tool(
+        fmt::format("sbatch --parsable --job-name={} {}", quoted("surfvp-" + plan.name), quoted(array.string())));
     const std::string array_id = id.substr(0, id.find_first_of(";\n"));
-    const std::string merge = run_tool(fmt::format("sbatch --parsable --job-name={} --dependency=afterok:{} --output={} --wrap={}",
-                                                   quoted("surfvp-" + plan.name + "-merge"), array_id, quoted((logs / "merge.log").string()),
-                                                   quoted(quoted(self.string()) + " sweep-merge " + quoted(folder.string()))));
-    std::fprintf(stderr, "surfvp: %s: job array %s (%u shards) and merge job %s submitted; results in %s when they end\n",
-                 plan.name.c_str(), array_id.c_str(), n, merge.substr(0, merge.find_first_of(";\n")).c_str(), folder.c_str());
+    const std::string merge =
+        run_tool(fmt::format("sbatch --parsable --job-name={} --dependency=afterok:{} --output={} --wrap={}",
+                             quoted("surfvp-" + plan.name + "-merge"), array_id, quoted((logs / "merge.log").string()),
+                             quoted(quoted(self.string()) + " sweep-merge " + quoted(folder.string()))));
+    std::fprintf(
+        stderr, "surfvp: %s: job array %s (%u shards) and merge job %s submitted; results in %s when they end\n",
+        plan.name.c_str(), array_id.c_str(), n, merge.substr(0, merge.find_first_of(";\n")).c_str(), folder.c_str());
     return kExitOk;
 }
 
@@ -192,19 +200,24 @@ int submit_to_slurm(const SweepOptions& options, const SweepPlan& plan, const fs
 int exit_for(const std::string& name, const std::vector<std::string>& not_run, const std::string& why_in) {
     if (not_run.empty()) return kExitOk;
     constexpr size_t named = 10;
-    std::fprintf(stderr, "surfvp: %s: %zu points could not run: %s%s; %s says why\n", name.c_str(), not_run.size(),
-                 fmt::format("{}", fmt::join(not_run.begin(), not_run.begin() + long(std::min(named, not_run.size())), "; ")).c_str(),
-                 not_run.size() > named ? fmt::format("; and {} more", not_run.size() - named).c_str() : "", why_in.c_str());
+    std::fprintf(
+        stderr, "surfvp: %s: %zu points could not run: %s%s; %s says why\n", name.c_str(), not_run.size(),
+        fmt::format("{}", fmt::join(not_run.begin(), not_run.begin() + long(std::min(named, not_run.size())), "; "))
+            .c_str(),
+        not_run.size() > named ? fmt::format("; and {} more", not_run.size() - named).c_str() : "", why_in.c_str());
     return kExitFailed;
 }
 
-std::string not_run_text(size_t index, const std::string& id, int exit) { return fmt::format("point {} ({}, exit {})", index, id, exit); }
+std::string not_run_text(size_t index, const std::string& id, int exit) {
+    return fmt::format("point {} ({}, exit {})", index, id, exit);
+}
 
 int exit_code(const SweepPlan& plan, const Shard& shard, const SweepStore& store) {
     std::vector<std::string> not_run;
     for (const SweepPoint& p : plan.points)
         if (p.index % shard.n == shard.k - 1)
-            if (const auto exit = store.exit_of(p.id); exit && !point_ran(*exit)) not_run.push_back(not_run_text(p.index, p.id, *exit));
+            if (const auto exit = store.exit_of(p.id); exit && !point_ran(*exit))
+                not_run.push_back(not_run_text(p.index, p.id, *exit));
     return exit_for(plan.name, not_run, shard.n == 1 ? "results.csv" : "the shard database");
 }
 
@@ -248,14 +261,17 @@ std::string missing_text(const std::vector<std::string>& missing) {
         by_n[m[2]].push_back(m[1]);
     }
     std::vector<std::string> parts;
-    for (const auto& [n, ks] : by_n) parts.push_back(fmt::format("{} {} of {}", ks.size() == 1 ? "shard" : "shards", fmt::join(ks, ", "), n));
-    return fmt::format("{} {} missing ({})", fmt::join(parts, " and "), missing.size() == 1 ? "is" : "are", fmt::join(missing, ", "));
+    for (const auto& [n, ks] : by_n)
+        parts.push_back(fmt::format("{} {} of {}", ks.size() == 1 ? "shard" : "shards", fmt::join(ks, ", "), n));
+    return fmt::format("{} {} missing ({})", fmt::join(parts, " and "), missing.size() == 1 ? "is" : "are",
+                       fmt::join(missing, ", "));
 }
 
 // One database to merge, read whole and checked before anything is written: a sweep
 // database, not empty, of the sweep `fingerprint` (the reference's), each row undamaged, of
 // its own shard (a renamed file is not), and named by its own values.
-void check_merged(const fs::path& file, const std::string& fingerprint, const std::string& reference, const Shard& shard) {
+void check_merged(const fs::path& file, const std::string& fingerprint, const std::string& reference,
+                  const Shard& shard) {
     const auto db = SweepStore::read_only(file.string());
     const std::string theirs = db->meta("fingerprint");
     if (theirs.empty()) throw ConfigError(fmt::format("{}: is empty: it holds no sweep", file.string()));
@@ -265,13 +281,13 @@ void check_merged(const fs::path& file, const std::string& fingerprint, const st
     const std::vector<std::string> axes = db->axes();
     for (const SweepRow& r : db->rows()) {
         if (r.index % shard.n != shard.k - 1)
-            throw ConfigError(fmt::format("{}: point {} ({}) is not of shard {} of {} (a file renamed?)", file.string(), r.index, r.id,
-                                          shard.k, shard.n));
+            throw ConfigError(fmt::format("{}: point {} ({}) is not of shard {} of {} (a file renamed?)", file.string(),
+                                          r.index, r.id, shard.k, shard.n));
         std::vector<std::pair<std::string, std::string>> values;
         for (const std::string& a : axes) values.emplace_back(a, r.params.value(a, ""));
         if (point_id(values) != r.id)
-            throw ConfigError(fmt::format("{}: point {} ({}): its values give another id ({})", file.string(), r.index, r.id,
-                                          point_id(values)));
+            throw ConfigError(fmt::format("{}: point {} ({}): its values give another id ({})", file.string(), r.index,
+                                          r.id, point_id(values)));
     }
 }
 
@@ -282,8 +298,7 @@ public:
     ~Scratch() {
         if (!kept_) try {
                 remove_database(path_);
-            } catch (const EnvironmentError&) {
-            }
+            } catch (const EnvironmentError&) {}
     }
     const fs::path& path() const { return path_; }
     void keep() { kept_ = true; }
@@ -297,7 +312,8 @@ private:
 
 int sweep_command(const SweepOptions& options) {
     const SweepPlan plan = load_sweep(options.file);
-    if (options.slurm && !options.shard.empty()) throw ConfigError("--slurm runs the shards itself: give --slurm or --shard, not both");
+    if (options.slurm && !options.shard.empty())
+        throw ConfigError("--slurm runs the shards itself: give --slurm or --shard, not both");
     const Shard shard = parse_shard(options.shard);
     const fs::path dir = options.out.empty() ? fs::path("traces") / plan.name : fs::path(options.out);
     std::error_code ec;
@@ -326,8 +342,8 @@ int sweep_command(const SweepOptions& options) {
             kept += exit && !point_ran(*exit) && options.keep_failed;
         }
     if (!options.quiet && (todo.size() < mine || retried))
-        std::fprintf(stderr, "surfvp: %s: %zu of %zu points already done in %s%s\n", plan.name.c_str(), mine - todo.size(), mine,
-                     (dir / database_name(shard)).c_str(),
+        std::fprintf(stderr, "surfvp: %s: %zu of %zu points already done in %s%s\n", plan.name.c_str(),
+                     mine - todo.size(), mine, (dir / database_name(shard)).c_str(),
                      retried ? fmt::format("; {} that could not run are run again", retried).c_str()
                      : kept  ? fmt::format(" ({} that could not run kept as recorded: --keep-failed)", kept).c_str()
                              : "");
@@ -363,10 +379,13 @@ int sweep_command(const SweepOptions& options) {
                 Config config = plan.config(*p);
                 check_scenario(config);
                 Resimulation::prepare(config);
-                pool.submit(std::move(config), [p, &record, &submit_next](const Json& r) {
-                    record(*p, r);
-                    submit_next();
-                }, sweep_summary);
+                pool.submit(
+                    std::move(config),
+                    [p, &record, &submit_next](const Json& r) {
+                        record(*p, r);
+                        submit_next();
+                    },
+                    sweep_summary);
                 return;
             } catch (const ConfigError& e) {
                 record(*p, Json{{"error", e.what()}, {"exit", 2}});
@@ -387,11 +406,13 @@ int sweep_merge_command(const std::string& folder, bool partial) {
     std::error_code ec;
     if (!fs::is_directory(dir, ec)) throw ConfigError(fmt::format("{}: no such sweep folder", folder));
     const std::vector<ShardFile> shards = shard_files(dir);
-    if (shards.empty()) throw ConfigError(fmt::format("{}: holds no shard databases (shard-K-of-N.db) to merge", folder));
+    if (shards.empty())
+        throw ConfigError(fmt::format("{}: holds no shard databases (shard-K-of-N.db) to merge", folder));
     const std::vector<std::string> missing = missing_shards(shards);
     if (!missing.empty() && !partial)
-        throw ConfigError(fmt::format("{}: {}: their points would not be in the results; give --partial to merge the others",
-                                      folder, missing_text(missing)));
+        throw ConfigError(
+            fmt::format("{}: {}: their points would not be in the results; give --partial to merge the others", folder,
+                        missing_text(missing)));
     // sweep.db, when there is one, is the sweep the shards must be of; else the first shard.
     const bool has_whole = fs::exists(whole, ec);
     const fs::path reference = has_whole ? whole : shards.front().path;
@@ -409,7 +430,9 @@ int sweep_merge_command(const std::string& folder, bool partial) {
         for (const ShardFile& s : shards) added += merged.merge(s.path.string());
     }
     fs::rename(merging.path(), whole, ec);
-    if (ec) throw EnvironmentError(fmt::format("{}: cannot put the merged database in place: {}", whole.string(), ec.message()));
+    if (ec)
+        throw EnvironmentError(
+            fmt::format("{}: cannot put the merged database in place: {}", whole.string(), ec.message()));
     merging.keep();
 
     const SweepStore store(whole.string(), fingerprint);
@@ -417,11 +440,12 @@ int sweep_merge_command(const std::string& folder, bool partial) {
     if (!missing.empty()) notes["missing_shards"] = missing;
     write_results(dir, store, notes);
     const std::vector<SweepRow> rows = store.rows();
-    std::fprintf(stderr, "surfvp: %s: %zu shard databases, %zu new points, %zu in all; results in %s%s\n", store.meta("name").c_str(),
-                 shards.size(), added, rows.size(), folder.c_str(),
-                 missing.empty() ? ""
-                                 : fmt::format(" (partial: {}, their points are not in the results)", missing_text(missing))
-                                       .c_str());
+    std::fprintf(
+        stderr, "surfvp: %s: %zu shard databases, %zu new points, %zu in all; results in %s%s\n",
+        store.meta("name").c_str(), shards.size(), added, rows.size(), folder.c_str(),
+        missing.empty()
+            ? ""
+            : fmt::format(" (partial: {}, their points are not in the results)", missing_text(missing)).c_str());
     std::vector<std::string> not_run;
     for (const SweepRow& r : rows)
         if (!point_ran(r.exit)) not_run.push_back(not_run_text(r.index, r.id, r.exit));

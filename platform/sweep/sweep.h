@@ -10,9 +10,9 @@ namespace surfvp {
 
 struct SweepOptions {
     std::string file;
-    std::string out;    // default: traces/<sweep name>
-    unsigned jobs = 0;  // 0: one per core
-    std::string shard;  // "K/N": only the points whose index % N == K - 1, into shard-K-of-N.db
+    std::string out;     // default: traces/<sweep name>
+    unsigned jobs = 0;   // 0: one per core
+    std::string shard;   // "K/N": only the points whose index % N == K - 1, into shard-K-of-N.db
     unsigned slurm = 0;  // > 0: write and submit a Slurm job array of this many shards, and a merge after it
     bool quiet = false;
     // Start over: discard the folder's record of an earlier sweep (its databases, results and

@@ -18,12 +18,16 @@ namespace fs = std::filesystem;
 using Json = nlohmann::ordered_json;
 namespace {
 
-std::string at(const std::string& path, const YAML::Node& node) { return fmt::format("{}:{}", path, node.Mark().line + 1); }
+std::string at(const std::string& path, const YAML::Node& node) {
+    return fmt::format("{}:{}", path, node.Mark().line + 1);
+}
 
 std::string scalar(const std::string& path, const YAML::Node& node, const std::string& what) {
     if (!node.IsScalar())
         throw ConfigError(fmt::format("{}: {}: expected a single value, found a {}", at(path, node), what,
-                                      node.IsMap() ? "map" : node.IsSequence() ? "list" : "null"));
+                                      node.IsMap()        ? "map"
+                                      : node.IsSequence() ? "list"
+                                                          : "null"));
     // The name, values and description go into results.json, which holds only UTF-8 text.
     if (!is_utf8(node.Scalar())) throw ConfigError(fmt::format("{}: {}: not UTF-8 text", at(path, node), what));
     return node.Scalar();
@@ -53,8 +57,9 @@ std::pair<double, std::string> quantity(const std::string& text, const std::stri
 
 SweepAxis parse_axis(const std::string& path, const YAML::Node& key, const YAML::Node& body) {
     SweepAxis axis{scalar(path, key, "axis"), {}, at(path, key)};
-    if (!find_parameter(axis.key)) throw ConfigError(fmt::format("{}: axis {}: no such parameter (surfvp params lists them)",
-                                                                 axis.origin, axis.key));
+    if (!find_parameter(axis.key))
+        throw ConfigError(
+            fmt::format("{}: axis {}: no such parameter (surfvp params lists them)", axis.origin, axis.key));
     if (body.IsSequence()) {
         for (const auto& v : body) axis.values.push_back(resolved(path, axis.key, scalar(path, v, axis.key)));
     } else if (body.IsMap()) {
@@ -62,7 +67,8 @@ SweepAxis parse_axis(const std::string& path, const YAML::Node& key, const YAML:
         for (const auto& item : body) {
             const std::string k = scalar(path, item.first, axis.key);
             if (k != "from" && k != "to" && k != "step")
-                throw ConfigError(fmt::format("{}: axis {}: '{}' is not from, to or step", at(path, item.first), axis.key, k));
+                throw ConfigError(
+                    fmt::format("{}: axis {}: '{}' is not from, to or step", at(path, item.first), axis.key, k));
             range[k] = scalar(path, item.second, axis.key + "." + k);
         }
         for (const char* k : {"from", "to", "step"})
@@ -96,8 +102,8 @@ size_t point_count(const std::vector<SweepAxis>& axes, bool zip, const std::stri
     bool over = false;
     for (const SweepAxis& a : axes) {
         if (zip && a.values.size() != n)
-            throw ConfigError(fmt::format("{}: combine: zip needs axes of one length: {} has {} values, {} has {}", where,
-                                          axes[0].key, n, a.key, a.values.size()));
+            throw ConfigError(fmt::format("{}: combine: zip needs axes of one length: {} has {} values, {} has {}",
+                                          where, axes[0].key, n, a.key, a.values.size()));
         if (!zip) over = over || __builtin_mul_overflow(n, a.values.size(), &n);
     }
     if (!over && n <= kMaxSweepPoints) return n;
@@ -108,9 +114,10 @@ size_t point_count(const std::vector<SweepAxis>& axes, bool zip, const std::stri
         sizes.push_back(fmt::format("{} ({} values)", a.key, a.values.size()));
     }
     if (zip) product = (long double)n;
-    throw ConfigError(fmt::format("{}: combine: the axes make {} points, more than the {} a sweep may have: {}", where,
-                                  product < 1e18L ? fmt::format("{}", (unsigned long long)product) : fmt::format("{:.3g}", double(product)),
-                                  kMaxSweepPoints, fmt::join(sizes, fmt::format(" {} ", zip ? "with" : "x"))));
+    throw ConfigError(fmt::format(
+        "{}: combine: the axes make {} points, more than the {} a sweep may have: {}", where,
+        product < 1e18L ? fmt::format("{}", (unsigned long long)product) : fmt::format("{:.3g}", double(product)),
+        kMaxSweepPoints, fmt::join(sizes, fmt::format(" {} ", zip ? "with" : "x"))));
 }
 
 std::vector<SweepPoint> combine(const std::vector<SweepAxis>& axes, bool zip, size_t n) {
@@ -143,7 +150,10 @@ Json identity_of(const SweepPlan& plan) {
     for (const std::string& s : plan.sets) sets[s.substr(0, s.find('='))] = s.substr(s.find('=') + 1);
     Json axes = Json::array();
     for (const SweepAxis& a : plan.axes) axes.push_back({{"key", a.key}, {"values", a.values}});
-    return {{"surfvp", SURFVP_VERSION}, {"scenario", text.str()}, {"set", sets}, {"axes", axes},
+    return {{"surfvp", SURFVP_VERSION},
+            {"scenario", text.str()},
+            {"set", sets},
+            {"axes", axes},
             {"combine", plan.zip ? "zip" : "cartesian"}};
 }
 
@@ -158,7 +168,8 @@ std::string some(const std::vector<std::string>& values) {
 std::vector<std::string> set_changes(const Json& before, const Json& now) {
     std::vector<std::string> out;
     for (const auto& [key, value] : now.items())
-        if (!before.contains(key)) out.push_back(fmt::format("{} added", key));
+        if (!before.contains(key))
+            out.push_back(fmt::format("{} added", key));
         else if (before[key] != value)
             out.push_back(fmt::format("{}: {}, now {}", key, before[key].get<std::string>(), value.get<std::string>()));
     for (const auto& [key, value] : before.items())
@@ -195,7 +206,8 @@ std::vector<std::string> axis_changes(const Json& before, const Json& now) {
     for (const std::string& k : keys_before)
         if (std::find(common.begin(), common.end(), k) != common.end()) common_before.push_back(k);
     if (common_before != common)  // the order decides the points' indices
-        out.push_back(fmt::format("axes reordered ({}; now {})", fmt::join(common_before, ", "), fmt::join(common, ", ")));
+        out.push_back(
+            fmt::format("axes reordered ({}; now {})", fmt::join(common_before, ", "), fmt::join(common, ", ")));
     return out;
 }
 
@@ -250,7 +262,8 @@ std::vector<std::string> expand_range(const std::string& from, const std::string
     const auto [b, to_unit] = quantity(to, where);
     const auto [d, step_unit] = quantity(step, where);
     if (to_unit != unit || (!step_unit.empty() && step_unit != unit))
-        throw ConfigError(fmt::format("{}: from, to and step must share one unit ('{}', '{}', '{}')", where, from, to, step));
+        throw ConfigError(
+            fmt::format("{}: from, to and step must share one unit ('{}', '{}', '{}')", where, from, to, step));
     if (!(d > 0)) throw ConfigError(fmt::format("{}: step {} must be above zero", where, step));
     if (b < a) throw ConfigError(fmt::format("{}: to ({}) is below from ({})", where, to, from));
     // A step that lands on `to` within rounding includes it.
@@ -284,27 +297,31 @@ SweepPlan load_sweep(const std::string& path) {
     for (const auto& item : root) {
         const std::string key = scalar(path, item.first, "key");
         if (const auto [first, fresh] = seen.emplace(key, at(path, item.first)); !fresh)
-            throw ConfigError(fmt::format("{}: '{}' appears twice (first at {})", at(path, item.first), key, first->second));
+            throw ConfigError(
+                fmt::format("{}: '{}' appears twice (first at {})", at(path, item.first), key, first->second));
         if (key == "name") {
             // The default sweep folder is traces/<name>, as a scenario's output folder.
             plan.name = scalar(path, item.second, key);
             check_folder_name(at(path, item.second), plan.name);
-        }
-        else if (key == "description") plan.description = scalar(path, item.second, key);
+        } else if (key == "description")
+            plan.description = scalar(path, item.second, key);
         else if (key == "scenario") {
             // A path is relative to the sweep file's folder; a bare name is a shipped scenario.
             const std::string s = scalar(path, item.second, key);
             const bool a_path = s.find('/') != std::string::npos || fs::path(s).extension() == ".yaml";
-            plan.scenario = a_path && fs::path(s).is_relative() ? (fs::path(path).parent_path() / s).lexically_normal().string()
-                                                               : resolve_scenario(s);
+            plan.scenario = a_path && fs::path(s).is_relative()
+                                ? (fs::path(path).parent_path() / s).lexically_normal().string()
+                                : resolve_scenario(s);
         } else if (key == "set") {
-            if (!item.second.IsMap()) throw ConfigError(fmt::format("{}: set: a map of KEY: VALUE", at(path, item.second)));
+            if (!item.second.IsMap())
+                throw ConfigError(fmt::format("{}: set: a map of KEY: VALUE", at(path, item.second)));
             for (const auto& s : item.second) {
                 const std::string k = scalar(path, s.first, "set");
                 plan.sets.push_back(k + "=" + resolved(path, k, scalar(path, s.second, k)));
             }
         } else if (key == "axes") {
-            if (!item.second.IsMap()) throw ConfigError(fmt::format("{}: axes: a map of KEY: values", at(path, item.second)));
+            if (!item.second.IsMap())
+                throw ConfigError(fmt::format("{}: axes: a map of KEY: values", at(path, item.second)));
             axes = item.second;
         } else if (key == "combine") {
             const std::string c = scalar(path, item.second, key);
@@ -313,20 +330,26 @@ SweepPlan load_sweep(const std::string& path) {
             plan.zip = c == "zip";
             combine_where = at(path, item.second);
         } else {
-            throw ConfigError(fmt::format("{}: '{}' is not a sweep key (name, description, scenario, set, axes, combine)",
-                                          at(path, item.first), key));
+            throw ConfigError(
+                fmt::format("{}: '{}' is not a sweep key (name, description, scenario, set, axes, combine)",
+                            at(path, item.first), key));
         }
     }
     if (!seen.count("name")) check_folder_name(path, plan.name);  // the file's stem: "..yaml" gives "."
-    if (plan.scenario.empty()) throw ConfigError(fmt::format("{}: a sweep names its base scenario (scenario: NAME_OR_PATH)", path));
+    if (plan.scenario.empty())
+        throw ConfigError(fmt::format("{}: a sweep names its base scenario (scenario: NAME_OR_PATH)", path));
     std::map<std::string, std::string> axis_at;
     for (const auto& item : axes) {
         SweepAxis axis = parse_axis(path, item.first, item.second);
         if (const auto [first, fresh] = axis_at.emplace(axis.key, axis.origin); !fresh)
-            throw ConfigError(fmt::format("{}: axis {} is given twice (first at {})", axis.origin, axis.key, first->second));
+            throw ConfigError(
+                fmt::format("{}: axis {} is given twice (first at {})", axis.origin, axis.key, first->second));
         plan.axes.push_back(std::move(axis));
     }
-    const size_t count = point_count(plan.axes, plan.zip, seen.count("combine") ? combine_where : seen.count("axes") ? seen["axes"] : path);
+    const size_t count = point_count(plan.axes, plan.zip,
+                                     seen.count("combine") ? combine_where
+                                     : seen.count("axes")  ? seen["axes"]
+                                                           : path);
     const Config base = load_scenario(plan.scenario, plan.sets);
     for (const SweepAxis& axis : plan.axes)
         for (const std::string& s : plan.sets)

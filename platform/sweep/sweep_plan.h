@@ -30,15 +30,15 @@ struct SweepAxis {
 };
 
 struct SweepPoint {
-    size_t index = 0;                                       // in the plan's order, from 0
+    size_t index = 0;                                         // in the plan's order, from 0
     std::vector<std::pair<std::string, std::string>> values;  // one per axis
-    std::string id;                                          // "fhg.clock=75 MHz, fhg.read_buses=4"
+    std::string id;                                           // "fhg.clock=75 MHz, fhg.read_buses=4"
 };
 
 struct SweepPlan {
     std::string file, name, description;
-    std::string scenario;               // the base scenario's file
-    std::vector<std::string> sets;      // KEY=VALUE for every point
+    std::string scenario;           // the base scenario's file
+    std::vector<std::string> sets;  // KEY=VALUE for every point
     std::vector<SweepAxis> axes;
     bool zip = false;
     std::vector<SweepPoint> points;
@@ -46,7 +46,7 @@ struct SweepPlan {
     // files are spelt: surfvp's version, the base scenario's text, the fixed sets and the axes
     // (keys, values, how they combine). A path's value is its file's one absolute spelling.
     nlohmann::ordered_json identity;
-    std::string fingerprint;            // identity as text: sweep.db's, to compare
+    std::string fingerprint;  // identity as text: sweep.db's, to compare
 
     // The point's configuration: the base scenario with the fixed sets and its values.
     Config config(const SweepPoint& point) const;

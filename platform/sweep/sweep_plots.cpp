@@ -20,7 +20,8 @@ class FpsChart {
 public:
     static constexpr double W = 640, H = 400, L = 64, R = 16, T = 36, B = 48;
 
-    FpsChart(const std::string& title, const std::string& x_label, double x0, double x1, const std::vector<SweepRow>& rows)
+    FpsChart(const std::string& title, const std::string& x_label, double x0, double x1,
+             const std::vector<SweepRow>& rows)
         : x0_(x0), x1_(x1 > x0 ? x1 : x0 + 1) {
         double budget = 0;
         for (const SweepRow& r : rows) {
@@ -28,47 +29,53 @@ public:
             budget = std::max(budget, r.figures.value("budget_fps", 0.0));
         }
         y1_ = std::max(y1_, budget) * 1.1 + 1e-9;
-        svg_ = fmt::format("<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{0}\" height=\"{1}\" font-family=\"sans-serif\" "
-                           "font-size=\"12\"><rect width=\"100%\" height=\"100%\" fill=\"white\"/>"
-                           "<text x=\"{2}\" y=\"20\" font-size=\"14\">{3}</text>"
-                           "<line x1=\"{2}\" y1=\"{4}\" x2=\"{5}\" y2=\"{4}\" stroke=\"black\"/>"
-                           "<line x1=\"{2}\" y1=\"{6}\" x2=\"{2}\" y2=\"{4}\" stroke=\"black\"/>"
-                           "<text x=\"{7}\" y=\"{8}\" text-anchor=\"middle\">{9}</text>"
-                           "<text x=\"14\" y=\"{10}\" transform=\"rotate(-90 14 {10})\" text-anchor=\"middle\">frames/s</text>",
-                           W, H, L, xml_escape(title), H - B, W - R, T, (L + W - R) / 2, H - 10, xml_escape(x_label),
-                           (T + H - B) / 2);
+        svg_ = fmt::format(
+            "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{0}\" height=\"{1}\" font-family=\"sans-serif\" "
+            "font-size=\"12\"><rect width=\"100%\" height=\"100%\" fill=\"white\"/>"
+            "<text x=\"{2}\" y=\"20\" font-size=\"14\">{3}</text>"
+            "<line x1=\"{2}\" y1=\"{4}\" x2=\"{5}\" y2=\"{4}\" stroke=\"black\"/>"
+            "<line x1=\"{2}\" y1=\"{6}\" x2=\"{2}\" y2=\"{4}\" stroke=\"black\"/>"
+            "<text x=\"{7}\" y=\"{8}\" text-anchor=\"middle\">{9}</text>"
+            "<text x=\"14\" y=\"{10}\" transform=\"rotate(-90 14 {10})\" text-anchor=\"middle\">frames/s</text>",
+            W, H, L, xml_escape(title), H - B, W - R, T, (L + W - R) / 2, H - 10, xml_escape(x_label), (T + H - B) / 2);
         for (int i = 0; i <= 4; ++i)
-            svg_ += fmt::format("<text x=\"{}\" y=\"{:.1f}\" text-anchor=\"end\">{:.3g}</text>", L - 6, py(y1_ * i / 4) + 4, y1_ * i / 4);
+            svg_ += fmt::format("<text x=\"{}\" y=\"{:.1f}\" text-anchor=\"end\">{:.3g}</text>", L - 6,
+                                py(y1_ * i / 4) + 4, y1_ * i / 4);
         if (budget > 0)
-            svg_ += fmt::format("<line x1=\"{0}\" y1=\"{1:.1f}\" x2=\"{2}\" y2=\"{1:.1f}\" stroke=\"#c00\" stroke-dasharray=\"6 4\"/>"
-                                "<text x=\"{2}\" y=\"{3:.1f}\" text-anchor=\"end\" fill=\"#c00\">budget {4:g} frames/s</text>",
-                                L, py(budget), W - R, py(budget) - 4, budget);
+            svg_ += fmt::format(
+                "<line x1=\"{0}\" y1=\"{1:.1f}\" x2=\"{2}\" y2=\"{1:.1f}\" stroke=\"#c00\" stroke-dasharray=\"6 4\"/>"
+                "<text x=\"{2}\" y=\"{3:.1f}\" text-anchor=\"end\" fill=\"#c00\">budget {4:g} frames/s</text>",
+                L, py(budget), W - R, py(budget) - 4, budget);
     }
     double px(double x) const { return L + (x - x0_) / (x1_ - x0_) * (W - L - R); }
     double py(double y) const { return H - B - y / y1_ * (H - T - B); }
     void x_tick(double x, const std::string& label) {
-        svg_ += fmt::format("<text x=\"{:.1f}\" y=\"{}\" text-anchor=\"middle\">{}</text>", px(x), H - B + 16, xml_escape(label));
+        svg_ += fmt::format("<text x=\"{:.1f}\" y=\"{}\" text-anchor=\"middle\">{}</text>", px(x), H - B + 16,
+                            xml_escape(label));
     }
-    void line(const std::vector<std::pair<double, double>>& points, const std::string& stroke, const std::string& title) {
+    void line(const std::vector<std::pair<double, double>>& points, const std::string& stroke,
+              const std::string& title) {
         std::string p;
         for (const auto& [x, y] : points) p += fmt::format("{:.1f},{:.1f} ", px(x), py(y));
-        svg_ += fmt::format("<polyline points=\"{}\" fill=\"none\" stroke=\"{}\"><title>{}</title></polyline>", p, stroke,
-                            xml_escape(title));
+        svg_ += fmt::format("<polyline points=\"{}\" fill=\"none\" stroke=\"{}\"><title>{}</title></polyline>", p,
+                            stroke, xml_escape(title));
     }
     void label(double x, double y, const std::string& text) {
-        svg_ += fmt::format("<text x=\"{:.1f}\" y=\"{:.1f}\" text-anchor=\"end\" font-size=\"10\" fill=\"#466\">{}</text>", px(x) - 8,
-                            py(y) - 6, xml_escape(text));
+        svg_ +=
+            fmt::format("<text x=\"{:.1f}\" y=\"{:.1f}\" text-anchor=\"end\" font-size=\"10\" fill=\"#466\">{}</text>",
+                        px(x) - 8, py(y) - 6, xml_escape(text));
     }
     // A point of the sweep; filled when it is on the Pareto front.
     void point(double x, const SweepRow& r, bool on_front) {
         const double fps = r.figures.value("fps", 0.0);
-        svg_ += fmt::format("<circle cx=\"{:.1f}\" cy=\"{:.1f}\" r=\"4\" stroke=\"#1b3a5c\" fill=\"{}\"><title>{}: {:.3g} frames/s{}"
-                            "</title></circle>",
-                            px(x), py(fps), on_front ? "#1b3a5c" : "white", xml_escape(r.id), fps, on_front ? " (Pareto front)" : "");
+        svg_ += fmt::format(
+            "<circle cx=\"{:.1f}\" cy=\"{:.1f}\" r=\"4\" stroke=\"#1b3a5c\" fill=\"{}\"><title>{}: {:.3g} frames/s{}"
+            "</title></circle>",
+            px(x), py(fps), on_front ? "#1b3a5c" : "white", xml_escape(r.id), fps, on_front ? " (Pareto front)" : "");
     }
     std::string finish() {
-        return svg_ + fmt::format("<text x=\"{}\" y=\"{}\" fill=\"#1b3a5c\">filled: on the Pareto front</text></svg>", L + 8,
-                                  H - B - 8);
+        return svg_ + fmt::format("<text x=\"{}\" y=\"{}\" fill=\"#1b3a5c\">filled: on the Pareto front</text></svg>",
+                                  L + 8, H - B - 8);
     }
 
 private:
@@ -93,7 +100,8 @@ std::string axis_plot(const std::string& name, const std::string& axis, const st
         numeric = numeric && number_in(v).has_value();
     }
     auto x_of = [&](const std::string& v) {
-        return numeric ? *number_in(v) : double(std::find(categories.begin(), categories.end(), v) - categories.begin());
+        return numeric ? *number_in(v)
+                       : double(std::find(categories.begin(), categories.end(), v) - categories.begin());
     };
     double x0 = 1e300, x1 = -1e300;
     for (const std::string& c : categories) x0 = std::min(x0, x_of(c)), x1 = std::max(x1, x_of(c));
@@ -117,14 +125,16 @@ std::string axis_plot(const std::string& name, const std::string& axis, const st
         std::sort(pts.begin(), pts.end());
         chart.line(pts, "#8aa", others);
         const double end_y = chart.py(pts.back().second);
-        if (others.empty() || std::any_of(labelled.begin(), labelled.end(), [&](double y) { return std::abs(y - end_y) < 12; }))
+        if (others.empty() ||
+            std::any_of(labelled.begin(), labelled.end(), [&](double y) { return std::abs(y - end_y) < 12; }))
             continue;
         labelled.push_back(end_y);
         chart.label(pts.back().first, pts.back().second, others);
     }
     for (bool on_front : {false, true})  // the front on top of a point of equal figures
         for (size_t i = 0; i < rows.size(); ++i)
-            if (rows[i].error.empty() && front[i] == on_front) chart.point(x_of(rows[i].params.value(axis, "")), rows[i], front[i]);
+            if (rows[i].error.empty() && front[i] == on_front)
+                chart.point(x_of(rows[i].params.value(axis, "")), rows[i], front[i]);
     return chart.finish();
 }
 
@@ -132,10 +142,12 @@ std::string front_plot(const std::string& name, const std::string& cost, const s
                        const std::vector<bool>& front) {
     double x0 = 1e300, x1 = -1e300;
     for (const SweepRow& r : rows)
-        if (r.error.empty()) x0 = std::min(x0, r.figures.value(cost, 0.0)), x1 = std::max(x1, r.figures.value(cost, 0.0));
+        if (r.error.empty())
+            x0 = std::min(x0, r.figures.value(cost, 0.0)), x1 = std::max(x1, r.figures.value(cost, 0.0));
     if (x0 > x1) x0 = 0, x1 = 1;
     const double pad = (x1 - x0) * 0.05 + 1e-9;
-    FpsChart chart(fmt::format("{}: frames/s against {} (line: the most frames/s for it)", name, cost), cost, x0 - pad, x1 + pad, rows);
+    FpsChart chart(fmt::format("{}: frames/s against {} (line: the most frames/s for it)", name, cost), cost, x0 - pad,
+                   x1 + pad, rows);
     for (int i = 0; i <= 4; ++i) {
         const double x = x0 + (x1 - x0) * i / 4;
         chart.x_tick(x, fmt::format("{:.4g}", x));
@@ -153,7 +165,8 @@ std::string front_plot(const std::string& name, const std::string& cost, const s
     if (!stairs.empty()) chart.line(stairs, "#1b3a5c", fmt::format("the most frames/s for the {}", cost));
     for (bool on_front : {false, true})
         for (size_t i = 0; i < rows.size(); ++i)
-            if (rows[i].error.empty() && front[i] == on_front) chart.point(rows[i].figures.value(cost, 0.0), rows[i], front[i]);
+            if (rows[i].error.empty() && front[i] == on_front)
+                chart.point(rows[i].figures.value(cost, 0.0), rows[i], front[i]);
     return chart.finish();
 }
 

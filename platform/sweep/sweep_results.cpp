@@ -56,7 +56,8 @@ Json sweep_figures(const Json& r) {
     f["bottleneck"] = text_at(r, "/limit/resource");
     f["bottleneck_cause"] = text_at(r, "/limit/cause");
     if (value_at(r, "/time_per_frame").is_object())
-        for (const auto& [resource, t] : r["time_per_frame"].items()) f["busy." + resource] = number_at(t, "/busy_share");
+        for (const auto& [resource, t] : r["time_per_frame"].items())
+            f["busy." + resource] = number_at(t, "/busy_share");
     auto copy = [&](const char* name, std::string_view pointer) {
         if (!value_at(r, pointer).is_null()) f[name] = value_at(r, pointer);
     };
@@ -106,7 +107,8 @@ std::vector<bool> pareto_front(const std::vector<SweepRow>& rows, const std::vec
             // more block RAMs is not a trade-off a review weighs.
             bool all = true, one = false;
             for (const Objective& o : objectives) {
-                const double a = value(rows[j], o), b = value(rows[i], o), tie = kTie * std::max(std::abs(a), std::abs(b));
+                const double a = value(rows[j], o), b = value(rows[i], o),
+                             tie = kTie * std::max(std::abs(a), std::abs(b));
                 all = all && a >= b - tie;
                 one = one || a > b + tie;
             }
@@ -144,7 +146,8 @@ std::vector<std::string> write_sweep_results(const std::string& dir, const std::
         points.push_back(p);
     }
     Json objectives_json = Json::array();
-    for (const Objective& o : objectives) objectives_json.push_back({{"figure", o.figure}, {"better", o.higher_is_better ? "higher" : "lower"}});
+    for (const Objective& o : objectives)
+        objectives_json.push_back({{"figure", o.figure}, {"better", o.higher_is_better ? "higher" : "lower"}});
     Json results = {{"sweep", name}, {"axes", axes}};
     for (const auto& [key, value] : notes.items()) results[key] = value;
     results["pareto_objectives"] = objectives_json;
@@ -158,7 +161,8 @@ std::vector<std::string> write_sweep_results(const std::string& dir, const std::
         write_file_atomically((fs::path(dir) / file).string(), axis_plot(name, axis, axes, rows, front));
         written.push_back(file);
     }
-    if (!objectives.back().higher_is_better) {  // against watts when the rows have them: the cost that moves with every axis
+    if (!objectives.back()
+             .higher_is_better) {  // against watts when the rows have them: the cost that moves with every axis
         const std::string cost = objectives.back().figure;
         write_file_atomically((fs::path(dir) / "pareto.svg").string(), front_plot(name, cost, rows, front));
         written.push_back("pareto.svg");

@@ -42,7 +42,8 @@ using Json = nlohmann::ordered_json;
 class Statement {
 public:
     Statement(sqlite3* db, const std::string& sql, const std::string& file) : db_(db), file_(file) {
-        if (const int rc = sqlite3_prepare_v2(db, sql.c_str(), -1, &s_, nullptr); rc != SQLITE_OK) fail(db_, rc, file_, "prepare");
+        if (const int rc = sqlite3_prepare_v2(db, sql.c_str(), -1, &s_, nullptr); rc != SQLITE_OK)
+            fail(db_, rc, file_, "prepare");
     }
     ~Statement() { sqlite3_finalize(s_); }
     Statement(const Statement&) = delete;
@@ -91,16 +92,21 @@ const std::vector<std::string> kPointColumns = {"idx", "id", "params", "exit", "
 
 // The figures the results read as numbers (sweep_results.cpp: the Pareto objectives;
 // sweep_plots.cpp: frames/s and the budget).
-const char* const kNumericFigures[] = {"fps", "budget_fps", "repeatability", "precision", "distinguishability",
-                                       "bram36", "dsp48e", "watts"};
+const char* const kNumericFigures[] = {"fps",    "budget_fps", "repeatability", "precision", "distinguishability",
+                                       "bram36", "dsp48e",     "watts"};
 
 const char* type_name(int sqlite_type) {
     switch (sqlite_type) {
-        case SQLITE_INTEGER: return "an integer";
-        case SQLITE_FLOAT: return "a real";
-        case SQLITE_TEXT: return "text";
-        case SQLITE_BLOB: return "a blob";
-        default: return "null";
+        case SQLITE_INTEGER:
+            return "an integer";
+        case SQLITE_FLOAT:
+            return "a real";
+        case SQLITE_TEXT:
+            return "text";
+        case SQLITE_BLOB:
+            return "a blob";
+        default:
+            return "null";
     }
 }
 
@@ -111,7 +117,8 @@ Json parse_object(const std::string& where, const char* column, const std::strin
     } catch (const Json::exception& e) {
         throw ConfigError(fmt::format("{}: {} is not JSON: {}", where, column, e.what()));
     }
-    if (!j.is_object()) throw ConfigError(fmt::format("{}: {} is a JSON {}, not an object", where, column, j.type_name()));
+    if (!j.is_object())
+        throw ConfigError(fmt::format("{}: {} is a JSON {}, not an object", where, column, j.type_name()));
     return j;
 }
 
@@ -128,23 +135,27 @@ void check_header(const std::string& file) {
 
 }  // namespace
 
-SweepRow decode_sweep_row(const std::string& file, int64_t index, const std::string& id, const std::string& params, int64_t exit,
-                          const std::string& error, const std::string& figures, double wall_s) {
+SweepRow decode_sweep_row(const std::string& file, int64_t index, const std::string& id, const std::string& params,
+                          int64_t exit, const std::string& error, const std::string& figures, double wall_s) {
     const std::string where = fmt::format("{}: point {} ({})", file, index, is_utf8(id) ? id : "id not UTF-8 text");
     if (index < 0) throw ConfigError(fmt::format("{}: its index is negative", where));
     if (id.empty() || !is_utf8(id)) throw ConfigError(fmt::format("{}: its id is empty or not UTF-8 text", where));
     if (exit < 0 || exit > 255) throw ConfigError(fmt::format("{}: exit {} is not an exit code", where, exit));
     if (!is_utf8(error)) throw ConfigError(fmt::format("{}: its error is not UTF-8 text", where));
     if (!std::isfinite(wall_s)) throw ConfigError(fmt::format("{}: its wall time is not a number", where));
-    SweepRow row{size_t(index), id, parse_object(where, "params", params), int(exit), error, parse_object(where, "figures", figures),
+    SweepRow row{size_t(index), id,    parse_object(where, "params", params),
+                 int(exit),     error, parse_object(where, "figures", figures),
                  wall_s};
     for (const auto& [key, value] : row.params.items())
-        if (!value.is_string()) throw ConfigError(fmt::format("{}: params.{} is a JSON {}, not a text", where, key, value.type_name()));
+        if (!value.is_string())
+            throw ConfigError(fmt::format("{}: params.{} is a JSON {}, not a text", where, key, value.type_name()));
     for (const auto& [key, value] : row.figures.items())
-        if (value.is_structured()) throw ConfigError(fmt::format("{}: figures.{} is a JSON {}, not a value", where, key, value.type_name()));
+        if (value.is_structured())
+            throw ConfigError(fmt::format("{}: figures.{} is a JSON {}, not a value", where, key, value.type_name()));
     for (const char* key : kNumericFigures)
         if (row.figures.contains(key) && !row.figures[key].is_number())
-            throw ConfigError(fmt::format("{}: figures.{} is a JSON {}, not a number", where, key, row.figures[key].type_name()));
+            throw ConfigError(
+                fmt::format("{}: figures.{} is a JSON {}, not a number", where, key, row.figures[key].type_name()));
     return row;
 }
 
@@ -173,9 +184,10 @@ SweepStore::SweepStore(const std::string& file, const std::string& fingerprint)
     Statement get(db_, "SELECT value FROM sweep WHERE key = 'fingerprint'", file_);
     if (get.step()) {
         if (get.text(0) != fingerprint)
-            throw ConfigError(fmt::format("{}: holds the points of another sweep; give --fresh to discard them and start over, "
-                                          "or another --out",
-                                          file));
+            throw ConfigError(
+                fmt::format("{}: holds the points of another sweep; give --fresh to discard them and start over, "
+                            "or another --out",
+                            file));
     } else {
         Statement put(db_, "INSERT INTO sweep (key, value) VALUES ('fingerprint', ?)", file_);
         put.bind(1, fingerprint).step();
@@ -208,15 +220,17 @@ void SweepStore::check_tables() const {
     {
         Statement check(db_, "PRAGMA integrity_check(1)", file_);
         if (check.step() && check.text(0) != "ok")
-            throw ConfigError(fmt::format("{}: not a sweep database, or a damaged one (integrity check: {})", file_, check.text(0)));
+            throw ConfigError(
+                fmt::format("{}: not a sweep database, or a damaged one (integrity check: {})", file_, check.text(0)));
     }
-    for (const auto& [table, expected] : {std::make_pair("sweep", kSweepColumns), std::make_pair("points", kPointColumns)}) {
+    for (const auto& [table, expected] :
+         {std::make_pair("sweep", kSweepColumns), std::make_pair("points", kPointColumns)}) {
         Statement info(db_, fmt::format("PRAGMA table_info({})", table), file_);
         std::vector<std::string> columns;
         while (info.step()) columns.push_back(info.text(1));
         if (!columns.empty() && columns != expected)
-            throw ConfigError(fmt::format("{}: is not a sweep database: its table {} has the columns ({}), not ({})", file_, table,
-                                          fmt::join(columns, ", "), fmt::join(expected, ", ")));
+            throw ConfigError(fmt::format("{}: is not a sweep database: its table {} has the columns ({}), not ({})",
+                                          file_, table, fmt::join(columns, ", "), fmt::join(expected, ", ")));
     }
 }
 
@@ -237,7 +251,8 @@ std::vector<std::string> SweepStore::axes() const {
     if (text.empty()) return {};
     // The axes name the plot files: each must be a parameter.
     const Json j = Json::parse(text, nullptr, false);
-    const ConfigError damaged(fmt::format("{}: its record of the sweep's axes is damaged: {}", file_, text.substr(0, 200)));
+    const ConfigError damaged(
+        fmt::format("{}: its record of the sweep's axes is damaged: {}", file_, text.substr(0, 200)));
     if (!j.is_array()) throw damaged;
     std::vector<std::string> out;
     for (const Json& a : j) {
@@ -262,9 +277,15 @@ std::optional<int> SweepStore::exit_of(const std::string& id) const {
 }
 
 void SweepStore::record(const SweepRow& row) {
-    Statement s(db_, "INSERT OR REPLACE INTO points (idx, id, params, exit, error, figures, wall_s) VALUES (?, ?, ?, ?, ?, ?, ?)",
-                file_);
-    s.bind(1, int64_t(row.index)).bind(2, row.id).bind(3, row.params.dump()).bind(4, int64_t(row.exit)).bind(5, row.error);
+    Statement s(
+        db_,
+        "INSERT OR REPLACE INTO points (idx, id, params, exit, error, figures, wall_s) VALUES (?, ?, ?, ?, ?, ?, ?)",
+        file_);
+    s.bind(1, int64_t(row.index))
+        .bind(2, row.id)
+        .bind(3, row.params.dump())
+        .bind(4, int64_t(row.exit))
+        .bind(5, row.error);
     s.bind(6, row.figures.dump()).bind(7, row.wall_s).step();
 }
 
@@ -273,15 +294,19 @@ std::vector<SweepRow> SweepStore::rows() const {
     Statement has(db_, "SELECT 1 FROM sqlite_master WHERE type = 'table' AND name = 'points'", file_);
     if (!has.step()) return out;
     Statement s(db_, "SELECT idx, id, params, exit, error, figures, wall_s, rowid FROM points ORDER BY idx", file_);
-    constexpr int kTypes[] = {SQLITE_INTEGER, SQLITE_TEXT, SQLITE_TEXT, SQLITE_INTEGER, SQLITE_TEXT, SQLITE_TEXT, SQLITE_FLOAT};
+    constexpr int kTypes[] = {SQLITE_INTEGER, SQLITE_TEXT, SQLITE_TEXT, SQLITE_INTEGER,
+                              SQLITE_TEXT,    SQLITE_TEXT, SQLITE_FLOAT};
     while (s.step()) {
         for (int c = 0; c < 7; ++c)
-            if (s.type(c) != kTypes[c] && !(c == 6 && s.type(c) == SQLITE_INTEGER))  // a whole number of seconds is a real
+            if (s.type(c) != kTypes[c] &&
+                !(c == 6 && s.type(c) == SQLITE_INTEGER))  // a whole number of seconds is a real
                 throw ConfigError(fmt::format("{}: point {} ({}): its {} is {}, not {}", file_,
-                                              s.type(0) == SQLITE_INTEGER ? std::to_string(s.integer(0)) : "in row " + std::to_string(s.integer(7)),
-                                              s.type(1) == SQLITE_TEXT && is_utf8(s.text(1)) ? s.text(1) : "?", kPointColumns[size_t(c)],
-                                              type_name(s.type(c)), type_name(kTypes[c])));
-        out.push_back(decode_sweep_row(file_, s.integer(0), s.text(1), s.text(2), s.integer(3), s.text(4), s.text(5), s.real(6)));
+                                              s.type(0) == SQLITE_INTEGER ? std::to_string(s.integer(0))
+                                                                          : "in row " + std::to_string(s.integer(7)),
+                                              s.type(1) == SQLITE_TEXT && is_utf8(s.text(1)) ? s.text(1) : "?",
+                                              kPointColumns[size_t(c)], type_name(s.type(c)), type_name(kTypes[c])));
+        out.push_back(
+            decode_sweep_row(file_, s.integer(0), s.text(1), s.text(2), s.integer(3), s.text(4), s.text(5), s.real(6)));
     }
     return out;
 }
@@ -299,14 +324,15 @@ size_t SweepStore::merge(const std::string& other) {
     const size_t before = count();
     try {
         // A point the other database ran replaces one this one could not run (a shard run again).
-        exec("BEGIN;"
-             "INSERT INTO points (idx, id, params, exit, error, figures, wall_s)"
-             "  SELECT idx, id, params, exit, error, figures, wall_s FROM shard.points WHERE true"
-             "  ON CONFLICT(id) DO UPDATE SET idx = excluded.idx, params = excluded.params, exit = excluded.exit,"
-             "    error = excluded.error, figures = excluded.figures, wall_s = excluded.wall_s"
-             "  WHERE points.exit NOT IN (0, 1) AND excluded.exit IN (0, 1);"
-             "INSERT OR IGNORE INTO sweep SELECT key, value FROM shard.sweep;"
-             "COMMIT;");
+        exec(
+            "BEGIN;"
+            "INSERT INTO points (idx, id, params, exit, error, figures, wall_s)"
+            "  SELECT idx, id, params, exit, error, figures, wall_s FROM shard.points WHERE true"
+            "  ON CONFLICT(id) DO UPDATE SET idx = excluded.idx, params = excluded.params, exit = excluded.exit,"
+            "    error = excluded.error, figures = excluded.figures, wall_s = excluded.wall_s"
+            "  WHERE points.exit NOT IN (0, 1) AND excluded.exit IN (0, 1);"
+            "INSERT OR IGNORE INTO sweep SELECT key, value FROM shard.sweep;"
+            "COMMIT;");
     } catch (...) {
         sqlite3_exec(db_, "ROLLBACK; DETACH DATABASE shard", nullptr, nullptr, nullptr);
         throw;

@@ -20,10 +20,10 @@ namespace surfvp {
 
 struct SweepRow {
     size_t index = 0;
-    std::string id;                // the point's values as text
+    std::string id;                 // the point's values as text
     nlohmann::ordered_json params;  // {key: value}
-    int exit = 0;                  // the point's exit code as `surfvp run` gives it (0 passed, 1 failed a check, 2, 3, 4)
-    std::string error;             // why it did not run, or ""
+    int exit = 0;       // the point's exit code as `surfvp run` gives it (0 passed, 1 failed a check, 2, 3, 4)
+    std::string error;  // why it did not run, or ""
     nlohmann::ordered_json figures;  // frames/s, latency, bottleneck... (sweep.cpp)
     double wall_s = 0;
 };
@@ -38,8 +38,8 @@ inline bool point_ran(int exit) { return exit == 0 || exit == 1; }
 // texts, figures a JSON object of numbers, texts, booleans or nulls (those the results read
 // as numbers: numbers), index not negative, exit 0 to 255, texts UTF-8. Throws ConfigError
 // naming `file` and the point.
-SweepRow decode_sweep_row(const std::string& file, int64_t index, const std::string& id, const std::string& params, int64_t exit,
-                          const std::string& error, const std::string& figures, double wall_s);
+SweepRow decode_sweep_row(const std::string& file, int64_t index, const std::string& id, const std::string& params,
+                          int64_t exit, const std::string& error, const std::string& figures, double wall_s);
 
 class SweepStore {
 public:
@@ -66,7 +66,7 @@ public:
 
     // The exit code recorded for the point, or nothing when it has no row.
     std::optional<int> exit_of(const std::string& id) const;
-    void record(const SweepRow& row);  // committed at once: a killed sweep keeps every row before
+    void record(const SweepRow& row);    // committed at once: a killed sweep keeps every row before
     std::vector<SweepRow> rows() const;  // in point order; ConfigError naming a damaged one
     // The rows of another database of the same sweep (a shard, checked by the caller); a row
     // that ran replaces one that could not. Returns how many points were new.

@@ -28,8 +28,12 @@ Json cell(const eval::SequenceDistinguishability& s) {
     double spread = 0;
     for (const auto& p : s.pairs) spread += (p.distinguishability - s.mean) * (p.distinguishability - s.mean);
     spread = s.pairs.empty() ? 0 : std::sqrt(spread / double(s.pairs.size()));
-    return {{"mean", s.mean}, {"spread", spread}, {"pairs", s.pairs.size()}, {"measured_pairs", s.measured_pairs},
-            {"candidates", s.candidates}, {"valid", s.valid}};
+    return {{"mean", s.mean},
+            {"spread", spread},
+            {"pairs", s.pairs.size()},
+            {"measured_pairs", s.measured_pairs},
+            {"candidates", s.candidates},
+            {"valid", s.valid}};
 }
 
 double mean_keypoints(const Column& col) {
@@ -58,8 +62,10 @@ Column cpu_column(const Config& c, const Variant& v, const fs::path& dir) {
     std::vector<size_t> counts;
     if (!dir.empty()) fs::create_directories(dir / "keypoints");
     for_each_chip_frame(c, [&](size_t i, const cv::Mat& frame) {
-        if (i == 0 && target > 0) p.threshold = surf::threshold_for_rank(surf::stored_ranked_responses(frame, p), target);
-        if (track && i >= delay) p.threshold = float(sw::ssa2::keypoint_control_step(used[i - delay], counts[i - delay], target));
+        if (i == 0 && target > 0)
+            p.threshold = surf::threshold_for_rank(surf::stored_ranked_responses(frame, p), target);
+        if (track && i >= delay)
+            p.threshold = float(sw::ssa2::keypoint_control_step(used[i - delay], counts[i - delay], target));
         surf::Keypoints k = surf::detect_and_describe(frame, p);
         used.push_back(p.threshold), counts.push_back(k.size()), col.sizes.push_back(frame.size());
         if (!dir.empty()) {
@@ -92,7 +98,8 @@ std::vector<Variant> variants(const Config& c) {
         {"cpu_2_octaves", "CPU with the chip's 2 octaves", with([](surf::Params& p) { p.octaves = 2; })},
         {"cpu_4_intervals", "CPU with the chip's 4 intervals", with([](surf::Params& p) { p.intervals = 4; })}};
     if (chip.max_offset != surf::Params{}.max_offset)
-        v.push_back({"cpu_max_offset", fmt::format("CPU with the chip's offset limit {} (surf.max_offset)", chip.max_offset),
+        v.push_back({"cpu_max_offset",
+                     fmt::format("CPU with the chip's offset limit {} (surf.max_offset)", chip.max_offset),
                      with([&](surf::Params& p) { p.max_offset = chip.max_offset; })});
     v.push_back({"cpu_surf_descriptor", "CPU with the chip's descriptor (Bay's SURF)",
                  with([](surf::Params& p) { p.descriptor = surf::DescriptorKind::surf; })});
@@ -101,10 +108,12 @@ std::vector<Variant> variants(const Config& c) {
                      with([&](surf::Params& p) { p.haar = chip.haar; })});
     v.push_back({"cpu_paper", "CPU as the paper's SURF (4 octaves of 4 intervals, offsets to 0.5, SURF, exact Haar)",
                  surf::paper_surf()});
-    v.push_back({"cpu_chip_settings",
-                 fmt::format("CPU with all the chip's software settings (2 octaves of 4 intervals, offsets to {}, SURF, "
-                             "surf.haar)", chip.max_offset),
-                 chip});
+    v.push_back(
+        {"cpu_chip_settings",
+         fmt::format("CPU with all the chip's software settings (2 octaves of 4 intervals, offsets to {}, SURF, "
+                     "surf.haar)",
+                     chip.max_offset),
+         chip});
     return v;
 }
 
@@ -146,7 +155,9 @@ Json column_row(const Column& col, size_t gap, const eval::RatioTestOptions& mat
     if (!g.poses.empty())
         j["ground_truth"] = cell(eval::sequence_distinguishability(
             col.frames, gap,
-            [&](size_t a, size_t b) { return eval::fundamental_from_poses(eval::kCastleIntrinsics, g.poses[a].c_m_o, g.poses[b].c_m_o); },
+            [&](size_t a, size_t b) {
+                return eval::fundamental_from_poses(eval::kCastleIntrinsics, g.poses[a].c_m_o, g.poses[b].c_m_o);
+            },
             options));
     return j;
 }
@@ -188,8 +199,8 @@ Json quality_line(const Column& col, const Measures& m) {
         pairs = row["ransac"]["pairs"].get<size_t>();
         if (row.contains("ground_truth")) truth.push_back(row["ground_truth"]["mean"]);
     }
-    Json j = {{"name", col.name}, {"label", col.label}, {"keypoints_per_frame", mean_keypoints(col)}, {"ransac", means},
-              {"ransac_spread", spreads}, {"pairs", pairs}};
+    Json j = {{"name", col.name}, {"label", col.label},       {"keypoints_per_frame", mean_keypoints(col)},
+              {"ransac", means},  {"ransac_spread", spreads}, {"pairs", pairs}};
     if (!truth.empty()) j["ground_truth"] = truth;
     if (m.homography) {
         j["precision"] = (*m.homography)["precision"];

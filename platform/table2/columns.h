@@ -40,7 +40,7 @@ constexpr std::array<PaperRow, 4> kPaper{{{true, true, 0.62, 0.53, std::nullopt}
 struct Column {
     std::string name, label;
     std::vector<surf::Keypoints> frames;
-    std::vector<size_t> failed;  // frames the chip did not finish: no keypoints
+    std::vector<size_t> failed;   // frames the chip did not finish: no keypoints
     std::vector<cv::Size> sizes;  // each frame's, as the chip takes it (the CPU column's)
     double threshold = 0;
     std::string threshold_rule;
@@ -61,7 +61,6 @@ struct Geometry {
     std::optional<Eigen::Matrix3d> homography;
 };
 
-
 // Under the chip's threshold rule (surf.target_keypoints on frame 0, held or tracked like
 // libSSA2); keypoint files into `dir`/keypoints when `dir` is given.
 Column cpu_column(const Config& c, const Variant& v, const std::filesystem::path& dir = {});
@@ -75,7 +74,8 @@ Geometry read_geometry(const Config& c);  // the scenario's poses and homography
 
 // The measures of one cell: all pairs (i, i + gap) of a column under `matching`, F from
 // RANSAC and, with poses, from the ground truth; each {mean, spread, pairs, ...}.
-nlohmann::ordered_json column_row(const Column& col, size_t gap, const eval::RatioTestOptions& matching, const Geometry& g);
+nlohmann::ordered_json column_row(const Column& col, size_t gap, const eval::RatioTestOptions& matching,
+                                  const Geometry& g);
 eval::RatioTestOptions paper_matching(const PaperRow& row);
 // Every measure of one column, each computed once: per gap, the four rows in kPaper order
 // (column_row), and frames 0 and 1 under the homography when the scenario has one

@@ -13,8 +13,10 @@ PrecisionAxis parse_precision_axis(const std::string& text) {
         throw ConfigError(fmt::format("--axis {}: give KEY=VALUE,VALUE,... (fhg.det_bits=24 bit,20 bit)", text));
     PrecisionAxis a{text.substr(0, eq), {}};
     if (!find_parameter(a.key))
-        throw ConfigError(fmt::format("--axis {}: '{}' is not a parameter; the study narrows one (fhg.det_bits, surf.haar, ...; "
-                                      "`surfvp params` lists them)", text, a.key));
+        throw ConfigError(
+            fmt::format("--axis {}: '{}' is not a parameter; the study narrows one (fhg.det_bits, surf.haar, ...; "
+                        "`surfvp params` lists them)",
+                        text, a.key));
     for (size_t from = eq + 1;;) {
         const size_t comma = text.find(',', from);
         a.values.push_back(text.substr(from, comma == std::string::npos ? std::string::npos : comma - from));

@@ -48,7 +48,8 @@ std::string set_of(const std::string& key, const std::string& value) { return ke
 // their 8 integer bits and sign (response_frac_bits = response_bits - 9), the determinant word
 // its 16 (det_frac_bits = det_bits - 16), and det_frac_bits never exceeds 2 x
 // response_frac_bits (the model refuses it).
-std::vector<std::string> point_sets(const Config& base, const std::vector<std::pair<std::string, std::string>>& values) {
+std::vector<std::string> point_sets(const Config& base,
+                                    const std::vector<std::pair<std::string, std::string>>& values) {
     std::vector<std::pair<std::string, std::string>> chosen = values;
     auto config = [&] {
         Config c = base;
@@ -65,16 +66,21 @@ std::vector<std::string> point_sets(const Config& base, const std::vector<std::p
         if (asked(key)) return;
         const std::string value = fmt::format("{} bit", std::max(bits, 0));
         auto it = std::find_if(chosen.begin(), chosen.end(), [&](const auto& kv) { return kv.first == key; });
-        if (it == chosen.end()) chosen.push_back({key, value});
-        else it->second = value;
+        if (it == chosen.end())
+            chosen.push_back({key, value});
+        else
+            it->second = value;
     };
     Config c = config();
     if (asked("fhg.response_bits"))
-        follow("fhg.response_frac_bits", std::min(int(c.bits("fhg.response_frac_bits")), int(c.bits("fhg.response_bits")) - 9));
+        follow("fhg.response_frac_bits",
+               std::min(int(c.bits("fhg.response_frac_bits")), int(c.bits("fhg.response_bits")) - 9));
     c = config();
-    if (asked("fhg.det_bits")) follow("fhg.det_frac_bits", std::min(int(c.bits("fhg.det_frac_bits")), int(c.bits("fhg.det_bits")) - 16));
+    if (asked("fhg.det_bits"))
+        follow("fhg.det_frac_bits", std::min(int(c.bits("fhg.det_frac_bits")), int(c.bits("fhg.det_bits")) - 16));
     c = config();
-    if (c.bits("fhg.det_frac_bits") > 2 * c.bits("fhg.response_frac_bits")) follow("fhg.det_frac_bits", 2 * int(c.bits("fhg.response_frac_bits")));
+    if (c.bits("fhg.det_frac_bits") > 2 * c.bits("fhg.response_frac_bits"))
+        follow("fhg.det_frac_bits", 2 * int(c.bits("fhg.response_frac_bits")));
     std::vector<std::string> sets;
     for (const auto& [key, value] : chosen) sets.push_back(set_of(key, value));
     return sets;
@@ -100,7 +106,8 @@ Json measure(const Config& seq, const std::optional<Config>& pair, const std::ve
     const FpgaResources fpga = fpga_resources(seq);
     j["ramb36"] = fpga.total.ramb36, j["dsp48e"] = fpga.total.dsp48e, j["luts"] = fpga.total.luts;
     const Json report = Json::parse(std::ifstream(scratch / "sequence" / "report.json"));
-    const double blocks = double((report["image"]["width"].get<int>() + 1) / 2) * ((report["image"]["height"].get<int>() + 1) / 2);
+    const double blocks =
+        double((report["image"]["width"].get<int>() + 1) / 2) * ((report["image"]["height"].get<int>() + 1) / 2);
     j["det_bytes_per_frame"] = blocks * fhg_regs::record_bytes(fhg_regs::det_bytes_for(seq.bits("fhg.det_bits")));
     fs::remove_all(scratch);
     return j;
@@ -138,12 +145,13 @@ double number(const std::string& value) { return split_quantity(value)->first; }
 
 // Per numeric axis: the fewest bits such that it and every wider value tried (and the
 // scenario's own) keep every row within the tolerance; nothing when even the widest fails.
-std::vector<std::pair<std::string, std::string>> fewest_bits(const std::vector<Axis>& axes, const std::vector<Point>& points,
-                                                             const Config& base) {
+std::vector<std::pair<std::string, std::string>> fewest_bits(const std::vector<Axis>& axes,
+                                                             const std::vector<Point>& points, const Config& base) {
     std::vector<std::pair<std::string, std::string>> out;
     for (const Axis& a : axes) {
         if (a.values.empty() || !numeric(a.values[0])) continue;
-        std::vector<std::pair<double, bool>> tried{{number(base.value(a.key)), points[0].result.value("within", false)}};
+        std::vector<std::pair<double, bool>> tried{
+            {number(base.value(a.key)), points[0].result.value("within", false)}};
         for (const Point& p : points)
             if (p.key == a.key) tried.push_back({number(p.value), p.result.value("within", false)});
         std::sort(tried.rbegin(), tried.rend());
@@ -162,51 +170,65 @@ std::string cell(const Json& r, const char* key, const char* format) {
 }
 
 std::string markdown(const Json& report) {
-    std::string md = fmt::format("# Precision study: {}\n\nThe chip (direct mode) on `{}`{} with one width narrowed at a time. "
-                                 "Rows: distinguishability on consecutive frames, RANSAC F (limited search Y/N, Laplacian Y/N); "
-                                 "change from full precision (the same algorithm in float) in brackets. A point is within when "
-                                 "no row lost more than {:g}.\n\n",
-                                 report["scenario"].get<std::string>(), report["scenario"].get<std::string>(),
-                                 report["pair"].is_null() ? "" : fmt::format(" and `{}`", report["pair"].get<std::string>()),
-                                 kTolerance);
+    std::string md = fmt::format(
+        "# Precision study: {}\n\nThe chip (direct mode) on `{}`{} with one width narrowed at a time. "
+        "Rows: distinguishability on consecutive frames, RANSAC F (limited search Y/N, Laplacian Y/N); "
+        "change from full precision (the same algorithm in float) in brackets. A point is within when "
+        "no row lost more than {:g}.\n\n",
+        report["scenario"].get<std::string>(), report["scenario"].get<std::string>(),
+        report["pair"].is_null() ? "" : fmt::format(" and `{}`", report["pair"].get<std::string>()), kTolerance);
     const double error = report["standard_error"].get<double>();
-    const std::string noise = error > 0 ? fmt::format("and the tolerance of {:g} is {:.1f} of them", kTolerance, kTolerance / error)
-                                        : std::string("and here the pairs do not spread at all");
-    md += fmt::format("Keypoints per frame: {}. Over {} pairs the rows' standard error is about {:.3f}: a change smaller than that "
-                      "is noise, {}.\n\n",
-                      report["threshold_control"] == "track" ? "each point holds its count near the target (surf.threshold_control = "
-                                                               "track), since narrower arithmetic scales the determinants"
-                                                             : "the calibrated threshold is held (surf.threshold_control = hold)",
-                      report["pairs"].get<size_t>(), error, noise);
-    md += "| width | value | keypoints per frame | Y Y | Y N | N Y | N N | within | repeatability | precision | RAMB36 | DSP48E | LUTs | "
-          "det bytes/frame |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+    const std::string noise =
+        error > 0 ? fmt::format("and the tolerance of {:g} is {:.1f} of them", kTolerance, kTolerance / error)
+                  : std::string("and here the pairs do not spread at all");
+    md += fmt::format(
+        "Keypoints per frame: {}. Over {} pairs the rows' standard error is about {:.3f}: a change smaller than that "
+        "is noise, {}.\n\n",
+        report["threshold_control"] == "track" ? "each point holds its count near the target (surf.threshold_control = "
+                                                 "track), since narrower arithmetic scales the determinants"
+                                               : "the calibrated threshold is held (surf.threshold_control = hold)",
+        report["pairs"].get<size_t>(), error, noise);
+    md +=
+        "| width | value | keypoints per frame | Y Y | Y N | N Y | N N | within | repeatability | precision | RAMB36 | "
+        "DSP48E | LUTs | "
+        "det bytes/frame |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
     auto line = [&](const std::string& key, const std::string& value, const Json& r) {
-        if (r.contains("error")) return fmt::format("| {} | {} | {} ||||||||||||\n", key, value, r["error"].get<std::string>());
+        if (r.contains("error"))
+            return fmt::format("| {} | {} | {} ||||||||||||\n", key, value, r["error"].get<std::string>());
         std::string row = fmt::format("| {} | {} | {:.1f} |", key, value, r["keypoints_per_frame"].get<double>());
         for (size_t i = 0; i < 4; ++i)
-            row += r.contains("change") ? fmt::format(" {:.3f} ({:+.3f}) |", r["ransac"][i].get<double>(), r["change"][i].get<double>() + 0.0)
+            row += r.contains("change") ? fmt::format(" {:.3f} ({:+.3f}) |", r["ransac"][i].get<double>(),
+                                                      r["change"][i].get<double>() + 0.0)
                                         : fmt::format(" {:.3f} |", r["ransac"][i].get<double>());
         row += r.contains("within") ? (r["within"].get<bool>() ? " yes |" : " **no** |") : " |";
         const Json pair = r.value("pair", Json::object());
-        row += fmt::format(" {} | {} | {} | {} | {} | {} |\n", cell(pair, "repeatability", "{:.3f}"), cell(pair, "precision", "{:.3f}"),
-                           cell(r, "ramb36", "{:g}"), cell(r, "dsp48e", "{:g}"), cell(r, "luts", "{:.0f}"),
-                           cell(r, "det_bytes_per_frame", "{:.0f}"));
+        row += fmt::format(" {} | {} | {} | {} | {} | {} |\n", cell(pair, "repeatability", "{:.3f}"),
+                           cell(pair, "precision", "{:.3f}"), cell(r, "ramb36", "{:g}"), cell(r, "dsp48e", "{:g}"),
+                           cell(r, "luts", "{:.0f}"), cell(r, "det_bytes_per_frame", "{:.0f}"));
         return row;
     };
-    for (const auto& [haar, r] : report["full_precision"].items()) md += line("full precision", "float, Haar " + haar, r);
+    for (const auto& [haar, r] : report["full_precision"].items())
+        md += line("full precision", "float, Haar " + haar, r);
     for (const Json& p : report["points"]) md += line(p["key"], p["value"], p["result"]);
-    md += "\n## Fewest bits\n\n| width | fewest bits within " + fmt::format("{:g}", kTolerance) + " | the scenario's |\n|---|---|---|\n";
+    md += "\n## Fewest bits\n\n| width | fewest bits within " + fmt::format("{:g}", kTolerance) +
+          " | the scenario's |\n|---|---|---|\n";
     for (const Json& f : report["fewest_bits"])
         md += fmt::format("| {} | {} | {} |\n", f["key"].get<std::string>(), f["fewest"].get<std::string>(),
                           f["scenario"].get<std::string>());
     const Json& all = report["all_fewest_together"];
     if (!all.is_null())
-        md += fmt::format("\nAll of them together (`{}`): {}.\n", all["sets"].get<std::vector<std::string>>().size() ? fmt::format("{}", fmt::join(all["sets"].get<std::vector<std::string>>(), "`, `")) : "",
-                          all["result"].value("within", false) ? "every row within the tolerance"
-                                                               : "a row falls outside the tolerance: the widths interact");
-    md += "\nNarrowing `fhg.response_bits` keeps the responses' 8 integer bits and sign (response_frac_bits = response_bits - 9), "
-          "`fhg.det_bits` the determinant word's 16 (det_frac_bits = det_bits - 16), and det_frac_bits never exceeds 2 x "
-          "response_frac_bits.\n";
+        md += fmt::format("\nAll of them together (`{}`): {}.\n",
+                          all["sets"].get<std::vector<std::string>>().size()
+                              ? fmt::format("{}", fmt::join(all["sets"].get<std::vector<std::string>>(), "`, `"))
+                              : "",
+                          all["result"].value("within", false)
+                              ? "every row within the tolerance"
+                              : "a row falls outside the tolerance: the widths interact");
+    md +=
+        "\nNarrowing `fhg.response_bits` keeps the responses' 8 integer bits and sign (response_frac_bits = "
+        "response_bits - 9), "
+        "`fhg.det_bits` the determinant word's 16 (det_frac_bits = det_bits - 16), and det_frac_bits never exceeds 2 x "
+        "response_frac_bits.\n";
     return md;
 }
 
@@ -219,37 +241,45 @@ std::string plot(const Json& report) {
             keys.push_back(p["key"]);
     const double W = 300, H = 200, L = 46, B = 30, T = 24;
     const int cols = 2, rows = int((keys.size() + 1) / 2);
-    std::string svg = fmt::format("<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{}\" height=\"{}\" font-family=\"sans-serif\" "
-                                  "font-size=\"11\"><rect width=\"100%\" height=\"100%\" fill=\"white\"/>",
-                                  W * cols, H * rows + 24);
-    svg += fmt::format("<text x=\"8\" y=\"16\" font-size=\"13\">worst row's change from full precision against each width "
-                       "(dashed: -{:g})</text>", kTolerance);
+    std::string svg = fmt::format(
+        "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{}\" height=\"{}\" font-family=\"sans-serif\" "
+        "font-size=\"11\"><rect width=\"100%\" height=\"100%\" fill=\"white\"/>",
+        W * cols, H * rows + 24);
+    svg += fmt::format(
+        "<text x=\"8\" y=\"16\" font-size=\"13\">worst row's change from full precision against each width "
+        "(dashed: -{:g})</text>",
+        kTolerance);
     double y0 = -0.05, y1 = 0.03;  // widened to every point's change
     for (const Json& p : report["points"])
         if (p["result"].contains("worst_change") && p["key"] != "all")
-            y0 = std::min(y0, p["result"]["worst_change"].get<double>() - 0.01), y1 = std::max(y1, p["result"]["worst_change"].get<double>() + 0.01);
+            y0 = std::min(y0, p["result"]["worst_change"].get<double>() - 0.01),
+            y1 = std::max(y1, p["result"]["worst_change"].get<double>() + 0.01);
     for (size_t k = 0; k < keys.size(); ++k) {
         const double ox = double(k % 2) * W, oy = 24 + double(k / 2) * H;
         std::vector<std::pair<double, double>> pts{{number(report["scenario_values"][keys[k]].get<std::string>()),
                                                     report["points"][0]["result"].value("worst_change", 0.0)}};
         for (const Json& p : report["points"])
-            if (p["key"] == keys[k] && p["result"].contains("worst_change")) pts.push_back({number(p["value"]), p["result"]["worst_change"]});
+            if (p["key"] == keys[k] && p["result"].contains("worst_change"))
+                pts.push_back({number(p["value"]), p["result"]["worst_change"]});
         std::sort(pts.begin(), pts.end());
         const double x0 = pts.front().first, x1 = std::max(pts.back().first, x0 + 1);
         auto px = [&](double x) { return ox + L + (x - x0) / (x1 - x0) * (W - L - 12); };
         auto py = [&](double y) { return oy + T + (y1 - std::clamp(y, y0, y1)) / (y1 - y0) * (H - T - B); };
         svg += fmt::format("<text x=\"{}\" y=\"{}\">{}</text>", ox + L, oy + 14, keys[k]);
-        svg += fmt::format("<line x1=\"{0}\" y1=\"{1:.1f}\" x2=\"{2}\" y2=\"{1:.1f}\" stroke=\"#c00\" stroke-dasharray=\"5 3\"/>", ox + L,
-                           py(-kTolerance), ox + W - 12);
+        svg += fmt::format(
+            "<line x1=\"{0}\" y1=\"{1:.1f}\" x2=\"{2}\" y2=\"{1:.1f}\" stroke=\"#c00\" stroke-dasharray=\"5 3\"/>",
+            ox + L, py(-kTolerance), ox + W - 12);
         svg += fmt::format("<text x=\"{}\" y=\"{}\" text-anchor=\"end\">bit</text>", ox + W - 12, oy + 14);
         for (double y : {y0, -kTolerance, 0.0, y1})
-            svg += fmt::format("<text x=\"{}\" y=\"{:.1f}\" text-anchor=\"end\">{:+.2f}</text>", ox + L - 4, py(y) + 4, y);
+            svg +=
+                fmt::format("<text x=\"{}\" y=\"{:.1f}\" text-anchor=\"end\">{:+.2f}</text>", ox + L - 4, py(y) + 4, y);
         std::string line;
         for (const auto& [x, y] : pts) {
             line += fmt::format("{:.1f},{:.1f} ", px(x), py(y));
-            svg += fmt::format("<circle cx=\"{:.1f}\" cy=\"{:.1f}\" r=\"3\" fill=\"#1b3a5c\"><title>{:g} bit: {:+.3f}</title></circle>"
-                               "<text x=\"{:.1f}\" y=\"{:.1f}\" text-anchor=\"middle\">{:g}</text>",
-                               px(x), py(y), x, y, px(x), oy + H - B + 14, x);
+            svg += fmt::format(
+                "<circle cx=\"{:.1f}\" cy=\"{:.1f}\" r=\"3\" fill=\"#1b3a5c\"><title>{:g} bit: {:+.3f}</title></circle>"
+                "<text x=\"{:.1f}\" y=\"{:.1f}\" text-anchor=\"middle\">{:g}</text>",
+                px(x), py(y), x, y, px(x), oy + H - B + 14, x);
         }
         svg += fmt::format("<polyline points=\"{}\" fill=\"none\" stroke=\"#1b3a5c\"/>", line);
     }
@@ -257,16 +287,23 @@ std::string plot(const Json& report) {
 }
 
 std::string csv(const Json& report) {
-    std::string out = "key,value,keypoints_per_frame,yy,yn,ny,nn,worst_change,within,repeatability,precision,ramb36,dsp48e,luts,det_bytes_per_frame,error\n";
+    std::string out =
+        "key,value,keypoints_per_frame,yy,yn,ny,nn,worst_change,within,repeatability,precision,ramb36,dsp48e,luts,det_"
+        "bytes_per_frame,error\n";
     for (const Json& p : report["points"]) {
         const Json& r = p["result"];
-        auto num = [&](const Json& j, const char* k) { return j.contains(k) ? fmt::format("{:.6g}", j[k].get<double>()) : std::string(); };
+        auto num = [&](const Json& j, const char* k) {
+            return j.contains(k) ? fmt::format("{:.6g}", j[k].get<double>()) : std::string();
+        };
         const Json pair = r.value("pair", Json::object());
-        out += fmt::format("{},{},{},", p["key"].get<std::string>(), p["value"].get<std::string>(), num(r, "keypoints_per_frame"));
-        for (size_t i = 0; i < 4; ++i) out += r.contains("ransac") ? fmt::format("{:.6g},", r["ransac"][i].get<double>()) : ",";
-        out += fmt::format("{},{},{},{},{},{},{},{},\"{}\"\n", num(r, "worst_change"), r.contains("within") ? (r["within"].get<bool>() ? "true" : "false") : "",
-                           num(pair, "repeatability"), num(pair, "precision"), num(r, "ramb36"), num(r, "dsp48e"), num(r, "luts"),
-                           num(r, "det_bytes_per_frame"), r.value("error", ""));
+        out += fmt::format("{},{},{},", p["key"].get<std::string>(), p["value"].get<std::string>(),
+                           num(r, "keypoints_per_frame"));
+        for (size_t i = 0; i < 4; ++i)
+            out += r.contains("ransac") ? fmt::format("{:.6g},", r["ransac"][i].get<double>()) : ",";
+        out += fmt::format("{},{},{},{},{},{},{},{},\"{}\"\n", num(r, "worst_change"),
+                           r.contains("within") ? (r["within"].get<bool>() ? "true" : "false") : "",
+                           num(pair, "repeatability"), num(pair, "precision"), num(r, "ramb36"), num(r, "dsp48e"),
+                           num(r, "luts"), num(r, "det_bytes_per_frame"), r.value("error", ""));
     }
     return out;
 }
@@ -285,16 +322,21 @@ int precision_command(const PrecisionOptions& o) {
     for (const Config* c : std::vector<const Config*>{&seq, pair ? &*pair : nullptr}) {
         if (!c) continue;
         if (c->choice("run.workload") != "surf")
-            throw ConfigError(fmt::format("{}: the precision study needs SURF scenarios (run.workload: surf)", c->where("run.workload")));
+            throw ConfigError(fmt::format("{}: the precision study needs SURF scenarios (run.workload: surf)",
+                                          c->where("run.workload")));
         check_scenario(*c);
     }
     for (const Config* c : std::vector<const Config*>{&seq, pair ? &*pair : nullptr})
         if (c && !c->faults.empty())  // the study runs the chip without time, where no fault can strike
-            throw ConfigError(fmt::format("{}: faults: the precision study runs the chip without time; give a scenario without "
-                                          "faults", c->faults.front().origin));
+            throw ConfigError(
+                fmt::format("{}: faults: the precision study runs the chip without time; give a scenario without "
+                            "faults",
+                            c->faults.front().origin));
     if (pair && pair->text("eval.homography").empty())
-        throw ConfigError(fmt::format("--pair {}: a pair under a homography (eval.homography) gives repeatability and precision; "
-                                      "it has none", o.pair));
+        throw ConfigError(
+            fmt::format("--pair {}: a pair under a homography (eval.homography) gives repeatability and precision; "
+                        "it has none",
+                        o.pair));
     std::vector<Axis> axes;
     for (const std::string& a : o.axes) axes.push_back(parse_precision_axis(a));
     if (axes.empty()) axes = default_axes();
@@ -316,9 +358,11 @@ int precision_command(const PrecisionOptions& o) {
     Json reference = Json::object();
     std::vector<std::string> haars{seq.choice("surf.haar")};
     for (const Point& p : points)
-        if (p.key == "surf.haar" && std::find(haars.begin(), haars.end(), p.value) == haars.end()) haars.push_back(p.value);
+        if (p.key == "surf.haar" && std::find(haars.begin(), haars.end(), p.value) == haars.end())
+            haars.push_back(p.value);
     for (const std::string& h : haars) reference[h] = full_precision(seq, pair, h);
-    const std::vector<cv::Size> pair_sizes = pair ? cpu_column(*pair, variants(*pair)[0]).sizes : std::vector<cv::Size>{};
+    const std::vector<cv::Size> pair_sizes =
+        pair ? cpu_column(*pair, variants(*pair)[0]).sizes : std::vector<cv::Size>{};
 
     Resimulation::prepare(seq);
     if (pair) Resimulation::prepare(*pair);
@@ -335,7 +379,9 @@ int precision_command(const PrecisionOptions& o) {
             [p, pair_sizes, scratch](const Config& config) { return measure(config, p, pair_sizes, scratch); });
     };
     for (size_t i = 0; i < points.size(); ++i) submit(i);
-    engine.run([&](size_t done, size_t all) { progress.update([&](double) { return fmt::format("{} of {} points", done, all); }); });
+    engine.run([&](size_t done, size_t all) {
+        progress.update([&](double) { return fmt::format("{} of {} points", done, all); });
+    });
     for (Point& p : points) compare(p.result, reference[p.key == "surf.haar" ? p.value : seq.choice("surf.haar")]);
     const auto fewest = fewest_bits(axes, points, seq);
     if (!fewest.empty()) {  // all of them at once
@@ -354,7 +400,8 @@ int precision_command(const PrecisionOptions& o) {
         const Json& full = reference[seq.choice("surf.haar")];
         double spread = 0;
         for (const Json& v : full["ransac_spread"]) spread = std::max(spread, v.get<double>());
-        report["standard_error"] = full["pairs"].get<size_t>() ? spread / std::sqrt(double(full["pairs"].get<size_t>())) : 0.0;
+        report["standard_error"] =
+            full["pairs"].get<size_t>() ? spread / std::sqrt(double(full["pairs"].get<size_t>())) : 0.0;
         report["pairs"] = full["pairs"];
     }
     report["full_precision"] = reference;
@@ -367,8 +414,10 @@ int precision_command(const PrecisionOptions& o) {
         all_ran = all_ran && !p.result.contains("error");
     }
     report["fewest_bits"] = Json::array();
-    for (const auto& [key, value] : fewest) report["fewest_bits"].push_back(Json{{"key", key}, {"fewest", value}, {"scenario", seq.value(key)}});
-    report["all_fewest_together"] = fewest.empty() ? Json(nullptr) : Json{{"sets", points.back().sets}, {"result", points.back().result}};
+    for (const auto& [key, value] : fewest)
+        report["fewest_bits"].push_back(Json{{"key", key}, {"fewest", value}, {"scenario", seq.value(key)}});
+    report["all_fewest_together"] =
+        fewest.empty() ? Json(nullptr) : Json{{"sets", points.back().sets}, {"result", points.back().result}};
     try {
         fs::remove_all(staging / ".points");
         write_file_atomically(staging / "report.json", report.dump(2) + "\n");
@@ -377,9 +426,12 @@ int precision_command(const PrecisionOptions& o) {
         write_file_atomically(staging / "precision.svg", plot(report));
         out.publish();
     } catch (const EnvironmentError& e) {
-        throw EnvironmentError(fmt::format("{}; what was in {} before is as it was", out.as_published(e.what()), out.folder().string()));
+        throw EnvironmentError(
+            fmt::format("{}; what was in {} before is as it was", out.as_published(e.what()), out.folder().string()));
     }
-    if (!o.quiet) std::fprintf(stderr, "surfvp: precision: %zu points; report in %s\n", points.size(), (out.folder() / "report.md").c_str());
+    if (!o.quiet)
+        std::fprintf(stderr, "surfvp: precision: %zu points; report in %s\n", points.size(),
+                     (out.folder() / "report.md").c_str());
     return all_ran ? kExitOk : kExitFailed;
 }
 

@@ -15,12 +15,12 @@
 namespace surfvp {
 
 struct PrecisionOptions {
-    std::string scenario;            // a sequence (Table II rows)
-    std::string pair;                // a homography pair (repeatability, precision); empty: none
-    std::vector<std::string> sets;   // the sequence's (the pair takes only each point's widths)
-    std::vector<std::string> axes;   // KEY=V1,V2,...; empty: the built-in widths (docs/precision.md)
-    std::string out;                 // default: traces/precision_<scenario name>
-    unsigned jobs = 0;               // 0: one per core
+    std::string scenario;           // a sequence (Table II rows)
+    std::string pair;               // a homography pair (repeatability, precision); empty: none
+    std::vector<std::string> sets;  // the sequence's (the pair takes only each point's widths)
+    std::vector<std::string> axes;  // KEY=V1,V2,...; empty: the built-in widths (docs/precision.md)
+    std::string out;                // default: traces/precision_<scenario name>
+    unsigned jobs = 0;              // 0: one per core
     bool quiet = false;
 };
 

@@ -23,11 +23,13 @@ Json gap_table(const std::vector<Column>& columns, const std::vector<Measures>& 
     Json rows = Json::array();
     for (size_t r = 0; r < kPaper.size(); ++r) {
         const PaperRow& paper = kPaper[r];
-        Json row = {{"limited_search", paper.limited}, {"laplacian", paper.laplacian},
+        Json row = {{"limited_search", paper.limited},
+                    {"laplacian", paper.laplacian},
                     {"search_radius_px", paper.limited ? Json(kLimitedSearchPx) : Json(nullptr)}};
         for (size_t c = 0; c < columns.size(); ++c) row[columns[c].name] = measures[c].rows(gap)[r];
         if (gap == 1)
-            row["paper"] = {{"cpu", paper.cpu}, {"fpga", paper.fpga}, {"gpu", paper.gpu ? Json(*paper.gpu) : Json(nullptr)}};
+            row["paper"] = {
+                {"cpu", paper.cpu}, {"fpga", paper.fpga}, {"gpu", paper.gpu ? Json(*paper.gpu) : Json(nullptr)}};
         rows.push_back(std::move(row));
     }
     return {{"gap", gap}, {"rows", std::move(rows)}};
@@ -35,13 +37,15 @@ Json gap_table(const std::vector<Column>& columns, const std::vector<Measures>& 
 
 Json column_summary(const Column& col) {
     size_t total = 0, least = SIZE_MAX, most = 0;
-    for (const auto& k : col.frames) total += k.size(), least = std::min(least, k.size()), most = std::max(most, k.size());
-    return {{"label", col.label},
-            {"threshold", col.threshold},
-            {"threshold_rule", col.threshold_rule},
-            {"keypoints_per_frame", {{"mean", double(total) / double(col.frames.size())}, {"min", least}, {"max", most}}},
-            {"failed_frames", col.failed},
-            {"seconds", col.seconds}};
+    for (const auto& k : col.frames)
+        total += k.size(), least = std::min(least, k.size()), most = std::max(most, k.size());
+    return {
+        {"label", col.label},
+        {"threshold", col.threshold},
+        {"threshold_rule", col.threshold_rule},
+        {"keypoints_per_frame", {{"mean", double(total) / double(col.frames.size())}, {"min", least}, {"max", most}}},
+        {"failed_frames", col.failed},
+        {"seconds", col.seconds}};
 }
 
 // Every way the two columns differ, by design. Each can be switched off alone (surfvp surf's
@@ -64,10 +68,14 @@ Json differences(const Config& c) {
           {"fpga", "integer, at the FHG's fixed-point widths (fhg.* precision parameters)"}},
          {{"what", "non-maximum suppression"},
           {"cpu", "3x3x3 in float"},
-          {"fpga", "partial, in each 2x2 determinant block (LocalMaxFinder), re-checked in software over the integer determinants"}},
+          {"fpga",
+           "partial, in each 2x2 determinant block (LocalMaxFinder), re-checked in software over the integer "
+           "determinants"}},
          {{"what", "threshold"},
           {"cpu", "calibrated on frame 0 with the CPU's settings"},
-          {"fpga", "calibrated on frame 0 with 2 octaves (the float reference limited to the chip's octaves), in the FHG's units"}}});
+          {"fpga",
+           "calibrated on frame 0 with 2 octaves (the float reference limited to the chip's octaves), in the FHG's "
+           "units"}}});
 }
 
 std::string figure(const Json& cell) {
@@ -76,7 +84,8 @@ std::string figure(const Json& cell) {
 }
 
 std::string row_label(const Json& row) {
-    return fmt::format("{} | {}", row["limited_search"].get<bool>() ? "Y" : "N", row["laplacian"].get<bool>() ? "Y" : "N");
+    return fmt::format("{} | {}", row["limited_search"].get<bool>() ? "Y" : "N",
+                       row["laplacian"].get<bool>() ? "Y" : "N");
 }
 
 void markdown_gap(std::string& md, const Json& gap, const char* measure, const char* title) {
@@ -88,24 +97,31 @@ void markdown_gap(std::string& md, const Json& gap, const char* measure, const c
     for (const Json& row : gap["rows"]) {
         const Json &cpu = row["cpu"][measure], &fpga = row["fpga"][measure];
         const double change = std::round((fpga["mean"].get<double>() - cpu["mean"].get<double>()) * 1000) / 1000;
-        md += fmt::format("| {} | {} | {} | {:+.3f} |", row_label(row), figure(cpu), figure(fpga), change + 0.0);  // no -0.000
-        if (paper) md += fmt::format(" {:.2f} | {:.2f} |", row["paper"]["cpu"].get<double>(), row["paper"]["fpga"].get<double>());
+        md += fmt::format("| {} | {} | {} | {:+.3f} |", row_label(row), figure(cpu), figure(fpga),
+                          change + 0.0);  // no -0.000
+        if (paper)
+            md += fmt::format(" {:.2f} | {:.2f} |", row["paper"]["cpu"].get<double>(),
+                              row["paper"]["fpga"].get<double>());
         md += "\n";
     }
 }
 
 void markdown_contributions(std::string& md, const Json& lines) {
     const bool truth = lines[0].contains("ground_truth"), precision = lines[0].contains("precision");
-    md += "\n## What each difference costs\n\nThe float reference with the chip's software settings, one at a time and then "
-          "together (the same threshold rule, each calibrated on its own frame 0); what remains between the last and the "
-          "chip is the hardware's: integer determinants and block-wise suppression. Frames (i, i + 1), distinguishability "
-          "with RANSAC F";
+    md +=
+        "\n## What each difference costs\n\nThe float reference with the chip's software settings, one at a time and "
+        "then "
+        "together (the same threshold rule, each calibrated on its own frame 0); what remains between the last and the "
+        "chip is the hardware's: integer determinants and block-wise suppression. Frames (i, i + 1), "
+        "distinguishability "
+        "with RANSAC F";
     md += truth ? " (ground truth in brackets)" : "";
     md += precision ? "; precision of frames 0 and 1 under the homography" : "";
     md += ".\n\n| | keypoints per frame | Y Y | Y N | N Y | N N |";
     md += precision ? " precision |\n|---|---|---|---|---|---|---|\n" : "\n|---|---|---|---|---|---|\n";
     for (const Json& line : lines) {
-        md += fmt::format("| {} | {:.1f} |", line["label"].get<std::string>(), line["keypoints_per_frame"].get<double>());
+        md +=
+            fmt::format("| {} | {:.1f} |", line["label"].get<std::string>(), line["keypoints_per_frame"].get<double>());
         for (size_t i = 0; i < 4; ++i) {
             md += fmt::format(" {:.3f}", line["ransac"][i].get<double>());
             if (truth) md += fmt::format(" ({:.3f})", line["ground_truth"][i].get<double>());
@@ -119,40 +135,49 @@ void markdown_contributions(std::string& md, const Json& lines) {
 std::string markdown(const Json& r) {
     std::string md = fmt::format("# Table II: {}\n\n{}\n\n", r["scenario"]["name"].get<std::string>(),
                                  r["scenario"]["description"].get<std::string>());
-    md += fmt::format("{} frames of {}x{} from `{}`. Each cell: mean ± standard deviation over the pairs (pairs); a pair "
-                      "without a measured ratio counts 0, as in the paper. Limited search: {:g} px.\n\n",
-                      r["frames"].get<size_t>(), r["image"]["width"].get<int>(), r["image"]["height"].get<int>(),
-                      r["source"].get<std::string>(), kLimitedSearchPx);
+    md += fmt::format(
+        "{} frames of {}x{} from `{}`. Each cell: mean ± standard deviation over the pairs (pairs); a pair "
+        "without a measured ratio counts 0, as in the paper. Limited search: {:g} px.\n\n",
+        r["frames"].get<size_t>(), r["image"]["width"].get<int>(), r["image"]["height"].get<int>(),
+        r["source"].get<std::string>(), kLimitedSearchPx);
     md += "| column | keypoints per frame | threshold | rule | failed frames | time |\n|---|---|---|---|---|---|\n";
     for (const char* name : {"cpu", "fpga"}) {
         const Json& c = r["columns"][name];
-        md += fmt::format("| {} | {:.1f} ({}..{}) | {:.6g} | {} | {} | {:.1f} s |\n", c["label"].get<std::string>(),
-                          c["keypoints_per_frame"]["mean"].get<double>(), c["keypoints_per_frame"]["min"].get<size_t>(),
-                          c["keypoints_per_frame"]["max"].get<size_t>(), c["threshold"].get<double>(),
-                          c["threshold_rule"].get<std::string>(), c["failed_frames"].size(), c["seconds"].get<double>());
+        md +=
+            fmt::format("| {} | {:.1f} ({}..{}) | {:.6g} | {} | {} | {:.1f} s |\n", c["label"].get<std::string>(),
+                        c["keypoints_per_frame"]["mean"].get<double>(), c["keypoints_per_frame"]["min"].get<size_t>(),
+                        c["keypoints_per_frame"]["max"].get<size_t>(), c["threshold"].get<double>(),
+                        c["threshold_rule"].get<std::string>(), c["failed_frames"].size(), c["seconds"].get<double>());
     }
-    md += "\nThe FPGA column is a run of the chip in direct mode (the same driver, cores and software without "
-          "SystemC): its keypoints are the VP's byte for byte. Its run folder is `fpga/`; the CPU's keypoint files are in "
-          "`cpu/keypoints/`.\n";
+    md +=
+        "\nThe FPGA column is a run of the chip in direct mode (the same driver, cores and software without "
+        "SystemC): its keypoints are the VP's byte for byte. Its run folder is `fpga/`; the CPU's keypoint files are "
+        "in "
+        "`cpu/keypoints/`.\n";
     for (const Json& gap : r["gaps"]) {
         markdown_gap(md, gap, "ransac", "F from RANSAC (the paper's measure)");
-        if (gap["rows"][0]["cpu"].contains("ground_truth")) markdown_gap(md, gap, "ground_truth", "F from the camera poses");
+        if (gap["rows"][0]["cpu"].contains("ground_truth"))
+            markdown_gap(md, gap, "ground_truth", "F from the camera poses");
     }
     if (r.contains("homography")) {
-        md += "\n## Frames 0 and 1 under the homography\n\nOn a planar scene every F = [e']x H fits the true "
-              "correspondences, so RANSAC's F accepts more than the homography does: precision is the figure to compare "
-              "here, not the distinguishability above.\n\n| column | keypoints | repeatability | precision (correct / "
-              "candidates) |\n|---|---|---|---|\n";
+        md +=
+            "\n## Frames 0 and 1 under the homography\n\nOn a planar scene every F = [e']x H fits the true "
+            "correspondences, so RANSAC's F accepts more than the homography does: precision is the figure to compare "
+            "here, not the distinguishability above.\n\n| column | keypoints | repeatability | precision (correct / "
+            "candidates) |\n|---|---|---|---|\n";
         for (const char* name : {"cpu", "fpga"}) {
             const Json& h = r["homography"][name];
             md += fmt::format("| {} | {} / {} | {:.3f} | {:.3f} ({} / {}) |\n", name, h["keypoints"][0].get<size_t>(),
-                              h["keypoints"][1].get<size_t>(), h["repeatability"].get<double>(), h["precision"].get<double>(),
-                              h["precision_correct"].get<size_t>(), h["precision_candidates"].get<size_t>());
+                              h["keypoints"][1].get<size_t>(), h["repeatability"].get<double>(),
+                              h["precision"].get<double>(), h["precision_correct"].get<size_t>(),
+                              h["precision_candidates"].get<size_t>());
         }
     }
     if (r.contains("contributions")) markdown_contributions(md, r["contributions"]);
-    md += "\nThe paper's columns are its own figures on its own 1500-image data set (not available): a reference to "
-          "read these against, not a result of this run.\n\n## What the columns differ in\n\n| | CPU | FPGA |\n|---|---|---|\n";
+    md +=
+        "\nThe paper's columns are its own figures on its own 1500-image data set (not available): a reference to "
+        "read these against, not a result of this run.\n\n## What the columns differ in\n\n| | CPU | FPGA "
+        "|\n|---|---|---|\n";
     for (const Json& d : r["differences"])
         md += fmt::format("| {} | {} | {} |\n", d["what"].get<std::string>(), d["cpu"].get<std::string>(),
                           d["fpga"].get<std::string>());
@@ -174,9 +199,11 @@ void print_summary(const Json& r, const fs::path& dir) {
 int table2_command(const Table2Options& o) {
     const Config config = load_scenario(resolve_scenario(o.scenario), o.sets);
     if (config.choice("run.workload") != "surf")
-        throw ConfigError(fmt::format("{}: table2 needs a SURF scenario (run.workload: surf)", config.where("run.workload")));
+        throw ConfigError(
+            fmt::format("{}: table2 needs a SURF scenario (run.workload: surf)", config.where("run.workload")));
     if (config.count("surf.frames") < 2)
-        throw ConfigError(fmt::format("{}: table2 compares frame pairs: surf.frames must be at least 2", config.where("surf.frames")));
+        throw ConfigError(fmt::format("{}: table2 compares frame pairs: surf.frames must be at least 2",
+                                      config.where("surf.frames")));
     if (!config.faults.empty())
         throw ConfigError(fmt::format("{}: faults: table2 runs the chip without time; run the scenario without faults",
                                       config.faults.front().origin));
@@ -219,8 +246,8 @@ int table2_command(const Table2Options& o) {
         if (!o.quiet) print_summary(r, out.folder());
         return columns[1].exit_code;
     } catch (const EnvironmentError& e) {
-        throw EnvironmentError(fmt::format("{}; what was in {} before is as it was", out.as_published(e.what()),
-                                           out.folder().string()));
+        throw EnvironmentError(
+            fmt::format("{}; what was in {} before is as it was", out.as_published(e.what()), out.folder().string()));
     }
 }
 

@@ -27,8 +27,8 @@ namespace fs = std::filesystem;
 using Json = nlohmann::ordered_json;
 
 struct Measure {
-    double per_frame_s;        // wall time per simulated frame (per_frame_of)
-    double startup_s;          // the process's start to the simulation's (report.json)
+    double per_frame_s;  // wall time per simulated frame (per_frame_of)
+    double startup_s;    // the process's start to the simulation's (report.json)
     double peak_rss_mb;
     double chip_ms_per_frame;  // the modelled chip's steady-state period (report.json)
     double whole_run_s;        // the process from its start to its exit, as the caller waits for it
@@ -55,11 +55,11 @@ double per_frame_of(const Json& report, unsigned frames) {
 Measure child_run(const BenchOptions& o, const std::string& mode, unsigned frames, const fs::path& out,
                   const std::vector<std::string>& sets = {}) {
     const bool direct = mode == "direct";
-    std::vector<std::string> args{o.self, "run", resolve_scenario(o.scenario), "--quiet", "--trace", direct ? "none" : mode,
-                                  "--out", out.string(), "--set", fmt::format("surf.frames={}", frames),
-                                  // the simulator's speed, not the verdict's re-simulations
-                                  "--set", "verdict.band=off", "--set", "verdict.break_even=off",
-                                  "--set", "verdict.software=off"};
+    std::vector<std::string> args{
+        o.self, "run", resolve_scenario(o.scenario), "--quiet", "--trace", direct ? "none" : mode, "--out",
+        out.string(), "--set", fmt::format("surf.frames={}", frames),
+        // the simulator's speed, not the verdict's re-simulations
+        "--set", "verdict.band=off", "--set", "verdict.break_even=off", "--set", "verdict.software=off"};
     if (direct) args.push_back("--direct");
     for (const std::string& s : sets) args.insert(args.end(), {"--set", s});
     std::vector<char*> argv;
@@ -77,8 +77,8 @@ Measure child_run(const BenchOptions& o, const std::string& mode, unsigned frame
         throw ConfigError(fmt::format("bench: `surfvp run {}` failed (exit {})", o.scenario, WEXITSTATUS(status)));
     const Json report = Json::parse(std::ifstream(out / "report.json"));
     const double fps = report.value("throughput_fps", 0.0);
-    return {per_frame_of(report, frames), report.value("startup_s", 0.0), usage.ru_maxrss / 1024.0, fps > 0 ? 1e3 / fps : 0.0,
-            whole_s};
+    return {per_frame_of(report, frames), report.value("startup_s", 0.0), usage.ru_maxrss / 1024.0,
+            fps > 0 ? 1e3 / fps : 0.0, whole_s};
 }
 
 // A mode (the VP's traces, or direct) at a number of frames, with settings, and its run in each
@@ -119,8 +119,11 @@ Json figures_of(const Series& s) {
         peak = std::max(peak, m.peak_rss_mb);
         rounds.push_back(m.per_frame_s * 1e3);
     }
-    Json figures = {{"wall_per_frame_ms", per_frame * 1e3}, {"per_round_ms", rounds}, {"startup_ms", startup * 1e3},
-                    {"whole_run_ms", whole * 1e3}, {"peak_rss_mb", peak}};
+    Json figures = {{"wall_per_frame_ms", per_frame * 1e3},
+                    {"per_round_ms", rounds},
+                    {"startup_ms", startup * 1e3},
+                    {"whole_run_ms", whole * 1e3},
+                    {"peak_rss_mb", peak}};
     if (s.mode == "direct") return figures;
     const double chip_ms = s.runs[0].chip_ms_per_frame;
     figures["chip_ms_per_frame"] = chip_ms;
@@ -182,11 +185,13 @@ int bench_command(const BenchOptions& o) {
     auto target = [](double value, double limit, bool at_most) {
         return Json{{"value", value}, {"target", limit}, {"met", at_most ? value <= limit : value >= limit}};
     };
-    result["targets"] = {{"wall_per_frame_ms", target(wall, 25, true)},
-                         {"traces_all_over_none", target(ratio_by_round(compared[1], compared[0]), 1.3, true)},
-                         {"startup_ms", target(none["startup_ms"].get<double>(), 150, true)},
-                         {"peak_rss_mb", target(std::max(none["peak_rss_mb"].get<double>(), all["peak_rss_mb"].get<double>()), 200, true)},
-                         {"real_time_factor", target(none["real_time_factor"].get<double>(), 4, false)}};
+    result["targets"] = {
+        {"wall_per_frame_ms", target(wall, 25, true)},
+        {"traces_all_over_none", target(ratio_by_round(compared[1], compared[0]), 1.3, true)},
+        {"startup_ms", target(none["startup_ms"].get<double>(), 150, true)},
+        {"peak_rss_mb",
+         target(std::max(none["peak_rss_mb"].get<double>(), all["peak_rss_mb"].get<double>()), 200, true)},
+        {"real_time_factor", target(none["real_time_factor"].get<double>(), 4, false)}};
     if (surf) {
         const Json reference = reference_time(o.scenario);
         result["float_reference"] = reference;
@@ -203,7 +208,9 @@ int bench_command(const BenchOptions& o) {
         std::vector<Series> scaling;
         std::vector<std::string> sizes;
         for (const auto& [w, h] : {std::pair{640, 480}, std::pair{1024, 768}, std::pair{1024, 1024}}) {
-            scaling.emplace_back("none", o.frames, std::vector<std::string>{fmt::format("surf.width={}", w), fmt::format("surf.height={}", h)});
+            scaling.emplace_back(
+                "none", o.frames,
+                std::vector<std::string>{fmt::format("surf.width={}", w), fmt::format("surf.height={}", h)});
             sizes.push_back(fmt::format("{}x{}", w, h));
         }
         scaling.emplace_back("none", 10 * o.frames);
@@ -211,7 +218,8 @@ int bench_command(const BenchOptions& o) {
         measure_together(o, scaling, out);
         result["scaling"] = Json::array();
         for (size_t k = 0; k < scaling.size(); ++k)
-            result["scaling"].push_back({{"size", sizes[k]}, {"frames", scaling[k].frames}, {"traces_none", figures_of(scaling[k])}});
+            result["scaling"].push_back(
+                {{"size", sizes[k]}, {"frames", scaling[k].frames}, {"traces_none", figures_of(scaling[k])}});
     }
     std::error_code ignored;
     fs::remove_all(out, ignored);

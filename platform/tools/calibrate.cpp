@@ -107,12 +107,13 @@ Json compare_results(const std::vector<sw::calibration_dump::Result>& vp,
         const float* b = &iss[i].x;
         double diff = 0;
         for (int k = 0; k < 5; ++k) diff = std::max(diff, double(std::fabs(a[k] - b[k])));
-        for (int k = 0; k < 64; ++k) diff = std::max(diff, double(std::fabs(vp[i].descriptor[k] - iss[i].descriptor[k])));
+        for (int k = 0; k < 64; ++k)
+            diff = std::max(diff, double(std::fabs(vp[i].descriptor[k] - iss[i].descriptor[k])));
         if (diff == 0) ++exact;
         if (diff > kTolerance) ++mismatched;
         worst = std::max(worst, diff);
     }
-    return {{"words", vp.size()}, {"keypoints", keypoints}, {"bit_exact", exact}, {"max_difference", worst},
+    return {{"words", vp.size()},      {"keypoints", keypoints},   {"bit_exact", exact},      {"max_difference", worst},
             {"tolerance", kTolerance}, {"mismatched", mismatched}, {"agree", mismatched == 0}};
 }
 
@@ -122,8 +123,8 @@ Json compare_results(const std::vector<sw::calibration_dump::Result>& vp,
 constexpr size_t kSampleStride = 100;
 size_t sample_keypoints(const std::string& haar) { return haar == "rounded" ? 6 : 2; }
 
-sw::TraceReplay run_firmware(const CalibrateOptions& o, const fs::path& dir, const std::vector<sw::PipelineParams>& sets,
-                             size_t sample) {
+sw::TraceReplay run_firmware(const CalibrateOptions& o, const fs::path& dir,
+                             const std::vector<sw::PipelineParams>& sets, size_t sample) {
     std::ifstream map(o.firmware + ".map");
     if (!map) throw ConfigError("calibrate: no link map " + o.firmware + ".map beside the firmware");
     sw::TraceReplay replay(sw::read_link_map(map), sets);
@@ -142,8 +143,9 @@ sw::TraceReplay run_firmware(const CalibrateOptions& o, const fs::path& dir, con
 }
 
 // The stream's cycles per step (at the defaults) beside what the table prices the same units at.
-Json agreement(const std::vector<sw::CandidateStream>& stream_of, const std::vector<std::array<uint64_t, sw::kUnits>>& units,
-               const std::array<double, sw::kUnits>& prices, uint64_t keypoints, size_t set) {
+Json agreement(const std::vector<sw::CandidateStream>& stream_of,
+               const std::vector<std::array<uint64_t, sw::kUnits>>& units, const std::array<double, sw::kUnits>& prices,
+               uint64_t keypoints, size_t set) {
     std::array<double, sw::kSteps> stream{}, model{}, instructions{}, libm{};
     std::array<std::array<double, sw::kInsnClasses>, sw::kSteps> mix{};
     std::array<double, sw::kUnits> per_unit{};
@@ -212,25 +214,28 @@ void check_options(const CalibrateOptions& o) {
     if (o.frames < 1) throw ConfigError("calibrate: --frames must be at least 1");
     if (o.fit.empty()) throw ConfigError("calibrate: --fit needs at least one scenario");
     for (const auto& [option, list] : {std::pair{"--fit", &o.fit}, std::pair{"--check", &o.check}})
-        for (const std::string& scenario : *list)
-            try {
+        for (const std::string& scenario : *list) try {
                 if (scenario != "none")
-                    for (const char* haar : {"exact", "rounded"}) check_scenario(calibration_scenario(o, scenario, haar));
+                    for (const char* haar : {"exact", "rounded"})
+                        check_scenario(calibration_scenario(o, scenario, haar));
             } catch (const ConfigError& e) {
                 throw ConfigError(fmt::format("{} {}: {}", option, scenario, e.what()));
             }
     std::error_code ec;
     if (!o.table.empty()) {
         const fs::path folder = fs::path(o.table).has_parent_path() ? fs::path(o.table).parent_path() : fs::path(".");
-        if (fs::is_directory(o.table, ec)) throw ConfigError(fmt::format("--table {}: is a folder, not a file to write", o.table));
+        if (fs::is_directory(o.table, ec))
+            throw ConfigError(fmt::format("--table {}: is a folder, not a file to write", o.table));
         if (!fs::is_directory(folder, ec))
             throw ConfigError(fmt::format("--table {}: no folder {} to write it in", o.table, folder.string()));
         if (::access(folder.c_str(), W_OK) != 0)
-            throw EnvironmentError(fmt::format("--table {}: its folder cannot be written ({})", o.table, std::strerror(errno)));
+            throw EnvironmentError(
+                fmt::format("--table {}: its folder cannot be written ({})", o.table, std::strerror(errno)));
     }
     fs::create_directories(o.out, ec);
     if (ec || ::access(o.out.c_str(), W_OK) != 0)
-        throw EnvironmentError(fmt::format("--out {}: cannot be written ({})", o.out, ec ? ec.message() : std::strerror(errno)));
+        throw EnvironmentError(
+            fmt::format("--out {}: cannot be written ({})", o.out, ec ? ec.message() : std::strerror(errno)));
 }
 
 RunResult calibration_run(const CalibrateOptions& o, const std::string& scenario, const std::string& haar,
@@ -249,7 +254,8 @@ RunResult calibration_run(const CalibrateOptions& o, const std::string& scenario
         pool.run([](size_t, size_t) {});
     }
     record_stage_inputs("", "");
-    if (vp.contains("error")) throw ConfigError("calibrate: the VP run of " + scenario + " failed: " + vp["error"].dump());
+    if (vp.contains("error"))
+        throw ConfigError("calibrate: the VP run of " + scenario + " failed: " + vp["error"].dump());
     const std::vector<Frame> frames = read_inputs(dir / "inputs.bin");
     RunResult run;
     run.units = native_units(frames);
@@ -265,8 +271,11 @@ RunResult calibration_run(const CalibrateOptions& o, const std::string& scenario
     fs::remove_all(dir);  // tens of MB of buffers, reproducible from the scenario
     Json unknown = Json::object();
     for (const auto& [m, n] : replay.unknown_mnemonics()) unknown[m] = n;
-    run.record = {{"scenario", scenario}, {"haar", haar}, {"frames", frames.size()},
-                  {"results", results},   {"instructions_executed", replay.instructions()},
+    run.record = {{"scenario", scenario},
+                  {"haar", haar},
+                  {"frames", frames.size()},
+                  {"results", results},
+                  {"instructions_executed", replay.instructions()},
                   {"unclassified_mnemonics", unknown}};
     return run;
 }
@@ -296,65 +305,78 @@ std::string mix_text(const Json& mix) {
 std::string calibration_markdown(const Json& out) {
     std::string md = "# PPC440 calibration of the software stage\n\n";
     const Json& prov = out["calibration"]["provenance"];
-    md += fmt::format("Firmware: `{}` with `{}`, run under `{}`; table fitted on {}.\n\n", prov["toolchain"].get<std::string>(),
-                      prov["flags"].get<std::string>(), prov["iss"].get<std::string>(), prov["fitted_on"].get<std::string>());
-    md += "The firmware contracts `a * b + c` into `fmadds` as GCC does by default (an EDK build), the native "
-          "build does not: the same keypoints, with float values that differ in the last bits (compared "
-          "within the tolerance). Cycles per keypoint are all candidates' work divided by the keypoints; "
-          "the stream's are the pipeline model on qemu's instruction stream, every access an L1 hit (the fills "
-          "are timed by the platform).\n\n";
+    md += fmt::format("Firmware: `{}` with `{}`, run under `{}`; table fitted on {}.\n\n",
+                      prov["toolchain"].get<std::string>(), prov["flags"].get<std::string>(),
+                      prov["iss"].get<std::string>(), prov["fitted_on"].get<std::string>());
+    md +=
+        "The firmware contracts `a * b + c` into `fmadds` as GCC does by default (an EDK build), the native "
+        "build does not: the same keypoints, with float values that differ in the last bits (compared "
+        "within the tolerance). Cycles per keypoint are all candidates' work divided by the keypoints; "
+        "the stream's are the pipeline model on qemu's instruction stream, every access an L1 hit (the fills "
+        "are timed by the platform).\n\n";
     for (const Json& r : out["runs"])
-      for (const char* which : {"agreement", "agreement_double"}) {
-        const Json& a = r[which];
-        md += fmt::format("## {}, {} Haar, {} precision ({}; {} frames, {} candidates, {} keypoints)\n\n",
-                          r["scenario"].get<std::string>(), r["haar"].get<std::string>(),
-                          std::string(which) == "agreement" ? "single" : "double",
-                          r.value("fitted", false) ? "fitted" : "held out", r["frames"].get<int>(), a["candidates"].get<size_t>(),
-                          a["keypoints"].get<uint64_t>());
-        md += fmt::format("Keypoints: {} of {} words, {} bit-exact, largest difference {:.2g} (tolerance {:.0e}).\n\n",
-                          r["results"]["keypoints"].get<size_t>(), r["results"]["words"].get<size_t>(),
-                          r["results"]["bit_exact"].get<size_t>(), r["results"]["max_difference"].get<double>(), kTolerance);
-        md += "| step | instructions / keypoint | stream cycles / keypoint | model cycles / keypoint | model vs stream | "
-              "libm calls / keypoint | mix / keypoint |\n|---|---:|---:|---:|---:|---:|---|\n";
-        for (const auto& [step, v] : a["steps"].items())
-            md += fmt::format("| {} | {:.0f} | {:.0f} | {:.0f} | {:+.2f} % | {:.1f} | {} |\n", step,
-                              v["instructions_per_keypoint"].get<double>(), v["stream_cycles_per_keypoint"].get<double>(),
-                              v["model_cycles_per_keypoint"].get<double>(), 100 * v["error"].get<double>(),
-                              v["libm_calls_per_keypoint"].get<double>(), mix_text(v["mix_per_keypoint"]));
-        md += fmt::format("| **total** | | {:.0f} | {:.0f} | **{:+.2f} %** | | |\n\n",
-                          a["stream_cycles"].get<double>() / std::max<double>(1, a["keypoints"].get<double>()),
-                          a["model_cycles"].get<double>() / std::max<double>(1, a["keypoints"].get<double>()),
-                          100 * a["total_error"].get<double>());
-      }
+        for (const char* which : {"agreement", "agreement_double"}) {
+            const Json& a = r[which];
+            md += fmt::format("## {}, {} Haar, {} precision ({}; {} frames, {} candidates, {} keypoints)\n\n",
+                              r["scenario"].get<std::string>(), r["haar"].get<std::string>(),
+                              std::string(which) == "agreement" ? "single" : "double",
+                              r.value("fitted", false) ? "fitted" : "held out", r["frames"].get<int>(),
+                              a["candidates"].get<size_t>(), a["keypoints"].get<uint64_t>());
+            md += fmt::format(
+                "Keypoints: {} of {} words, {} bit-exact, largest difference {:.2g} (tolerance {:.0e}).\n\n",
+                r["results"]["keypoints"].get<size_t>(), r["results"]["words"].get<size_t>(),
+                r["results"]["bit_exact"].get<size_t>(), r["results"]["max_difference"].get<double>(), kTolerance);
+            md +=
+                "| step | instructions / keypoint | stream cycles / keypoint | model cycles / keypoint | model vs "
+                "stream | "
+                "libm calls / keypoint | mix / keypoint |\n|---|---:|---:|---:|---:|---:|---|\n";
+            for (const auto& [step, v] : a["steps"].items())
+                md += fmt::format("| {} | {:.0f} | {:.0f} | {:.0f} | {:+.2f} % | {:.1f} | {} |\n", step,
+                                  v["instructions_per_keypoint"].get<double>(),
+                                  v["stream_cycles_per_keypoint"].get<double>(),
+                                  v["model_cycles_per_keypoint"].get<double>(), 100 * v["error"].get<double>(),
+                                  v["libm_calls_per_keypoint"].get<double>(), mix_text(v["mix_per_keypoint"]));
+            md += fmt::format("| **total** | | {:.0f} | {:.0f} | **{:+.2f} %** | | |\n\n",
+                              a["stream_cycles"].get<double>() / std::max<double>(1, a["keypoints"].get<double>()),
+                              a["model_cycles"].get<double>() / std::max<double>(1, a["keypoints"].get<double>()),
+                              100 * a["total_error"].get<double>());
+        }
     const Json& checks = out["calibration"]["checks"];
     if (!checks.empty()) {
-        md += "## Several knobs at once: the prices against the stream re-timed\n\n"
-              "Each point moves every knob of the band at once (spread over the band by a fixed rule, precision alternating); the "
-              "whole stream is timed there. The model scales the table by the stream sample re-timed at the point; "
-              "the linear column is the sum of the one-knob probes' changes (not used: the knobs interact).\n\n"
-              "| scenario | Haar | point | precision | stream cycles / keypoint | model cycles / keypoint | model vs stream | "
-              "linear vs stream |\n|---|---|---:|---|---:|---:|---:|---:|\n";
+        md +=
+            "## Several knobs at once: the prices against the stream re-timed\n\n"
+            "Each point moves every knob of the band at once (spread over the band by a fixed rule, precision "
+            "alternating); the "
+            "whole stream is timed there. The model scales the table by the stream sample re-timed at the point; "
+            "the linear column is the sum of the one-knob probes' changes (not used: the knobs interact).\n\n"
+            "| scenario | Haar | point | precision | stream cycles / keypoint | model cycles / keypoint | model vs "
+            "stream | "
+            "linear vs stream |\n|---|---|---:|---|---:|---:|---:|---:|\n";
         for (const Json& c : checks)
-            md += fmt::format("| {} | {} | {} | {} | {:.0f} | {:.0f} | {:+.2f} % | {:+.2f} % |\n",
-                              c["scenario"].get<std::string>(), c["haar"].get<std::string>(), c["point"].get<int>(),
-                              c["knobs"]["fpu.precision"].get<double>() > 0.5 ? "double" : "single",
-                              c["stream_cycles_per_keypoint"].get<double>(), c["model_cycles_per_keypoint"].get<double>(),
-                              100 * c["error"].get<double>(), 100 * c["linear_error"].get<double>());
+            md +=
+                fmt::format("| {} | {} | {} | {} | {:.0f} | {:.0f} | {:+.2f} % | {:+.2f} % |\n",
+                            c["scenario"].get<std::string>(), c["haar"].get<std::string>(), c["point"].get<int>(),
+                            c["knobs"]["fpu.precision"].get<double>() > 0.5 ? "double" : "single",
+                            c["stream_cycles_per_keypoint"].get<double>(), c["model_cycles_per_keypoint"].get<double>(),
+                            100 * c["error"].get<double>(), 100 * c["linear_error"].get<double>());
         md += "\n";
     }
     for (const auto& [haar, units] : out["calibration"]["single"]["haar"].items()) {
-        md += fmt::format("## Instructions per unit of work, {} Haar (cycles: single precision)\n\n| unit | cycles | instructions | IPC | libm calls | mix |\n|---|---:|---:|---:|---:|---|\n", haar);
+        md += fmt::format(
+            "## Instructions per unit of work, {} Haar (cycles: single precision)\n\n| unit | cycles | instructions | "
+            "IPC | libm calls | mix |\n|---|---:|---:|---:|---:|---|\n",
+            haar);
         for (const auto& [unit, u] : units.items()) {
             const std::string mix = mix_text(u["mix"]);
             const double cycles = u["cycles"].get<double>();
-            md += fmt::format("| {} | {:.1f} | {:.1f} | {:.2f} | {:.1f} | {} |\n", unit, cycles, u["instructions"].get<double>(),
-                              cycles > 0 ? u["instructions"].get<double>() / cycles : 0.0, u["libm_calls"].get<double>(), mix);
+            md += fmt::format(
+                "| {} | {:.1f} | {:.1f} | {:.2f} | {:.1f} | {} |\n", unit, cycles, u["instructions"].get<double>(),
+                cycles > 0 ? u["instructions"].get<double>() / cycles : 0.0, u["libm_calls"].get<double>(), mix);
         }
         md += "\n";
     }
     return md;
 }
-
 
 // The pipeline a table is measured at: the fitting scenario's with the caller's --set, in
 // each precision (its latency column unless the caller set a latency).
@@ -423,7 +445,8 @@ int calibrate_command(const CalibrateOptions& options) {
         sets.insert(sets.end(), table_sets.begin(), table_sets.end());
     }
     const size_t first_check = sets.size();
-    const std::vector<sw::PipelineParams> checks = o.probes ? check_points(bases, kCheckPoints) : std::vector<sw::PipelineParams>{};
+    const std::vector<sw::PipelineParams> checks =
+        o.probes ? check_points(bases, kCheckPoints) : std::vector<sw::PipelineParams>{};
     sets.insert(sets.end(), checks.begin(), checks.end());
 
     sw::Calibration table;
@@ -453,36 +476,44 @@ int calibrate_command(const CalibrateOptions& options) {
         for (size_t p = 0; p < 2; ++p) {
             sw::UnitTable fitted = sw::fit_units(pooled.stream, pooled.units, first[p], o.probes);
             if (!o.probes)  // not probed: no sensitivity (the probes sit at the defaults)
-                for (sw::UnitCalibration& u : fitted) u.low = u.high = std::vector<double>(sw::pipeline_knobs().size(), u.cycles);
+                for (sw::UnitCalibration& u : fitted)
+                    u.low = u.high = std::vector<double>(sw::pipeline_knobs().size(), u.cycles);
             table.precision[p].haar[size_t(h)] = fitted;
         }
         for (const std::string& check : o.check)
             if (check != "none") done.emplace_back(calibration_run(o, check, modes[h], sets), h);
     }
-    table.provenance = {{"toolchain", first_line("powerpc-linux-gnu-g++ --version")},
-                        {"flags", SURFVP_FIRMWARE_FLAGS},
-                        {"iss", fmt::format("{} -cpu {}", kQemu, kQemuCpu)},
-                        {"fitted_on", fmt::format("{}, {} frames each per Haar mode", fmt::join(o.fit, " + "), o.frames)},
-                        {"set", o.sets}};
+    table.provenance = {
+        {"toolchain", first_line("powerpc-linux-gnu-g++ --version")},
+        {"flags", SURFVP_FIRMWARE_FLAGS},
+        {"iss", fmt::format("{} -cpu {}", kQemu, kQemuCpu)},
+        {"fitted_on", fmt::format("{}, {} frames each per Haar mode", fmt::join(o.fit, " + "), o.frames)},
+        {"set", o.sets}};
     for (auto& [run, h] : done) {
         uint64_t keypoints = 0;
         for (const auto& n : run.units) keypoints += n[size_t(sw::Unit::descriptor)];
         const surf::HaarMode haar = h ? surf::HaarMode::rounded : surf::HaarMode::exact;
         for (size_t p = 0; p < 2; ++p) {
-            const Json a = agreement(run.stream, run.units, sw::unit_prices(haar, bases[p], table), keypoints, first[p]);
+            const Json a =
+                agreement(run.stream, run.units, sw::unit_prices(haar, bases[p], table), keypoints, first[p]);
             run.record[p ? "agreement_double" : "agreement"] = a;
-            Json summary = {{"scenario", run.record["scenario"]}, {"haar", run.record["haar"]},
-                            {"precision", p ? "double" : "single"}, {"fitted", run.record.value("fitted", false)}};
+            Json summary = {{"scenario", run.record["scenario"]},
+                            {"haar", run.record["haar"]},
+                            {"precision", p ? "double" : "single"},
+                            {"fitted", run.record.value("fitted", false)}};
             summary.update(a);
             table.agreement.push_back(summary);
         }
         const double per = double(std::max<uint64_t>(1, keypoints));
         for (size_t i = 0; i < checks.size(); ++i) {
-            const Json a = agreement(run.stream, run.units, sw::unit_prices(haar, checks[i], table), keypoints, first_check + i);
-            const Json linear =
-                agreement(run.stream, run.units, sw::linear_unit_prices(haar, checks[i], table), keypoints, first_check + i);
-            table.checks.push_back({{"scenario", run.record["scenario"]}, {"haar", run.record["haar"]},
-                                    {"point", i}, {"knobs", knob_values(checks[i])},
+            const Json a =
+                agreement(run.stream, run.units, sw::unit_prices(haar, checks[i], table), keypoints, first_check + i);
+            const Json linear = agreement(run.stream, run.units, sw::linear_unit_prices(haar, checks[i], table),
+                                          keypoints, first_check + i);
+            table.checks.push_back({{"scenario", run.record["scenario"]},
+                                    {"haar", run.record["haar"]},
+                                    {"point", i},
+                                    {"knobs", knob_values(checks[i])},
                                     {"units_per_keypoint", a["units_per_keypoint"]},
                                     {"stream_cycles_per_keypoint", a["stream_cycles"].get<double>() / per},
                                     {"model_cycles_per_keypoint", a["model_cycles"].get<double>() / per},

@@ -19,10 +19,10 @@ struct CalibrateOptions {
     std::vector<std::string> sets;  // for every run
     int frames = 2;                 // per scenario
     std::string out = "traces/calibration";
-    std::string table;              // also write the fitted table here (sw/cpu_cost/calibration.json)
-    bool probes = true;             // time the stream under every knob's probes and the check points too
+    std::string table;   // also write the fitted table here (sw/cpu_cost/calibration.json)
+    bool probes = true;  // time the stream under every knob's probes and the check points too
     bool quiet = false;
-    std::string firmware;           // default: the build's
+    std::string firmware;  // default: the build's
 };
 
 int calibrate_command(const CalibrateOptions& options);

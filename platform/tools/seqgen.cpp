@@ -26,9 +26,14 @@ int seqgen_command(const SeqgenOptions& options) {
     }
     const double blocks = double((options.width + 1) / 2) * ((options.height + 1) / 2);
     const double frame_s = blocks * out["cycles_per_block"].get<int>() / p.clock.hz;
-    out["frame"] = {{"width", options.width}, {"height", options.height}, {"blocks", uint64_t(blocks)},
-                    {"fhg_clock_hz", p.clock.hz}, {"fhg_compute_s", frame_s}, {"frames_per_second", 1.0 / frame_s},
-                    {"note", "FHG compute only: blocks x cycles_per_block / clock; a run adds pipeline fill and the software"}};
+    out["frame"] = {
+        {"width", options.width},
+        {"height", options.height},
+        {"blocks", uint64_t(blocks)},
+        {"fhg_clock_hz", p.clock.hz},
+        {"fhg_compute_s", frame_s},
+        {"frames_per_second", 1.0 / frame_s},
+        {"note", "FHG compute only: blocks x cycles_per_block / clock; a run adds pipeline fill and the software"}};
     std::printf("%s\n", out.dump(2).c_str());
     return 0;
 }

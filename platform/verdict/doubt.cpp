@@ -23,7 +23,9 @@ bool discrete(const ParamSpec& p) {
 }
 
 bool same(const ParamSpec& p, const std::string& a, const std::string& b) {
-    return discrete(p) && p.kind != ParamKind::bits && p.kind != ParamKind::bytes ? a == b : parse_value(p, a) == parse_value(p, b);
+    return discrete(p) && p.kind != ParamKind::bits && p.kind != ParamKind::bytes
+               ? a == b
+               : parse_value(p, a) == parse_value(p, b);
 }
 
 std::string value_text(const Unknown& u, double unit) {
@@ -79,7 +81,8 @@ struct Surrogate {
     }
 };
 
-Surrogate fit(const Eigen::MatrixXd& x, const std::map<std::string, Eigen::VectorXd>& log_alone, const Eigen::VectorXd& fps) {
+Surrogate fit(const Eigen::MatrixXd& x, const std::map<std::string, Eigen::VectorXd>& log_alone,
+              const Eigen::VectorXd& fps) {
     Surrogate s;
     // A small ridge keeps a feature that never moves a resource from making the system singular.
     const Eigen::MatrixXd gram = x.transpose() * x + 1e-6 * Eigen::MatrixXd::Identity(x.cols(), x.cols());
@@ -123,7 +126,8 @@ Json sensitivity(const std::vector<Unknown>& unknowns, const Surrogate& s, uint3
             total += (fa[i] - fab) * (fa[i] - fab);
         }
         const double s1 = var > 0 ? first / double(n) / var : 0, st = var > 0 ? total / (2.0 * double(n)) / var : 0;
-        rows.push_back({{"parameter", unknowns[j].spec->key}, {"first_order", std::max(0.0, s1)}, {"total", std::max(0.0, st)}});
+        rows.push_back(
+            {{"parameter", unknowns[j].spec->key}, {"first_order", std::max(0.0, s1)}, {"total", std::max(0.0, st)}});
     }
     std::stable_sort(rows.begin(), rows.end(),
                      [](const Json& x, const Json& y) { return x["total"].get<double>() > y["total"].get<double>(); });
@@ -141,10 +145,12 @@ std::vector<Unknown> unknowns_of(const std::vector<const ParamSpec*>& banded, co
         Unknown u{p, {}, 0, 0};
         if (discrete(*p)) {
             for (const std::string& v : {p->band.low, now, p->band.high})
-                if (std::none_of(u.values.begin(), u.values.end(), [&](const std::string& w) { return same(*p, v, w); }))
+                if (std::none_of(u.values.begin(), u.values.end(),
+                                 [&](const std::string& w) { return same(*p, v, w); }))
                     u.values.push_back(v);
         } else {
-            const double lo = parse_value(*p, p->band.low), hi = parse_value(*p, p->band.high), at = parse_value(*p, now);
+            const double lo = parse_value(*p, p->band.low), hi = parse_value(*p, p->band.high),
+                         at = parse_value(*p, now);
             u.low = std::min({lo, hi, at});
             u.high = std::max({lo, hi, at});
         }
@@ -182,20 +188,25 @@ Json doubt_json(const std::vector<Unknown>& unknowns, const JointDesign& design,
         else
             good.push_back(i);
     }
-    Json out = {{"points", results.size()}, {"frames", frames}, {"unknowns", unknowns.size()}, {"failed_points", failed}};
+    Json out = {
+        {"points", results.size()}, {"frames", frames}, {"unknowns", unknowns.size()}, {"failed_points", failed}};
     if (good.size() < 2) return out;
     std::vector<double> fps;
     for (size_t i : good) fps.push_back(run_fps + results[i]["fps"].get<double>() - reference_fps);
     const double met = double(std::count_if(fps.begin(), fps.end(), [&](double f) { return f >= budget; }));
-    out["fps"] = {{"p5", percentile(fps, 0.05)}, {"p50", percentile(fps, 0.5)}, {"p95", percentile(fps, 0.95)},
-                  {"min", *std::min_element(fps.begin(), fps.end())}, {"max", *std::max_element(fps.begin(), fps.end())}};
+    out["fps"] = {{"p5", percentile(fps, 0.05)},
+                  {"p50", percentile(fps, 0.5)},
+                  {"p95", percentile(fps, 0.95)},
+                  {"min", *std::min_element(fps.begin(), fps.end())},
+                  {"max", *std::max_element(fps.begin(), fps.end())}};
     if (budget > 0) out["probability_met"] = met / double(fps.size());
 
     // The surrogate, on the resources every good point reports.
     Eigen::MatrixXd x(Eigen::Index(good.size()), Eigen::Index(feature_count(unknowns)));
     Eigen::VectorXd rate(x.rows());
     std::map<std::string, Eigen::VectorXd> log_alone;
-    for (const auto& [resource, v] : results[good[0]]["alone_fps"].items()) log_alone[resource] = Eigen::VectorXd(x.rows());
+    for (const auto& [resource, v] : results[good[0]]["alone_fps"].items())
+        log_alone[resource] = Eigen::VectorXd(x.rows());
     for (Eigen::Index r = 0; r < x.rows(); ++r) {
         const Json& point = results[good[size_t(r)]];
         features(unknowns, design.unit[good[size_t(r)]], x.row(r));
@@ -218,8 +229,9 @@ Json doubt_json(const std::vector<Unknown>& unknowns, const JointDesign& design,
         spread += std::pow(rate(r) - mean, 2);
     }
     out["surrogate"] = {{"r2", spread > 0 ? 1 - residual / spread : 1.0},
-                        {"method", "per resource, log(frames/s it alone allows) linear in the unknowns; the least of them, "
-                                   "scaled to the points"},
+                        {"method",
+                         "per resource, log(frames/s it alone allows) linear in the unknowns; the least of them, "
+                         "scaled to the points"},
                         {"sobol_samples", kSobolSamples}};
     out["sensitivity"] = sensitivity(unknowns, s, 2);
     return out;

@@ -41,7 +41,7 @@ JointDesign joint_design(const std::vector<Unknown>& unknowns, size_t points, ui
 
 // `results[i]` is point i's summary (fps, alone_fps per resource), or {"error": ...}.
 nlohmann::ordered_json doubt_json(const std::vector<Unknown>& unknowns, const JointDesign& design,
-                                  const std::vector<nlohmann::ordered_json>& results, double run_fps, double reference_fps,
-                                  double budget, unsigned frames);
+                                  const std::vector<nlohmann::ordered_json>& results, double run_fps,
+                                  double reference_fps, double budget, unsigned frames);
 
 }  // namespace surfvp

@@ -85,7 +85,8 @@ public:
         double guess = start + (start_fps >= budget ? -axis.direction : axis.direction);
         if (axis.linear && start_fps > 0)
             guess = axis.direction > 0 ? start * budget / start_fps : start * start_fps / budget;
-        guess_ = clamp(axis.direction * (integer_ ? (axis.direction > 0 ? std::ceil(guess) : std::floor(guess)) : guess));
+        guess_ =
+            clamp(axis.direction * (integer_ ? (axis.direction > 0 ? std::ceil(guess) : std::floor(guess)) : guess));
         step_ = integer_ ? 1 : 0.01 * std::abs(guess_);
     }
 
@@ -147,9 +148,10 @@ public:
             r["check"] = check;
         } else {
             r["value"] = nullptr;
-            r["note"] = runs_ > kMaxRuns ? fmt::format("no value found in {} re-simulations", kMaxRuns)
-                                         : fmt::format("not met anywhere in {}'s range ({} to {})", axis_.key, axis_.direction > 0 ? "up" : "down",
-                                                       as_text(spec_, value(u_max_)));
+            r["note"] = runs_ > kMaxRuns
+                            ? fmt::format("no value found in {} re-simulations", kMaxRuns)
+                            : fmt::format("not met anywhere in {}'s range ({} to {})", axis_.key,
+                                          axis_.direction > 0 ? "up" : "down", as_text(spec_, value(u_max_)));
         }
         return r;
     }
@@ -170,7 +172,6 @@ private:
     double hi_fps_ = 0;
     int runs_ = 0, nudges_ = 0;
 };
-
 
 // A resource's frame rate alone in a point, or -1 when the point does not give it.
 double alone(const Json& r, const std::string& resource) {
@@ -213,7 +214,8 @@ std::pair<std::string, std::string> next_limit(const Json& point, const std::set
     double lowest = std::numeric_limits<double>::infinity();
     if (point.contains("alone_fps"))
         for (const auto& [name, fps] : point["alone_fps"].items())
-            if (name != "accelerator pair" && !relieved.count(name) && fps.get<double>() < lowest) lowest = fps, least = name;
+            if (name != "accelerator pair" && !relieved.count(name) && fps.get<double>() < lowest)
+                lowest = fps, least = name;
     return {least, "busy"};
 }
 
@@ -251,11 +253,13 @@ void LimitChain::begin(size_t k, const Json& point) {
     std::tie(s.resource, s.cause) = next_limit(point, relieved);
     if (s.resource.empty()) return;
     const double fps = point["fps"].get<double>(), own = alone(point, s.resource);
-    s.goal = {s.resource, budget_, own < 0 ? fps < budget_ : own < budget_, fps >= budget_ ? budget_ : fps * (1 - 1e-3)};
+    s.goal = {s.resource, budget_, own < 0 ? fps < budget_ : own < budget_,
+              fps >= budget_ ? budget_ : fps * (1 - 1e-3)};
     if (k + 1 == depth_ && k > 0) return;  // the last limit is named with its headroom; nothing comes after it
     s.searched = true;
     for (const Axis& axis : break_even_axes(s.resource, s.cause, point, s.base)) {
-        s.searches.push_back(std::make_unique<BreakEven>(axis, start_value(axis, s.base), point["fps"].get<double>(), budget_));
+        s.searches.push_back(
+            std::make_unique<BreakEven>(axis, start_value(axis, s.base), point["fps"].get<double>(), budget_));
         s.checks.emplace_back();
     }
     s.pending = s.searches.size();
@@ -295,8 +299,11 @@ void LimitChain::check(size_t k, size_t i, double value) {
             if (!met && !r.contains("error"))
                 if (const auto further = step.searches[i]->nudge()) return check(k, i, *further);
             step.checks[i] = r.contains("error") ? r
-                                                 : Json{{"frames", config_.count("surf.frames")}, {"fps", r["fps"]}, {"met", met},
-                                                        {"budget_met", r["fps"].get<double>() >= budget_}, {"limit", r["limit"]},
+                                                 : Json{{"frames", config_.count("surf.frames")},
+                                                        {"fps", r["fps"]},
+                                                        {"met", met},
+                                                        {"budget_met", r["fps"].get<double>() >= budget_},
+                                                        {"limit", r["limit"]},
                                                         {"goal", step.goal.relieve ? "relieve" : "keep"}};
             done(k);
         },
@@ -316,8 +323,9 @@ void LimitChain::done(size_t k) {
         next->relieved.emplace_back(search->axis().key, as_text(search->spec(), *answer));
         next->base = with(reference_, next->relieved);
         steps_.push_back(std::move(next));
-        pool_.submit(steps_.back()->base, [this, k](const Json& r) { begin(k + 1, r); }, Resimulation::point_summary, "",
-                     "none", true);
+        pool_.submit(
+            steps_.back()->base, [this, k](const Json& r) { begin(k + 1, r); }, Resimulation::point_summary, "", "none",
+            true);
         return;
     }
 }

@@ -21,7 +21,8 @@ namespace fs = std::filesystem;
 using Json = nlohmann::ordered_json;
 
 constexpr uint32_t kJointSeed = 1;
-constexpr size_t kChainDepth = 3;  // limits named, each relieved in turn  // the joint sample's: the same scenario samples the same points
+constexpr size_t kChainDepth =
+    3;  // limits named, each relieved in turn  // the joint sample's: the same scenario samples the same points
 
 // Whether a banded parameter can change anything in this scenario.
 bool takes_effect(const ParamSpec& p, const Config& c) {
@@ -31,7 +32,8 @@ bool takes_effect(const ParamSpec& p, const Config& c) {
     if (p.key.rfind("fpga.", 0) == 0 || p.key.rfind("power.", 0) == 0) return false;
     // The FHG's fixed-point formats move the determinants, not the time (their word width,
     // fhg.det_bits, moves the traffic): `surfvp precision` measures what they cost in quality.
-    if (p.key.rfind("fhg.", 0) == 0 && p.key.find("_bits") != std::string::npos && p.key != "fhg.det_bits") return false;
+    if (p.key.rfind("fhg.", 0) == 0 && p.key.find("_bits") != std::string::npos && p.key != "fhg.det_bits")
+        return false;
     if (p.key == "fhg.recip_shift") return false;
     if (p.key == "surf.threshold") return c.count("surf.target_keypoints") == 0;
     if (p.key == "plb1.arbitration") return c.choice("cpu.memory_path") == "plb1";  // PLB1's only master otherwise
@@ -57,12 +59,15 @@ struct BandAxis {
     BandSide low, high;
 };
 
-double fps_of(const Json& point) { return point.is_null() || point.contains("error") ? -1 : point["fps"].get<double>(); }
+double fps_of(const Json& point) {
+    return point.is_null() || point.contains("error") ? -1 : point["fps"].get<double>();
+}
 
 // Each point's effect is its difference from the reference (the same frames, defaults); its
 // frame rate is the whole run's plus that difference, which is what is judged against the
 // budget (so a point flips the verdict of the run the report gives, not of the reference).
-Json band_json(const std::vector<BandAxis>& axes, const Json& reference, double run_fps, double budget, unsigned frames) {
+Json band_json(const std::vector<BandAxis>& axes, const Json& reference, double run_fps, double budget,
+               unsigned frames) {
     const double ref = fps_of(reference);
     double lowest = run_fps, highest = run_fps;
     Json rows = Json::array(), at_risk = Json::array(), failed = Json::array();
@@ -99,8 +104,8 @@ Json band_json(const std::vector<BandAxis>& axes, const Json& reference, double 
     std::stable_sort(rows.begin(), rows.end(), [](const Json& a, const Json& b) {
         return a["effect_fps"].get<double>() > b["effect_fps"].get<double>();
     });
-    return {{"frames", frames}, {"reference_fps", ref}, {"run_fps", run_fps}, {"low_fps", lowest}, {"high_fps", highest},
-            {"flipping", at_risk}, {"failed_points", failed}, {"axes", rows}};
+    return {{"frames", frames},    {"reference_fps", ref}, {"run_fps", run_fps},      {"low_fps", lowest},
+            {"high_fps", highest}, {"flipping", at_risk},  {"failed_points", failed}, {"axes", rows}};
 }
 
 // The settings that move the CPU's time, each value other than the scenario's: the software's
@@ -136,20 +141,23 @@ Json software_json(const std::vector<std::pair<std::string, std::string>>& setti
         return out;
     };
     Json rows = Json::array({row("as the scenario", reference)});
-    for (size_t i = 0; i < settings.size(); ++i) rows.push_back(row(settings[i].first + " = " + settings[i].second, results[i]));
+    for (size_t i = 0; i < settings.size(); ++i)
+        rows.push_back(row(settings[i].first + " = " + settings[i].second, results[i]));
     return rows;
 }
 
 std::string statement(double fps, double budget, const Json& band, const Json& doubt) {
     const double margin = 100 * (fps / budget - 1);
     const bool met = fps >= budget;
-    std::string s = met ? fmt::format("met at defaults ({:.2f} frames/s, {:+.1f} % against {:g})", fps, margin, budget)
-                        : fmt::format("missed at defaults ({:.2f} frames/s, {:+.1f} % against {:g})", fps, margin, budget);
+    std::string s =
+        met ? fmt::format("met at defaults ({:.2f} frames/s, {:+.1f} % against {:g})", fps, margin, budget)
+            : fmt::format("missed at defaults ({:.2f} frames/s, {:+.1f} % against {:g})", fps, margin, budget);
     if (!doubt.is_null() && doubt.contains("fps"))
-        s += fmt::format("; over the unknowns jointly {:.2f} to {:.2f} frames/s (5th to 95th percentile), met with "
-                         "probability {:.0f} %",
-                         doubt["fps"]["p5"].get<double>(), doubt["fps"]["p95"].get<double>(),
-                         100 * doubt["probability_met"].get<double>());
+        s += fmt::format(
+            "; over the unknowns jointly {:.2f} to {:.2f} frames/s (5th to 95th percentile), met with "
+            "probability {:.0f} %",
+            doubt["fps"]["p5"].get<double>(), doubt["fps"]["p95"].get<double>(),
+            100 * doubt["probability_met"].get<double>());
     if (band.is_null()) return s;
     std::vector<std::string> names;
     for (const Json& n : band["flipping"]) names.push_back(n.get<std::string>());
@@ -170,8 +178,8 @@ bool verdict_requested(const Config& config) {
 int run_with_verdict(const Config& config, const std::string& out, const std::string& trace, bool quiet) {
     const double budget = config.real("budget.fps");
     // Enough frames for every pair to reach its steady state (throughput needs pairs + 1).
-    const unsigned frames = unsigned(std::min(std::max(config.count("verdict.frames"), config.count("soc.accelerators") + 1),
-                                              config.count("surf.frames")));
+    const unsigned frames = unsigned(std::min(
+        std::max(config.count("verdict.frames"), config.count("soc.accelerators") + 1), config.count("surf.frames")));
     const bool want_band = config.choice("verdict.band") == "on";
     const bool want_break_even = config.choice("verdict.break_even") == "on" && budget > 0;
     // The re-simulations run one thread each: the jobs share the cores (run.parallel moves no figure).
@@ -181,8 +189,7 @@ int run_with_verdict(const Config& config, const std::string& out, const std::st
     Resimulation::prepare(config);
     Resimulation::prepare(reference);
 
-    Resimulation pool(unsigned(config.count("verdict.jobs")),
-                      fs::path(out) / fmt::format(".verdict.{}", ::getpid()));
+    Resimulation pool(unsigned(config.count("verdict.jobs")), fs::path(out) / fmt::format(".verdict.{}", ::getpid()));
     Json base, reference_point;
     LimitChain chain(config, reference, budget, pool, want_break_even ? kChainDepth : 0);
     // The reference (the scenario at the re-simulations' frame count) first: it names the
@@ -191,7 +198,8 @@ int run_with_verdict(const Config& config, const std::string& out, const std::st
         reference_point = r;
         if (want_break_even) chain.start(r);
     });
-    pool.submit(config, [&](const Json& r) { base = r; }, Resimulation::whole, out, trace);
+    pool.submit(
+        config, [&](const Json& r) { base = r; }, Resimulation::whole, out, trace);
 
     // The band: the unknowns one at a time (the tornado) and jointly; design choices and the
     // workload one at a time, apart (what a review can change).
@@ -208,22 +216,26 @@ int run_with_verdict(const Config& config, const std::string& out, const std::st
         for (BandAxis& axis : *axes)
             for (BandSide* side : {&axis.low, &axis.high}) {
                 if (same_value(*axis.spec, side->value, axis.current)) continue;
-                pool.submit(with(reference, {{axis.spec->key, side->value}}), [side](const Json& r) { side->result = r; });
+                pool.submit(with(reference, {{axis.spec->key, side->value}}),
+                            [side](const Json& r) { side->result = r; });
             }
     const std::vector<Unknown> unknowns = unknowns_of(effective, config);
-    const JointDesign joint = joint_design(unknowns, want_band ? size_t(config.count("verdict.samples")) : 0, kJointSeed);
+    const JointDesign joint =
+        joint_design(unknowns, want_band ? size_t(config.count("verdict.samples")) : 0, kJointSeed);
     std::vector<Json> joint_results(joint.sets.size());
     for (size_t i = 0; i < joint.sets.size(); ++i)
         pool.submit(with(reference, joint.sets[i]), [&joint_results, i](const Json& r) { joint_results[i] = r; });
     const bool want_software = config.choice("verdict.software") == "on";
-    const auto settings = want_software ? software_settings(config) : std::vector<std::pair<std::string, std::string>>{};
+    const auto settings =
+        want_software ? software_settings(config) : std::vector<std::pair<std::string, std::string>>{};
     std::vector<Json> software(settings.size());
     for (size_t i = 0; i < settings.size(); ++i)
         pool.submit(with(reference, {settings[i]}), [&software, i](const Json& r) { software[i] = r; });
     {
         ProgressLine progress(quiet, config.name, 0.0, 0.5, 5.0);
         pool.run([&](size_t done, size_t total) {
-            progress.update([&](double wall) { return fmt::format("verdict: {}/{} re-simulations, {:.1f} s", done, total, wall); });
+            progress.update(
+                [&](double wall) { return fmt::format("verdict: {}/{} re-simulations, {:.1f} s", done, total, wall); });
         });
     }
     if (base.contains("error")) {

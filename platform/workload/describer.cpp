@@ -45,7 +45,8 @@ sw::CostParams cost_params(const Config& c, surf::HaarMode haar) {
     p.cache.size_bytes = uint32_t(c.bytes("cpu.dcache_size").n);
     p.cache.line_bytes = uint32_t(c.bytes("cpu.cache_line").n);
     p.cache.ways = uint32_t(c.count("cpu.dcache_ways"));
-    p.cache.replacement = c.choice("cpu.dcache_replacement") == "lru" ? sw::Replacement::lru : sw::Replacement::round_robin;
+    p.cache.replacement =
+        c.choice("cpu.dcache_replacement") == "lru" ? sw::Replacement::lru : sw::Replacement::round_robin;
     return p;
 }
 
@@ -66,9 +67,19 @@ public:
         flush();
         namespace dump = sw::calibration_dump;
         const size_t det_bytes = size_t(fhg_regs::buffer_bytes(uint32_t(b.width), uint32_t(b.height), b.det_bytes));
-        header_ = {dump::kMagic, uint32_t(b.width), uint32_t(b.height), b.det_frac_bits, b.det_bytes,
-                   p.haar == surf::HaarMode::rounded, p.upright, p.threshold, b.integral_address,
-                   b.determinants_address, uint32_t(b.integral_stride * b.height), uint32_t(det_bytes), 0};
+        header_ = {dump::kMagic,
+                   uint32_t(b.width),
+                   uint32_t(b.height),
+                   b.det_frac_bits,
+                   b.det_bytes,
+                   p.haar == surf::HaarMode::rounded,
+                   p.upright,
+                   p.threshold,
+                   b.integral_address,
+                   b.determinants_address,
+                   uint32_t(b.integral_stride * b.height),
+                   uint32_t(det_bytes),
+                   0};
         integral_.assign(b.integral, b.integral + header_.integral_bytes);
         determinants_.assign(b.determinants, b.determinants + det_bytes);
     }
@@ -173,7 +184,7 @@ private:
         std::vector<uint32_t> words;
         sw::FrameBuffers buffers;
         std::vector<Result> results;
-        size_t handed = 0;  // handed to the driver (its thread only)
+        size_t handed = 0;     // handed to the driver (its thread only)
         bool stopped = false;  // after a failed check or an error the driver describes no further
     };
 
@@ -181,10 +192,17 @@ private:
 
     sw::FrameBuffers buffers(sw::Hal& hal, const sw::ssa2::FrameInMemory& frame) const {
         const size_t integral_bytes = size_t(frame.width) * frame.height * 4;
-        const size_t det_bytes = size_t(fhg_regs::buffer_bytes(uint32_t(frame.width), uint32_t(frame.height), frame.det_bytes));
-        return {hal.map(frame.integral, integral_bytes), frame.integral, size_t(frame.width) * 4,
-                hal.map(frame.determinants, det_bytes), frame.determinants, frame.width,
-                frame.height, frame.det_frac_bits, frame.det_bytes};
+        const size_t det_bytes =
+            size_t(fhg_regs::buffer_bytes(uint32_t(frame.width), uint32_t(frame.height), frame.det_bytes));
+        return {hal.map(frame.integral, integral_bytes),
+                frame.integral,
+                size_t(frame.width) * 4,
+                hal.map(frame.determinants, det_bytes),
+                frame.determinants,
+                frame.width,
+                frame.height,
+                frame.det_frac_bits,
+                frame.det_bytes};
     }
 
     // The stage's misses as the platform takes its fills: each stamped with the cycle that
@@ -194,9 +212,10 @@ private:
 
     void start_task(const sw::ssa2::FrameInMemory& frame) {
         if (frame.task == task_) return;
-        if (ahead_ && described_.load(std::memory_order_relaxed) != ahead_->handed)  // the driver's promise (Describer::ahead) broken
+        if (ahead_ && described_.load(std::memory_order_relaxed) !=
+                          ahead_->handed)  // the driver's promise (Describer::ahead) broken
             throw std::logic_error("software stage: a task was left with candidates described ahead");
-        stage_.begin_frame();  // new DMA'd buffers: the cached lines are stale
+        stage_.begin_frame();                            // new DMA'd buffers: the cached lines are stale
         stage_.set_register_threshold(frame.threshold);  // the one the FHG compared with
         task_ = frame.task;
         records_ = 0;
@@ -215,9 +234,10 @@ private:
         }
         if (stage_.stats().inconsistent != inconsistent) {
             const fhg::Candidate c = fhg::unpack_candidate(word);
-            r.work.inconsistency = fmt::format("candidate ({}, {}, size {}) is not above the threshold in the determinant "
-                                               "buffer, though the FHG marked it: the buffer is corrupted",
-                                               c.x, c.y, fhg::kSizes[size_t(c.size_index)]);
+            r.work.inconsistency = fmt::format(
+                "candidate ({}, {}, size {}) is not above the threshold in the determinant "
+                "buffer, though the FHG marked it: the buffer is corrupted",
+                c.x, c.y, fhg::kSizes[size_t(c.size_index)]);
         }
         r.work.cycles = stage_.cost().take_cycles();
         if (!stage_.cost().logs_misses()) r.work.untimed_fills = stage_.cost().cache().misses() - misses;
@@ -258,7 +278,8 @@ private:
     // The worker's piece: one candidate ahead, if there is one.
     bool describe_ahead() {
         std::lock_guard<std::mutex> lock(stage_mutex_);
-        if (!ahead_ || ahead_->stopped || described_.load(std::memory_order_relaxed) == ahead_->words.size()) return false;
+        if (!ahead_ || ahead_->stopped || described_.load(std::memory_order_relaxed) == ahead_->words.size())
+            return false;
         describe_next();
         return true;
     }
@@ -367,8 +388,10 @@ nlohmann::ordered_json describer_report(const sw::ssa2::Describer& describer) {
         if (mix[c] > 0) classes[sw::insn_class_name(sw::InsnClass(c))] = std::llround(mix[c]);
     return {{"candidates", st.candidates},
             {"keypoints", st.keypoints},
-            {"rejected", {{"not_maximum", st.rejected_not_maximum}, {"interpolation", st.rejected_interpolation},
-                          {"border", st.rejected_border}}},
+            {"rejected",
+             {{"not_maximum", st.rejected_not_maximum},
+              {"interpolation", st.rejected_interpolation},
+              {"border", st.rejected_border}}},
             {"cycles_by_step", by_step},
             {"cycles_per_keypoint_by_step", per_keypoint},
             {"cycles_by_unit", units},
@@ -378,8 +401,11 @@ nlohmann::ordered_json describer_report(const sw::ssa2::Describer& describer) {
             {"libm_calls", std::llround(libm_calls)},
             {"calibration", sw::recorded_calibration().provenance},
             {"fpu", fpu_report(*stage, totals, keypoints)},
-            {"dcache", {{"accesses", b.cache_accesses}, {"hits", b.cache_hits}, {"misses", b.cache_misses},
-                        {"hit_rate", b.hit_rate}}}};
+            {"dcache",
+             {{"accesses", b.cache_accesses},
+              {"hits", b.cache_hits},
+              {"misses", b.cache_misses},
+              {"hit_rate", b.hit_rate}}}};
 }
 
 std::unique_ptr<sw::ssa2::Describer> make_describer(const Config& config, float threshold) {
@@ -394,8 +420,9 @@ std::unique_ptr<sw::ssa2::Describer> make_describer(const Config& config, float 
                                                           unsigned(config.bytes("cpu.cache_line").n));
         const sw::PipelineParams pipeline = pipeline_params(config);
         describer->double_precision = pipeline.double_precision > 0.5;
-        describer->other_precision_prices =
-            sw::unit_prices(params.haar, pipeline_params(config.with({{"fpu.precision", describer->double_precision ? "single" : "double"}}, "the other FPU")));
+        describer->other_precision_prices = sw::unit_prices(
+            params.haar, pipeline_params(config.with(
+                             {{"fpu.precision", describer->double_precision ? "single" : "double"}}, "the other FPU")));
         return describer;
     } catch (const std::invalid_argument& e) {
         throw ConfigError(e.what());

@@ -59,10 +59,11 @@ Layout layout_for(const Config& c, int width, int height) {
     const uint64_t sets = c.count("surf.tasks_in_flight");
     const uint64_t end = l.slots_base + sets * l.slot_bytes;
     if (end > c.bytes("memory.size").n)
-        throw ConfigError(fmt::format("{}: {} buffer sets (surf.tasks_in_flight, from {}) for frames of {}x{} need {} of "
-                                      "memory, memory.size is {}",
-                                      c.where("memory.size"), sets, c.source_of("surf.tasks_in_flight"), width, height,
-                                      format_bytes(Bytes{end}), format_bytes(c.bytes("memory.size"))));
+        throw ConfigError(
+            fmt::format("{}: {} buffer sets (surf.tasks_in_flight, from {}) for frames of {}x{} need {} of "
+                        "memory, memory.size is {}",
+                        c.where("memory.size"), sets, c.source_of("surf.tasks_in_flight"), width, height,
+                        format_bytes(Bytes{end}), format_bytes(c.bytes("memory.size"))));
     return l;
 }
 
@@ -114,14 +115,14 @@ void check_frame_size(const Config& c, const SourceFrames& f) {
             : alike ? fmt::format("frames of {}x{} are", size.width, size.height)
                     : fmt::format("frame {} ({}) of {}x{} is", i, f.files[i].string(), size.width, size.height);
         if (size.width < side || size.height < side)
-            throw ConfigError(fmt::format("{}: {} too small: the first octave's largest filter needs at least {}x{}", where,
-                                          what, side, side));
+            throw ConfigError(fmt::format("{}: {} too small: the first octave's largest filter needs at least {}x{}",
+                                          where, what, side, side));
         for (const char* block : {"iig", "fhg"})
             for (const auto& [key, pixels] : {std::pair{fmt::format("{}.max_width", block), size.width},
                                               std::pair{fmt::format("{}.max_height", block), size.height}})
                 if (uint64_t(pixels) > c.count(key))
-                    throw ConfigError(fmt::format("{}: {} larger than the chip takes: {} is {} (from {})", where, what, key,
-                                                  c.count(key), c.source_of(key)));
+                    throw ConfigError(fmt::format("{}: {} larger than the chip takes: {} is {} (from {})", where, what,
+                                                  key, c.count(key), c.source_of(key)));
     }
 }
 
@@ -134,8 +135,8 @@ eval::SequenceReader open_frames(const Config& c) {
 void read_sequence(const Config& c, SourceFrames& out) {
     const std::string source = c.text("surf.source");
     auto too_few = [&](size_t has) {
-        return ConfigError(fmt::format("{}: surf.frames is {} (from {}), but {} has only {}", c.where("surf.source"), out.count,
-                                       c.source_of("surf.frames"), source, has));
+        return ConfigError(fmt::format("{}: surf.frames is {} (from {}), but {} has only {}", c.where("surf.source"),
+                                       out.count, c.source_of("surf.frames"), source, has));
     };
     eval::SequenceReader reader = open_frames(c);
     if (reader.sequence().frames.size() < out.count) throw too_few(reader.sequence().frames.size());  // before decoding
@@ -165,7 +166,8 @@ SourceFrames read_frames(const Config& c) {
     out.count = c.count("surf.frames");
     try {
         surf::QuietDecoding quiet;
-        if (fs::is_regular_file(status) && (eval::is_image_file(source) || !media::read_image(source, cv::IMREAD_GRAYSCALE).empty())) {
+        if (fs::is_regular_file(status) &&
+            (eval::is_image_file(source) || !media::read_image(source, cv::IMREAD_GRAYSCALE).empty())) {
             out.repeated = true;
             out.first = surf::load_gray(source, chip_surf_params(c));
             out.original = out.first.size();
@@ -204,7 +206,8 @@ public:
         cv::Mat decoded;
         while (reader_->position() <= i)
             if (!reader_->next(decoded))
-                throw std::runtime_error(fmt::format("{}: frame {} can no longer be read", config_.text("surf.source"), i));
+                throw std::runtime_error(
+                    fmt::format("{}: frame {} can no longer be read", config_.text("surf.source"), i));
         current_ = as_the_chip_takes(config_, decoded);
         return current_;
     }
@@ -249,10 +252,11 @@ void check_eval_inputs(const Config& c, const SourceFrames& frames) {
             throw ConfigError(fmt::format("{}: {}", c.where("eval.homography"), e.what()));
         }
         if (frames.first.size() != frames.original)
-            throw ConfigError(fmt::format("{}: the homography maps frame 0 to frame 1 at their own size ({}x{}), but "
-                                          "surf.width x surf.height (from {}) resize them to {}x{}; set both to 0",
-                                          c.where("eval.homography"), frames.original.width, frames.original.height,
-                                          c.source_of("surf.width"), frames.first.cols, frames.first.rows));
+            throw ConfigError(
+                fmt::format("{}: the homography maps frame 0 to frame 1 at their own size ({}x{}), but "
+                            "surf.width x surf.height (from {}) resize them to {}x{}; set both to 0",
+                            c.where("eval.homography"), frames.original.width, frames.original.height,
+                            c.source_of("surf.width"), frames.first.cols, frames.first.rows));
     }
     const std::string poses = c.text("eval.poses");
     if (poses.empty()) return;
@@ -263,11 +267,12 @@ void check_eval_inputs(const Config& c, const SourceFrames& frames) {
         throw ConfigError(fmt::format("{}: {}", c.where("eval.poses"), e.what()));
     }
     if (frames.files.size() != frames.count)
-        throw ConfigError(fmt::format("{}: poses belong to image files, but surf.source {} (from {}) is one image or a video",
-                                      c.where("eval.poses"), c.text("surf.source"), c.source_of("surf.source")));
+        throw ConfigError(
+            fmt::format("{}: poses belong to image files, but surf.source {} (from {}) is one image or a video",
+                        c.where("eval.poses"), c.text("surf.source"), c.source_of("surf.source")));
     if (posed.size() < frames.count)
-        throw ConfigError(fmt::format("{}: {} poses for {} frames (surf.frames from {})", c.where("eval.poses"), posed.size(),
-                                      frames.count, c.source_of("surf.frames")));
+        throw ConfigError(fmt::format("{}: {} poses for {} frames (surf.frames from {})", c.where("eval.poses"),
+                                      posed.size(), frames.count, c.source_of("surf.frames")));
     // The evaluation's pairs (evaluation() below) need two distinct camera centres.
     for (size_t i = 0; i < frames.count; ++i)
         for (size_t gap : evaluated_gaps(c)) {
@@ -282,8 +287,8 @@ void check_eval_inputs(const Config& c, const SourceFrames& frames) {
     for (size_t i = 0; i < frames.files.size(); ++i) {
         std::error_code ec;
         if (!fs::equivalent(frames.files[i], posed[i].image, ec))
-            throw ConfigError(fmt::format("{}: frame {} is {}, but pose {} ({}) belongs to {}", c.where("eval.poses"), i,
-                                          frames.files[i].string(), i, posed[i].pose_file.filename().string(),
+            throw ConfigError(fmt::format("{}: frame {} is {}, but pose {} ({}) belongs to {}", c.where("eval.poses"),
+                                          i, frames.files[i].string(), i, posed[i].pose_file.filename().string(),
                                           posed[i].image.string()));
     }
 }
@@ -318,8 +323,12 @@ struct FrameResult {
 class SurfWorkload : public Workload {
 public:
     explicit SurfWorkload(const Config& c)
-        : config_(c), source_(load_source(c)), calibration_(calibrate(c, source_.first)), threshold_(calibration_.threshold),
-          describer_(make_describer(c, threshold_)), results_(source_.count) {
+        : config_(c),
+          source_(load_source(c)),
+          calibration_(calibrate(c, source_.first)),
+          threshold_(calibration_.threshold),
+          describer_(make_describer(c, threshold_)),
+          results_(source_.count) {
         width_ = source_.first.cols;
         height_ = source_.first.rows;
         const cv::Size largest = source_.largest();  // frames of a folder or list may differ: buffers fit the largest
@@ -328,22 +337,26 @@ public:
         driver_.intc_base = map::intc.base;
         for (unsigned k = 0; k < c.count("soc.accelerators"); ++k)
             driver_.accelerators.push_back({map::iig_base(k), map::fhg_base(k), map::irq::iig(k), map::irq::fhg(k)});
-        for (uint64_t set = 0, at = layout_.slots_base; set < c.count("surf.tasks_in_flight"); ++set, at += layout_.slot_bytes)
-            driver_.buffers.push_back({uint32_t(at), uint32_t(at + layout_.image_bytes),
-                                       uint32_t(at + layout_.image_bytes + layout_.integral_bytes),
-                                       uint32_t(at + layout_.image_bytes + layout_.integral_bytes + layout_.det_bytes)});
+        for (uint64_t set = 0, at = layout_.slots_base; set < c.count("surf.tasks_in_flight");
+             ++set, at += layout_.slot_bytes)
+            driver_.buffers.push_back(
+                {uint32_t(at), uint32_t(at + layout_.image_bytes),
+                 uint32_t(at + layout_.image_bytes + layout_.integral_bytes),
+                 uint32_t(at + layout_.image_bytes + layout_.integral_bytes + layout_.det_bytes)});
         driver_.fifo_irq_level = uint32_t(c.count("surf.fifo_irq_level"));
         driver_.threshold = core.from_float(threshold_);
-        if (c.choice("surf.threshold_control") == "track") driver_.keypoint_target = uint32_t(c.count("surf.target_keypoints"));
+        if (c.choice("surf.threshold_control") == "track")
+            driver_.keypoint_target = uint32_t(c.count("surf.target_keypoints"));
         to_float_ = [core](int32_t t) { return core.to_float(t); };
         driver_.watchdog_ps = c.duration("surf.watchdog").ps;
         driver_.spurious_irq_limit = unsigned(c.count("surf.spurious_irq_limit"));
         budget_fps_ = c.real("budget.fps");
         // A frame rate needs one whole round of the pairs after the first frame.
         if (budget_fps_ > 0 && source_.count <= c.count("soc.accelerators"))
-            throw ConfigError(fmt::format("surf.frames: {} frames cannot give a frame rate with {} accelerator pair(s): "
-                                          "the steady-state rate needs {}; set more frames or budget.fps = 0",
-                                          source_.count, c.count("soc.accelerators"), c.count("soc.accelerators") + 1));
+            throw ConfigError(
+                fmt::format("surf.frames: {} frames cannot give a frame rate with {} accelerator pair(s): "
+                            "the steady-state rate needs {}; set more frames or budget.fps = 0",
+                            source_.count, c.count("soc.accelerators"), c.count("soc.accelerators") + 1));
         cpu_hz_ = c.frequency("cpu.clock").hz;
     }
 
@@ -373,7 +386,9 @@ public:
             FrameStream stream(config_, source_);
             driver.run(
                 tasks, [&](const sw::ssa2::Task& task) { deliver(stream.frame(size_t(task.id)), task); },
-                [this](const sw::ssa2::Task& task, surf::Keypoints&& keypoints) { reported(task, std::move(keypoints)); });
+                [this](const sw::ssa2::Task& task, surf::Keypoints&& keypoints) {
+                    reported(task, std::move(keypoints));
+                });
             accelerator_time_ = driver.accelerator_time();
             recovery_ = driver.recovery();
         };
@@ -388,8 +403,10 @@ public:
         for (const FrameResult& r : results_) {
             done += r.task.phase == sw::ssa2::Phase::done;
             if (r.task.phase != sw::ssa2::Phase::failed) continue;
-            if (struck_by_fault(r.task.id)) ++lost_to_faults;
-            else failures.push_back(fmt::format("frame {}: {}", r.task.id, r.task.error));
+            if (struck_by_fault(r.task.id))
+                ++lost_to_faults;
+            else
+                failures.push_back(fmt::format("frame {}: {}", r.task.id, r.task.error));
         }
         const std::string lost = lost_to_faults ? fmt::format("; {} lost to injected faults", lost_to_faults) : "";
         checks.push_back({"every frame processed", failures.empty() && done + lost_to_faults == source_.count,
@@ -397,12 +414,13 @@ public:
                                            : fmt::format("{}", fmt::join(failures, "; "))});
         if (faults_) checks.push_back(fault_check());
         if (const uint64_t target = config_.count("surf.target_keypoints"); target > 0)
-            checks.push_back({"keypoint target reachable", calibration_.maxima > target,
-                              calibration_.maxima > target
-                                  ? fmt::format("frame 0 has {} maxima for surf.target_keypoints = {}", calibration_.maxima, target)
-                                  : fmt::format("frame 0 has only {} maxima, not more than surf.target_keypoints = {}: the "
-                                                "threshold is 0 and every maximum is kept; lower the target",
-                                                calibration_.maxima, target)});
+            checks.push_back(
+                {"keypoint target reachable", calibration_.maxima > target,
+                 calibration_.maxima > target
+                     ? fmt::format("frame 0 has {} maxima for surf.target_keypoints = {}", calibration_.maxima, target)
+                     : fmt::format("frame 0 has only {} maxima, not more than surf.target_keypoints = {}: the "
+                                   "threshold is 0 and every maximum is kept; lower the target",
+                                   calibration_.maxima, target)});
         if (budget_fps_ > 0) {
             const double fps = throughput();
             checks.push_back({"frame-rate budget", fps >= budget_fps_,
@@ -427,7 +445,8 @@ public:
         for (const FrameResult& r : results_) {
             const auto& t = r.task;
             if (!r.reported || t.t_determinants == 0) continue;
-            const std::string name = fmt::format("frame {}{}", t.id, t.phase == sw::ssa2::Phase::failed ? " (failed)" : "");
+            const std::string name =
+                fmt::format("frame {}{}", t.id, t.phase == sw::ssa2::Phase::failed ? " (failed)" : "");
             tracer.slice(hardware[size_t(t.id) % hardware.size()], name, at(t.t_start), at(t.t_determinants));
             if (t.phase == sw::ssa2::Phase::done) tracer.slice(descriptors, name, at(t.t_determinants), at(t.t_done));
         }
@@ -471,18 +490,18 @@ private:
     std::vector<double> frame_wall_s_;
     FaultPlan* faults_ = nullptr;
     Backdoor memory_;
-    std::string out_;                     // where keypoint files go as frames are reported ("" : nowhere)
-    std::vector<std::string> written_;    // their names, relative to out_
-    std::exception_ptr write_failure_;    // the first that failed; no more are handed out after it
-                                          // (one on the writer counts from finish_writes())
+    std::string out_;                   // where keypoint files go as frames are reported ("" : nowhere)
+    std::vector<std::string> written_;  // their names, relative to out_
+    std::exception_ptr write_failure_;  // the first that failed; no more are handed out after it
+                                        // (one on the writer counts from finish_writes())
     // With a worker lent, each file is formatted and written on a thread of the files' own (the
     // simulation's or the software's thread has better to do); finish_writes() waits for them
     // and takes their failure.
     void finish_writes();
     std::unique_ptr<Worker> writer_;
-    std::optional<size_t> last_write_;    // the writer's job number of the last file handed to it
+    std::optional<size_t> last_write_;  // the writer's job number of the last file handed to it
     std::mutex write_mutex_;
-    std::exception_ptr writer_failure_;   // a file the writer failed to write; under write_mutex_
+    std::exception_ptr writer_failure_;  // a file the writer failed to write; under write_mutex_
     sw::ssa2::Driver::Recovery recovery_;
     double budget_fps_ = 0, cpu_hz_ = 0;
     std::vector<sw::ssa2::AcceleratorTime> accelerator_time_;
@@ -541,12 +560,15 @@ bool SurfWorkload::recovered(const Fault& f) const {
 Check SurfWorkload::fault_check() const {
     std::vector<std::string> missed;
     for (const Fault& f : faults_->faults()) {
-        if (!f.fired) missed.push_back(f.describe() + " never struck (" + f.origin + ")");
-        else if (!detected(f)) missed.push_back(f.describe() + " went undetected");
+        if (!f.fired)
+            missed.push_back(f.describe() + " never struck (" + f.origin + ")");
+        else if (!detected(f))
+            missed.push_back(f.describe() + " went undetected");
     }
     const size_t n = faults_->faults().size();
     return {"every injected fault detected", missed.empty(),
-            missed.empty() ? fmt::format("{} of {} faults struck and were detected", n, n) : fmt::format("{}", fmt::join(missed, "; "))};
+            missed.empty() ? fmt::format("{} of {} faults struck and were detected", n, n)
+                           : fmt::format("{}", fmt::join(missed, "; "))};
 }
 
 nlohmann::ordered_json SurfWorkload::fault_report() const {
@@ -565,18 +587,22 @@ nlohmann::ordered_json SurfWorkload::fault_report() const {
             if (f.struck_frame >= 0 && size_t(f.struck_frame) < results_.size()) {
                 const sw::ssa2::Task& t = results_[size_t(f.struck_frame)].task;
                 j["outcome"] = t.phase == sw::ssa2::Phase::failed ? "frame failed: " + t.error
-                               : t.incidents.empty()               ? std::string("frame done, nothing noticed")
-                                                                   : "frame done: " + fmt::format("{}", fmt::join(t.incidents, "; "));
+                               : t.incidents.empty()              ? std::string("frame done, nothing noticed")
+                                                     : "frame done: " + fmt::format("{}", fmt::join(t.incidents, "; "));
             }
         }
         list.push_back(j);
     }
     for (const FrameResult& r : results_) lost += r.task.phase == sw::ssa2::Phase::failed;
-    return {{"given", faults_->faults().size()}, {"injected", injected}, {"detected", detected_n},
-            {"tasks_lost", lost}, {"recovered", recovered_n},
-            {"driver", {{"watchdog_expiries", recovery_.watchdog_expiries},
-                        {"spurious_interrupts", recovery_.spurious_interrupts},
-                        {"pair_resets", recovery_.pair_resets}}},
+    return {{"given", faults_->faults().size()},
+            {"injected", injected},
+            {"detected", detected_n},
+            {"tasks_lost", lost},
+            {"recovered", recovered_n},
+            {"driver",
+             {{"watchdog_expiries", recovery_.watchdog_expiries},
+              {"spurious_interrupts", recovery_.spurious_interrupts},
+              {"pair_resets", recovery_.pair_resets}}},
             {"list", list}};
 }
 
@@ -602,28 +628,32 @@ nlohmann::ordered_json SurfWorkload::summary() const {
     if (budget_fps_ > 0) budget = {{"fps", budget_fps_}, {"met", fps >= budget_fps_}};
     nlohmann::ordered_json pairs = nlohmann::ordered_json::array();
     for (const auto& a : accelerator_time_)
-        pairs.push_back({{"working_s", a.working_ps * 1e-12}, {"waiting_for_buffers_s", a.waiting_for_buffers_ps * 1e-12},
+        pairs.push_back({{"working_s", a.working_ps * 1e-12},
+                         {"waiting_for_buffers_s", a.waiting_for_buffers_ps * 1e-12},
                          {"idle_s", a.idle_ps * 1e-12}});
     std::vector<std::string> sizes;  // frames of a folder or list may differ in size
     for (const cv::Size& f : source_.sizes)
-        if (const std::string wxh = fmt::format("{}x{}", f.width, f.height); std::find(sizes.begin(), sizes.end(), wxh) == sizes.end())
+        if (const std::string wxh = fmt::format("{}x{}", f.width, f.height);
+            std::find(sizes.begin(), sizes.end(), wxh) == sizes.end())
             sizes.push_back(wxh);
-    nlohmann::ordered_json out = {{"image", {{"width", width_}, {"height", height_}}},
-            {"frames", source_.count},
-            {"frames_done", n},
-            {"throughput_fps", fps},
-            {"latency_ms", latency * per * 1e-9},
-            {"keypoints_per_frame", keypoints * per},
-            {"keypoints_per_frame_range", {n ? min_kp : 0, max_kp}},
-            {"threshold", threshold_},
-            {"threshold_rule", threshold_rule()},
-            {"budget", budget},
-            {"phases_ms", {{"integral_image", integral * per * 1e-9},
-                           {"determinants", determinants * per * 1e-9},
-                           {"descriptors", describe * per * 1e-9}}},
-            {"software_time_per_keypoint_us", keypoints > 0 ? cycles / keypoints / cpu_hz_ * 1e6 : 0.0},
-            {"software_cycles_per_keypoint", keypoints > 0 ? cycles / keypoints : 0.0},
-            {"accelerator_pairs", pairs}};
+    nlohmann::ordered_json out = {
+        {"image", {{"width", width_}, {"height", height_}}},
+        {"frames", source_.count},
+        {"frames_done", n},
+        {"throughput_fps", fps},
+        {"latency_ms", latency * per * 1e-9},
+        {"keypoints_per_frame", keypoints * per},
+        {"keypoints_per_frame_range", {n ? min_kp : 0, max_kp}},
+        {"threshold", threshold_},
+        {"threshold_rule", threshold_rule()},
+        {"budget", budget},
+        {"phases_ms",
+         {{"integral_image", integral * per * 1e-9},
+          {"determinants", determinants * per * 1e-9},
+          {"descriptors", describe * per * 1e-9}}},
+        {"software_time_per_keypoint_us", keypoints > 0 ? cycles / keypoints / cpu_hz_ * 1e6 : 0.0},
+        {"software_cycles_per_keypoint", keypoints > 0 ? cycles / keypoints : 0.0},
+        {"accelerator_pairs", pairs}};
     if (sizes.size() > 1) out["frame_sizes"] = sizes;  // "image" is frame 0's
     if (faults_) out["faults"] = fault_report();
     out["frame_wall_s"] = frame_wall_s_;  // a wall-clock field (run.cpp)
@@ -634,16 +664,23 @@ nlohmann::ordered_json SurfWorkload::report() const {
     nlohmann::ordered_json frames = nlohmann::ordered_json::array();
     for (const FrameResult& r : results_) {
         const auto& t = r.task;
-        nlohmann::ordered_json f = {{"frame", t.id}, {"candidates", t.candidate_count}, {"keypoints", r.keypoint_count},
-                                    {"start_ms", t.t_start * 1e-9}, {"integral_done_ms", t.t_integral * 1e-9},
-                                    {"determinants_done_ms", t.t_determinants * 1e-9}, {"done_ms", t.t_done * 1e-9},
-                                    {"descriptor_cycles", t.descriptor_cycles}, {"threshold", to_float_(t.threshold)}};
+        nlohmann::ordered_json f = {{"frame", t.id},
+                                    {"candidates", t.candidate_count},
+                                    {"keypoints", r.keypoint_count},
+                                    {"start_ms", t.t_start * 1e-9},
+                                    {"integral_done_ms", t.t_integral * 1e-9},
+                                    {"determinants_done_ms", t.t_determinants * 1e-9},
+                                    {"done_ms", t.t_done * 1e-9},
+                                    {"descriptor_cycles", t.descriptor_cycles},
+                                    {"threshold", to_float_(t.threshold)}};
         if (t.phase == sw::ssa2::Phase::failed) f["error"] = t.error;
         if (!t.incidents.empty()) f["incidents"] = t.incidents;
         frames.push_back(f);
     }
-    return {{"source", config_.text("surf.source")}, {"evaluation", evaluation()},
-            {"software_stage", describer_report(*describer_)}, {"per_frame", frames}};
+    return {{"source", config_.text("surf.source")},
+            {"evaluation", evaluation()},
+            {"software_stage", describer_report(*describer_)},
+            {"per_frame", frames}};
 }
 
 // Feature quality on the chip's own keypoints, when the scenario gives the geometry.
@@ -656,8 +693,10 @@ nlohmann::ordered_json SurfWorkload::evaluation() const {
         const cv::Size size = source_.sizes[0], size_b = source_.sizes[1];
         const auto rep = eval::repeatability(results_[0].keypoints, results_[1].keypoints, h, size, size_b);
         const auto prec = eval::matching_precision(results_[0].keypoints, results_[1].keypoints, h);
-        out["homography"] = {{"repeatability", rep.repeatability}, {"correspondences", rep.correspondences},
-                             {"precision", prec.precision}, {"candidates", prec.candidates}};
+        out["homography"] = {{"repeatability", rep.repeatability},
+                             {"correspondences", rep.correspondences},
+                             {"precision", prec.precision},
+                             {"candidates", prec.candidates}};
     }
     const std::string poses = config_.text("eval.poses");
     if (!poses.empty() && results_.size() >= 2) {
@@ -671,8 +710,8 @@ nlohmann::ordered_json SurfWorkload::evaluation() const {
             const auto truth = eval::sequence_distinguishability(all, gap, [&](size_t i, size_t j) {
                 return eval::fundamental_from_poses(k, posed.at(i).c_m_o, posed.at(j).c_m_o);
             });
-            out[fmt::format("distinguishability_gap{}", gap)] = {{"ransac", ransac.mean}, {"ground_truth", truth.mean},
-                                                                  {"pairs", ransac.pairs.size()}};
+            out[fmt::format("distinguishability_gap{}", gap)] = {
+                {"ransac", ransac.mean}, {"ground_truth", truth.mean}, {"pairs", ransac.pairs.size()}};
         }
     }
     return out;
@@ -688,7 +727,8 @@ void SurfWorkload::deliver(const cv::Mat& frame, const sw::ssa2::Task& task) {
 // The evaluation needs frames 0 and 1 (a homography) or every frame (camera poses); the
 // report's picture frame 0. Keypoints of the others live in their files only.
 bool SurfWorkload::kept(size_t frame) const {
-    return frame == 0 || (frame == 1 && !config_.text("eval.homography").empty()) || !config_.text("eval.poses").empty();
+    return frame == 0 || (frame == 1 && !config_.text("eval.homography").empty()) ||
+           !config_.text("eval.poses").empty();
 }
 
 void SurfWorkload::reported(const sw::ssa2::Task& task, surf::Keypoints&& keypoints) {
@@ -767,18 +807,22 @@ std::string SurfWorkload::first_frame_svg() const {
     std::vector<uchar> png;
     media::encode_image(".png", shown, png);
     std::string svg = fmt::format(
-        "<svg xmlns=\"http://www.w3.org/2000/svg\" id=\"keypoints\" width=\"{0}\" height=\"{1}\" viewBox=\"0 0 {0} {1}\">"
+        "<svg xmlns=\"http://www.w3.org/2000/svg\" id=\"keypoints\" width=\"{0}\" height=\"{1}\" viewBox=\"0 0 {0} "
+        "{1}\">"
         "<image width=\"{0}\" height=\"{1}\" href=\"data:image/png;base64,{2}\"/>",
         shown.cols, shown.rows, YAML::EncodeBase64(png.data(), png.size()));
     for (const surf::Keypoint& k : results_[0].keypoints) {
         const double x = (k.x + 0.5) * f, y = (k.y + 0.5) * f, r = std::max(2.0, 2.5 * k.scale * f);
         const char* c = k.laplacian > 0 ? "#00e000" : "#ff3030";
-        svg += fmt::format("<circle class=\"keypoint\" cx=\"{:.1f}\" cy=\"{:.1f}\" r=\"{:.1f}\" fill=\"none\" stroke=\"{}\"/>"
-                           "<line x1=\"{:.1f}\" y1=\"{:.1f}\" x2=\"{:.1f}\" y2=\"{:.1f}\" stroke=\"{}\"/>",
-                           x, y, r, c, x, y, x + r * std::cos(k.orientation), y - r * std::sin(k.orientation), c);
+        svg += fmt::format(
+            "<circle class=\"keypoint\" cx=\"{:.1f}\" cy=\"{:.1f}\" r=\"{:.1f}\" fill=\"none\" stroke=\"{}\"/>"
+            "<line x1=\"{:.1f}\" y1=\"{:.1f}\" x2=\"{:.1f}\" y2=\"{:.1f}\" stroke=\"{}\"/>",
+            x, y, r, c, x, y, x + r * std::cos(k.orientation), y - r * std::sin(k.orientation), c);
     }
-    return svg + fmt::format("<text x=\"6\" y=\"{}\" fill=\"yellow\" font-family=\"sans-serif\">frame 0: {} keypoints</text></svg>",
-                             shown.rows - 8, results_[0].keypoint_count);
+    return svg +
+           fmt::format(
+               "<text x=\"6\" y=\"{}\" fill=\"yellow\" font-family=\"sans-serif\">frame 0: {} keypoints</text></svg>",
+               shown.rows - 8, results_[0].keypoint_count);
 }
 
 surf::Params chip_surf_params(const Config& c) {
@@ -794,12 +838,14 @@ surf::Params chip_surf_params(const Config& c) {
 std::string threshold_rule_text(const Config& c, const std::string& whose) {
     const int64_t target = c.count("surf.target_keypoints");
     if (target == 0) return "surf.threshold";
-    const std::string first = fmt::format("the {}th strongest response {} on frame 0 (surf.target_keypoints)", target, whose);
+    const std::string first =
+        fmt::format("the {}th strongest response {} on frame 0 (surf.target_keypoints)", target, whose);
     if (c.choice("surf.threshold_control") != "track") return first + ", held for every frame";
     const int64_t delay = c.count("surf.tasks_in_flight");
-    return fmt::format("{} for the first {} frames, then each from the keypoint count of the frame {} before it "
-                       "(surf.threshold_control = track)",
-                       first, delay, delay);
+    return fmt::format(
+        "{} for the first {} frames, then each from the keypoint count of the frame {} before it "
+        "(surf.threshold_control = track)",
+        first, delay, delay);
 }
 
 fs::path keypoint_file(const fs::path& folder, size_t frame) {

@@ -22,9 +22,11 @@ CacheModel::CacheModel(const CacheParams& params) : params_(params) {
     const uint64_t set_bytes = uint64_t(params.line_bytes) * params.ways;
     if (!power_of_two(params.line_bytes) || params.line_bytes < 2 || params.ways == 0 || params.ways > 0xFFFF ||
         set_bytes == 0 || params.size_bytes % set_bytes)
-        throw std::invalid_argument("cache: line_bytes must be a power of two of 2 B or more, the ways 1 to 65535 and size a "
-                                    "multiple of line x ways (" + std::to_string(params.size_bytes) + " B, " +
-                                    std::to_string(params.line_bytes) + " B lines, " + std::to_string(params.ways) + " ways)");
+        throw std::invalid_argument(
+            "cache: line_bytes must be a power of two of 2 B or more, the ways 1 to 65535 and size a "
+            "multiple of line x ways (" +
+            std::to_string(params.size_bytes) + " B, " + std::to_string(params.line_bytes) + " B lines, " +
+            std::to_string(params.ways) + " ways)");
     sets_ = uint32_t(params.size_bytes / set_bytes);
     if (!power_of_two(sets_)) throw std::invalid_argument("cache: the number of sets must be a power of two");
     line_shift_ = log2_of(params.line_bytes);

@@ -17,9 +17,9 @@ namespace surfvp::sw {
 enum class Replacement { lru, round_robin };
 
 struct CacheParams {
-    uint32_t size_bytes = 32 * 1024;  // [S] ML507 DTS (docs/sources.md#cpu)
-    uint32_t line_bytes = 32;         // [S] ML507 DTS; PPC440x5 manual §4.1
-    uint32_t ways = 64;               // [S] PPC440x5 manual Table 4-2 (32 KB -> 64 ways)
+    uint32_t size_bytes = 32 * 1024;             // [S] ML507 DTS (docs/sources.md#cpu)
+    uint32_t line_bytes = 32;                    // [S] ML507 DTS; PPC440x5 manual §4.1
+    uint32_t ways = 64;                          // [S] PPC440x5 manual Table 4-2 (32 KB -> 64 ways)
     Replacement replacement = Replacement::lru;  // [A] as asked; the PPC440 is round-robin [S]
 };
 
@@ -77,15 +77,17 @@ private:
         return true;
     }
     bool touch_round_robin(uint32_t set, uint32_t line);
-    uint16_t& where(uint32_t line);              // its entry in where_, made on first use
+    uint16_t& where(uint32_t line);  // its entry in where_, made on first use
     // LRU: a filled way to its set's list's front.
     void make_newest(size_t base, uint32_t set, uint32_t way) {
         Ends& ends = ends_[set];
         if (way == ends.newest) return;
         Link* links = links_.data() + base;
         const Link moved = links[way];  // `moved.newer` exists: `way` is not the front
-        if (way == ends.oldest) ends.oldest = moved.newer;
-        else links[moved.older].newer = moved.newer;
+        if (way == ends.oldest)
+            ends.oldest = moved.newer;
+        else
+            links[moved.older].newer = moved.newer;
         links[moved.newer].older = moved.older;
         links[way].older = ends.newest;
         links[ends.newest].newer = uint16_t(way);

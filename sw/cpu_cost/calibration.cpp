@@ -23,8 +23,13 @@ nlohmann::ordered_json unit_to_json(const UnitCalibration& u) {
         low[pipeline_knobs()[k].key] = u.low[k];
         high[pipeline_knobs()[k].key] = u.high[k];
     }
-    return {{"cycles", u.cycles},       {"instructions", u.instructions}, {"libm_calls", u.libm_calls},
-            {"libm_instructions", u.libm_instructions}, {"mix", mix}, {"cycles_low", low}, {"cycles_high", high}};
+    return {{"cycles", u.cycles},
+            {"instructions", u.instructions},
+            {"libm_calls", u.libm_calls},
+            {"libm_instructions", u.libm_instructions},
+            {"mix", mix},
+            {"cycles_low", low},
+            {"cycles_high", high}};
 }
 
 UnitCalibration unit_from_json(const nlohmann::ordered_json& j) {
@@ -58,7 +63,8 @@ StreamSample sample_from_json(const nlohmann::ordered_json& j) {
                             b.at("code").get<std::vector<std::string>>()});
     s.sequence = j.at("sequence").get<std::vector<uint32_t>>();
     for (uint32_t i : s.sequence)
-        if (i >= s.blocks.size()) throw std::runtime_error("calibration table: the sample runs a block it does not have");
+        if (i >= s.blocks.size())
+            throw std::runtime_error("calibration table: the sample runs a block it does not have");
     return s;
 }
 
@@ -136,7 +142,8 @@ Calibration calibration_from_json(const nlohmann::ordered_json& j) {
     }
 }
 
-std::vector<std::array<double, kSteps>> sample_cycles(const StreamSample& sample, const std::vector<PipelineParams>& sets) {
+std::vector<std::array<double, kSteps>> sample_cycles(const StreamSample& sample,
+                                                      const std::vector<PipelineParams>& sets) {
     FirmwareLayout none;
     TraceReplay replay(none, sets);
     replay.replay(sample);
@@ -189,7 +196,8 @@ std::pair<double, double> probe_values(const PipelineKnob& knob, double base) {
     if (std::string(knob.key) == "fpu.precision") return {base, base};
     if (knob_choice(knob, base)) return base > 0.5 ? std::pair{0.0, base} : std::pair{base, 1.0};
     const double span = knob.high - knob.low;
-    const double low = knob.low < base ? knob.low : std::max(std::string(knob.unit) == "count" ? 1.0 : 0.0, base - span);
+    const double low =
+        knob.low < base ? knob.low : std::max(std::string(knob.unit) == "count" ? 1.0 : 0.0, base - span);
     const double high = knob.high > base ? knob.high : base + span;
     return {low, high};
 }
@@ -220,14 +228,16 @@ UnitTable fit_units(const std::vector<CandidateStream>& stream, const std::vecto
             if (step_of(Unit(u)) == Step(s)) own.push_back(Unit(u));
         Eigen::MatrixXd x(Eigen::Index(units.size()), Eigen::Index(own.size()));
         for (size_t c = 0; c < units.size(); ++c)
-            for (size_t i = 0; i < own.size(); ++i) x(Eigen::Index(c), Eigen::Index(i)) = double(units[c][size_t(own[i])]);
+            for (size_t i = 0; i < own.size(); ++i)
+                x(Eigen::Index(c), Eigen::Index(i)) = double(units[c][size_t(own[i])]);
         auto fit = [&](auto value, auto store) {
             std::vector<double> y;
             for (const CandidateStream& c : stream) y.push_back(value(c[s]));
             const std::vector<double> per = solve(x, y);
             for (size_t i = 0; i < own.size(); ++i) store(table[size_t(own[i])], per[i]);
         };
-        fit([&](const StepStream& st) { return st.cycles[first_set]; }, [](UnitCalibration& u, double v) { u.cycles = v; });
+        fit([&](const StepStream& st) { return st.cycles[first_set]; },
+            [](UnitCalibration& u, double v) { u.cycles = v; });
         // The knobs' sensitivities only from a stream timed at their probes too (the caller
         // keeps the recorded ones otherwise).
         for (size_t k = 0; probed && k < knobs(); ++k) {
@@ -239,8 +249,10 @@ UnitTable fit_units(const std::vector<CandidateStream>& stream, const std::vecto
         fit([](const StepStream& st) { return double(st.instructions); },
             [](UnitCalibration& u, double v) { u.instructions = v; });
         for (size_t c = 0; c < kInsnClasses; ++c)
-            fit([&](const StepStream& st) { return double(st.mix[c]); }, [&](UnitCalibration& u, double v) { u.mix[c] = v; });
-        fit([](const StepStream& st) { return double(st.libm_calls); }, [](UnitCalibration& u, double v) { u.libm_calls = v; });
+            fit([&](const StepStream& st) { return double(st.mix[c]); },
+                [&](UnitCalibration& u, double v) { u.mix[c] = v; });
+        fit([](const StepStream& st) { return double(st.libm_calls); },
+            [](UnitCalibration& u, double v) { u.libm_calls = v; });
         fit([](const StepStream& st) { return double(st.libm_instructions); },
             [](UnitCalibration& u, double v) { u.libm_instructions = v; });
     }

@@ -30,13 +30,13 @@ using UnitTable = std::array<UnitCalibration, kUnits>;
 
 // The prices under one FPU precision (fpu.precision): its latency column is the defaults.
 struct PrecisionTable {
-    std::vector<double> defaults;           // each knob's value when measured
-    std::vector<double> low_at, high_at;    // each knob's probe values (the default itself: no probe)
-    std::array<UnitTable, 2> haar;          // [exact, rounded]
+    std::vector<double> defaults;         // each knob's value when measured
+    std::vector<double> low_at, high_at;  // each knob's probe values (the default itself: no probe)
+    std::array<UnitTable, 2> haar;        // [exact, rounded]
 };
 
 struct Calibration {
-    nlohmann::ordered_json provenance;  // toolchain, flags, ISS, input
+    nlohmann::ordered_json provenance;        // toolchain, flags, ISS, input
     std::array<PrecisionTable, 2> precision;  // [single, double]
     // Per calibration run: the stream's and the table's cycles per keypoint by step, and the
     // units per keypoint (tests/stage holds the table to them).
@@ -49,7 +49,7 @@ struct Calibration {
     std::array<StreamSample, 2> sample;
 };
 
-const Calibration& recorded_calibration();  // calibration.json, embedded at build time
+const Calibration& recorded_calibration();                           // calibration.json, embedded at build time
 Calibration calibration_from_json(const nlohmann::ordered_json& j);  // throws std::runtime_error
 nlohmann::ordered_json calibration_to_json(const Calibration& c);
 
@@ -65,7 +65,8 @@ std::array<double, kUnits> unit_prices(surf::HaarMode haar, const PipelineParams
 std::array<double, kUnits> linear_unit_prices(surf::HaarMode haar, const PipelineParams& params,
                                               const Calibration& calibration = recorded_calibration());
 // The sample's cycles per step under each parameter set.
-std::vector<std::array<double, kSteps>> sample_cycles(const StreamSample& sample, const std::vector<PipelineParams>& sets);
+std::vector<std::array<double, kSteps>> sample_cycles(const StreamSample& sample,
+                                                      const std::vector<PipelineParams>& sets);
 
 // The cost model's parameters with the recorded prices for this Haar mode and pipeline; the
 // cache and miss cost as CostParams' defaults.

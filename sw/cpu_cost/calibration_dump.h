@@ -43,8 +43,8 @@ inline StageParams stage_params(const FrameHeader& h) {
     return p;
 }
 inline FrameBuffers frame_buffers(const FrameHeader& h, const uint8_t* integral, const uint8_t* determinants) {
-    return {integral, h.integral_address, size_t(h.width) * 4, determinants, h.determinants_address,
-            int(h.width), int(h.height), h.det_frac_bits, h.det_bytes};
+    return {integral,     h.integral_address, size_t(h.width) * 4, determinants, h.determinants_address,
+            int(h.width), int(h.height),      h.det_frac_bits,     h.det_bytes};
 }
 
 // Every field above is a 32-bit word: a struct goes between host and PPC440 order word by

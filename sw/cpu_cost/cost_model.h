@@ -65,7 +65,8 @@ public:
     void count(Unit u, uint64_t n = 1);
     void load(Read kind, uint32_t address, unsigned bytes) {
         ++reads_[static_cast<size_t>(kind)];
-        if (kind == Read::determinant || step_integral_reads_++ % params_.reads_per_burst == 0) burst_start_ = step_reads_;
+        if (kind == Read::determinant || step_integral_reads_++ % params_.reads_per_burst == 0)
+            burst_start_ = step_reads_;
         ++step_reads_;
         const size_t before = missed_.size();
         const CacheModel::Result r = cache_.access(address, bytes, log_misses_ ? &missed_ : nullptr);

@@ -55,7 +55,7 @@ TraceReplay::TraceReplay(const FirmwareLayout& layout, const std::vector<Pipelin
 void TraceReplay::parse_instruction(const std::string& line, Block& block) {
     const size_t colon = line.find(':');
     size_t i = line.find_first_not_of(' ', colon + 1);
-    i = line.find(' ', i);                  // skip the encoding
+    i = line.find(' ', i);  // skip the encoding
     i = line.find_first_not_of(' ', i);
     const size_t end = line.find(' ', i);
     const std::string mnemonic = line.substr(i, end == std::string::npos ? std::string::npos : end - i);
@@ -172,7 +172,8 @@ void TraceReplay::read(std::istream& log) {
                 throw std::runtime_error("qemu log: cannot read \"" + line + "\"");
             const uint32_t pc = hex(line.substr(slash + 1, 8));
             const auto it = blocks_.find(pc);
-            if (it == blocks_.end()) throw std::runtime_error("qemu log: a block executed before its disassembly: " + line);
+            if (it == blocks_.end())
+                throw std::runtime_error("qemu log: a block executed before its disassembly: " + line);
             if (pending) execute(*pending, pc);
             pending = &it->second;
         }

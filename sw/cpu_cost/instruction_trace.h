@@ -19,7 +19,7 @@ namespace surfvp::sw {
 
 // What the firmware's link map tells: where its step markers and libm's code are.
 struct FirmwareLayout {
-    std::map<uint32_t, int> markers;  // entry address -> step (0..4), or -1 for idle
+    std::map<uint32_t, int> markers;                  // entry address -> step (0..4), or -1 for idle
     std::vector<std::pair<uint32_t, uint32_t>> libm;  // [begin, end) of every libm text section
     bool in_libm(uint32_t pc) const;
 };
@@ -77,7 +77,7 @@ private:
         uint32_t pc = 0;
         std::vector<Insn> insns;
         std::vector<std::string> code;  // "mnemonic|operands", for a sample
-        int marker = -2;  // -2: none
+        int marker = -2;                // -2: none
         bool libm = false;
     };
     void parse_instruction(const std::string& line, Block& block);

@@ -10,8 +10,8 @@ namespace surfvp::sw {
 namespace {
 
 constexpr const char* kClassNames[kInsnClasses] = {
-    "integer", "multiply", "divide", "compare", "cr_logical", "spr_move", "load", "store", "branch", "fadd", "fmul",
-    "fmadd", "fdiv", "fsqrt", "fcmp", "fmove", "fconvert", "fload", "fstore", "fstatus", "system"};
+    "integer", "multiply", "divide", "compare", "cr_logical", "spr_move", "load",  "store",  "branch",  "fadd",  "fmul",
+    "fmadd",   "fdiv",     "fsqrt",  "fcmp",    "fmove",      "fconvert", "fload", "fstore", "fstatus", "system"};
 
 bool starts(const std::string& s, const char* prefix) { return s.rfind(prefix, 0) == 0; }
 bool one_of(const std::string& s, std::initializer_list<const char*> names) {
@@ -265,8 +265,10 @@ const std::vector<PipelineKnob>& pipeline_knobs() {
         {"cpu.fpu_ratio", &P::fpu_ratio, 2, 3, true, "count", "CPU cycles per FPU cycle",
          "[S] DS693: optimised for 2:1 and 3:1", "the other ratio DS693 supports"},
         {"fpu.precision", &P::double_precision, 0, 1, true, "precision",
-         "The APU FPU's precision: the latency column the stream is timed with (and frsp, which only the double FPU has)",
-         "[A] single: the FPU Xilinx offers for float code (DS693: 2620 LUT-FF pairs and 3 DSP48E against 4950 and 13); "
+         "The APU FPU's precision: the latency column the stream is timed with (and frsp, which only the double FPU "
+         "has)",
+         "[A] single: the FPU Xilinx offers for float code (DS693: 2620 LUT-FF pairs and 3 DSP48E against 4950 and "
+         "13); "
          "the firmware is built for the double FPU, the only one Debian's GCC targets (sw/cpu_cost/README.md)",
          "the paper says only \"FPU\": DS693 offers both"},
         {"apu.issue", &P::apu_issue, 1, 4, true, "cycles",
@@ -276,19 +278,22 @@ const std::vector<PipelineKnob>& pipeline_knobs() {
         {"apu.load_issue", &P::apu_load_issue, 2, 14, true, "cycles", "CPU cycles an FP load holds the APU's issue",
          "[S/proxy] xfpu.md: Xfpu_issue*10 (issue 2 + 4 FPU cycles x 2); the Virtex-4 sheet: issue 4 + at least 3 FPU "
          "cycles, one load at a time",
-         "2: a Virtex-5 APU that frees the issue after 2 cycles (DS693's autonomous issue); 14: a double load (2 + 6 x 2)"},
+         "2: a Virtex-5 APU that frees the issue after 2 cycles (DS693's autonomous issue); 14: a double load (2 + 6 x "
+         "2)"},
         {"apu.store_issue", &P::apu_store_issue, 2, 8, true, "cycles", "CPU cycles an FP store holds the APU's issue",
          "[S/proxy] xfpu.md: Xfpu_issue*4", "2: the issue alone; 8: the Virtex-4 sheet's 4 FPU cycles a store"},
         {"apu.move_issue", &P::apu_move_issue, 1, 4, true, "cycles",
-         "CPU cycles an FP move, abs, negate or FPSCR access holds the APU's issue", "[S/proxy] xfpu.md: fp-default, Xfpu_issue*2",
+         "CPU cycles an FP move, abs, negate or FPSCR access holds the APU's issue",
+         "[S/proxy] xfpu.md: fp-default, Xfpu_issue*2", "as apu.issue"},
+        {"apu.compare_issue", &P::apu_compare_issue, 1, 4, true, "cycles",
+         "CPU cycles an FP compare holds the APU's issue", "[S/proxy] xfpu.md: fp-compare, Xfpu_issue*2",
          "as apu.issue"},
-        {"apu.compare_issue", &P::apu_compare_issue, 1, 4, true, "cycles", "CPU cycles an FP compare holds the APU's issue",
-         "[S/proxy] xfpu.md: fp-compare, Xfpu_issue*2", "as apu.issue"},
         {"apu.convert_issue", &P::apu_convert_issue, 1, 4, true, "cycles",
-         "CPU cycles an FP conversion (fctiwz, frsp) holds the APU's issue", "[S/proxy] xfpu.md: fp-default, Xfpu_issue*2",
-         "as apu.issue"},
+         "CPU cycles an FP conversion (fctiwz, frsp) holds the APU's issue",
+         "[S/proxy] xfpu.md: fp-default, Xfpu_issue*2", "as apu.issue"},
         {"apu.divide_issue", &P::apu_divide_issue, 1, 4, true, "cycles",
-         "CPU cycles an FP divide or square root holds the APU's issue (the unpipelined divider stays busy for its whole "
+         "CPU cycles an FP divide or square root holds the APU's issue (the unpipelined divider stays busy for its "
+         "whole "
          "latency: the next divide waits)",
          "[S/proxy] xfpu.md: Xfpu_issue*2 then Xfpu_div (unpipelined); the Virtex-4 sheet: divide and square root not "
          "pipelined",
@@ -301,7 +306,8 @@ const std::vector<PipelineKnob>& pipeline_knobs() {
          "CPU cycles of the APU's register file access and write back", "[A] proxy: xfpu.md: 2",
          "the Virtex-5 APU may be faster or slower than the PPC405's (DS693's table not retrieved)"},
         {"fpu.fadd", &P::fadd, 5, 7, true, "fpu_cycles", "FPU cycles of an add or subtract",
-         "[A] proxy: xfpu.md, the precision's column: single 5, double 7; the Virtex-4 sheet: 6", "the columns and the sheet"},
+         "[A] proxy: xfpu.md, the precision's column: single 5, double 7; the Virtex-4 sheet: 6",
+         "the columns and the sheet"},
         {"fpu.fmul", &P::fmul, 4, 11, true, "fpu_cycles", "FPU cycles of a multiply",
          "[A] proxy: xfpu.md: single 4, double 11; the Virtex-4 sheet: 5", "the columns and the sheet"},
         {"fpu.fmadd", &P::fmadd, 10, 19, true, "fpu_cycles", "FPU cycles of a fused multiply-add",
@@ -361,49 +367,74 @@ const char* knob_choice(const PipelineKnob& k, double value) {
 
 double Ppc440Pipeline::occupancy(InsnClass c) const {
     switch (c) {
-        case InsnClass::fload: return p_.apu_load_issue;
-        case InsnClass::fstore: return p_.apu_store_issue;
+        case InsnClass::fload:
+            return p_.apu_load_issue;
+        case InsnClass::fstore:
+            return p_.apu_store_issue;
         case InsnClass::fmove:
-        case InsnClass::fstatus: return p_.apu_move_issue;
-        case InsnClass::fcmp: return p_.apu_compare_issue;
-        case InsnClass::fconvert: return p_.apu_convert_issue;
+        case InsnClass::fstatus:
+            return p_.apu_move_issue;
+        case InsnClass::fcmp:
+            return p_.apu_compare_issue;
+        case InsnClass::fconvert:
+            return p_.apu_convert_issue;
         case InsnClass::fdiv:
-        case InsnClass::fsqrt: return p_.apu_divide_issue;
-        default: return p_.apu_issue;
+        case InsnClass::fsqrt:
+            return p_.apu_divide_issue;
+        default:
+            return p_.apu_issue;
     }
 }
 
 double Ppc440Pipeline::result_latency(InsnClass c) const {
     const double apu = p_.apu_issue + p_.apu_overhead;
     switch (c) {
-        case InsnClass::multiply: return p_.multiply_latency;
-        case InsnClass::divide: return p_.divide_latency;
-        case InsnClass::compare: return p_.compare_latency;
-        case InsnClass::load: return p_.load_latency;
-        case InsnClass::fadd: return apu + p_.fadd * p_.fpu_ratio;
-        case InsnClass::fmul: return apu + p_.fmul * p_.fpu_ratio;
-        case InsnClass::fmadd: return apu + p_.fmadd * p_.fpu_ratio;
-        case InsnClass::fdiv: return apu + p_.fdiv * p_.fpu_ratio;
-        case InsnClass::fsqrt: return apu + p_.fsqrt * p_.fpu_ratio;
-        case InsnClass::fcmp: return apu + p_.fcmp * p_.fpu_ratio;
+        case InsnClass::multiply:
+            return p_.multiply_latency;
+        case InsnClass::divide:
+            return p_.divide_latency;
+        case InsnClass::compare:
+            return p_.compare_latency;
+        case InsnClass::load:
+            return p_.load_latency;
+        case InsnClass::fadd:
+            return apu + p_.fadd * p_.fpu_ratio;
+        case InsnClass::fmul:
+            return apu + p_.fmul * p_.fpu_ratio;
+        case InsnClass::fmadd:
+            return apu + p_.fmadd * p_.fpu_ratio;
+        case InsnClass::fdiv:
+            return apu + p_.fdiv * p_.fpu_ratio;
+        case InsnClass::fsqrt:
+            return apu + p_.fsqrt * p_.fpu_ratio;
+        case InsnClass::fcmp:
+            return apu + p_.fcmp * p_.fpu_ratio;
         case InsnClass::fmove:
-        case InsnClass::fstatus: return apu + p_.fmove * p_.fpu_ratio;
-        case InsnClass::fconvert: return apu + p_.fconvert * p_.fpu_ratio;
+        case InsnClass::fstatus:
+            return apu + p_.fmove * p_.fpu_ratio;
+        case InsnClass::fconvert:
+            return apu + p_.fconvert * p_.fpu_ratio;
         // APU loads and stores: issue plus the FPU's access (xfpu.md: a load 10 = 2 + 4 x 2).
-        case InsnClass::fload: return p_.apu_issue + p_.fload * p_.fpu_ratio;
-        case InsnClass::fstore: return p_.apu_issue + p_.fstore * p_.fpu_ratio;
-        default: return 1;
+        case InsnClass::fload:
+            return p_.apu_issue + p_.fload * p_.fpu_ratio;
+        case InsnClass::fstore:
+            return p_.apu_issue + p_.fstore * p_.fpu_ratio;
+        default:
+            return 1;
     }
 }
 
 Ppc440Pipeline::Pipe Ppc440Pipeline::pick_pipe(InsnClass c, uint64_t at) const {
     switch (c) {
-        case InsnClass::integer: return used(kPipeJ, at) ? kPipeI : kPipeJ;
+        case InsnClass::integer:
+            return used(kPipeJ, at) ? kPipeI : kPipeJ;
         case InsnClass::load:
         case InsnClass::store:
         case InsnClass::fload:
-        case InsnClass::fstore: return kPipeL;
-        default: return is_fpu_arithmetic(c) ? kPipeF : kPipeI;
+        case InsnClass::fstore:
+            return kPipeL;
+        default:
+            return is_fpu_arithmetic(c) ? kPipeF : kPipeI;
     }
 }
 
@@ -450,10 +481,10 @@ uint64_t Ppc440Pipeline::issue(const Insn& in, uint32_t pc, bool taken) {
     if (in.cls == InsnClass::spr_move) latency = in.ndst && in.dst[0] >= kLr ? p_.spr_latency : p_.mfspr_latency;
     const uint64_t done = cycle_ + ceil(latency);
     for (uint8_t i = 0; i < in.ndst; ++i)
-        ready_[in.dst[i]] = in.dst[i] >= kCr && in.dst[i] < kCr + 8 && in.cls != InsnClass::compare &&
-                                    in.cls != InsnClass::fcmp
-                                ? cycle_ + ceil(p_.compare_latency)  // a record form's CR0
-                                : done;
+        ready_[in.dst[i]] =
+            in.dst[i] >= kCr && in.dst[i] < kCr + 8 && in.cls != InsnClass::compare && in.cls != InsnClass::fcmp
+                ? cycle_ + ceil(p_.compare_latency)  // a record form's CR0
+                : done;
     last_ = std::max(last_, done);
     if (fpu) {
         fpu_free_ = cycle_ + ceil(occupancy(in.cls));

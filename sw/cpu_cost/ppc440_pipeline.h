@@ -32,9 +32,9 @@ enum class InsnClass : uint8_t {
     load,      // integer loads
     store,     // integer stores
     branch,
-    fadd,      // fadd(s), fsub(s)
+    fadd,  // fadd(s), fsub(s)
     fmul,
-    fmadd,     // fmadd(s), fmsub(s), fnmadd(s), fnmsub(s)
+    fmadd,  // fmadd(s), fmsub(s), fnmadd(s), fnmsub(s)
     fdiv,
     fsqrt,
     fcmp,
@@ -42,8 +42,8 @@ enum class InsnClass : uint8_t {
     fconvert,  // fctiw(z), frsp
     fload,
     fstore,
-    fstatus,   // mffs, mtfsf, mtfsb0/1
-    system,    // sc, sync, isync, and anything not classed above
+    fstatus,  // mffs, mtfsf, mtfsb0/1
+    system,   // sc, sync, isync, and anything not classed above
 };
 constexpr size_t kInsnClasses = 21;
 const char* insn_class_name(InsnClass c);
@@ -58,10 +58,10 @@ struct Insn {
     uint8_t ndst = 0, nsrc = 0;
     uint8_t dst[3] = {};
     uint8_t src[4] = {};
-    uint8_t repeat = 1;         // lmw / stmw: one access per register
-    bool conditional = false;   // a conditional branch (predicted)
-    bool btac = false;          // a branch the BTAC predicts: unconditional or bdnz
-    bool backward = false;      // a conditional branch to a lower address (statically predicted taken)
+    uint8_t repeat = 1;            // lmw / stmw: one access per register
+    bool conditional = false;      // a conditional branch (predicted)
+    bool btac = false;             // a branch the BTAC predicts: unconditional or bdnz
+    bool backward = false;         // a conditional branch to a lower address (statically predicted taken)
     bool round_to_single = false;  // frsp: a double-precision FPU's rounding, which code for the single one has none of
 };
 
@@ -77,24 +77,24 @@ struct FpuColumn {
 FpuColumn fpu_column(bool double_precision);
 
 struct PipelineParams {
-    double issue_width = 2;           // [S] PPC440 core datasheet: dual issue
-    double load_latency = 3;          // [S] GCC's PPC440 description (rs6000/440.md): load 3
-    double multiply_latency = 3;      // [S] 440.md: imul 3
-    double divide_latency = 34;       // [S] 440.md: idiv 34, the i pipe busy 33
-    double compare_latency = 2;       // [S] 440.md: compare 2
-    double spr_latency = 4;           // [S] 440.md: mtjmpr 4 (move to LR/CTR)
-    double mfspr_latency = 2;         // [S] 440.md: mfjmpr 2 (move from LR/CTR)
-    double taken_bubble = 1;          // [S] PPC440 datasheet: the BTAC "avoids a one cycle penalty"
-    double mispredict_cycles = 4;     // [A] not retrieved: a 7-stage pipeline resolving in EX
-    double fpu_ratio = 2;             // [S] DS693: CPU cycles per FPU cycle (2:1 or 3:1)
-    double double_precision = 0;      // fpu.precision: 0 single, 1 double (the column below, frsp)
+    double issue_width = 2;        // [S] PPC440 core datasheet: dual issue
+    double load_latency = 3;       // [S] GCC's PPC440 description (rs6000/440.md): load 3
+    double multiply_latency = 3;   // [S] 440.md: imul 3
+    double divide_latency = 34;    // [S] 440.md: idiv 34, the i pipe busy 33
+    double compare_latency = 2;    // [S] 440.md: compare 2
+    double spr_latency = 4;        // [S] 440.md: mtjmpr 4 (move to LR/CTR)
+    double mfspr_latency = 2;      // [S] 440.md: mfjmpr 2 (move from LR/CTR)
+    double taken_bubble = 1;       // [S] PPC440 datasheet: the BTAC "avoids a one cycle penalty"
+    double mispredict_cycles = 4;  // [A] not retrieved: a 7-stage pipeline resolving in EX
+    double fpu_ratio = 2;          // [S] DS693: CPU cycles per FPU cycle (2:1 or 3:1)
+    double double_precision = 0;   // fpu.precision: 0 single, 1 double (the column below, frsp)
     // CPU cycles each class of APU instruction holds the APU's issue (no other FPU instruction
     // issues meanwhile): xfpu.md's reservations (Xfpu_issue*2, *10, *4).
-    double apu_issue = 2;             // arithmetic: add, multiply, multiply-add
-    double apu_load_issue = 10, apu_store_issue = 4, apu_move_issue = 2, apu_compare_issue = 2,
-           apu_convert_issue = 2, apu_divide_issue = 2;
+    double apu_issue = 2;  // arithmetic: add, multiply, multiply-add
+    double apu_load_issue = 10, apu_store_issue = 4, apu_move_issue = 2, apu_compare_issue = 2, apu_convert_issue = 2,
+           apu_divide_issue = 2;
     double apu_outstanding_loads = 1;  // [S] Virtex-4 APU FPU sheet: one outstanding FP load
-    double apu_overhead = 2;          // [S/proxy] xfpu.md: 2 CPU cycles for register file access and write back
+    double apu_overhead = 2;           // [S/proxy] xfpu.md: 2 CPU cycles for register file access and write back
     // FPU cycles, the precision's column (xfpu.md; fpu_column()).
     double fadd = 5, fmul = 4, fmadd = 10, fdiv = 27, fsqrt = 27, fcmp = 1, fmove = 1, fconvert = 4, fload = 4,
            fstore = 1;
@@ -112,10 +112,10 @@ struct PipelineKnob {
     double PipelineParams::*field;
     double low, high;
     bool band;
-    const char* unit;   // cycles, fpu_cycles, count, switch (off/on), precision (single/double)
+    const char* unit;  // cycles, fpu_cycles, count, switch (off/on), precision (single/double)
     const char* help;
     const char* source;
-    const char* why;    // the band's reason (or why the probe points)
+    const char* why;  // the band's reason (or why the probe points)
 };
 const std::vector<PipelineKnob>& pipeline_knobs();
 // A choice knob's value as the scenario writes it ("on", "double"); nullptr for a number.
@@ -140,16 +140,16 @@ private:
     bool used(Pipe p, uint64_t at) const { return pipe_used_[p] == at + 1; }
 
     PipelineParams p_;
-    uint64_t cycle_ = 0;         // the current issue cycle
-    unsigned issued_now_ = 0;    // instructions issued in cycle_
+    uint64_t cycle_ = 0;               // the current issue cycle
+    unsigned issued_now_ = 0;          // instructions issued in cycle_
     uint64_t pipe_used_[kPipes] = {};  // cycle + 1 when the pipe was used last
     uint64_t ready_[kRegisters] = {};  // when each register's value is available
-    uint64_t fpu_free_ = 0;      // when the APU takes its next instruction
-    uint64_t divider_free_ = 0;  // when the unpipelined divide / square-root unit takes the next
-    std::vector<uint64_t> loads_;  // when each outstanding FP load's data is in (oldest first)
-    uint64_t i_pipe_free_ = 0;   // after a divide
-    uint64_t next_ = 0;          // no instruction issues before this (after a branch, or a waited-for FPU result)
-    uint64_t last_ = 0;          // latest result
+    uint64_t fpu_free_ = 0;            // when the APU takes its next instruction
+    uint64_t divider_free_ = 0;        // when the unpipelined divide / square-root unit takes the next
+    std::vector<uint64_t> loads_;      // when each outstanding FP load's data is in (oldest first)
+    uint64_t i_pipe_free_ = 0;         // after a divide
+    uint64_t next_ = 0;                // no instruction issues before this (after a branch, or a waited-for FPU result)
+    uint64_t last_ = 0;                // latest result
     std::unordered_map<uint32_t, uint8_t> bht_;  // 2-bit counters per branch address
 };
 

@@ -33,13 +33,18 @@ constexpr Step step_of(Unit u) {
     switch (u) {
         case Unit::candidate:
         case Unit::scan:
-        case Unit::compare: return Step::check;
+        case Unit::compare:
+            return Step::check;
         case Unit::solve:
-        case Unit::keypoint: return Step::interpolation;
-        case Unit::laplacian: return Step::laplacian;
+        case Unit::keypoint:
+            return Step::interpolation;
+        case Unit::laplacian:
+            return Step::laplacian;
         case Unit::orientation:
-        case Unit::angle: return Step::orientation;
-        case Unit::descriptor: return Step::descriptor;
+        case Unit::angle:
+            return Step::orientation;
+        case Unit::descriptor:
+            return Step::descriptor;
     }
     return Step::check;
 }

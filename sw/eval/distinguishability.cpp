@@ -23,8 +23,8 @@ DistinguishabilityResult with_candidates(const surf::Keypoints& a, const surf::K
 }
 
 // Counts the candidates within the threshold of their epipolar lines.
-void validate(const surf::Keypoints& a, const surf::Keypoints& b, const Eigen::Matrix3d& f,
-              double threshold, DistinguishabilityResult& result) {
+void validate(const surf::Keypoints& a, const surf::Keypoints& b, const Eigen::Matrix3d& f, double threshold,
+              DistinguishabilityResult& result) {
     result.fundamental = f;
     result.valid = 0;
     result.epipolar_distances.clear();
@@ -34,8 +34,7 @@ void validate(const surf::Keypoints& a, const surf::Keypoints& b, const Eigen::M
         if (d <= threshold) ++result.valid;
     }
     result.status = DistinguishabilityStatus::ok;
-    result.distinguishability =
-        static_cast<double>(result.valid) / static_cast<double>(result.candidates);
+    result.distinguishability = static_cast<double>(result.valid) / static_cast<double>(result.candidates);
 }
 
 SequenceDistinguishability summarise(std::vector<DistinguishabilityResult> pairs) {
@@ -59,8 +58,7 @@ void check_gap(std::size_t gap) {
 
 }  // namespace
 
-double epipolar_distance(const Eigen::Matrix3d& fundamental, const Eigen::Vector2d& a,
-                         const Eigen::Vector2d& b) {
+double epipolar_distance(const Eigen::Matrix3d& fundamental, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
     Eigen::Vector3d line = fundamental * a.homogeneous();
     double norm = std::hypot(line.x(), line.y());
     if (!(norm > 0)) return std::numeric_limits<double>::infinity();
@@ -68,8 +66,7 @@ double epipolar_distance(const Eigen::Matrix3d& fundamental, const Eigen::Vector
 }
 
 std::optional<Eigen::Matrix3d> estimate_fundamental(const std::vector<Eigen::Vector2d>& a,
-                                                    const std::vector<Eigen::Vector2d>& b,
-                                                    const RansacParams& params) {
+                                                    const std::vector<Eigen::Vector2d>& b, const RansacParams& params) {
     if (a.size() != b.size()) throw std::invalid_argument("estimate_fundamental: sizes differ");
     if (a.size() < kMinCandidatesForRansac) return std::nullopt;
     std::vector<cv::Point2d> pa, pb;
@@ -78,8 +75,8 @@ std::optional<Eigen::Matrix3d> estimate_fundamental(const std::vector<Eigen::Vec
         pb.emplace_back(b[i].x(), b[i].y());
     }
     cv::setRNGSeed(params.seed);
-    cv::Mat f = cv::findFundamentalMat(pa, pb, cv::FM_RANSAC, params.threshold, params.confidence,
-                                       params.max_iterations);
+    cv::Mat f =
+        cv::findFundamentalMat(pa, pb, cv::FM_RANSAC, params.threshold, params.confidence, params.max_iterations);
     if (f.rows != 3 || f.cols != 3) return std::nullopt;
     Eigen::Matrix3d result;
     for (int r = 0; r < 3; ++r)
@@ -118,9 +115,8 @@ DistinguishabilityResult distinguishability(const surf::Keypoints& a, const surf
     return result;
 }
 
-SequenceDistinguishability sequence_distinguishability(
-    const std::vector<surf::Keypoints>& frames, std::size_t gap,
-    const DistinguishabilityOptions& options) {
+SequenceDistinguishability sequence_distinguishability(const std::vector<surf::Keypoints>& frames, std::size_t gap,
+                                                       const DistinguishabilityOptions& options) {
     check_gap(gap);
     std::vector<DistinguishabilityResult> pairs;
     for (std::size_t i = 0; i + gap < frames.size(); ++i) {
@@ -129,14 +125,13 @@ SequenceDistinguishability sequence_distinguishability(
     return summarise(std::move(pairs));
 }
 
-SequenceDistinguishability sequence_distinguishability(
-    const std::vector<surf::Keypoints>& frames, std::size_t gap,
-    const FundamentalOfPair& fundamental, const DistinguishabilityOptions& options) {
+SequenceDistinguishability sequence_distinguishability(const std::vector<surf::Keypoints>& frames, std::size_t gap,
+                                                       const FundamentalOfPair& fundamental,
+                                                       const DistinguishabilityOptions& options) {
     check_gap(gap);
     std::vector<DistinguishabilityResult> pairs;
     for (std::size_t i = 0; i + gap < frames.size(); ++i) {
-        pairs.push_back(
-            distinguishability(frames[i], frames[i + gap], fundamental(i, i + gap), options));
+        pairs.push_back(distinguishability(frames[i], frames[i + gap], fundamental(i, i + gap), options));
     }
     return summarise(std::move(pairs));
 }

@@ -22,15 +22,15 @@ namespace surfvp::eval {
 // so a run is a function of the candidate list alone; `seed` is also passed to cv::setRNGSeed
 // before the call so that an OpenCV drawing from theRNG() stays deterministic. README.md.
 struct RansacParams {
-    double threshold = 3.0;      // px, OpenCV's inlier test (larger of the two epipolar distances)
+    double threshold = 3.0;  // px, OpenCV's inlier test (larger of the two epipolar distances)
     double confidence = 0.99;
     int max_iterations = 2000;
     int seed = 0x5eed;
 };
 
 struct DistinguishabilityOptions {
-    RatioTestOptions matching;         // ratio 0.75, optional 200 px radius, optional sign
-    double epipolar_threshold = 3.0;   // px, paper §IV-A: farther than this is invalid
+    RatioTestOptions matching;        // ratio 0.75, optional 200 px radius, optional sign
+    double epipolar_threshold = 3.0;  // px, paper §IV-A: farther than this is invalid
     RansacParams ransac;
 };
 
@@ -51,7 +51,7 @@ inline constexpr std::size_t kMinCandidatesForRansac = 15;
 struct DistinguishabilityResult {
     std::size_t candidates = 0;
     std::size_t valid = 0;
-    double distinguishability = 0;   // valid / candidates when status is ok, else 0
+    double distinguishability = 0;  // valid / candidates when status is ok, else 0
     DistinguishabilityStatus status = DistinguishabilityStatus::no_candidates;
     Eigen::Matrix3d fundamental = Eigen::Matrix3d::Zero();  // x_b^T F x_a = 0; zero if none
     std::vector<Candidate> candidate_pairs;
@@ -60,8 +60,7 @@ struct DistinguishabilityResult {
 
 // Distance in pixels of b from the epipolar line F (a, 1) in image B; +inf when the line is
 // undefined (a is the epipole, or F is zero).
-double epipolar_distance(const Eigen::Matrix3d& fundamental, const Eigen::Vector2d& a,
-                         const Eigen::Vector2d& b);
+double epipolar_distance(const Eigen::Matrix3d& fundamental, const Eigen::Vector2d& a, const Eigen::Vector2d& b);
 
 // F with x_b^T F x_a = 0 by cv::findFundamentalMat(FM_RANSAC) from at least
 // kMinCandidatesForRansac point pairs; nothing with fewer or when OpenCV finds none.
@@ -81,22 +80,21 @@ DistinguishabilityResult distinguishability(const surf::Keypoints& a, const surf
 
 struct SequenceDistinguishability {
     std::vector<DistinguishabilityResult> pairs;  // pairs[k] compares frames k and k + gap
-    double mean = 0;             // paper: the average ratio over all pairs (a pair without one counts 0)
-    double mean_of_measured = 0; // the average over the pairs whose status is ok
+    double mean = 0;              // paper: the average ratio over all pairs (a pair without one counts 0)
+    double mean_of_measured = 0;  // the average over the pairs whose status is ok
     std::size_t measured_pairs = 0;
     std::size_t candidates = 0;  // totals over all pairs
     std::size_t valid = 0;
 };
 
 // Frames (i, i + gap) for every i; gap >= 1.
-SequenceDistinguishability sequence_distinguishability(
-    const std::vector<surf::Keypoints>& frames, std::size_t gap = 1,
-    const DistinguishabilityOptions& options = {});
+SequenceDistinguishability sequence_distinguishability(const std::vector<surf::Keypoints>& frames, std::size_t gap = 1,
+                                                       const DistinguishabilityOptions& options = {});
 
 // The same with F for frames (i, j) from `fundamental(i, j)`.
 using FundamentalOfPair = std::function<Eigen::Matrix3d(std::size_t, std::size_t)>;
-SequenceDistinguishability sequence_distinguishability(
-    const std::vector<surf::Keypoints>& frames, std::size_t gap,
-    const FundamentalOfPair& fundamental, const DistinguishabilityOptions& options = {});
+SequenceDistinguishability sequence_distinguishability(const std::vector<surf::Keypoints>& frames, std::size_t gap,
+                                                       const FundamentalOfPair& fundamental,
+                                                       const DistinguishabilityOptions& options = {});
 
 }  // namespace surfvp::eval

@@ -13,10 +13,10 @@ struct Ellipse {
 
     static Ellipse circle(const Eigen::Vector2d& centre, double radius);
 
-    double area() const;                    // pi / sqrt(det m)
-    double equivalent_radius() const;       // of the circle with the same area
-    Eigen::Vector2d half_extent() const;    // half width and half height of the bounding box
-    Ellipse scaled(double factor) const;    // the shape scaled by `factor` about its centre
+    double area() const;                  // pi / sqrt(det m)
+    double equivalent_radius() const;     // of the circle with the same area
+    Eigen::Vector2d half_extent() const;  // half width and half height of the bounding box
+    Ellipse scaled(double factor) const;  // the shape scaled by `factor` about its centre
 };
 
 // The ellipse through the affine map p -> centre' + a (p - centre): m' = a^-T m a^-1.

@@ -69,7 +69,9 @@ Eigen::Matrix3d read_yaml(const std::filesystem::path& file, std::string text) {
 Eigen::Matrix3d read_file_storage(const std::filesystem::path& file, const std::string& text) {
     // Neither XML nor JSON holds a NUL byte, and OpenCV 4.6's XML parser dereferences a null
     // pointer on one in the XML declaration (found by tests/fuzz homography).
-    const auto line_of = [&](std::size_t at) { return std::size_t(std::count(text.begin(), text.begin() + long(at), '\n') + 1); };
+    const auto line_of = [&](std::size_t at) {
+        return std::size_t(std::count(text.begin(), text.begin() + long(at), '\n') + 1);
+    };
     if (const std::size_t nul = text.find('\0'); nul != std::string::npos)
         throw FormatError(file, line_of(nul), "a NUL byte: not a text file");
     // It does so too when the file ends after an attribute's '=' (and spaces), in the XML
@@ -109,8 +111,8 @@ Eigen::Matrix3d read_plain_text(const std::filesystem::path& file) {
     Eigen::Matrix3d h;
     for (int row = 0; row < 3; ++row) {
         if (!reader.next(t)) {
-            throw FormatError(file, reader.line(), "file ends after " + std::to_string(row) +
-                                                       " of the 3 rows of the homography");
+            throw FormatError(file, reader.line(),
+                              "file ends after " + std::to_string(row) + " of the 3 rows of the homography");
         }
         if (t.size() != 3) reader.fail("expected 3 values, found " + std::to_string(t.size()));
         for (int col = 0; col < 3; ++col) h(row, col) = reader.real(t[col], "matrix element");

@@ -24,12 +24,11 @@ constexpr std::size_t kDescriptorSize = std::tuple_size_v<decltype(surf::Keypoin
 constexpr std::size_t kMaxKeypoints = 100'000'000;
 
 void check_writable(const surf::Keypoint& k, std::size_t index) {
-    bool finite = std::isfinite(k.x) && std::isfinite(k.y) && std::isfinite(k.orientation) &&
-                  std::isfinite(k.response);
+    bool finite = std::isfinite(k.x) && std::isfinite(k.y) && std::isfinite(k.orientation) && std::isfinite(k.response);
     for (float d : k.descriptor) finite = finite && std::isfinite(d);
     if (!finite || !(k.scale > 0) || !std::isfinite(k.scale)) {
-        throw std::invalid_argument(fmt::format(
-            "keypoint {}: needs finite values and a positive scale (scale {})", index, k.scale));
+        throw std::invalid_argument(
+            fmt::format("keypoint {}: needs finite values and a positive scale (scale {})", index, k.scale));
     }
 }
 
@@ -52,8 +51,7 @@ void put_line(fmt::memory_buffer& out, std::initializer_list<double> values) {
 
 std::string format_keypoints(const surf::Keypoints& keypoints, bool laplacian) {
     fmt::memory_buffer out;
-    fmt::format_to(std::back_inserter(out), "{}\n{}\n",
-                   kDescriptorSize + (laplacian ? 1 : 0), keypoints.size());
+    fmt::format_to(std::back_inserter(out), "{}\n{}\n", kDescriptorSize + (laplacian ? 1 : 0), keypoints.size());
     for (const auto& k : keypoints) {
         double r = region_radius(k);
         double a = 1.0 / (r * r);
@@ -89,15 +87,14 @@ int read_laplacian(const TextReader& reader, std::string_view token) {
 }
 
 // The header: dimension then count, each alone on its line.
-std::size_t read_header_value(TextReader& reader, std::vector<std::string_view>& tokens,
-                              const char* what, std::size_t max) {
+std::size_t read_header_value(TextReader& reader, std::vector<std::string_view>& tokens, const char* what,
+                              std::size_t max) {
     if (!reader.next(tokens)) {
-        throw FormatError(reader.file(), reader.line(),
-                          std::string("file ends before the ") + what);
+        throw FormatError(reader.file(), reader.line(), std::string("file ends before the ") + what);
     }
     if (tokens.size() != 1) {
-        reader.fail(std::string("expected the ") + what + " alone on the line, found " +
-                    std::to_string(tokens.size()) + " values");
+        reader.fail(std::string("expected the ") + what + " alone on the line, found " + std::to_string(tokens.size()) +
+                    " values");
     }
     return reader.count(tokens[0], what, max);
 }
@@ -112,13 +109,12 @@ unsigned read_dimension(TextReader& reader, std::vector<std::string_view>& token
     return static_cast<unsigned>(dimension);
 }
 
-surf::Keypoint parse_keypoint(const TextReader& reader, const std::vector<std::string_view>& t,
-                              unsigned dimension) {
+surf::Keypoint parse_keypoint(const TextReader& reader, const std::vector<std::string_view>& t, unsigned dimension) {
     std::size_t expected = 5 + dimension;
     if (t.size() != expected) {
         reader.fail("expected " + std::to_string(expected) + " values (x y a b c" +
-                    (dimension ? " + " + std::to_string(dimension) + " descriptor values" : "") +
-                    "), found " + std::to_string(t.size()));
+                    (dimension ? " + " + std::to_string(dimension) + " descriptor values" : "") + "), found " +
+                    std::to_string(t.size()));
     }
     surf::Keypoint k;
     k.x = reader.real_float(t[0], "x");
@@ -126,8 +122,8 @@ surf::Keypoint parse_keypoint(const TextReader& reader, const std::vector<std::s
     double a = reader.real(t[2], "a"), b = reader.real(t[3], "b"), c = reader.real(t[4], "c");
     double det = a * c - b * b;
     if (!(a > 0) || !(c > 0) || !(det > 0)) {
-        reader.fail("ellipse a b c = " + std::string(t[2]) + " " + std::string(t[3]) + " " +
-                    std::string(t[4]) + " is not positive definite");
+        reader.fail("ellipse a b c = " + std::string(t[2]) + " " + std::string(t[3]) + " " + std::string(t[4]) +
+                    " is not positive definite");
     }
     // The radius of the circle with the ellipse's area, pi / sqrt(det).
     k.scale = static_cast<float>(std::pow(det, -0.25) / kRegionRadiusPerScale);
@@ -151,21 +147,20 @@ void apply_meta(const std::filesystem::path& file, surf::Keypoints& keypoints, b
     std::vector<std::string_view> t;
     std::size_t n = read_header_value(reader, t, "keypoint count", kMaxKeypoints);
     if (n != keypoints.size()) {
-        reader.fail("lists " + std::to_string(n) + " keypoints, the keypoint file " +
-                    std::to_string(keypoints.size()));
+        reader.fail("lists " + std::to_string(n) + " keypoints, the keypoint file " + std::to_string(keypoints.size()));
     }
     for (auto& k : keypoints) {
         if (!reader.next(t)) {
-            throw FormatError(file, reader.line(), "file ends before all " + std::to_string(n) +
-                                                       " keypoints are listed");
+            throw FormatError(file, reader.line(),
+                              "file ends before all " + std::to_string(n) + " keypoints are listed");
         }
         if (t.size() != 6) {
             reader.fail("expected 6 values (x y scale orientation response laplacian), found " +
                         std::to_string(t.size()));
         }
         if (reader.real_float(t[0], "x") != k.x || reader.real_float(t[1], "y") != k.y) {
-            reader.fail(fmt::format("position {} {} differs from the keypoint file's {:.9g} {:.9g}",
-                                    t[0], t[1], k.x, k.y));
+            reader.fail(
+                fmt::format("position {} {} differs from the keypoint file's {:.9g} {:.9g}", t[0], t[1], k.x, k.y));
         }
         k.scale = reader.real_float(t[2], "scale");
         if (!(k.scale > 0)) reader.fail("scale '" + std::string(t[2]) + "' is not positive");
@@ -213,8 +208,7 @@ KeypointFile read_keypoint_file(const std::filesystem::path& file) {
     for (std::size_t i = 0; i < n; ++i) {
         if (!reader.next(t)) {
             throw FormatError(file, reader.line(),
-                              "file ends after " + std::to_string(i) + " of " + std::to_string(n) +
-                                  " keypoints");
+                              "file ends after " + std::to_string(i) + " of " + std::to_string(n) + " keypoints");
         }
         result.keypoints.push_back(parse_keypoint(reader, t, result.dimension));
     }

@@ -42,8 +42,6 @@ void write_keypoint_file(const std::filesystem::path& file, const surf::Keypoint
 // dimension is 64). Throws FormatError naming file, line and problem on malformed input.
 KeypointFile read_keypoint_file(const std::filesystem::path& file);
 
-inline surf::Keypoints load_keypoints(const std::filesystem::path& file) {
-    return read_keypoint_file(file).keypoints;
-}
+inline surf::Keypoints load_keypoints(const std::filesystem::path& file) { return read_keypoint_file(file).keypoints; }
 
 }  // namespace surfvp::eval

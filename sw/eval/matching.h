@@ -18,10 +18,10 @@ struct RatioTestOptions {
 };
 
 struct Candidate {
-    std::size_t a = 0;              // index into A
-    std::size_t b = 0;              // index into B: the nearest descriptor
-    double distance = 0;            // to the nearest
-    double second_distance = 0;     // to the second nearest
+    std::size_t a = 0;           // index into A
+    std::size_t b = 0;           // index into B: the nearest descriptor
+    double distance = 0;         // to the nearest
+    double second_distance = 0;  // to the second nearest
 };
 
 double descriptor_distance(const surf::Keypoint& a, const surf::Keypoint& b);

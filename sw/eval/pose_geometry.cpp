@@ -28,9 +28,9 @@ void check_rigid(const TextReader& reader, const Eigen::Matrix4d& m) {
     Eigen::Matrix3d r = m.topLeftCorner<3, 3>();
     double error = (r * r.transpose() - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff();
     if (error > 1e-5 || r.determinant() < 0) {
-        throw FormatError(reader.file(), 0,
-                          "the 3x3 rotation is not orthonormal with determinant +1 (|R R^T - I| = " +
-                              std::to_string(error) + ")");
+        throw FormatError(
+            reader.file(), 0,
+            "the 3x3 rotation is not orthonormal with determinant +1 (|R R^T - I| = " + std::to_string(error) + ")");
     }
 }
 
@@ -39,8 +39,7 @@ std::optional<unsigned> frame_number(const std::filesystem::path& file, const st
     std::string stem = file.stem().string();
     if (stem.rfind(prefix, 0) != 0 || stem.size() == prefix.size()) return std::nullopt;
     std::string digits = stem.substr(prefix.size());
-    if (!std::all_of(digits.begin(), digits.end(), [](char c) { return c >= '0' && c <= '9'; }) ||
-        digits.size() > 9) {
+    if (!std::all_of(digits.begin(), digits.end(), [](char c) { return c >= '0' && c <= '9'; }) || digits.size() > 9) {
         return std::nullopt;
     }
     return static_cast<unsigned>(std::stoul(digits));
@@ -57,9 +56,8 @@ std::map<unsigned, std::filesystem::path> numbered_files(const std::filesystem::
         auto n = frame_number(entry.path(), prefix);
         if (!n) continue;
         if (!files.emplace(*n, entry.path()).second) {
-            throw std::runtime_error(folder.string() + ": two files for frame " + std::to_string(*n) +
-                                     ": " + files[*n].filename().string() + " and " +
-                                     entry.path().filename().string());
+            throw std::runtime_error(folder.string() + ": two files for frame " + std::to_string(*n) + ": " +
+                                     files[*n].filename().string() + " and " + entry.path().filename().string());
         }
     }
     return files;
@@ -79,8 +77,8 @@ Eigen::Matrix4d read_pose_file(const std::filesystem::path& file) {
     Eigen::Matrix4d m;
     for (int row = 0; row < 4; ++row) {
         if (!reader.next(t)) {
-            throw FormatError(file, reader.line(), "file ends after " + std::to_string(row) +
-                                                       " of the 4 rows of the pose matrix");
+            throw FormatError(file, reader.line(),
+                              "file ends after " + std::to_string(row) + " of the 4 rows of the pose matrix");
         }
         if (t.size() != 4) reader.fail("expected 4 values, found " + std::to_string(t.size()));
         for (int col = 0; col < 4; ++col) m(row, col) = reader.real(t[col], "matrix element");
@@ -90,8 +88,7 @@ Eigen::Matrix4d read_pose_file(const std::filesystem::path& file) {
     return m;
 }
 
-Eigen::Vector2d project(const CameraIntrinsics& k, const Eigen::Matrix4d& c_m_o,
-                        const Eigen::Vector3d& x_o) {
+Eigen::Vector2d project(const CameraIntrinsics& k, const Eigen::Matrix4d& c_m_o, const Eigen::Vector3d& x_o) {
     Eigen::Vector3d x_c = c_m_o.topLeftCorner<3, 3>() * x_o + c_m_o.topRightCorner<3, 1>();
     return {k.u0 + k.px * x_c.x() / x_c.z(), k.v0 + k.py * x_c.y() / x_c.z()};
 }
@@ -117,22 +114,21 @@ std::vector<PosedFrame> list_posed_frames(const std::filesystem::path& sequence_
     auto images = numbered_files(sequence_folder / "Images", "Image_");
     auto poses = numbered_files(sequence_folder / "CameraPose", "Camera_");
     if (poses.empty()) {
-        throw std::runtime_error((sequence_folder / "CameraPose").string() +
-                                 ": no Camera_<n>.txt pose files");
+        throw std::runtime_error((sequence_folder / "CameraPose").string() + ": no Camera_<n>.txt pose files");
     }
     std::vector<PosedFrame> frames;
     for (const auto& [n, pose] : poses) {
         auto image = images.find(n);
         if (image == images.end()) {
-            throw std::runtime_error(pose.string() + ": no image Image_<" + std::to_string(n) +
-                                     ">.* in " + (sequence_folder / "Images").string());
+            throw std::runtime_error(pose.string() + ": no image Image_<" + std::to_string(n) + ">.* in " +
+                                     (sequence_folder / "Images").string());
         }
         frames.push_back({n, image->second, pose, read_pose_file(pose)});
     }
     for (const auto& [n, image] : images) {
         if (!poses.count(n)) {
-            throw std::runtime_error(image.string() + ": no pose Camera_<" + std::to_string(n) +
-                                     ">.txt in " + (sequence_folder / "CameraPose").string());
+            throw std::runtime_error(image.string() + ": no pose Camera_<" + std::to_string(n) + ">.txt in " +
+                                     (sequence_folder / "CameraPose").string());
         }
     }
     return frames;

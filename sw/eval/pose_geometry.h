@@ -28,8 +28,7 @@ inline constexpr CameraIntrinsics kCastleIntrinsics{700, 700, 320, 240};
 Eigen::Matrix4d read_pose_file(const std::filesystem::path& file);
 
 // Pixel position of the object-frame point X_o seen by a camera with pose cMo.
-Eigen::Vector2d project(const CameraIntrinsics& k, const Eigen::Matrix4d& c_m_o,
-                        const Eigen::Vector3d& x_o);
+Eigen::Vector2d project(const CameraIntrinsics& k, const Eigen::Matrix4d& c_m_o, const Eigen::Vector3d& x_o);
 
 // F with x_b^T F x_a = 0 for pixels x_a, x_b of the same scene point in cameras a and b:
 //   relative pose  bMa = bMo aMo^-1 = [R t; 0 1]   (R = R_b R_a^T, t = t_b - R t_a for exact
@@ -40,14 +39,13 @@ Eigen::Vector2d project(const CameraIntrinsics& k, const Eigen::Matrix4d& c_m_o,
 Eigen::Matrix3d fundamental_from_poses(const CameraIntrinsics& k_a, const Eigen::Matrix4d& a_m_o,
                                        const CameraIntrinsics& k_b, const Eigen::Matrix4d& b_m_o);
 
-inline Eigen::Matrix3d fundamental_from_poses(const CameraIntrinsics& k,
-                                              const Eigen::Matrix4d& a_m_o,
+inline Eigen::Matrix3d fundamental_from_poses(const CameraIntrinsics& k, const Eigen::Matrix4d& a_m_o,
                                               const Eigen::Matrix4d& b_m_o) {
     return fundamental_from_poses(k, a_m_o, k, b_m_o);
 }
 
 struct PosedFrame {
-    unsigned number = 0;             // NNN of Camera_NNN.txt and Image_NNNN.*
+    unsigned number = 0;  // NNN of Camera_NNN.txt and Image_NNNN.*
     std::filesystem::path image;
     std::filesystem::path pose_file;
     Eigen::Matrix4d c_m_o;

@@ -18,21 +18,20 @@ namespace {
 std::optional<Ellipse> mapped_region(const Ellipse& e, const Eigen::Matrix3d& h) {
     if (!((h * e.centre.homogeneous()).z() > 0)) return std::nullopt;
     Ellipse mapped = map_ellipse(e, h);
-    if (!mapped.centre.allFinite() || !mapped.m.allFinite() || !(mapped.m.determinant() > 0) ||
-        !(mapped.m(0, 0) > 0)) {
+    if (!mapped.centre.allFinite() || !mapped.m.allFinite() || !(mapped.m.determinant() > 0) || !(mapped.m(0, 0) > 0)) {
         return std::nullopt;
     }
     return mapped;
 }
 
 struct Visible {
-    std::vector<std::size_t> index;   // into the keypoint set
-    std::vector<Ellipse> in_a;        // the region in A's image
+    std::vector<std::size_t> index;  // into the keypoint set
+    std::vector<Ellipse> in_a;       // the region in A's image
 };
 
 // Regions inside their own image and, mapped through `h`, inside the other.
-Visible visible_regions(const surf::Keypoints& keypoints, const Eigen::Matrix3d& h,
-                        const cv::Size& own, const cv::Size& other, bool own_is_a) {
+Visible visible_regions(const surf::Keypoints& keypoints, const Eigen::Matrix3d& h, const cv::Size& own,
+                        const cv::Size& other, bool own_is_a) {
     Visible v;
     for (std::size_t i = 0; i < keypoints.size(); ++i) {
         Ellipse region = keypoint_region(keypoints[i]);
@@ -53,8 +52,7 @@ bool cannot_overlap(const Ellipse& a, const Ellipse& b, double min_overlap) {
     return gap.x() >= 0 || gap.y() >= 0;
 }
 
-std::vector<RegionMatch> greedy_one_to_one(std::vector<RegionMatch> pairs, std::size_t na,
-                                           std::size_t nb) {
+std::vector<RegionMatch> greedy_one_to_one(std::vector<RegionMatch> pairs, std::size_t na, std::size_t nb) {
     std::sort(pairs.begin(), pairs.end(), [](const RegionMatch& x, const RegionMatch& y) {
         return std::tie(x.overlap_error, x.a, x.b) < std::tie(y.overlap_error, y.a, y.b);
     });
@@ -70,9 +68,7 @@ std::vector<RegionMatch> greedy_one_to_one(std::vector<RegionMatch> pairs, std::
 
 }  // namespace
 
-Ellipse keypoint_region(const surf::Keypoint& k) {
-    return Ellipse::circle({k.x, k.y}, region_radius(k));
-}
+Ellipse keypoint_region(const surf::Keypoint& k) { return Ellipse::circle({k.x, k.y}, region_radius(k)); }
 
 bool region_visible(const Ellipse& region, const cv::Size& image) {
     Eigen::Vector2d low = region.centre - region.half_extent();
@@ -85,9 +81,8 @@ double overlap_error(const Ellipse& a, const Ellipse& b, double normalised_radiu
     return 1.0 - ellipse_overlap(a.scaled(factor), b.scaled(factor), rows);
 }
 
-RepeatabilityResult repeatability(const surf::Keypoints& a, const surf::Keypoints& b,
-                                  const Eigen::Matrix3d& h_ab, const cv::Size& size_a,
-                                  const cv::Size& size_b, const RepeatabilityOptions& options) {
+RepeatabilityResult repeatability(const surf::Keypoints& a, const surf::Keypoints& b, const Eigen::Matrix3d& h_ab,
+                                  const cv::Size& size_a, const cv::Size& size_b, const RepeatabilityOptions& options) {
     Eigen::Matrix3d h_ba = h_ab.inverse();
     Visible va = visible_regions(a, h_ab, size_a, size_b, true);
     Visible vb = visible_regions(b, h_ba, size_b, size_a, false);
@@ -115,15 +110,13 @@ RepeatabilityResult repeatability(const surf::Keypoints& a, const surf::Keypoint
     }
     std::size_t denominator = std::min(result.visible_a, result.visible_b);
     if (denominator > 0) {
-        result.repeatability =
-            static_cast<double>(result.matches.size()) / static_cast<double>(denominator);
+        result.repeatability = static_cast<double>(result.matches.size()) / static_cast<double>(denominator);
     }
     return result;
 }
 
-PrecisionResult matching_precision(const surf::Keypoints& a, const surf::Keypoints& b,
-                                   const Eigen::Matrix3d& h_ab, const RatioTestOptions& matching,
-                                   double tolerance) {
+PrecisionResult matching_precision(const surf::Keypoints& a, const surf::Keypoints& b, const Eigen::Matrix3d& h_ab,
+                                   const RatioTestOptions& matching, double tolerance) {
     PrecisionResult result;
     result.candidate_pairs = ratio_test_candidates(a, b, matching);
     result.candidates = result.candidate_pairs.size();

@@ -61,11 +61,10 @@ Sequence video_sequence(const std::filesystem::path& source, std::size_t max_fra
 }  // namespace
 
 bool is_image_file(const std::filesystem::path& file) {
-    static constexpr std::array<std::string_view, 11> kExtensions = {
-        ".pgm", ".ppm", ".pnm", ".pbm", ".png", ".jpg", ".jpeg", ".bmp", ".tif", ".tiff", ".webp"};
+    static constexpr std::array<std::string_view, 11> kExtensions = {".pgm",  ".ppm", ".pnm", ".pbm",  ".png", ".jpg",
+                                                                     ".jpeg", ".bmp", ".tif", ".tiff", ".webp"};
     std::string ext = lower_extension(file);
-    return std::any_of(kExtensions.begin(), kExtensions.end(),
-                       [&](std::string_view e) { return ext == e; });
+    return std::any_of(kExtensions.begin(), kExtensions.end(), [&](std::string_view e) { return ext == e; });
 }
 
 std::vector<std::filesystem::path> list_image_folder(const std::filesystem::path& folder) {
@@ -76,9 +75,8 @@ std::vector<std::filesystem::path> list_image_folder(const std::filesystem::path
     for (const auto& entry : std::filesystem::directory_iterator(folder)) {
         if (entry.is_regular_file() && is_image_file(entry.path())) images.push_back(entry.path());
     }
-    std::sort(images.begin(), images.end(), [](const auto& x, const auto& y) {
-        return x.filename().string() < y.filename().string();
-    });
+    std::sort(images.begin(), images.end(),
+              [](const auto& x, const auto& y) { return x.filename().string() < y.filename().string(); });
     return images;
 }
 
@@ -90,7 +88,8 @@ std::vector<std::filesystem::path> read_image_list(const std::filesystem::path& 
         std::filesystem::path image = trim(reader.text());
         if (image.is_relative()) image = list_file.parent_path() / image;
         if (!std::filesystem::exists(image)) reader.fail("image '" + image.string() + "' does not exist");
-        if (!std::filesystem::is_regular_file(image)) reader.fail("image '" + image.string() + "' is not a regular file");
+        if (!std::filesystem::is_regular_file(image))
+            reader.fail("image '" + image.string() + "' is not a regular file");
         images.push_back(image);
     }
     return images;
@@ -137,8 +136,7 @@ bool SequenceReader::next(cv::Mat& image) {
         if (!video_->opened()) throw std::runtime_error(sequence_.source.string() + ": cannot reopen the video");
         cv::Mat decoded;
         if (!video_->read(decoded) || decoded.empty()) {
-            throw std::runtime_error(sequence_.source.string() + ": cannot decode frame " +
-                                     std::to_string(next_));
+            throw std::runtime_error(sequence_.source.string() + ": cannot decode frame " + std::to_string(next_));
         }
         if (flags_ == cv::IMREAD_GRAYSCALE && decoded.channels() == 3) {
             cv::cvtColor(decoded, image, cv::COLOR_BGR2GRAY);

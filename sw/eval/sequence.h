@@ -21,8 +21,8 @@ enum class SequenceKind { image_folder, image_list, video };
 
 struct SequenceFrame {
     std::size_t index = 0;
-    std::string name;              // the image's file name, or "<video file name>#<index>"
-    std::filesystem::path image;   // empty for video frames
+    std::string name;             // the image's file name, or "<video file name>#<index>"
+    std::filesystem::path image;  // empty for video frames
 };
 
 struct Sequence {

@@ -8,7 +8,6 @@
 #include <stdexcept>
 #include <system_error>
 
-
 namespace surfvp::eval {
 
 namespace {
@@ -41,8 +40,7 @@ bool parse_number(std::string_view token, T& value) {
 TextReader::TextReader(std::filesystem::path file, bool comments)
     : file_(std::move(file)), in_(file_), comments_(comments) {
     if (!in_) {
-        throw std::runtime_error(file_.string() + ": cannot open for reading (" +
-                                 std::strerror(errno) + ")");
+        throw std::runtime_error(file_.string() + ": cannot open for reading (" + std::strerror(errno) + ")");
     }
 }
 
@@ -88,11 +86,9 @@ float TextReader::real_float(std::string_view token, const char* what) const {
 std::size_t TextReader::count(std::string_view token, const char* what, std::size_t max) const {
     double value = real(token, what);
     if (value < 0 || value != std::floor(value) || value > static_cast<double>(max)) {
-        fail(std::string(what) + " '" + std::string(token) + "' is not a whole number in 0.." +
-             std::to_string(max));
+        fail(std::string(what) + " '" + std::string(token) + "' is not a whole number in 0.." + std::to_string(max));
     }
     return static_cast<std::size_t>(value);
 }
-
 
 }  // namespace surfvp::eval

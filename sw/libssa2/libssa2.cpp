@@ -20,32 +20,50 @@ constexpr unsigned kResetPolls = 100000;
 
 const char* fhg_error(uint32_t code) {
     switch (code) {
-        case f::ERR_WRITE: return "FHG determinant DMA write got a bus error";
-        case f::ERR_SIZE: return "FHG refused the image size";
-        case f::ERR_START_BUSY: return "FHG was started while busy";
-        case f::ERR_ABORTED: return "FHG aborted";
-        case f::ERR_PIXELBUS: return "FHG got a PixelBus line of the wrong width";
-        default: return "FHG error";
+        case f::ERR_WRITE:
+            return "FHG determinant DMA write got a bus error";
+        case f::ERR_SIZE:
+            return "FHG refused the image size";
+        case f::ERR_START_BUSY:
+            return "FHG was started while busy";
+        case f::ERR_ABORTED:
+            return "FHG aborted";
+        case f::ERR_PIXELBUS:
+            return "FHG got a PixelBus line of the wrong width";
+        default:
+            return "FHG error";
     }
 }
 
 const char* iig_error(uint32_t code) {
     switch (code) {
-        case iig::ERR_READ: return "IIG image DMA read got a bus error";
-        case iig::ERR_WRITE: return "IIG integral DMA write got a bus error";
-        case iig::ERR_OVERFLOW: return "IIG integral sum overflowed its word";
-        case iig::ERR_SIZE: return "IIG refused the image size";
-        case iig::ERR_START_BUSY: return "IIG was started while busy";
-        case iig::ERR_ABORTED: return "IIG aborted";
-        default: return "IIG error";
+        case iig::ERR_READ:
+            return "IIG image DMA read got a bus error";
+        case iig::ERR_WRITE:
+            return "IIG integral DMA write got a bus error";
+        case iig::ERR_OVERFLOW:
+            return "IIG integral sum overflowed its word";
+        case iig::ERR_SIZE:
+            return "IIG refused the image size";
+        case iig::ERR_START_BUSY:
+            return "IIG was started while busy";
+        case iig::ERR_ABORTED:
+            return "IIG aborted";
+        default:
+            return "IIG error";
     }
 }
 
 }  // namespace
 
 Driver::Driver(Hal& hal, DriverConfig config, Describer& describer)
-    : hal_(hal), config_(std::move(config)), describer_(describer), running_(config_.accelerators.size(), -1),
-      set_busy_(config_.buffers.size(), false), time_(config_.accelerators.size()), since_(config_.accelerators.size(), 0) {
+    : hal_(hal),
+      config_(std::move(config)),
+      describer_(describer),
+      running_(config_.accelerators.size(), -1),
+      set_busy_(config_.buffers.size(), false),
+      time_(config_.accelerators.size()),
+      since_(config_.accelerators.size(), 0) {
     if (config_.accelerators.empty()) throw std::invalid_argument("libSSA2 needs at least one accelerator");
     if (config_.buffers.empty()) throw std::invalid_argument("libSSA2 needs at least one buffer set");
 }
@@ -164,8 +182,10 @@ void Driver::service_interrupts(std::vector<Task>& tasks) {
             const unsigned line = fhg ? a.fhg_irq : a.iig_irq;
             if (!(pending & (1u << line))) continue;
             Task* task = running_[i] >= 0 ? &tasks[size_t(running_[i])] : nullptr;
-            if (task && (fhg ? on_fhg(*task, a) : on_iig(*task, a))) spurious_[line] = 0;
-            else spurious(tasks, i, fhg);
+            if (task && (fhg ? on_fhg(*task, a) : on_iig(*task, a)))
+                spurious_[line] = 0;
+            else
+                spurious(tasks, i, fhg);
         }
         if (running_[i] < 0) continue;
         Task& task = tasks[size_t(running_[i])];
@@ -213,17 +233,24 @@ void Driver::watchdog(std::vector<Task>& tasks) {
         if (now != 0 && task.watchdog_at > now) continue;
         ++recovery_.watchdog_expiries;
         const Accelerator& a = config_.accelerators[i];
-        const bool iig_ended = !task.integral_done && (hal_.read32(a.iig_base + iig::STATUS) & (iig::STATUS_DONE | iig::STATUS_ERROR));
-        const bool fhg_ended = !task.determinants_done && (hal_.read32(a.fhg_base + f::STATUS) & (f::STATUS_DONE | f::STATUS_ERROR));
+        const bool iig_ended =
+            !task.integral_done && (hal_.read32(a.iig_base + iig::STATUS) & (iig::STATUS_DONE | iig::STATUS_ERROR));
+        const bool fhg_ended =
+            !task.determinants_done && (hal_.read32(a.fhg_base + f::STATUS) & (f::STATUS_DONE | f::STATUS_ERROR));
         for (const auto& [ended, block] : {std::pair{iig_ended, "IIG"}, std::pair{fhg_ended, "FHG"}})
-            if (ended) task.incidents.push_back(fmt::format("the {}'s interrupt was lost: the watchdog found it finished", block));
+            if (ended)
+                task.incidents.push_back(
+                    fmt::format("the {}'s interrupt was lost: the watchdog found it finished", block));
         if (iig_ended) on_iig(task, a);
         if (fhg_ended) on_fhg(task, a);
         if (iig_ended || fhg_ended) {
             task.watchdog_at = now + config_.watchdog_ps;
         } else {
-            const char* which = !task.integral_done && !task.determinants_done ? "IIG and the FHG" : !task.integral_done ? "IIG" : "FHG";
-            fail(task, fmt::format("the {} did not finish within the watchdog ({:g} ms)", which, double(config_.watchdog_ps) * 1e-9));
+            const char* which = !task.integral_done && !task.determinants_done ? "IIG and the FHG"
+                                : !task.integral_done                          ? "IIG"
+                                                                               : "FHG";
+            fail(task, fmt::format("the {} did not finish within the watchdog ({:g} ms)", which,
+                                   double(config_.watchdog_ps) * 1e-9));
             task.integral_done = task.determinants_done = true;
         }
         if (task.integral_done && task.determinants_done) hardware_finished(task);
@@ -242,8 +269,10 @@ void Driver::reset_pair(size_t i) {
     };
     reset();
     for (unsigned polls = 0; (hal_.read32(a.fhg_base + f::STATUS) & f::STATUS_BUSY) ||
-                             (hal_.read32(a.iig_base + iig::STATUS) & iig::STATUS_BUSY); ++polls)
-        if (polls == kResetPolls) throw std::runtime_error(fmt::format("libSSA2: accelerator pair {} stays BUSY after CTRL.RESET", i));
+                             (hal_.read32(a.iig_base + iig::STATUS) & iig::STATUS_BUSY);
+         ++polls)
+        if (polls == kResetPolls)
+            throw std::runtime_error(fmt::format("libSSA2: accelerator pair {} stays BUSY after CTRL.RESET", i));
     reset();
 }
 
@@ -282,7 +311,8 @@ bool Driver::on_iig(Task& task, const Accelerator& a) {
     if (status & iig::STATUS_ERROR) {
         const uint32_t code = hal_.read32(a.iig_base + iig::ERROR_CODE);
         if (code != iig::ERR_ABORTED) fail(task, iig_error(code));
-        hal_.write32(a.fhg_base + f::CTRL, f::CTRL_ABORT | f::CTRL_IRQ_EN_DONE);  // the FHG waits for lines that will not come
+        hal_.write32(a.fhg_base + f::CTRL,
+                     f::CTRL_ABORT | f::CTRL_IRQ_EN_DONE);  // the FHG waits for lines that will not come
     }
     hal_.write32(a.iig_base + iig::STATUS, iig::STATUS_DONE | iig::STATUS_ERROR);
     return true;
@@ -317,11 +347,12 @@ Task* Driver::describing(std::vector<Task>& tasks) {
 // describer may work on them ahead.
 void Driver::describe_one(Task& task, const Callback& callback) {
     const Format& format = formats_[size_t(task.described_on)];
-    const FrameInMemory frame{task.id,    task.integral, task.determinants, task.records,  task.width,
+    const FrameInMemory frame{task.id,     task.integral,    task.determinants,    task.records,  task.width,
                               task.height, format.det_bytes, format.det_frac_bits, task.threshold};
     if (task.described == 0) {
         hal_.mark(unsigned(config_.accelerators.size()), task.id);
-        if (config_.accelerators.size() == 1 && !task.candidates.empty()) describer_.ahead(hal_, task.candidates, frame);
+        if (config_.accelerators.size() == 1 && !task.candidates.empty())
+            describer_.ahead(hal_, task.candidates, frame);
     }
     if (task.described < task.candidates.size()) {
         Span span(hal_, "describe");

@@ -56,13 +56,13 @@ struct DriverConfig {
     uint32_t intc_base = 0;
     std::vector<Accelerator> accelerators;
     std::vector<BufferSet> buffers;  // as many tasks are in flight as there are sets
-    uint32_t fifo_irq_level = 256;  // FHG FIFO_THRESHOLD
-    int32_t threshold = 0;          // FHG THRESHOLD (determinant fixed point) of the first task, or of every task
+    uint32_t fifo_irq_level = 256;   // FHG FIFO_THRESHOLD
+    int32_t threshold = 0;           // FHG THRESHOLD (determinant fixed point) of the first task, or of every task
     // 0: every task runs with `threshold`. N: a keypoint-count control, as a camera pipeline
     // holds its feature count: each task's THRESHOLD is the one the keypoint count of an earlier
     // task asked for (Driver::threshold_for).
     uint32_t keypoint_target = 0;
-    uint64_t watchdog_ps = 0;       // a task's hardware longer than this is checked (0: never)
+    uint64_t watchdog_ps = 0;         // a task's hardware longer than this is checked (0: never)
     unsigned spurious_irq_limit = 0;  // interrupts in a row with nothing to serve that make a line stuck (0: never)
     // HAL markers: accelerator k's task is marker k (-1 when idle); the task being described
     // is marker accelerators.size() (-1 when none).
@@ -85,7 +85,7 @@ struct Work {
     uint64_t cycles = 0;
     std::vector<LineTransfer> lines;
     uint64_t untimed_fills = 0;  // fills not in `lines`, for a platform that does not time them (Hal::times_fills)
-    std::string inconsistency;  // the software's check of the hardware's results failed: why
+    std::string inconsistency;   // the software's check of the hardware's results failed: why
 };
 
 // The CPU's part of phase 4 (sw/stage): one candidate word -> a keypoint or none. It reads
@@ -108,7 +108,8 @@ enum class Phase { queued, hardware, descriptors, done, failed };
 struct Task {
     int id = 0;
     uint32_t image = 0;  // its buffer set's image, from its start
-    uint32_t integral = 0, determinants = 0;  // from a free buffer set at start (a preset determinants: fault injection)
+    uint32_t integral = 0,
+             determinants = 0;  // from a free buffer set at start (a preset determinants: fault injection)
     uint32_t records = 0;
     int width = 0, height = 0;
 
@@ -116,13 +117,13 @@ struct Task {
     int accelerator = -1;   // the pair working on it, -1 once it is done with it
     int described_on = -1;  // the pair whose results it holds (its determinant format)
     int buffer_set = -1;
-    int32_t threshold = 0;  // the FHG THRESHOLD it ran with
-    std::string error;                 // why it failed
+    int32_t threshold = 0;               // the FHG THRESHOLD it ran with
+    std::string error;                   // why it failed
     std::vector<std::string> incidents;  // what went wrong and was recovered from (a lost interrupt)
-    uint64_t watchdog_at = 0;          // when its hardware is checked next (ps)
-    std::vector<uint32_t> candidates;  // maxima FIFO words, in FIFO order (released once reported)
-    size_t candidate_count = 0;        // how many the FIFO gave
-    size_t described = 0;              // candidates handed to the describer so far
+    uint64_t watchdog_at = 0;            // when its hardware is checked next (ps)
+    std::vector<uint32_t> candidates;    // maxima FIFO words, in FIFO order (released once reported)
+    size_t candidate_count = 0;          // how many the FIFO gave
+    size_t described = 0;                // candidates handed to the describer so far
     uint64_t descriptor_cycles = 0;
     bool integral_done = false, determinants_done = false;
     // Time base (ps): hardware start, IIG done, FHG done, descriptors done.
@@ -194,9 +195,9 @@ private:
         uint32_t det_bytes, det_frac_bits;
     };
     std::vector<Format> formats_;  // per accelerator, read from its registers at the start
-    std::vector<bool> set_busy_;  // per buffer set
+    std::vector<bool> set_busy_;   // per buffer set
     std::vector<AcceleratorTime> time_;
-    std::vector<uint64_t> since_;   // per accelerator: when it last started or stopped a task
+    std::vector<uint64_t> since_;  // per accelerator: when it last started or stopped a task
     void account(size_t accelerator, uint64_t& bucket);
     int32_t threshold_for(int task);
     // Per task: the THRESHOLD its keypoint count asks of a later task (set once it is done).

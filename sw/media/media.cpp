@@ -56,8 +56,9 @@ std::string elf_problem(const fs::path& path) {
     const uintmax_t size = fs::file_size(path, ec);
     if (!in || ec || !fs::is_regular_file(path, ec)) return "not a readable regular file";
     Elf64_Ehdr header{};
-    if (!in.read(reinterpret_cast<char*>(&header), sizeof header) || std::memcmp(header.e_ident, ELFMAG, SELFMAG) != 0 ||
-        header.e_ident[EI_CLASS] != ELFCLASS64 || header.e_phentsize != sizeof(Elf64_Phdr))
+    if (!in.read(reinterpret_cast<char*>(&header), sizeof header) ||
+        std::memcmp(header.e_ident, ELFMAG, SELFMAG) != 0 || header.e_ident[EI_CLASS] != ELFCLASS64 ||
+        header.e_phentsize != sizeof(Elf64_Phdr))
         return "not a 64-bit ELF shared object";
     // Each bound as `offset > size - length`: a hostile offset near 2^64 must not wrap past the check.
     const auto beyond = [size](uint64_t offset, uint64_t length) { return length > size || offset > size - length; };
@@ -68,7 +69,8 @@ std::string elf_problem(const fs::path& path) {
         Elf64_Phdr segment{};
         if (!in.read(reinterpret_cast<char*>(&segment), sizeof segment)) return "cut short (program headers)";
         if (segment.p_type == PT_LOAD && beyond(segment.p_offset, segment.p_filesz))
-            return fmt::format("cut short: segment {} ends at byte {}, the file at {}", i, segment.p_offset + segment.p_filesz, size);
+            return fmt::format("cut short: segment {} ends at byte {}, the file at {}", i,
+                               segment.p_offset + segment.p_filesz, size);
     }
     return "";
 }
@@ -86,15 +88,18 @@ bool mapping_refused(const std::string& why, const fs::path& path) {
 Plugin load() {
     const fs::path path = plugin_path();
     if (const std::string problem = elf_problem(path); !problem.empty())
-        throw MediaError(fmt::format("cannot load the image and video plugin {}: {} (reinstall it, or set SURFVP_MEDIA_PLUGIN "
-                                     "to its path)", path.string(), problem));
+        throw MediaError(
+            fmt::format("cannot load the image and video plugin {}: {} (reinstall it, or set SURFVP_MEDIA_PLUGIN "
+                        "to its path)",
+                        path.string(), problem));
     void* handle = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
     if (!handle) {
         const std::string why = dlerror();
         if (mapping_refused(why, path))
-            throw OutOfMemory(fmt::format("mapping the image and video plugin {} and its libraries ({})", path.string(), why));
-        throw MediaError(fmt::format("cannot load the image and video plugin {}: {} (set SURFVP_MEDIA_PLUGIN to its path)",
-                                     path.string(), why));
+            throw OutOfMemory(
+                fmt::format("mapping the image and video plugin {} and its libraries ({})", path.string(), why));
+        throw MediaError(fmt::format(
+            "cannot load the image and video plugin {}: {} (set SURFVP_MEDIA_PLUGIN to its path)", path.string(), why));
     }
     Plugin p{};  // never closed: OpenCV's codec libraries keep state until the process ends
     bind(handle, path, "surfvp_media_read_image", p.read_image);
@@ -121,8 +126,8 @@ std::string image_key(const std::string& path, int flags) {
     if (ec) return "";
     const auto time = fs::last_write_time(real, ec);
     if (ec) return "";
-    return fmt::format("image v1 {} size {} mtime {} flags {}", real.string(), size,
-                       time.time_since_epoch().count(), flags);
+    return fmt::format("image v1 {} size {} mtime {} flags {}", real.string(), size, time.time_since_epoch().count(),
+                       flags);
 }
 
 // A matrix as "rows cols type\n" and its bytes, and back (nothing for text that is not one).
@@ -159,8 +164,8 @@ std::string content_key(const cv::Mat& image) {
         fnv = fnv << 29 | fnv >> 35;
     }
     for (; i < bytes.size(); ++i) fnv = (fnv ^ static_cast<unsigned char>(bytes[i])) * 1099511628211ull;
-    return fmt::format("{}x{} type {} hash {:016x} {:016x}", c.cols, c.rows, c.type(), std::hash<std::string_view>{}(bytes),
-                       fnv);
+    return fmt::format("{}x{} type {} hash {:016x} {:016x}", c.cols, c.rows, c.type(),
+                       std::hash<std::string_view>{}(bytes), fnv);
 }
 
 cv::Mat read_image(const std::string& path, int flags) {

@@ -41,7 +41,7 @@ public:
     Video& operator=(const Video&) = delete;
 
     bool opened() const { return handle_ != nullptr; }
-    bool grab();               // skips a frame; false after the last
+    bool grab();                // skips a frame; false after the last
     bool read(cv::Mat& frame);  // the next frame as decoded (BGR); false after the last
 
 private:

@@ -26,7 +26,9 @@ void* surfvp_media_video_open(const std::string* path) {
 
 bool surfvp_media_video_grab(void* video) { return static_cast<cv::VideoCapture*>(video)->grab(); }
 
-bool surfvp_media_video_read(void* video, cv::Mat* frame) { return static_cast<cv::VideoCapture*>(video)->read(*frame); }
+bool surfvp_media_video_read(void* video, cv::Mat* frame) {
+    return static_cast<cv::VideoCapture*>(video)->read(*frame);
+}
 
 void surfvp_media_video_close(void* video) { delete static_cast<cv::VideoCapture*>(video); }
 

@@ -49,7 +49,8 @@ void copy_once(Hal& hal, const SmokeConfig& c, unsigned copy, SmokeResult& resul
     Span span(hal, "acknowledge and verify");
     const uint32_t vector = hal.read32(c.intc_base + intc::IVR);
     if (vector != c.dma_irq)
-        result.problems.push_back(fmt::format("copy {}: INTC vector {} instead of the DMA's {}", copy, vector, c.dma_irq));
+        result.problems.push_back(
+            fmt::format("copy {}: INTC vector {} instead of the DMA's {}", copy, vector, c.dma_irq));
     const uint32_t status = hal.read32(c.dma_base + dma::STATUS);
     if (status & dma::STATUS_ERROR)
         result.problems.push_back(fmt::format("copy {}: DMA error code {} at {:#010x}", copy,
@@ -61,8 +62,10 @@ void copy_once(Hal& hal, const SmokeConfig& c, unsigned copy, SmokeResult& resul
 
     std::vector<uint8_t> copied(c.bytes);
     hal.read(c.dst, copied.data(), copied.size());
-    if (copied == pattern) ++result.copies_verified;
-    else result.problems.push_back(fmt::format("copy {}: destination differs from the source", copy));
+    if (copied == pattern)
+        ++result.copies_verified;
+    else
+        result.problems.push_back(fmt::format("copy {}: destination differs from the source", copy));
 }
 
 }  // namespace

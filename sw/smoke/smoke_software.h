@@ -18,8 +18,8 @@ struct SmokeConfig {
     uint32_t dst = 0;
     uint32_t bytes = 0;
     unsigned copies = 1;
-    unsigned polls = 0;           // status polls per copy before sleeping on the interrupt
-    uint64_t poll_interval = 0;   // CPU cycles between polls
+    unsigned polls = 0;          // status polls per copy before sleeping on the interrupt
+    uint64_t poll_interval = 0;  // CPU cycles between polls
 };
 
 struct SmokeResult {

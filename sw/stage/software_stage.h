@@ -22,9 +22,9 @@ namespace surfvp::sw {
 
 // Where the hardware left one frame, as the CPU sees memory (big-endian, byte_order.h).
 struct FrameBuffers {
-    const uint8_t* integral = nullptr;  // IIG output: 32-bit words, row-major
-    uint32_t integral_address = 0;      // bus address of integral[0]
-    size_t integral_stride = 0;         // bytes from one row to the next
+    const uint8_t* integral = nullptr;      // IIG output: 32-bit words, row-major
+    uint32_t integral_address = 0;          // bus address of integral[0]
+    size_t integral_stride = 0;             // bytes from one row to the next
     const uint8_t* determinants = nullptr;  // FHG output: 72-byte block records (fhg_regs.h)
     uint32_t determinants_address = 0;      // bus address of determinants[0] (DET_ADDR)
     int width = 0, height = 0;              // pixels
@@ -38,7 +38,7 @@ struct StageParams {
     // real positions (the reference's), or rounded to whole pixels and sizes (OpenSURF-style,
     // integer sums). Charged by the mode in use (sw/cpu_cost/surf_op_counts.h).
     surf::HaarMode haar = surf::HaarMode::exact;
-    float threshold = 0;   // determinant threshold in float units (sw/surf/README.md)
+    float threshold = 0;  // determinant threshold in float units (sw/surf/README.md)
     // The interpolation drops a maximum whose |offset| exceeds this (samples): 0.5 is the
     // paper's rule (§II), 1 OpenCV's (sw/surf/params.h).
     float max_offset = 0.5f;
@@ -83,7 +83,7 @@ public:
     const Stats& stats() const { return stats_; }
 
 private:
-    struct Scan;  // one decoded candidate and its neighbourhood's geometry
+    struct Scan;                    // one decoded candidate and its neighbourhood's geometry
     using Cube = int32_t[3][3][3];  // determinants [scale][dy][dx], fixed point
 
     bool inside(const Scan& scan, const FrameBuffers& frame) const;

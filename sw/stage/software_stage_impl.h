@@ -78,7 +78,9 @@ BasicSoftwareStage<Meter>::BasicSoftwareStage(const StageParams& params, Meter m
 }
 
 template <class Meter>
-void BasicSoftwareStage<Meter>::begin_frame() { meter_.begin_frame(); }
+void BasicSoftwareStage<Meter>::begin_frame() {
+    meter_.begin_frame();
+}
 
 template <class Meter>
 std::optional<surf::Keypoint> BasicSoftwareStage<Meter>::process(uint32_t fifo_word, const FrameBuffers& frame) {
@@ -144,8 +146,9 @@ bool BasicSoftwareStage<Meter>::is_maximum(const Scan& s, const FrameBuffers& f,
     };
     // v > threshold <=> v > floor(threshold x 2^F) for an integer v; or the FHG's own register.
     meter_.count(Unit::scan, 1);
-    const double threshold = register_threshold_ ? double(*register_threshold_)
-                                                 : std::floor(std::ldexp(static_cast<double>(params_.threshold), int(f.det_frac_bits)));
+    const double threshold = register_threshold_
+                                 ? double(*register_threshold_)
+                                 : std::floor(std::ldexp(static_cast<double>(params_.threshold), int(f.det_frac_bits)));
     const int32_t centre = load(0, 0, 0);
     if (!(centre > threshold)) {
         ++stats_.inconsistent;
@@ -163,7 +166,8 @@ bool BasicSoftwareStage<Meter>::is_maximum(const Scan& s, const FrameBuffers& f,
 // (1 + o_x) step becomes x + o_x step here. Scale 1.2 (L + o_s dL) / 9, dL = 6 (octave 1) or
 // 12 (octave 2); response = the candidate's own determinant, as in the reference.
 template <class Meter>
-std::optional<surf::Keypoint> BasicSoftwareStage<Meter>::interpolate(const Scan& s, const Cube& values, unsigned det_frac_bits) {
+std::optional<surf::Keypoint> BasicSoftwareStage<Meter>::interpolate(const Scan& s, const Cube& values,
+                                                                     unsigned det_frac_bits) {
     meter_.count(Unit::solve, 1);
     surf::ResponseOctave& oct = stack_.octaves[static_cast<size_t>(s.octave)];
     const float unit = std::ldexp(1.0f, -int(det_frac_bits));
@@ -191,8 +195,9 @@ std::optional<surf::Keypoint> BasicSoftwareStage<Meter>::interpolate(const Scan&
 // code on a MemoryView; each read is counted and goes through the cache model.
 template <class Meter>
 void BasicSoftwareStage<Meter>::describe(const Scan& s, const FrameBuffers& f, surf::Keypoint& kp) {
-    const surf::MemoryView<stage_detail::IntegralProbe<Meter>> view{f.integral, f.integral_address, f.width, f.height,
-                                                      f.integral_stride, stage_detail::IntegralProbe<Meter>{&meter_}};
+    const surf::MemoryView<stage_detail::IntegralProbe<Meter>> view{
+        f.integral, f.integral_address, f.width,
+        f.height,   f.integral_stride,  stage_detail::IntegralProbe<Meter>{&meter_}};
     meter_.enter(Step::laplacian);
     meter_.count(Unit::laplacian, 1);
     kp.laplacian = surf::hessian_at(view, s.x, s.y, s.size(s.layer)).laplacian;

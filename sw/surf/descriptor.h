@@ -32,8 +32,8 @@ struct WeightTable {
 
 inline float sample_offset(int k) { return k - (kSamples - 1) / 2.0f; }
 
-constexpr int kMsurfSamples = 24;  // 4 sub-regions of 5 plus 2 on each side
-constexpr int kMsurfRegion = 9;    // a sub-region's samples: its 5 and 2 of each neighbour
+constexpr int kMsurfSamples = 24;         // 4 sub-regions of 5 plus 2 on each side
+constexpr int kMsurfRegion = 9;           // a sub-region's samples: its 5 and 2 of each neighbour
 constexpr float kMsurfInnerSigma = 2.5f;  // in s
 constexpr float kMsurfOuterSigma = 1.5f;  // in sub-regions
 
@@ -43,8 +43,8 @@ struct MsurfWeights {
     MsurfWeights() {
         for (int i = 0; i < kMsurfRegion; ++i)
             for (int j = 0; j < kMsurfRegion; ++j)
-                inner[i][j] = std::exp(-((i - 4) * (i - 4) + (j - 4) * (j - 4)) /
-                                       (2 * kMsurfInnerSigma * kMsurfInnerSigma));
+                inner[i][j] =
+                    std::exp(-((i - 4) * (i - 4) + (j - 4) * (j - 4)) / (2 * kMsurfInnerSigma * kMsurfInnerSigma));
         for (int a = 0; a < 4; ++a)
             for (int b = 0; b < 4; ++b) {
                 const float u = a - 1.5f, v = b - 1.5f;

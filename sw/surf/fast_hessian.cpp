@@ -93,9 +93,15 @@ void compute_layer_rows(const IntegralView& ii, int step, int cols, ResponseLaye
             ii.data + static_cast<size_t>(ky) * step * ii.stride + static_cast<size_t>(layer.x_begin) * step;
         float* out = layer.det.data() + static_cast<size_t>(ky) * cols + layer.x_begin;
         switch (step) {
-            case 1: determinant_row<1>(centre, count, step, fc, inv_area, out); break;
-            case 2: determinant_row<2>(centre, count, step, fc, inv_area, out); break;
-            default: determinant_row<0>(centre, count, step, fc, inv_area, out); break;
+            case 1:
+                determinant_row<1>(centre, count, step, fc, inv_area, out);
+                break;
+            case 2:
+                determinant_row<2>(centre, count, step, fc, inv_area, out);
+                break;
+            default:
+                determinant_row<0>(centre, count, step, fc, inv_area, out);
+                break;
         }
     }
 }

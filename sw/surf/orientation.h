@@ -84,7 +84,8 @@ template <class Haar>
 // when given, counts the samples whose angle was computed (not both responses 0): the
 // software stage's cost model prices them (sw/cpu_cost/work_units.h).
 template <class View>
-float orientation(const View& ii, float x, float y, float scale, HaarMode mode = HaarMode::exact, int* angles = nullptr) {
+float orientation(const View& ii, float x, float y, float scale, HaarMode mode = HaarMode::exact,
+                  int* angles = nullptr) {
     using namespace orientation_detail;
     return with_haar(ii, mode, kWaveletSize * scale,
                      [&](const auto& haar) { return dominant_direction(x, y, scale, haar, angles); });

@@ -26,16 +26,16 @@ struct Params {
     // 0.0004 is 26 here). OpenCV's `hessianThreshold` normalises each box by its own area and is
     // ~20-25 times larger for the same points (fast_hessian.h, README.md). Default: OpenSURF's.
     float threshold = 26.0f;
-    int octaves = 4;       // 1..4; octave o (0-based) uses sampling step init_step * 2^o
-    int intervals = 5;     // filter sizes per octave, 3..8 (the paper and the chip: 4; OpenCV: 5)
-    int init_step = 1;     // sampling step of octave 0, 1 or 2 (the chip uses 1, OpenSURF 2)
-    bool upright = false;  // U-SURF: orientation 0, no orientation assignment
+    int octaves = 4;                  // 1..4; octave o (0-based) uses sampling step init_step * 2^o
+    int intervals = 5;                // filter sizes per octave, 3..8 (the paper and the chip: 4; OpenCV: 5)
+    int init_step = 1;                // sampling step of octave 0, 1 or 2 (the chip uses 1, OpenSURF 2)
+    bool upright = false;             // U-SURF: orientation 0, no orientation assignment
     HaarMode haar = HaarMode::exact;  // Haar wavelets of orientation and descriptor
     DescriptorKind descriptor = DescriptorKind::msurf;
     // The interpolation drops a maximum whose fitted |offset| exceeds this, in samples (x, y)
     // or intervals: 0.5 is the paper's rule, 1 OpenCV's.
     float max_offset = 1.0f;
-    int threads = 0;       // 0: all hardware threads
+    int threads = 0;  // 0: all hardware threads
 };
 
 // The paper's SURF (§II, after Bay et al. 2008): 4 filter sizes per octave, maxima dropped

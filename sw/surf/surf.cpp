@@ -130,7 +130,8 @@ std::vector<float> stored_ranked_responses(const cv::Mat& gray8, const Params& p
         return responses;
     }
     std::vector<float> responses = ranked_responses(gray8, p);
-    write_cached("ranked", key, std::string(reinterpret_cast<const char*>(responses.data()), responses.size() * sizeof(float)));
+    write_cached("ranked", key,
+                 std::string(reinterpret_cast<const char*>(responses.data()), responses.size() * sizeof(float)));
     return responses;
 }
 

@@ -31,7 +31,8 @@ void BM_IntegralImage(benchmark::State& state) {
     std::vector<uint32_t> out(size_t(kWidth) * kHeight);
     for (auto _ : state) {
         for (int y = 0; y < kHeight; ++y)
-            core.row(f.data + size_t(y) * f.step, y ? &out[size_t(y - 1) * kWidth] : nullptr, &out[size_t(y) * kWidth], kWidth);
+            core.row(f.data + size_t(y) * f.step, y ? &out[size_t(y - 1) * kWidth] : nullptr, &out[size_t(y) * kWidth],
+                     kWidth);
         benchmark::DoNotOptimize(out.data());
     }
 }
@@ -50,7 +51,8 @@ void BM_FhgFrame(benchmark::State& state) {
     for (auto _ : state) {
         candidates = 0;
         for (int by = 0; by < blocks_y; ++by)
-            candidates += surfvp::fhg::block_row(core, view, by, threshold, det_bytes, dets.data() + by * row_bytes).size();
+            candidates +=
+                surfvp::fhg::block_row(core, view, by, threshold, det_bytes, dets.data() + by * row_bytes).size();
         benchmark::DoNotOptimize(dets.data());
     }
     state.counters["candidates"] = double(candidates);

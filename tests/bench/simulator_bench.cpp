@@ -30,9 +30,20 @@ struct Run {
 // `surfvp run` of the budget scenario (verdict re-simulations off) with `extra` arguments.
 Run run_budget(const std::vector<std::string>& extra) {
     const std::string out = fmt::format("/tmp/surfvp_simbench_{}", ::getpid());
-    std::vector<std::string> args{SURFVP_BINARY, "run", SURFVP_SOURCE_DIR "/scenarios/budget_1024x768.yaml", "--quiet",
-                                  "--out", out, "--set", fmt::format("surf.frames={}", kFrames), "--set",
-                                  "verdict.band=off", "--set", "verdict.break_even=off", "--set", "verdict.software=off"};
+    std::vector<std::string> args{SURFVP_BINARY,
+                                  "run",
+                                  SURFVP_SOURCE_DIR "/scenarios/budget_1024x768.yaml",
+                                  "--quiet",
+                                  "--out",
+                                  out,
+                                  "--set",
+                                  fmt::format("surf.frames={}", kFrames),
+                                  "--set",
+                                  "verdict.band=off",
+                                  "--set",
+                                  "verdict.break_even=off",
+                                  "--set",
+                                  "verdict.software=off"};
     args.insert(args.end(), extra.begin(), extra.end());
     const auto start = std::chrono::steady_clock::now();
     const pid_t pid = fork();
@@ -101,10 +112,10 @@ void BM_LongRunMemory(benchmark::State& state) {
     for (auto _ : state) {
         const pid_t pid = fork();
         if (pid == 0) {
-            execl(SURFVP_BINARY, SURFVP_BINARY, "run", SURFVP_SOURCE_DIR "/scenarios/budget_1024x768.yaml", "--quiet", "--trace",
-                  "none", "--out", out.c_str(), "--set", frames.c_str(), "--set", "surf.width=160", "--set", "surf.height=120",
-                  "--set", "surf.target_keypoints=20", "--set", "budget.fps=0", "--set", "verdict.band=off", "--set",
-                  "verdict.break_even=off", "--set", "verdict.software=off", nullptr);
+            execl(SURFVP_BINARY, SURFVP_BINARY, "run", SURFVP_SOURCE_DIR "/scenarios/budget_1024x768.yaml", "--quiet",
+                  "--trace", "none", "--out", out.c_str(), "--set", frames.c_str(), "--set", "surf.width=160", "--set",
+                  "surf.height=120", "--set", "surf.target_keypoints=20", "--set", "budget.fps=0", "--set",
+                  "verdict.band=off", "--set", "verdict.break_even=off", "--set", "verdict.software=off", nullptr);
             _exit(127);
         }
         int status = 0;
@@ -124,8 +135,9 @@ void BM_SweepPoints(benchmark::State& state) {
     const std::string file = dir + ".yaml";
     {
         std::FILE* f = std::fopen(file.c_str(), "w");
-        std::fprintf(f, "scenario: %s/scenarios/budget_1024x768.yaml\nset: {surf.frames: 5}\n"
-                        "axes:\n  fhg.clock: [100 MHz, 125 MHz, 150 MHz]\n  fhg.read_buses: [2, 4, 6, 8]\n",
+        std::fprintf(f,
+                     "scenario: %s/scenarios/budget_1024x768.yaml\nset: {surf.frames: 5}\n"
+                     "axes:\n  fhg.clock: [100 MHz, 125 MHz, 150 MHz]\n  fhg.read_buses: [2, 4, 6, 8]\n",
                      SURFVP_SOURCE_DIR);
         std::fclose(f);
     }
@@ -135,7 +147,8 @@ void BM_SweepPoints(benchmark::State& state) {
         const auto start = std::chrono::steady_clock::now();
         const pid_t pid = fork();
         if (pid == 0) {
-            execl(SURFVP_BINARY, SURFVP_BINARY, "sweep", file.c_str(), "--quiet", "--jobs", "2", "--out", dir.c_str(), nullptr);
+            execl(SURFVP_BINARY, SURFVP_BINARY, "sweep", file.c_str(), "--quiet", "--jobs", "2", "--out", dir.c_str(),
+                  nullptr);
             _exit(127);
         }
         int status = 0;

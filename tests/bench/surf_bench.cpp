@@ -48,12 +48,25 @@ void detect_and_describe_stream(benchmark::State& state) {
 // Args: {target keypoints, threads, the paper's SURF (1) or the defaults (0)}.
 BENCHMARK(detect_and_describe)
     ->ArgNames({"keypoints", "threads", "paper"})
-    ->Args({100, 1, 0})->Args({100, 2, 0})->Args({3000, 1, 0})->Args({3000, 2, 0})
-    ->Args({100, 1, 1})->Args({3000, 1, 1})
-    ->Unit(benchmark::kMillisecond)->UseRealTime()->Repetitions(7)->ReportAggregatesOnly(true);
+    ->Args({100, 1, 0})
+    ->Args({100, 2, 0})
+    ->Args({3000, 1, 0})
+    ->Args({3000, 2, 0})
+    ->Args({100, 1, 1})
+    ->Args({3000, 1, 1})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime()
+    ->Repetitions(7)
+    ->ReportAggregatesOnly(true);
 BENCHMARK(detect_and_describe_stream)
     ->ArgNames({"keypoints", "threads"})
-    ->Args({100, 1})->Args({100, 2})->Args({3000, 1})->Args({3000, 2})
-    ->Unit(benchmark::kMillisecond)->UseRealTime()->Repetitions(7)->ReportAggregatesOnly(true);
+    ->Args({100, 1})
+    ->Args({100, 2})
+    ->Args({3000, 1})
+    ->Args({3000, 2})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime()
+    ->Repetitions(7)
+    ->ReportAggregatesOnly(true);
 
 BENCHMARK_MAIN();

@@ -23,9 +23,9 @@ Eigen::Vector2d position(const surf::Keypoint& k) { return {k.x, k.y}; }
 
 // Camera a is the object frame; camera b is turned by a few degrees and moved 30 cm.
 Eigen::Matrix4d camera_b_pose() {
-    Eigen::Matrix3d r = (Eigen::AngleAxisd(0.08, Eigen::Vector3d::UnitY()) *
-                         Eigen::AngleAxisd(-0.04, Eigen::Vector3d::UnitX()))
-                            .toRotationMatrix();
+    Eigen::Matrix3d r =
+        (Eigen::AngleAxisd(0.08, Eigen::Vector3d::UnitY()) * Eigen::AngleAxisd(-0.04, Eigen::Vector3d::UnitX()))
+            .toRotationMatrix();
     Eigen::Matrix4d m = Eigen::Matrix4d::Identity();
     m.topLeftCorner<3, 3>() = r;
     m.topRightCorner<3, 1>() = Eigen::Vector3d(-0.3, 0.05, 0.1);
@@ -56,8 +56,7 @@ Scene two_view_scene(Random& random, std::size_t n) {
 }
 
 // Moves b perpendicular to the epipolar line F x_a by `distance` px.
-void move_off_line(const Eigen::Matrix3d& f, const surf::Keypoint& a, surf::Keypoint& b,
-                   double distance) {
+void move_off_line(const Eigen::Matrix3d& f, const surf::Keypoint& a, surf::Keypoint& b, double distance) {
     Eigen::Vector3d line = f * position(a).homogeneous();
     Eigen::Vector2d normal = line.head<2>().normalized();
     b.x = static_cast<float>(b.x + distance * normal.x());
@@ -251,8 +250,7 @@ TEST(Distinguishability, FewOrNoCandidatesAreReportedNotGuessed) {
     EXPECT_TRUE(few.epipolar_distances.empty());
     // Below 15 candidates OpenCV would use LMedS, which is unreliable there: not measured.
     Scene fourteen = two_view_scene(random, 14), fifteen = two_view_scene(random, 15);
-    EXPECT_EQ(distinguishability(fourteen.a, fourteen.b).status,
-              DistinguishabilityStatus::too_few_candidates);
+    EXPECT_EQ(distinguishability(fourteen.a, fourteen.b).status, DistinguishabilityStatus::too_few_candidates);
     EXPECT_EQ(distinguishability(fifteen.a, fifteen.b).distinguishability, 1.0);
     DistinguishabilityResult given = distinguishability(s.a, s.b, s.f);  // F given: measurable
     EXPECT_EQ(given.status, DistinguishabilityStatus::ok);

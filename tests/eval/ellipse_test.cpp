@@ -27,7 +27,8 @@ TEST(EllipseOverlap, EqualCirclesOffsetMatchTheClosedForm) {
     for (double d : {0.0, 0.3, 3.0, 6.0, 15.0, 30.0, 45.0, 59.0, 59.9, 60.0, 75.0}) {
         SCOPED_TRACE(d);
         double expected = equal_circles_overlap(r, d);
-        double measured = ellipse_overlap(Ellipse::circle({100, 50}, r), Ellipse::circle({100 + d * 0.6, 50 + d * 0.8}, r));
+        double measured =
+            ellipse_overlap(Ellipse::circle({100, 50}, r), Ellipse::circle({100 + d * 0.6, 50 + d * 0.8}, r));
         EXPECT_NEAR(measured, expected, 1e-5);
         worst = std::max(worst, std::abs(measured - expected));
     }

@@ -61,8 +61,8 @@ inline Descriptor perturbed(const Descriptor& d, double noise, Random& random) {
     return normalised(v);
 }
 
-inline surf::Keypoint random_keypoint(Random& random, double width, double height,
-                                      double min_scale = 1.2, double max_scale = 6.0) {
+inline surf::Keypoint random_keypoint(Random& random, double width, double height, double min_scale = 1.2,
+                                      double max_scale = 6.0) {
     surf::Keypoint k;
     k.x = static_cast<float>(random.uniform(0, width));
     k.y = static_cast<float>(random.uniform(0, height));
@@ -84,11 +84,10 @@ inline surf::Keypoints random_keypoints(Random& random, std::size_t n, double wi
 }
 
 // Package data is a hard requirement: a missing file fails the test and names the package.
-inline ::testing::AssertionResult package_file(const std::filesystem::path& file,
-                                               const char* package) {
+inline ::testing::AssertionResult package_file(const std::filesystem::path& file, const char* package) {
     if (std::filesystem::exists(file)) return ::testing::AssertionSuccess();
-    return ::testing::AssertionFailure() << file << " is missing: install the Debian package "
-                                         << package << " (apt-get install " << package << ")";
+    return ::testing::AssertionFailure() << file << " is missing: install the Debian package " << package
+                                         << " (apt-get install " << package << ")";
 }
 
 // A fresh folder for one test, removed afterwards.
@@ -96,9 +95,8 @@ class TemporaryFolder {
 public:
     TemporaryFolder() {
         const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-        path_ = std::filesystem::temp_directory_path() /
-                ("surfvp-eval-" + std::string(info->test_suite_name()) + "-" + info->name() + "-" +
-                 std::to_string(::getpid()));
+        path_ = std::filesystem::temp_directory_path() / ("surfvp-eval-" + std::string(info->test_suite_name()) + "-" +
+                                                          info->name() + "-" + std::to_string(::getpid()));
         std::filesystem::remove_all(path_);
         std::filesystem::create_directories(path_);
     }

@@ -51,11 +51,14 @@ TEST(Homography, MalformedFilesAreNamed) {
     std::ofstream(dir / "singular") << "1 2 3\n2 4 6\n0 0 1\n";
     std::ofstream(dir / "no_matrix.xml") << "<?xml version=\"1.0\"?>\n<opencv_storage>\n"
                                             "<n>3</n>\n</opencv_storage>\n";
-    struct Case { const char* file; std::size_t line; const char* problem; };
-    for (const Case& c : {Case{"two_rows", 2, "file ends after 2 of the 3 rows"},
-                          Case{"word", 2, "'one' is not a number"},
-                          Case{"singular", 0, "singular"},
-                          Case{"no_matrix.xml", 0, "no 3x3 matrix"}}) {
+    struct Case {
+        const char* file;
+        std::size_t line;
+        const char* problem;
+    };
+    for (const Case& c :
+         {Case{"two_rows", 2, "file ends after 2 of the 3 rows"}, Case{"word", 2, "'one' is not a number"},
+          Case{"singular", 0, "singular"}, Case{"no_matrix.xml", 0, "no 3x3 matrix"}}) {
         SCOPED_TRACE(c.file);
         try {
             read_homography_file(dir / c.file);
@@ -114,7 +117,8 @@ TEST(Homography, AFileStorageWithANulByteIsAFormatError) {
 // too); such a file is refused before OpenCV reads it.
 TEST(Homography, AFileStorageEndingAfterAnAttributesEqualsSignIsAFormatError) {
     test::TemporaryFolder dir;
-    for (const std::string xml : {"<?xml tersion=", "<?xml version= \n", "<?xml version=\"1.0\"?>\n<opencv_storage>\n<H x="}) {
+    for (const std::string xml :
+         {"<?xml tersion=", "<?xml version= \n", "<?xml version=\"1.0\"?>\n<opencv_storage>\n<H x="}) {
         std::ofstream(dir / "cut.xml", std::ios::binary) << xml;
         try {
             read_homography_file(dir / "cut.xml");

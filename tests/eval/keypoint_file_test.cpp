@@ -25,9 +25,7 @@ std::string read_text(const std::filesystem::path& file) {
     return s.str();
 }
 
-void write_text(const std::filesystem::path& file, const std::string& text) {
-    std::ofstream(file) << text;
-}
+void write_text(const std::filesystem::path& file, const std::string& text) { std::ofstream(file) << text; }
 
 std::vector<std::string> lines_of(const std::string& text) {
     std::vector<std::string> lines;
@@ -168,9 +166,11 @@ TEST(KeypointFile, ValuesAreWrittenAsPrintfWritesThemToNineDigits) {
         EXPECT_EQ(t[0], printf_g9(k.x));
         EXPECT_EQ(t[1], printf_g9(k.y));
         EXPECT_EQ(t[2], t[4]);
-        for (size_t d = 0; d < 64; ++d) EXPECT_EQ(t[6 + d], printf_g9(k.descriptor[d])) << "keypoint " << i << " value " << d;
-        EXPECT_EQ(meta[i + 1], printf_g9(k.x) + " " + printf_g9(k.y) + " " + printf_g9(k.scale) + " " + printf_g9(k.orientation) +
-                                   " " + printf_g9(k.response) + " " + std::to_string(k.laplacian));
+        for (size_t d = 0; d < 64; ++d)
+            EXPECT_EQ(t[6 + d], printf_g9(k.descriptor[d])) << "keypoint " << i << " value " << d;
+        EXPECT_EQ(meta[i + 1], printf_g9(k.x) + " " + printf_g9(k.y) + " " + printf_g9(k.scale) + " " +
+                                   printf_g9(k.orientation) + " " + printf_g9(k.response) + " " +
+                                   std::to_string(k.laplacian));
     }
     EXPECT_EQ(tokens_of(lines[2])[6], "9.99999975e-06");
     EXPECT_EQ(tokens_of(lines[2])[7], "-0");

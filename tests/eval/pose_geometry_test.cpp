@@ -21,8 +21,7 @@ const std::filesystem::path kCastle = std::filesystem::path(VISP_DATA_DIR) / "mb
 
 std::vector<PosedFrame> castle_frames() { return list_posed_frames(kCastle); }
 
-#define REQUIRE_CASTLE() \
-    ASSERT_TRUE(test::package_file(kCastle / "CameraPose/Camera_001.txt", "visp-images-data"))
+#define REQUIRE_CASTLE() ASSERT_TRUE(test::package_file(kCastle / "CameraPose/Camera_001.txt", "visp-images-data"))
 
 TEST(PoseGeometry, ReadsACastlePose) {
     REQUIRE_CASTLE();
@@ -50,8 +49,7 @@ struct Projections {
     std::vector<Eigen::Vector2d> a, b;
 };
 
-Projections project_points(const Eigen::Matrix4d& a, const Eigen::Matrix4d& b, std::size_t n,
-                           Random& random) {
+Projections project_points(const Eigen::Matrix4d& a, const Eigen::Matrix4d& b, std::size_t n, Random& random) {
     Projections p;
     while (p.a.size() < n) {
         Eigen::Vector3d x(random.uniform(-0.15, 0.15), random.uniform(-0.15, 0.15), random.uniform(-0.15, 0.15));
@@ -84,8 +82,8 @@ TEST(PoseGeometry, CastleFundamentalMatrixHoldsForProjectedPoints) {
             Eigen::Vector3d xa = p.a[k].homogeneous(), xb = p.b[k].homogeneous();
             // x_b^T F x_a relative to its terms' size; the distance in pixels.
             worst_algebraic = std::max(worst_algebraic, std::abs(xb.dot(f * xa)) / (xb.norm() * xa.norm()));
-            worst_distance = std::max({worst_distance, epipolar_distance(f, p.a[k], p.b[k]),
-                                       epipolar_distance(back, p.b[k], p.a[k])});
+            worst_distance = std::max(
+                {worst_distance, epipolar_distance(f, p.a[k], p.b[k]), epipolar_distance(back, p.b[k], p.a[k])});
             // The measure is not blind: 2 px across the line are measured as 2 px.
             Eigen::Vector2d normal = (f * xa).head<2>().normalized();
             EXPECT_NEAR(epipolar_distance(f, p.a[k], p.b[k] + 2.0 * normal), 2.0, 1e-6);
@@ -143,11 +141,14 @@ TEST(PoseGeometry, MalformedPoseFilesAreNamed) {
     std::ofstream(dir / "skewed.txt") << "1 0.1 0 0\n0 1 0 0\n0 0 1 0\n0 0 0 1\n";
     std::ofstream(dir / "row.txt") << "1 0 0 0\n0 1 0 0\n0 0 1 0\n0 0 1 1\n";
     std::ofstream(dir / "word.txt") << "1 0 0 0\n0 1 x 0\n0 0 1 0\n0 0 0 1\n";
-    struct Case { const char* file; std::size_t line; const char* problem; };
-    for (const Case& c : {Case{"short.txt", 3, "file ends after 3 of the 4 rows"},
-                          Case{"skewed.txt", 0, "not orthonormal"},
-                          Case{"row.txt", 4, "last row is not 0 0 0 1"},
-                          Case{"word.txt", 2, "'x' is not a number"}}) {
+    struct Case {
+        const char* file;
+        std::size_t line;
+        const char* problem;
+    };
+    for (const Case& c :
+         {Case{"short.txt", 3, "file ends after 3 of the 4 rows"}, Case{"skewed.txt", 0, "not orthonormal"},
+          Case{"row.txt", 4, "last row is not 0 0 0 1"}, Case{"word.txt", 2, "'x' is not a number"}}) {
         SCOPED_TRACE(c.file);
         try {
             read_pose_file(dir / c.file);

@@ -75,9 +75,8 @@ TEST(Repeatability, SimilarityWithItsHomographyIsOne) {
     auto a = test::random_keypoints(random, 300, kImage.width, kImage.height);
     const double angle = 0.5, zoom = 1.5;
     Eigen::Matrix3d h;
-    h << zoom * std::cos(angle), -zoom * std::sin(angle), 300,
-         zoom * std::sin(angle), zoom * std::cos(angle), -250,
-         0, 0, 1;
+    h << zoom * std::cos(angle), -zoom * std::sin(angle), 300, zoom * std::sin(angle), zoom * std::cos(angle), -250, 0,
+        0, 1;
     auto b = mapped(a, h);
     RepeatabilityResult r = repeatability(a, b, h, kImage, kImage);
     EXPECT_GT(r.visible_a, 60u);  // the part of A that lands inside B
@@ -131,8 +130,8 @@ TEST(Repeatability, RandomHalfMovedIsAboutOneHalf) {
 
 TEST(Repeatability, OnlyRegionsVisibleInBothImagesCount) {
     surf::Keypoint inside, border, outside_b;
-    inside.x = 100, inside.y = 100, inside.scale = 4;     // r = 10
-    border.x = 9, border.y = 100, border.scale = 4;       // reaches x = -1
+    inside.x = 100, inside.y = 100, inside.scale = 4;           // r = 10
+    border.x = 9, border.y = 100, border.scale = 4;             // reaches x = -1
     outside_b.x = 700, outside_b.y = 100, outside_b.scale = 4;  // beyond B's width of 600
     surf::Keypoints a = {inside, border, outside_b};
     RepeatabilityResult r = repeatability(a, a, Eigen::Matrix3d::Identity(), kImage, cv::Size(600, 640));

@@ -12,8 +12,7 @@
 namespace surfvp::eval {
 namespace {
 
-const std::filesystem::path kCastleImages =
-    std::filesystem::path(VISP_DATA_DIR) / "mbt-depth/Castle-simu/Images";
+const std::filesystem::path kCastleImages = std::filesystem::path(VISP_DATA_DIR) / "mbt-depth/Castle-simu/Images";
 const std::filesystem::path kVideo = std::filesystem::path(OPENCV_DATA_DIR) / "vtest.avi";
 
 TEST(Sequence, ImageFolderIsSortedByName) {
@@ -107,11 +106,13 @@ TEST(Sequence, ErrorsNameTheSource) {
     std::ofstream(dir / "notes.dat") << "not a video\n";
     std::filesystem::create_directories(dir / "empty");
     std::ofstream(dir / "empty.lst") << "# no images\n";
-    struct Case { std::filesystem::path source; const char* problem; };
-    for (const Case& c : {Case{dir / "absent", "no such file or folder"},
-                          Case{dir / "notes.dat", "not a folder, an image list"},
-                          Case{dir / "empty", "no image files"},
-                          Case{dir / "empty.lst", "names no image"}}) {
+    struct Case {
+        std::filesystem::path source;
+        const char* problem;
+    };
+    for (const Case& c :
+         {Case{dir / "absent", "no such file or folder"}, Case{dir / "notes.dat", "not a folder, an image list"},
+          Case{dir / "empty", "no image files"}, Case{dir / "empty.lst", "names no image"}}) {
         SCOPED_TRACE(c.source.string());
         try {
             open_sequence(c.source);

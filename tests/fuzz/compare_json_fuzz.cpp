@@ -20,12 +20,14 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     const std::string text(reinterpret_cast<const char*>(data), size);
     const std::string pointer = text.rfind('/', 0) == 0 ? text.substr(0, text.find('\n')) : "/points/0/point";
     try {
-        const nlohmann::ordered_json j = parse_json(text.rfind('/', 0) == 0 ? text.substr(pointer.size()) : text, "fuzz");
+        const nlohmann::ordered_json j =
+            parse_json(text.rfind('/', 0) == 0 ? text.substr(pointer.size()) : text, "fuzz");
         const nlohmann::ordered_json figures = all_figures(j);  // items() of a temporary would dangle
         for (const auto& [path, value] : figures.items())
             if (!value.is_number()) fuzz::bug("the figure " + path + " is not a number");
         const nlohmann::ordered_json& at = value_at(j, pointer);
-        if (number_at(j, pointer, 7) != (at.is_number() ? at.get<double>() : 7)) fuzz::bug("number_at disagrees with value_at");
+        if (number_at(j, pointer, 7) != (at.is_number() ? at.get<double>() : 7))
+            fuzz::bug("number_at disagrees with value_at");
         text_at(j, pointer);
         flag_at(j, pointer);
     } catch (const ConfigError&) {

@@ -22,9 +22,7 @@ namespace surfvp::fuzz {
 }
 
 // An exception no target accepts: name it, then abort.
-[[noreturn]] inline void unexpected(const std::exception& e) {
-    bug(std::string("unexpected exception: ") + e.what());
-}
+[[noreturn]] inline void unexpected(const std::exception& e) { bug(std::string("unexpected exception: ") + e.what()); }
 
 // A folder of this process's own under the system's temporary folder, removed at exit, so
 // that two fuzzers (or two jobs of one) never share a file.

@@ -30,14 +30,17 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     const std::string_view marker = "\n%%meta\n";
     const size_t split = text.find(marker);
     const std::filesystem::path file = fuzz::write_scratch("frame.surf", text.substr(0, split));
-    if (split == std::string_view::npos) fuzz::remove_scratch("frame.surf.meta");
-    else fuzz::write_scratch("frame.surf.meta", text.substr(split + marker.size()));
+    if (split == std::string_view::npos)
+        fuzz::remove_scratch("frame.surf.meta");
+    else
+        fuzz::write_scratch("frame.surf.meta", text.substr(split + marker.size()));
     try {
         const eval::KeypointFile read = eval::read_keypoint_file(file);
         const std::filesystem::path copy = fuzz::scratch_dir() / "copy.surf";
         eval::write_keypoint_file(copy, read.keypoints, {read.dimension == 65, true});
         const eval::KeypointFile again = eval::read_keypoint_file(copy);
-        if (again.keypoints.size() != read.keypoints.size()) fuzz::bug("the round trip changes the number of keypoints");
+        if (again.keypoints.size() != read.keypoints.size())
+            fuzz::bug("the round trip changes the number of keypoints");
         for (size_t k = 0; k < read.keypoints.size(); ++k)
             if (!same(read.keypoints[k], again.keypoints[k]))
                 fuzz::bug("the round trip changes keypoint " + std::to_string(k));

@@ -20,7 +20,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     try {
         const Eigen::Matrix4d m = eval::read_pose_file(file);
         if (!m.allFinite()) fuzz::bug("the reader returned a non-finite pose");
-        if (!((m.row(3) - Eigen::RowVector4d(0, 0, 0, 1)).cwiseAbs().maxCoeff() <= 1e-9)) fuzz::bug("the pose's last row is not 0 0 0 1");
+        if (!((m.row(3) - Eigen::RowVector4d(0, 0, 0, 1)).cwiseAbs().maxCoeff() <= 1e-9))
+            fuzz::bug("the pose's last row is not 0 0 0 1");
         const Eigen::Matrix3d r = m.topLeftCorner<3, 3>();
         if (!((r * r.transpose() - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff() < 1e-4) ||
             !(std::abs(r.determinant() - 1) < 1e-4))

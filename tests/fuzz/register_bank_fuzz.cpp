@@ -61,8 +61,8 @@ uint32_t mask_of(const Register& r, Access access) {
 
 struct Expected {
     uint32_t value;
-    bool answers;                    // has an on_read answer
-    uint32_t writes = 0, last = 0;   // on_write calls, as seen by the bank's hook
+    bool answers;                   // has an on_read answer
+    uint32_t writes = 0, last = 0;  // on_write calls, as seen by the bank's hook
 };
 
 uint32_t answer_of(uint32_t offset) { return 0x5A5A0000u ^ offset; }
@@ -106,7 +106,8 @@ void exercise(const RegisterTable& table, fuzz::Bytes& in, bool may_refuse) {
             const Register* r = table.find(offset);
             const bool write = op == 1;
             const uint32_t written = value;
-            check(bank.access(offset, value, write) == (r != nullptr), "access() disagrees on whether a register is there");
+            check(bank.access(offset, value, write) == (r != nullptr),
+                  "access() disagrees on whether a register is there");
             if (!r) continue;
             Expected& m = model[offset];
             if (!write) {
@@ -126,7 +127,8 @@ void exercise(const RegisterTable& table, fuzz::Bytes& in, bool may_refuse) {
                   table.block + "." + r->name + ": on_write was not called as the rules say");
         }
         for (const Register& r : table.registers)
-            check(bank.value(r.offset) == model[r.offset].value, table.block + "." + r.name + " holds another value than the rules say");
+            check(bank.value(r.offset) == model[r.offset].value,
+                  table.block + "." + r.name + " holds another value than the rules say");
     }
 }
 
@@ -137,8 +139,10 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     const uint8_t which = in.u8();
     const RegisterTable* chip_tables[] = {&iig::table(), &fhg_regs::table(), &intc::table(), &dma::table()};
     try {
-        if (which < 4) exercise(*chip_tables[which], in, false);
-        else exercise(random_table(in), in, true);
+        if (which < 4)
+            exercise(*chip_tables[which], in, false);
+        else
+            exercise(random_table(in), in, true);
     } catch (const std::exception& e) {
         fuzz::unexpected(e);
     }

@@ -71,15 +71,23 @@ void run(DirectChip& chip, fuzz::Bytes& in) {
                 chip.write32(address, in.u8());
                 break;
             }
-            case 2: chip.read32(register_address(op, in.u8())); break;
-            case 3: chip.wait_for_irq(); break;
-            case 4: chip.irq_pending(); break;
+            case 2:
+                chip.read32(register_address(op, in.u8()));
+                break;
+            case 3:
+                chip.wait_for_irq();
+                break;
+            case 4:
+                chip.irq_pending();
+                break;
             case 5: {
                 const uint32_t address = in.u32();
                 chip.write32(address, in.u32());
                 break;
             }
-            case 6: chip.read32(in.u32()); break;
+            case 6:
+                chip.read32(in.u32());
+                break;
             case 7: {
                 const uint32_t address = in.u32();
                 std::vector<uint8_t> bytes(1 + in.u8() % 64);

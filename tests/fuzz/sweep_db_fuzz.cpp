@@ -28,7 +28,8 @@ void check_row(const SweepRow& row) {
         (void)row.params.dump();
         (void)row.figures.dump();
         for (const auto& [key, value] : row.params.items()) (void)value.get<std::string>();
-        for (const char* key : {"fps", "budget_fps", "repeatability", "precision", "distinguishability", "bram36", "dsp48e", "watts"})
+        for (const char* key :
+             {"fps", "budget_fps", "repeatability", "precision", "distinguishability", "bram36", "dsp48e", "watts"})
             (void)row.figures.value(key, 0.0);
         (void)nlohmann::ordered_json({row.id, row.error}).dump();
     } catch (const nlohmann::json::exception& e) {
@@ -63,7 +64,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
             read_database(bytes);
         } else {
             const size_t newline = std::min(bytes.find('\n'), bytes.size());
-            const std::string params = bytes.substr(0, newline), figures = newline < size ? bytes.substr(newline + 1) : "{}";
+            const std::string params = bytes.substr(0, newline),
+                              figures = newline < size ? bytes.substr(newline + 1) : "{}";
             check_row(decode_sweep_row("sweep.db", 1, "plb2.width=64 bit", params, 0, "", figures, 0.5));
         }
     } catch (const ConfigError&) {

@@ -26,12 +26,12 @@ namespace {
 using namespace surfvp;
 
 // A sweep's record as this surfvp writes it: the other side of sweep_changes.
-const std::string kRecord =
-    R"({"surfvp":"0.1.0","scenario":"name: x\n","set":{"surf.frames":"3"},)"
-    R"("axes":[{"key":"fhg.clock","values":["25 MHz","50 MHz"]}],"combine":"cartesian"})";
+const std::string kRecord = R"({"surfvp":"0.1.0","scenario":"name: x\n","set":{"surf.frames":"3"},)"
+                            R"("axes":[{"key":"fhg.clock","values":["25 MHz","50 MHz"]}],"combine":"cartesian"})";
 
 void check_loaded(const SweepPlan& plan) {
-    if (plan.points.size() > kMaxSweepPoints) fuzz::bug("more points than the limit: " + std::to_string(plan.points.size()));
+    if (plan.points.size() > kMaxSweepPoints)
+        fuzz::bug("more points than the limit: " + std::to_string(plan.points.size()));
     for (size_t i = 0; i < plan.points.size(); ++i) {
         const SweepPoint& p = plan.points[i];
         if (p.index != i) fuzz::bug("point " + std::to_string(i) + " has index " + std::to_string(p.index));

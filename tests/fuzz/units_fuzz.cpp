@@ -53,9 +53,15 @@ void unit_parser(unsigned which, const std::string& text) {
             same(text, canonical, b.n, parse_bytes(canonical).n);
             break;
         }
-        case 3: parse_bits(text); break;
-        case 4: parse_cycles(text); break;
-        default: parse_beats(text); break;
+        case 3:
+            parse_bits(text);
+            break;
+        case 4:
+            parse_cycles(text);
+            break;
+        default:
+            parse_beats(text);
+            break;
     }
 }
 

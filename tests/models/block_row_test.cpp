@@ -51,10 +51,12 @@ TEST(BlockRow, StoresTheRecordsWordByWordAndMarksWhatTheFinderMarksAtEveryWordSi
             size_t candidates = 0;
             for (int by = 0; by < (h + 1) / 2; ++by) {
                 core.block_row(f.view, by, records.data());
-                for (size_t k = 0; k < records.size(); ++k) fhg_regs::store_det(&expected[k * det_bytes], records[k], det_bytes);
+                for (size_t k = 0; k < records.size(); ++k)
+                    fhg_regs::store_det(&expected[k * det_bytes], records[k], det_bytes);
                 std::vector<Candidate> marked;
                 LocalMaxFinder(threshold).block_row(records.data(), blocks, by, marked);
-                const std::vector<Candidate> found = block_row(core, f.view, by, threshold, det_bytes, stored.data() + 3);
+                const std::vector<Candidate> found =
+                    block_row(core, f.view, by, threshold, det_bytes, stored.data() + 3);
                 ASSERT_TRUE(std::equal(expected.begin(), expected.end(), stored.begin() + 3))
                     << det_bits << " bits, " << w << "x" << h << ", block row " << by;
                 ASSERT_EQ(found, marked) << det_bits << " bits, " << w << "x" << h << ", block row " << by;

@@ -14,10 +14,10 @@ namespace {
 TEST(BusyTimeline, InTimeOrderItIsFirstComeFirstServed) {
     BusyTimeline t;
     EXPECT_EQ(t.reserve(0, 100), 0u);
-    EXPECT_EQ(t.reserve(50, 100), 100u);   // waits for the first
-    EXPECT_EQ(t.reserve(150, 10), 200u);   // and for the second
-    EXPECT_EQ(t.reserve(500, 10), 500u);   // free again
-    EXPECT_EQ(t.intervals(), 2u);          // [0, 210) merged, [500, 510)
+    EXPECT_EQ(t.reserve(50, 100), 100u);  // waits for the first
+    EXPECT_EQ(t.reserve(150, 10), 200u);  // and for the second
+    EXPECT_EQ(t.reserve(500, 10), 500u);  // free again
+    EXPECT_EQ(t.intervals(), 2u);         // [0, 210) merged, [500, 510)
 }
 
 TEST(BusyTimeline, WorkHandedOverLateUsesAGapThatFits) {
@@ -54,7 +54,8 @@ struct Reference {
             if (s.end > request) candidates.push_back(s.end);
         std::sort(candidates.begin(), candidates.end());
         for (uint64_t c : candidates)
-            if (std::none_of(reserved.begin(), reserved.end(), [&](const Span& s) { return c < s.end && s.start < c + length; })) {
+            if (std::none_of(reserved.begin(), reserved.end(),
+                             [&](const Span& s) { return c < s.end && s.start < c + length; })) {
                 reserved.push_back({c, c + length});
                 return c;
             }
@@ -94,7 +95,8 @@ TEST(BusyTimeline, BurstsAtTheKernelsTimeGoBeforeTheFillsAhead) {
             now += random() % 60;
             t.forget_before(now);
             const uint64_t length = 5 + random() % 20;
-            ASSERT_EQ(t.reserve(now, length), reference.reserve(now, length)) << "batch " << batch << " burst " << burst;
+            ASSERT_EQ(t.reserve(now, length), reference.reserve(now, length))
+                << "batch " << batch << " burst " << burst;
         }
     }
     EXPECT_GT(t.intervals(), 100u);  // the fills still ahead

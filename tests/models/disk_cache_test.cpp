@@ -29,7 +29,9 @@ std::string slurp(const fs::path& file) {
     return std::string((std::istreambuf_iterator<char>(in)), {});
 }
 
-void put(const fs::path& file, const std::string& text) { std::ofstream(file, std::ios::binary | std::ios::trunc) << text; }
+void put(const fs::path& file, const std::string& text) {
+    std::ofstream(file, std::ios::binary | std::ios::trunc) << text;
+}
 
 TEST(DiskCache, AnEntryIsReadBackOnlyWhenKeySizeAndChecksumMatch) {
     const fs::path dir = fresh_cache("checks");

@@ -17,10 +17,13 @@ size_t position(const std::string& text, const std::string& what) {
 }
 
 TEST(GtkwaveSave, GroupsFormatsFilterAndZoom) {
-    const std::vector<VcdSignal> signals{
-        {"fhg.busy", 1}, {"fhg.maxima_fifo_level", 32}, {"sw.describing_task", 32}, {"plb2.write_busy", 1}, {"zz.other", 8}};
-    GtkwaveSave save{"/o/trace.vcd", "/o/trace.gtkw", "/o/trace.tasks.txt", 442324645000ull,
-                     {{"sw", "Tasks"}, {"fhg", "SSA FHG"}}};
+    const std::vector<VcdSignal> signals{{"fhg.busy", 1},
+                                         {"fhg.maxima_fifo_level", 32},
+                                         {"sw.describing_task", 32},
+                                         {"plb2.write_busy", 1},
+                                         {"zz.other", 8}};
+    GtkwaveSave save{
+        "/o/trace.vcd", "/o/trace.gtkw", "/o/trace.tasks.txt", 442324645000ull, {{"sw", "Tasks"}, {"fhg", "SSA FHG"}}};
     const std::string s = gtkwave_save(signals, save);
     EXPECT_NE(s.find("[dumpfile] \"/o/trace.vcd\""), std::string::npos);
     EXPECT_NE(s.find("[savefile] \"/o/trace.gtkw\""), std::string::npos);
@@ -29,7 +32,8 @@ TEST(GtkwaveSave, GroupsFormatsFilterAndZoom) {
     EXPECT_LT(position(s, "-SSA FHG\n"), position(s, "-plb2\n"));
     EXPECT_LT(position(s, "-plb2\n"), position(s, "-zz\n"));
     EXPECT_NE(s.find("@28\nSystemC.fhg.busy\n"), std::string::npos);  // a wire: binary
-    EXPECT_NE(s.find("@8024\nSystemC.fhg.maxima_fifo_level[31:0]\n@20000\n-\n-\n-\n"), std::string::npos);  // analog step
+    EXPECT_NE(s.find("@8024\nSystemC.fhg.maxima_fifo_level[31:0]\n@20000\n-\n-\n-\n"),
+              std::string::npos);  // analog step
     EXPECT_NE(s.find("^1 /o/trace.tasks.txt\n@2024\nSystemC.sw.describing_task[31:0]\n"), std::string::npos);
     EXPECT_NE(s.find("@24\nSystemC.zz.other[7:0]\n"), std::string::npos);
     EXPECT_EQ(gtkwave_task_filter(), "4294967295 none\n");

@@ -55,8 +55,10 @@ struct ZeroTarget : sc_core::sc_module {
             tx.set_response_status(tlm::TLM_ADDRESS_ERROR_RESPONSE);
             return;
         }
-        if (tx.is_write()) std::copy_n(tx.get_data_ptr(), tx.get_data_length(), data.begin() + a);
-        else std::copy_n(data.begin() + a, tx.get_data_length(), tx.get_data_ptr());
+        if (tx.is_write())
+            std::copy_n(tx.get_data_ptr(), tx.get_data_length(), data.begin() + a);
+        else
+            std::copy_n(data.begin() + a, tx.get_data_length(), tx.get_data_ptr());
         tx.set_response_status(tlm::TLM_OK_RESPONSE);
     }
 };

@@ -82,22 +82,22 @@ TEST(HessianCore, BlockRowEqualsPerBlockDeterminantsIncludingBorders) {
     Precision wrapping;
     wrapping.accumulator_bits = 16, wrapping.response_bits = 12, wrapping.det_bits = 20;
     for (const Precision& precision : {Precision{}, wide, wrapping})
-    for (auto [w, h] : {std::pair{131, 97}, std::pair{64, 60}, std::pair{53, 52}}) {
-        const Integral ii = integral_of(test::random_image(w, h, unsigned(w)));
-        const HessianCore core(precision);
-        const int blocks = (w + 1) / 2;
-        std::vector<int32_t> row(size_t(blocks) * kDeterminantsPerBlock);
-        for (int by = 0; by < (h + 1) / 2; ++by) {
-            core.block_row(ii.view, by, row.data());
-            for (int bx = 0; bx < blocks; ++bx) {
-                const auto expected = core.block(ii.view, bx, by);
-                for (int k = 0; k < kDeterminantsPerBlock; ++k)
-                    ASSERT_EQ(row[size_t(bx) * kDeterminantsPerBlock + k], expected[k])
-                        << w << "x" << h << " block " << bx << "," << by << " k " << k << " accumulator "
-                        << precision.accumulator_bits;
+        for (auto [w, h] : {std::pair{131, 97}, std::pair{64, 60}, std::pair{53, 52}}) {
+            const Integral ii = integral_of(test::random_image(w, h, unsigned(w)));
+            const HessianCore core(precision);
+            const int blocks = (w + 1) / 2;
+            std::vector<int32_t> row(size_t(blocks) * kDeterminantsPerBlock);
+            for (int by = 0; by < (h + 1) / 2; ++by) {
+                core.block_row(ii.view, by, row.data());
+                for (int bx = 0; bx < blocks; ++bx) {
+                    const auto expected = core.block(ii.view, bx, by);
+                    for (int k = 0; k < kDeterminantsPerBlock; ++k)
+                        ASSERT_EQ(row[size_t(bx) * kDeterminantsPerBlock + k], expected[k])
+                            << w << "x" << h << " block " << bx << "," << by << " k " << k << " accumulator "
+                            << precision.accumulator_bits;
+                }
             }
         }
-    }
 }
 
 TEST(HessianCore, OutsideTheImageIsZero) {

@@ -12,7 +12,8 @@ namespace surfvp::fhg {
 namespace {
 
 TEST(LocalMaxFinder, PackingRoundTrips) {
-    for (const Candidate c : {Candidate{0, 0, 1}, Candidate{1023, 767, 4}, Candidate{4095, 4095, 3}, Candidate{17, 9, 2}}) {
+    for (const Candidate c :
+         {Candidate{0, 0, 1}, Candidate{1023, 767, 4}, Candidate{4095, 4095, 3}, Candidate{17, 9, 2}}) {
         const uint32_t w = pack_candidate(c);
         EXPECT_TRUE(w >> 31) << "valid bit";
         EXPECT_EQ((w >> 27) & 1, uint32_t(c.octave() == 2));
@@ -78,7 +79,8 @@ TEST(LocalMaxFinder, MarksEveryTrueMaximumOnARealImage) {
     const IntegralView ii{values.data(), image.cols, image.rows, size_t(image.cols)};
     const HessianCore core(Precision{});
     const int blocks = image.cols / 2;
-    Planes planes{image.cols, image.rows, std::vector<int32_t>(size_t(blocks) * (image.rows / 2) * kDeterminantsPerBlock)};
+    Planes planes{image.cols, image.rows,
+                  std::vector<int32_t>(size_t(blocks) * (image.rows / 2) * kDeterminantsPerBlock)};
     for (int by = 0; by < image.rows / 2; ++by)
         core.block_row(ii, by, &planes.records[size_t(by) * blocks * kDeterminantsPerBlock]);
 

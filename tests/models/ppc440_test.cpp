@@ -35,7 +35,9 @@ struct Bench {
         cpu.irq.bind(irq);
     }
     // One line over the MCI link whose DDR time is `ddr`.
-    sc_core::sc_time line(uint64_t bytes, const sc_core::sc_time& ddr) const { return MciLink::access_time(mci.params(), bytes, ddr); }
+    sc_core::sc_time line(uint64_t bytes, const sc_core::sc_time& ddr) const {
+        return MciLink::access_time(mci.params(), bytes, ddr);
+    }
     sc_core::sc_time transfer(uint64_t bytes) const { return transfer_time(bytes, memory.bytes_per_second()); }
     void poke(uint32_t address, const std::vector<uint8_t>& bytes) {
         std::copy(bytes.begin(), bytes.end(), memory.backdoor(address, bytes.size()));
@@ -100,7 +102,8 @@ TEST(Ppc440, TimeIsMmioPlusMemoryPlusConsumedCycles) {
 TEST(Ppc440, ComputeStallsForEachFillAndPostsWriteBacks) {
     uint64_t spent = 0;
     Bench bench([&](sw::Hal& hal) {
-        spent = hal.compute(1000, {{0x2000, 100, false}, {0x2020, 100, false}, {0x3000, 900, true}, {0x2040, 950, false}}, 0);
+        spent = hal.compute(1000,
+                            {{0x2000, 100, false}, {0x2020, 100, false}, {0x3000, 900, true}, {0x2040, 950, false}}, 0);
     });
     sc_core::sc_start();
     const sc_core::sc_time fill = bench.line(32, bench.memory.access_time(32));  // 20 ns + 125 ns + 12.5 ns
@@ -124,7 +127,8 @@ std::pair<sc_core::sc_time, uint64_t> burst_of_four(unsigned outstanding, double
     p.critical_word_lead = Duration{uint64_t(lead_ns * 1000)};
     Bench bench(
         [](sw::Hal& hal) {
-            hal.compute(1000, {{0x2000, 100, false}, {0x2100, 100, false}, {0x2200, 100, false}, {0x2300, 100, false}}, 0);
+            hal.compute(1000, {{0x2000, 100, false}, {0x2100, 100, false}, {0x2200, 100, false}, {0x2300, 100, false}},
+                        0);
         },
         p);
     sc_core::sc_start();
@@ -158,7 +162,7 @@ TEST(Ppc440, DdrGrantsTheCpusFillsAndTheDmaInRequestOrder) {
     sc_core::sc_start();
     ASSERT_EQ(bench.memory.port_stats().size(), 2u);
     EXPECT_EQ(bench.memory.port_stats()[1].wait, sc_core::SC_ZERO_TIME);  // the DMA asked first
-    EXPECT_EQ(bench.memory.port_stats()[0].wait, ns(45));                // 1020 -> 1065
+    EXPECT_EQ(bench.memory.port_stats()[0].wait, ns(45));                 // 1020 -> 1065
     EXPECT_EQ(bench.cpu.stats().fill_stall, ns(157.5 + 45));
 }
 
@@ -170,11 +174,15 @@ TEST(Ppc440, WriteBacksOverASynchronisingBusKeepTimeForward) {
     PlbBus bus{"plb", PlbBus::Params{}, tracer};
     sc_core::sc_signal<bool> irq;
     uint64_t spent = 0;
-    Ppc440 cpu("cpu", Ppc440::Params{}, [&](sw::Hal& hal) {
-        std::vector<sw::LineTransfer> lines;
-        for (uint32_t i = 0; i < 10; ++i) lines.push_back({0x4000 + 32 * i, 100, true});  // one record's lines at once
-        spent = hal.compute(200, lines, 0);
-    }, tracer);
+    Ppc440 cpu(
+        "cpu", Ppc440::Params{},
+        [&](sw::Hal& hal) {
+            std::vector<sw::LineTransfer> lines;
+            for (uint32_t i = 0; i < 10; ++i)
+                lines.push_back({0x4000 + 32 * i, 100, true});  // one record's lines at once
+            spent = hal.compute(200, lines, 0);
+        },
+        tracer);
     bus.connect_master(cpu.bus, "cpu");
     bus.connect_master(cpu.mem, "cpu memory");
     bus.slaves.bind(memory.ports);

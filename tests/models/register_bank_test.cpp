@@ -9,7 +9,8 @@ namespace {
 
 const RegisterTable& sample() {
     static const RegisterTable t{
-        "sample", "A block with one register of each kind.",
+        "sample",
+        "A block with one register of each kind.",
         {{"CTRL", 0x0, Access::RW, 0, "", {{"GO", 0, 1, Access::command, ""}, {"EN", 1, 2, Access::RW, ""}}},
          {"STATUS", 0x4, Access::W1C, 0x1, "", {{"BUSY", 0, 1, Access::RO, ""}, {"DONE", 1, 1, Access::W1C, ""}}},
          {"DATA", 0x8, Access::RW, 0xABCD, "", {}},
@@ -53,7 +54,8 @@ TEST(RegisterBank, ResetValuesAndTheRulesOfEachAccess) {
 }
 
 TEST(RegisterBank, ATableWithTwoRegistersAtOneOffsetIsRefused) {
-    static const RegisterTable twice{"twice", "", {{"A", 0x0, Access::RW, 0, "", {}}, {"B", 0x0, Access::RW, 0, "", {}}}};
+    static const RegisterTable twice{
+        "twice", "", {{"A", 0x0, Access::RW, 0, "", {}}, {"B", 0x0, Access::RW, 0, "", {}}}};
     EXPECT_THROW(RegisterBank{twice}, std::logic_error);
 }
 
@@ -70,7 +72,8 @@ TEST(RegisterBank, AFieldOutsideTheWordIsRefused) {
 
 TEST(RegisterBank, DocumentationListsRegistersAndFields) {
     const std::string md = registers_markdown({{&sample(), "Its window is nowhere"}});
-    EXPECT_NE(md.find("## sample\n\nA block with one register of each kind. Its window is nowhere."), std::string::npos) << md;
+    EXPECT_NE(md.find("## sample\n\nA block with one register of each kind. Its window is nowhere."), std::string::npos)
+        << md;
     EXPECT_NE(md.find("| 0x0c | ID | RO | 0x1234 |"), std::string::npos) << md;
     EXPECT_NE(md.find("| 2:1 | EN | RW |"), std::string::npos) << md;
 }
@@ -105,7 +108,8 @@ TEST(FhgRegisters, FifoKeepsTheFirstCandidatesAndCountsTheRest) {
     EXPECT_EQ(get(r::FIFO_LEVEL), 3u);
     EXPECT_EQ(get(r::OVERFLOW_COUNT), 2u);
     EXPECT_EQ(get(r::CANDIDATES), 5u);
-    EXPECT_EQ(get(r::STATUS) & (r::STATUS_FIFO_OVERFLOW | r::STATUS_FIFO_IRQ), r::STATUS_FIFO_OVERFLOW | r::STATUS_FIFO_IRQ);
+    EXPECT_EQ(get(r::STATUS) & (r::STATUS_FIFO_OVERFLOW | r::STATUS_FIFO_IRQ),
+              r::STATUS_FIFO_OVERFLOW | r::STATUS_FIFO_IRQ);
     EXPECT_EQ(get(r::FIFO_DATA), fhg::pack_candidate(found[0]));
     EXPECT_EQ(get(r::FIFO_DATA), fhg::pack_candidate(found[1]));
     EXPECT_FALSE(regs.irq());  // one left, below the threshold

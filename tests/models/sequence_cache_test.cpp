@@ -54,9 +54,9 @@ fs::path only_file(const fs::path& dir) {
 
 TEST(SequenceCache, TextReadsBackAsTheSameSequence) {
     SequenceParams p;
-    for (auto [word, scheduler, buses] : {std::tuple{BusWord::quad, Scheduler::basic, 4u},
-                                          std::tuple{BusWord::scalar, Scheduler::improved, 2u},
-                                          std::tuple{BusWord::pair, Scheduler::improved, 6u}}) {
+    for (auto [word, scheduler, buses] :
+         {std::tuple{BusWord::quad, Scheduler::basic, 4u}, std::tuple{BusWord::scalar, Scheduler::improved, 2u},
+          std::tuple{BusWord::pair, Scheduler::improved, 6u}}) {
         p.bus_word = word, p.scheduler = scheduler, p.read_buses = buses;
         const Sequence s = generate_sequence(p);
         const auto back = read_sequence_text(sequence_text(sequence_key(p), s), sequence_key(p));
@@ -72,7 +72,8 @@ TEST(SequenceCache, KeyNamesEveryParameterAndTheGenerator) {
              [](SequenceParams& q) { q.read_buses = 6; }, [](SequenceParams& q) { q.triple_macs = 17; },
              [](SequenceParams& q) { q.fifo_lines = 40; }, [](SequenceParams& q) { q.x3_cycles = 1; },
              [](SequenceParams& q) { q.bus_word = BusWord::pair; }, [](SequenceParams& q) { q.reuse = false; },
-             [](SequenceParams& q) { q.line_fifo = LineFifo::tdp; }, [](SequenceParams& q) { q.line_fifo = LineFifo::banked; },
+             [](SequenceParams& q) { q.line_fifo = LineFifo::tdp; },
+             [](SequenceParams& q) { q.line_fifo = LineFifo::banked; },
              [](SequenceParams& q) { q.scheduler = Scheduler::improved; }, [](SequenceParams& q) { q.attempts = 3; }}) {
         SequenceParams q = p;
         change(q);
@@ -102,8 +103,8 @@ TEST(SequenceCache, AStoredFileIsReadAndABadOneMadeAgain) {
     const std::string entry = cache_entry(sequence_key(p), text);
     std::string flipped = entry;  // a bit of the last step's last figure flipped, the checksum left
     flipped[flipped.size() - 2] ^= 1;
-    for (const std::string& bad : {entry.substr(0, entry.size() / 2), "generator 0000 " + entry, std::string("hello\n"), text,
-                                   flipped}) {
+    for (const std::string& bad :
+         {entry.substr(0, entry.size() / 2), "generator 0000 " + entry, std::string("hello\n"), text, flipped}) {
         { std::ofstream(file) << bad; }
         expect_same(stored_sequence(p, dir), generated);
         std::ifstream in(file);
@@ -112,8 +113,10 @@ TEST(SequenceCache, AStoredFileIsReadAndABadOneMadeAgain) {
     // A FIFO or a link to an endless device under the entry's name: made again, never blocking.
     for (const bool fifo : {true, false}) {
         fs::remove(file);
-        if (fifo) ASSERT_EQ(::mkfifo(file.c_str(), 0644), 0);
-        else fs::create_symlink("/dev/zero", file);
+        if (fifo)
+            ASSERT_EQ(::mkfifo(file.c_str(), 0644), 0);
+        else
+            fs::create_symlink("/dev/zero", file);
         expect_same(stored_sequence(p, dir), generated);
     }
     fs::remove_all(dir);
@@ -156,7 +159,10 @@ TEST(SequenceCache, ConcurrentRunsShareTheFolder) {
 }
 
 TEST(SequenceCache, FolderFromTheEnvironment) {
-    auto saved = [](const char* name) { const char* v = std::getenv(name); return v ? std::optional<std::string>(v) : std::nullopt; };
+    auto saved = [](const char* name) {
+        const char* v = std::getenv(name);
+        return v ? std::optional<std::string>(v) : std::nullopt;
+    };
     const auto cache = saved("SURFVP_CACHE"), xdg = saved("XDG_CACHE_HOME");
     setenv("SURFVP_CACHE", "off", 1);
     EXPECT_FALSE(sequence_cache_folder().has_value());
@@ -166,8 +172,10 @@ TEST(SequenceCache, FolderFromTheEnvironment) {
     setenv("XDG_CACHE_HOME", "/xdg", 1);
     EXPECT_EQ(sequence_cache_folder(), fs::path("/xdg/surfvp"));
     if (cache) setenv("SURFVP_CACHE", cache->c_str(), 1);
-    if (xdg) setenv("XDG_CACHE_HOME", xdg->c_str(), 1);
-    else unsetenv("XDG_CACHE_HOME");
+    if (xdg)
+        setenv("XDG_CACHE_HOME", xdg->c_str(), 1);
+    else
+        unsetenv("XDG_CACHE_HOME");
 }
 
 }  // namespace

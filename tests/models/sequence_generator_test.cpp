@@ -106,7 +106,8 @@ TEST(SequenceGenerator, AWordReadsOnlyTheValuesItsTapsTake) {
     p.reuse = false;
     p.line_fifo = LineFifo::tdp;
     const Sequence s = generate_sequence(p);
-    const auto single = std::find_if(s.steps.begin(), s.steps.end(), [](const Step& st) { return st.taps.size() == 1; });
+    const auto single =
+        std::find_if(s.steps.begin(), s.steps.end(), [](const Step& st) { return st.taps.size() == 1; });
     ASSERT_NE(single, s.steps.end()) << "the basic script delivers octave 2's values one a word";
     Sequence cycle;
     cycle.interval = s.interval;
@@ -214,8 +215,9 @@ TEST(SequenceGenerator, CheckerCatchesEveryBrokenLimit) {
 
     // Two quads of the same cycle on line 0, each taken whole: more reads than its two ports.
     Sequence crowded = s;
-    crowded.steps.erase(std::remove_if(crowded.steps.begin(), crowded.steps.end(), [](const Step& st) { return st.cycle == 0; }),
-                        crowded.steps.end());
+    crowded.steps.erase(
+        std::remove_if(crowded.steps.begin(), crowded.steps.end(), [](const Step& st) { return st.cycle == 0; }),
+        crowded.steps.end());
     auto whole_quad = [](int first_tm) {
         std::vector<Tap> taps;
         for (int lane = 0; lane < 4; ++lane) taps.push_back({first_tm + lane, lane, 1, Response::xy});
@@ -223,7 +225,8 @@ TEST(SequenceGenerator, CheckerCatchesEveryBrokenLimit) {
     };
     crowded.steps.push_back({0, 1, -1, 0, whole_quad(0)});
     crowded.steps.push_back({0, 2, 5, 0, whole_quad(4)});
-    EXPECT_NE(check_sequence(crowded, p).find("serves more than 2 reads"), std::string::npos) << check_sequence(crowded, p);
+    EXPECT_NE(check_sequence(crowded, p).find("serves more than 2 reads"), std::string::npos)
+        << check_sequence(crowded, p);
 
     // A word outside the 52 x 52 window.
     Sequence outside = s;

@@ -25,8 +25,8 @@ TEST(TimeSeries, LevelsCarryForwardAndKeepTheHighestInABin) {
 
 TEST(TimeSeries, ALongRunMergesBinsByTwosAndKeepsTheBusyTime) {
     TimeSeries s(kMs);
-    s.busy(0, kMs);                   // bin 0 all busy
-    s.busy(kMs, kMs + kMs / 2);       // bin 1 half busy
+    s.busy(0, kMs);              // bin 0 all busy
+    s.busy(kMs, kMs + kMs / 2);  // bin 1 half busy
     EXPECT_EQ(s.values().size(), 2u);
     const uint64_t end = TimeSeries::kMaxBins * kMs;  // the first time past kMaxBins bins of 1 ms
     s.busy(end, end + kMs);

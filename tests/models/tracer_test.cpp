@@ -64,7 +64,8 @@ TEST(Tracer, ManyBatchesKeepEveryEventInOrder) {
             if (i % 10000 == 9999) track = tracer.track("g" + std::to_string(i), "t");
             tracer.slice(track, "s" + std::to_string(i), sc_core::sc_time(double(i), sc_core::SC_PS),
                          sc_core::sc_time(double(i + 1), sc_core::SC_PS));
-            tracer.counter(track, "c", sc_core::sc_time(double(i), sc_core::SC_PS), double(i / 2));  // every other repeats
+            tracer.counter(track, "c", sc_core::sc_time(double(i), sc_core::SC_PS),
+                           double(i / 2));  // every other repeats
         }
         tracer.finish();
     }

@@ -25,13 +25,13 @@ TEST(VcdWriter, WritesScopesInNameOrderAndEachStepsChangesInTheOrderAdded) {
     const int level = vcd.add("fhg.level", 32, 5);
     const int task = vcd.add("sw.task", 32, 0xffffffffu);  // -1 as a 32-bit word
     const int irq = vcd.add("irq.fhg", 1, 0);
-    vcd.change(irq, 1, 0);          // at time 0: part of the initial values
+    vcd.change(irq, 1, 0);  // at time 0: part of the initial values
     vcd.change(level, 6, 1000);
-    vcd.change(busy, 1, 1000);      // the same step: written before level, which was added later
+    vcd.change(busy, 1, 1000);  // the same step: written before level, which was added later
     vcd.change(task, 3, 2000);
-    vcd.change(task, 4, 2000);      // the step's last value counts
+    vcd.change(task, 4, 2000);  // the step's last value counts
     vcd.change(busy, 0, 3000);
-    vcd.change(busy, 1, 3000);      // back to the written value in the same step: nothing to write
+    vcd.change(busy, 1, 3000);  // back to the written value in the same step: nothing to write
     vcd.change(level, 0, 4000);
     ASSERT_TRUE(vcd.close(5000));
     EXPECT_EQ(after_date(slurp(path)),

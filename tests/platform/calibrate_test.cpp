@@ -17,13 +17,16 @@ namespace {
 // value), and the table it fits prices the work as the recorded table re-timed there does.
 TEST(Calibrate, RunsTheStageUnderTheIssAndFitsItsPrices) {
     const std::string dir = fresh_dir("calibrate");
-    const Cli r = surfvp("calibrate --fit budget_1024x768 --check none --frames 1 --no-probes --set surf.width=256 "
-                         "--set surf.height=192 --set apu.load_issue=2cycles --set apu.outstanding_loads=2 --quiet --out " + dir);
+    const Cli r = surfvp(
+        "calibrate --fit budget_1024x768 --check none --frames 1 --no-probes --set surf.width=256 "
+        "--set surf.height=192 --set apu.load_issue=2cycles --set apu.outstanding_loads=2 --quiet --out " +
+        dir);
     ASSERT_EQ(r.exit_code, 0) << r.err;
     EXPECT_NE(r.out.find("| descriptor |"), std::string::npos) << r.out;
     const auto report = nlohmann::json::parse(slurp(dir + "/calibration_report.json"));
     ASSERT_EQ(report["runs"].size(), 2u);  // exact and rounded Haar
-    const auto recorded = nlohmann::json::parse(slurp(std::string(SURFVP_SOURCE_DIR) + "/sw/cpu_cost/calibration.json"));
+    const auto recorded =
+        nlohmann::json::parse(slurp(std::string(SURFVP_SOURCE_DIR) + "/sw/cpu_cost/calibration.json"));
     for (const auto& run : report["runs"]) {
         const std::string haar = run["haar"];
         EXPECT_TRUE(run["results"]["agree"].get<bool>()) << run["results"].dump();

@@ -72,8 +72,7 @@ TEST(Cli, SmokeVcdHasBusyLinesAndInterrupts) {
     EXPECT_GT(vcd.rises("plb1.read_busy"), 0u);
     // Its GTKWave save file shows every traced signal and names the files by absolute path.
     const std::string gtkw = slurp(out + "/trace.gtkw");
-    for (const auto& [name, changes] : vcd.changes)
-        EXPECT_NE(gtkw.find("SystemC." + name), std::string::npos) << name;
+    for (const auto& [name, changes] : vcd.changes) EXPECT_NE(gtkw.find("SystemC." + name), std::string::npos) << name;
     EXPECT_NE(gtkw.find("[dumpfile] \"" + fs::absolute(out).string() + "/trace.vcd\""), std::string::npos) << gtkw;
     EXPECT_EQ(slurp(out + "/trace.tasks.txt"), "4294967295 none\n");
 }
@@ -89,7 +88,7 @@ TEST(Cli, SmokePerfettoTraceIsValidJsonWithTracksAndSlices) {
     for (const auto& e : trace["traceEvents"]) {
         if (e["ph"] == "M" && e["name"] == "process_name") processes[e["pid"]] = e["args"]["name"];
         if (e["ph"] == "M" && e["name"] == "thread_name") tracks.insert(e["args"]["name"].get<std::string>());
-        if (e["ph"] == "X" && e["name"] == "write 256 B") ++dma_bursts;    // the master's track
+        if (e["ph"] == "X" && e["name"] == "write 256 B") ++dma_bursts;      // the master's track
         if (e["ph"] == "X" && e["name"] == "dma write 256 B") ++bus_bursts;  // the bus's write-data track
         if (e["ph"] == "X" && processes[e["pid"]] == "cpu") ++cpu_spans;
         if (e["ph"] == "C") ++counters;
@@ -119,7 +118,8 @@ TEST(Cli, SameScenarioGivesTheSameBytes) {
     EXPECT_EQ(slurp(a + "/config.yaml"), slurp(b + "/config.yaml"));
     // VCD: all but SystemC's $date header; reports: all but the fields they list as wall-clock.
     const std::regex date(R"(\$date[^$]*\$end)");
-    EXPECT_EQ(std::regex_replace(slurp(a + "/trace.vcd"), date, ""), std::regex_replace(slurp(b + "/trace.vcd"), date, ""));
+    EXPECT_EQ(std::regex_replace(slurp(a + "/trace.vcd"), date, ""),
+              std::regex_replace(slurp(b + "/trace.vcd"), date, ""));
     auto ja = nlohmann::json::parse(slurp(a + "/report.json")), jb = nlohmann::json::parse(slurp(b + "/report.json"));
     for (const auto& field : ja["wall_clock_fields"]) {
         ja.erase(field.get<std::string>());
@@ -261,7 +261,8 @@ TEST(Cli, BenchGivesTheFiguresAndTheTargets) {
     EXPECT_GT(j["traces_none"]["startup_ms"].get<double>(), 0.0);
     EXPECT_LT(j["traces_none"]["startup_ms"].get<double>(), 10000.0);
     EXPECT_GT(j["traces_none"]["peak_rss_mb"].get<double>(), 1.0);
-    for (const char* target : {"wall_per_frame_ms", "traces_all_over_none", "startup_ms", "peak_rss_mb", "real_time_factor"})
+    for (const char* target :
+         {"wall_per_frame_ms", "traces_all_over_none", "startup_ms", "peak_rss_mb", "real_time_factor"})
         EXPECT_TRUE(j["targets"][target].contains("met")) << target;
     EXPECT_FALSE(j.contains("float_reference"));  // the smoke scenario runs no SURF
     EXPECT_FALSE(j.contains("direct"));           // nor direct mode, which runs SURF only
@@ -310,8 +311,10 @@ TEST(Cli, BenchOnASurfScenarioGivesDirectModesFiguresAndItsSpeedUp) {
 TEST(Cli, ARunsReportTimesItsFramesOnTheWallClock) {
     for (const std::string mode : {"", " --direct"}) {
         const std::string out = fresh_dir("frame_wall" + std::to_string(mode.size()));
-        const auto r = surfvp("run budget_1024x768 --quiet --trace none --set surf.frames=4 --set budget.fps=0 --set verdict.band=off "
-                              "--set verdict.break_even=off --set verdict.software=off --out " + out + mode);
+        const auto r = surfvp(
+            "run budget_1024x768 --quiet --trace none --set surf.frames=4 --set budget.fps=0 --set verdict.band=off "
+            "--set verdict.break_even=off --set verdict.software=off --out " +
+            out + mode);
         ASSERT_EQ(r.exit_code, 0) << r.err;
         const auto j = nlohmann::json::parse(slurp(out + "/report.json"));
         const auto times = j["frame_wall_s"].get<std::vector<double>>();

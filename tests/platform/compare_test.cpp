@@ -12,12 +12,14 @@ namespace surfvp::test {
 namespace {
 using Json = nlohmann::json;
 
-const std::string kSmall = kOneRun + " --trace none --quiet --set surf.frames=3 --set surf.width=256 --set surf.height=192"
-                                     " --set surf.target_keypoints=20 --set budget.fps=40";
+const std::string kSmall = kOneRun +
+                           " --trace none --quiet --set surf.frames=3 --set surf.width=256 --set surf.height=192"
+                           " --set surf.target_keypoints=20 --set budget.fps=40";
 
 TEST(Compare, ARunAgainstAnEarlierOneGivesEachFigureItsChange) {
     const std::string a = fresh_dir("cmp_a"), b = fresh_dir("cmp_b");
-    ASSERT_EQ(surfvp("run " + kBudget + kSmall + " --set fhg.clock=25MHz --out " + a).exit_code, 1);  // misses 40 frames/s
+    ASSERT_EQ(surfvp("run " + kBudget + kSmall + " --set fhg.clock=25MHz --out " + a).exit_code,
+              1);  // misses 40 frames/s
     const auto r = surfvp("run " + kBudget + kSmall + " --set 'fhg.clock=50 MHz' --out " + b + " --compare-to " + a);
     ASSERT_EQ(r.exit_code, 0) << r.err;
     const Json c = Json::parse(slurp(b + "/compare.json"));
@@ -42,8 +44,9 @@ TEST(Compare, ARunAgainstAnEarlierOneGivesEachFigureItsChange) {
 TEST(Compare, SweepPointsSideBySide) {
     const std::string dir = fresh_dir("cmp_sweep");
     const std::string file = write_file(dir, "s.yaml",
-                                        "scenario: " + kBudget + "\nset: {surf.frames: 3, surf.width: 256, surf.height: 192}\n"
-                                        "axes:\n  fhg.read_buses: [2, 4]\n");
+                                        "scenario: " + kBudget +
+                                            "\nset: {surf.frames: 3, surf.width: 256, surf.height: 192}\n"
+                                            "axes:\n  fhg.read_buses: [2, 4]\n");
     ASSERT_EQ(surfvp("sweep " + file + " --quiet --out " + dir + "/out").exit_code, 0);
     const auto r = surfvp("compare " + dir + "/out@0 " + dir + "/out@1 --json " + dir + "/c.json");
     ASSERT_EQ(r.exit_code, 0) << r.err;

@@ -47,12 +47,14 @@ TEST(Correlate, TheDefaultsLieInTheRegionThatReproducesThePaper) {
 
 TEST(Correlate, AnotherFrameSizeIsOutsideAndSaysWhy) {
     const std::string out = fresh_dir("correlate_small");
-    const auto run = surfvp("correlate budget_1024x768 --quiet --set surf.width=512 --set surf.height=384 --out " + out);
+    const auto run =
+        surfvp("correlate budget_1024x768 --quiet --set surf.width=512 --set surf.height=384 --out " + out);
     ASSERT_EQ(run.exit_code, 0) << run.err;
     const auto r = nlohmann::json::parse(slurp(out + "/correlate.json"));
     EXPECT_FALSE(r["defaults"]["inside"].get<bool>());
     EXPECT_NE(r["defaults"]["why"].get<std::string>().find("is not about 10"), std::string::npos) << r["defaults"];
-    EXPECT_EQ(surfvp("correlate smoke --quiet --out " + fresh_dir("correlate_smoke")).exit_code, 2);  // not a SURF scenario
+    EXPECT_EQ(surfvp("correlate smoke --quiet --out " + fresh_dir("correlate_smoke")).exit_code,
+              2);  // not a SURF scenario
 }
 
 }  // namespace

@@ -12,13 +12,20 @@ namespace {
 using Json = nlohmann::ordered_json;
 
 Json report(int width, int height, double fps, double keypoints, double overhead, double watts) {
-    const Json basic = {{"cycles_per_block", 53}, {"words", 192}, {"busy_bus_cycles", 48}, {"idle_bus_overhead", overhead},
+    const Json basic = {{"cycles_per_block", 53},
+                        {"words", 192},
+                        {"busy_bus_cycles", 48},
+                        {"idle_bus_overhead", overhead},
                         {"overhead", overhead}};
     return {{"image", {{"width", width}, {"height", height}}},
             {"throughput_fps", fps},
             {"keypoints_per_frame", keypoints},
-            {"fhg", {{"schedules", {{"basic", basic}, {"machine", {{"read_buses", 4}}}, {"scheduler", "basic"},
-                                    {"optimal", {{"cycles_per_block", 48}, {"limit", "TripleMAC work"}}}}}}},
+            {"fhg",
+             {{"schedules",
+               {{"basic", basic},
+                {"machine", {{"read_buses", 4}}},
+                {"scheduler", "basic"},
+                {"optimal", {{"cycles_per_block", 48}, {"limit", "TripleMAC work"}}}}}}},
             {"power", {{"watts", watts}}}};
 }
 

@@ -42,7 +42,7 @@ TEST(Determinism, TheBudgetScenarioTwiceGivesTheSameBytes) {
         ASSERT_EQ(r.exit_code, 1) << r.err;  // the budget is missed at the defaults
     }
     const std::string json[2] = {slurp(dirs[0] + "/report.json"), slurp(dirs[1] + "/report.json")};
-    EXPECT_NE(json[0], json[1]);  // the wall clock differs...
+    EXPECT_NE(json[0], json[1]);                                          // the wall clock differs...
     EXPECT_EQ(without_wall_clock(json[0]), without_wall_clock(json[1]));  // ...and nothing else
     EXPECT_EQ(without_lines_containing(slurp(dirs[0] + "/report.md"), "wall"),
               without_lines_containing(slurp(dirs[1] + "/report.md"), "wall"));

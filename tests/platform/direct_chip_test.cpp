@@ -144,7 +144,8 @@ TEST(DirectChip, FillsCountedCostWhatFillsListedCost) {
     config.set("memory.size", "4 MiB", "test");
     DirectChip listed(config, 1), counted(config, 1), burst(config, 1);
     EXPECT_TRUE(counted.times_fills());
-    const std::vector<sw::LineTransfer> lines{{0x1000, 10, false}, {0x1020, 20, false}, {0x2000, 30, true}, {0x1040, 40, false}};
+    const std::vector<sw::LineTransfer> lines{
+        {0x1000, 10, false}, {0x1020, 20, false}, {0x2000, 30, true}, {0x1040, 40, false}};
     const uint64_t a = listed.compute(500, lines, 0);
     const uint64_t b = counted.compute(500, {{0x2000, 30, true}}, 3);
     EXPECT_EQ(a, b);

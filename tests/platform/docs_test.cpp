@@ -55,8 +55,10 @@ std::set<std::string> heading_anchors(const std::string& markdown) {
         std::string slug;
         for (char c : line.substr(text + 1)) {
             const unsigned char u = static_cast<unsigned char>(c);
-            if (std::isalnum(u) || c == '-' || c == '_' || u >= 0x80) slug += static_cast<char>(std::tolower(u));
-            else if (c == ' ') slug += '-';
+            if (std::isalnum(u) || c == '-' || c == '_' || u >= 0x80)
+                slug += static_cast<char>(std::tolower(u));
+            else if (c == ' ')
+                slug += '-';
         }
         const int n = seen[slug]++;
         anchors.insert(n == 0 ? slug : slug + "-" + std::to_string(n));
@@ -132,9 +134,10 @@ TEST(Docs, EveryCitedAnchorIsAHeading) {
 TEST(Docs, ReadmeFiguresOfTheDefaultScenarioAreCurrent) {
     const std::string readme = test::slurp((kRoot / "README.md").string());
     std::smatch m;
-    ASSERT_TRUE(std::regex_search(readme, m,
-                                  std::regex(R"(\*\*Correlation\*\* table: ([0-9.]+) frames/s[^%]*?a basic script ([0-9.]+) %)"
-                                             R"([^W]*?([0-9.]+) W against)")))
+    ASSERT_TRUE(
+        std::regex_search(readme, m,
+                          std::regex(R"(\*\*Correlation\*\* table: ([0-9.]+) frames/s[^%]*?a basic script ([0-9.]+) %)"
+                                     R"([^W]*?([0-9.]+) W against)")))
         << "README.md no longer states the default scenario's frames/s, basic script and watts in the form this "
            "test reads";
     const std::string fps = m[1], overhead = m[2], watts = m[3];

@@ -80,7 +80,8 @@ TEST(Doubt, PercentilesProbabilityAndSensitivityOfAKnownChip) {
     std::sort(rates.begin(), rates.end());
     EXPECT_NEAR(j["fps"]["p50"].get<double>(), rates[99], 1e-9);  // the middle of 199
     EXPECT_DOUBLE_EQ(j["fps"]["min"].get<double>(), rates.front());
-    const double met = double(std::count_if(rates.begin(), rates.end(), [](double r) { return r >= 10; })) / double(rates.size());
+    const double met =
+        double(std::count_if(rates.begin(), rates.end(), [](double r) { return r >= 10; })) / double(rates.size());
     EXPECT_DOUBLE_EQ(j["probability_met"].get<double>(), met);
     EXPECT_GT(j["surrogate"]["r2"].get<double>(), 0.95);  // the chip is log-linear per resource
     std::map<std::string, std::pair<double, double>> s;

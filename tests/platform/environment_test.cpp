@@ -22,7 +22,8 @@ namespace surfvp::test {
 namespace {
 namespace fs = std::filesystem;
 
-const std::string kShort = kOneRun + " --set surf.frames=3 --set surf.width=512 --set surf.height=384 --set budget.fps=0";
+const std::string kShort =
+    kOneRun + " --set surf.frames=3 --set surf.width=512 --set surf.height=384 --set budget.fps=0";
 
 TEST(Environment, ValuesThatDoNotFitOrAreNotNumbersAreBadInput) {
     for (const char* set : {"'fhg.recip_shift=4294967306 bit'", "'fhg.x3_cycles=1e30 cycles'", "budget.fps=nan",
@@ -48,7 +49,8 @@ TEST(Environment, AFullDiskWhileTracingEndsWithItsOwnExitCodeAndNoPartialFile) {
     for (const char* trace : {"perfetto", "vcd"}) {
         const std::string out = fresh_dir(std::string("full_") + trace);
         std::string err;
-        EXPECT_EQ(run_with_file_limit("run " + kBudget + " --quiet --trace " + trace + " --out " + out + kShort, 64, err), 4)
+        EXPECT_EQ(
+            run_with_file_limit("run " + kBudget + " --quiet --trace " + trace + " --out " + out + kShort, 64, err), 4)
             << err;
         EXPECT_NE(err.find("surfvp: cannot write: " + out + "/trace."), std::string::npos) << err;
         for (const auto& f : fs::directory_iterator(out))
@@ -63,8 +65,10 @@ TEST(Environment, AFullDiskWhileWritingKeypointsEndsWithItsOwnExitCode) {
     for (const char* mode : {" --trace none", " --direct"}) {
         const std::string out = fresh_dir(std::string("full_keypoints") + (mode[3] == 'd' ? "_direct" : ""));
         std::string err;
-        EXPECT_EQ(run_with_file_limit("run " + kBudget + " --quiet --out " + out + kShort + mode, 8, err), 4) << mode << err;
-        EXPECT_NE(err.find("surfvp: cannot write: " + out + "/keypoints/frame_0000.surf"), std::string::npos) << mode << err;
+        EXPECT_EQ(run_with_file_limit("run " + kBudget + " --quiet --out " + out + kShort + mode, 8, err), 4)
+            << mode << err;
+        EXPECT_NE(err.find("surfvp: cannot write: " + out + "/keypoints/frame_0000.surf"), std::string::npos)
+            << mode << err;
         EXPECT_FALSE(fs::exists(out + "/keypoints")) << mode;
     }
 }
@@ -76,15 +80,18 @@ TEST(Environment, TwoRunsOnOneFolderDoNotCorruptEachOther) {
     // Long enough (40 frames) that it is still running when killed.
     std::string long_run = kShort;
     long_run.replace(long_run.find("surf.frames=3"), 13, "surf.frames=40");
-    const std::string run = std::string(SURFVP_BINARY) + " run " + kBudget + " --quiet --trace all --out " + out + long_run;
+    const std::string run =
+        std::string(SURFVP_BINARY) + " run " + kBudget + " --quiet --trace all --out " + out + long_run;
     const std::string codes = fresh_path("twice.codes"), errors = fresh_path("twice.err");
-    const int status = std::system(("(" + run + "; echo $? >>" + codes + ") 2>>" + errors + " & (" + run + "; echo $? >>" +
-                                    codes + ") 2>>" + errors + "; wait").c_str());
+    const int status = std::system(("(" + run + "; echo $? >>" + codes + ") 2>>" + errors + " & (" + run +
+                                    "; echo $? >>" + codes + ") 2>>" + errors + "; wait")
+                                       .c_str());
     ASSERT_TRUE(WIFEXITED(status));
     std::string sorted = slurp(codes);
     std::sort(sorted.begin(), sorted.end());
     EXPECT_EQ(sorted, "\n\n04") << slurp(errors);
-    EXPECT_NE(slurp(errors).find("surfvp: cannot write: --out " + out + ": another surfvp run (pid "), std::string::npos)
+    EXPECT_NE(slurp(errors).find("surfvp: cannot write: --out " + out + ": another surfvp run (pid "),
+              std::string::npos)
         << slurp(errors);
     EXPECT_NO_THROW(nlohmann::json::parse(slurp(out + "/trace.perfetto.json")));
     EXPECT_NO_THROW(nlohmann::json::parse(slurp(out + "/report.json")));
@@ -105,8 +112,8 @@ TEST(Environment, AReusedFolderHoldsOnlyTheLastRunsFiles) {
     two_frames.replace(two_frames.find("surf.frames=3"), 13, "surf.frames=2");
     ASSERT_EQ(surfvp("run " + kBudget + " --quiet --trace none --out " + out + two_frames).exit_code, 0);
     EXPECT_TRUE(fs::exists(out + "/keypoints/frame_0001.surf"));
-    for (const char* gone : {"keypoints/frame_0002.surf", "keypoints/frame_0002.surf.meta", "trace.vcd", "trace.perfetto.json",
-                             "trace.gtkw"})
+    for (const char* gone : {"keypoints/frame_0002.surf", "keypoints/frame_0002.surf.meta", "trace.vcd",
+                             "trace.perfetto.json", "trace.gtkw"})
         EXPECT_FALSE(fs::exists(out + "/" + gone)) << gone;
     EXPECT_EQ(slurp(out + "/notes.txt"), "mine");
     EXPECT_EQ(nlohmann::json::parse(slurp(out + "/report.json"))["frames"], 2);
@@ -126,14 +133,18 @@ TEST(Environment, AFailedOrKilledRunLeavesTheEarlierOutputIntact) {
     // Long enough (40 frames) that it is still running when killed.
     std::string long_run = kShort;
     long_run.replace(long_run.find("surf.frames=3"), 13, "surf.frames=40");
-    const std::string run = std::string(SURFVP_BINARY) + " run " + kBudget + " --quiet --trace all --out " + out + long_run;
+    const std::string run =
+        std::string(SURFVP_BINARY) + " run " + kBudget + " --quiet --trace all --out " + out + long_run;
     // Killed once its run folder exists beside the published one.
-    std::system(("(" + run + " 2>/dev/null & pid=$!; while [ $(ls " + out + "/.surfvp-runs | wc -l) -lt 2 ]; do sleep 0.05; done;"
-                 " sleep 0.3; kill -9 $pid; wait $pid) 2>/dev/null").c_str());
+    std::system(("(" + run + " 2>/dev/null & pid=$!; while [ $(ls " + out +
+                 "/.surfvp-runs | wc -l) -lt 2 ]; do sleep 0.05; done;"
+                 " sleep 0.3; kill -9 $pid; wait $pid) 2>/dev/null")
+                    .c_str());
     EXPECT_EQ(slurp(out + "/report.json"), before);
     const auto next = surfvp("run " + kBudget + " --quiet --trace none --out " + out + kShort);
     ASSERT_EQ(next.exit_code, 0);
-    EXPECT_NE(next.err.find("took over the stale lock of a run that did not finish (pid "), std::string::npos) << next.err;
+    EXPECT_NE(next.err.find("took over the stale lock of a run that did not finish (pid "), std::string::npos)
+        << next.err;
     EXPECT_EQ(std::distance(fs::directory_iterator(out + "/.surfvp-runs"), fs::directory_iterator()), 1);
     // A run that finished leaves nothing stale: the one after it says nothing.
     EXPECT_EQ(surfvp("run " + kBudget + " --quiet --trace none --out " + out + kShort).err, "");
@@ -154,9 +165,11 @@ size_t surf_files(const std::string& dir) {
     if (!fs::exists(out + "/report.json")) return ::testing::AssertionSuccess() << "nothing published yet";
     const auto frames = nlohmann::json::parse(slurp(out + "/report.json"))["frames"].get<int>();
     if (surf_files(out + "/keypoints") != size_t(frames))
-        return ::testing::AssertionFailure() << surf_files(out + "/keypoints") << " keypoint files beside a report of " << frames;
+        return ::testing::AssertionFailure()
+               << surf_files(out + "/keypoints") << " keypoint files beside a report of " << frames;
     if (fs::exists(out + "/trace.vcd") != (frames == 2))
-        return ::testing::AssertionFailure() << "traces " << (frames == 2 ? "missing from" : "beside") << " a run of " << frames;
+        return ::testing::AssertionFailure()
+               << "traces " << (frames == 2 ? "missing from" : "beside") << " a run of " << frames;
     for (const auto& e : fs::directory_iterator(out))
         if (e.path().filename().string()[0] != '.' && !fs::exists(e.path()) &&
             !(dangling_allowed && fs::is_symlink(e.path()) &&
@@ -169,10 +182,11 @@ size_t surf_files(const std::string& dir) {
 // instant, the folder holds one run's set: the run before the kill or the killed one, whole.
 TEST(Environment, AKillAtAnyInstantLeavesOneRunsWholeSet) {
     const std::string out = fresh_dir("killed_at_random");
-    const std::string settings = kOneRun + " --set surf.width=256 --set surf.height=192 --set budget.fps=0 --quiet --out " + out;
+    const std::string settings =
+        kOneRun + " --set surf.width=256 --set surf.height=192 --set budget.fps=0 --quiet --out " + out;
     const auto command = [&](int frames) {
-        return std::string(SURFVP_BINARY) + " run " + kBudget + settings + " --set surf.frames=" + std::to_string(frames) +
-               (frames == 2 ? " --trace all" : " --trace none");
+        return std::string(SURFVP_BINARY) + " run " + kBudget + settings +
+               " --set surf.frames=" + std::to_string(frames) + (frames == 2 ? " --trace all" : " --trace none");
     };
     const auto start = std::chrono::steady_clock::now();
     ASSERT_EQ(std::system(command(1).c_str()), 0);
@@ -183,7 +197,8 @@ TEST(Environment, AKillAtAnyInstantLeavesOneRunsWholeSet) {
     for (int kill = 0; kill < 40; ++kill) {
         const std::string before = slurp(out + "/report.json");
         std::system(("(" + command(1 + kill % 2) + " 2>/dev/null & pid=$!; sleep " + std::to_string(instant(random)) +
-                     "; kill -9 $pid; wait $pid) 2>/dev/null").c_str());
+                     "; kill -9 $pid; wait $pid) 2>/dev/null")
+                        .c_str());
         ASSERT_TRUE(one_runs_set(out, true)) << "kill " << kill;
         (slurp(out + "/report.json") == before ? kept : changed)++;
     }
@@ -208,9 +223,10 @@ TEST(Environment, AnotherUsersStaleLockIsTakenOverWithAWarning) {
     const std::string binary = shared + "/surfvp", scenario = shared + "/smoke.yaml";
     fs::copy_file(SURFVP_BINARY, binary);
     fs::copy_file(std::string(SURFVP_SOURCE_DIR) + "/scenarios/smoke.yaml", scenario);
-    fs::permissions(binary, fs::perms::owner_all | fs::perms::group_read | fs::perms::group_exec | fs::perms::others_read |
-                                fs::perms::others_exec);
-    fs::permissions(scenario, fs::perms::owner_read | fs::perms::owner_write | fs::perms::group_read | fs::perms::others_read);
+    fs::permissions(binary, fs::perms::owner_all | fs::perms::group_read | fs::perms::group_exec |
+                                fs::perms::others_read | fs::perms::others_exec);
+    fs::permissions(scenario,
+                    fs::perms::owner_read | fs::perms::owner_write | fs::perms::group_read | fs::perms::others_read);
     for (const char* kind : {"plain", "sticky"}) {
         const std::string out = shared + "/" + kind;
         fs::create_directory(out);
@@ -218,10 +234,12 @@ TEST(Environment, AnotherUsersStaleLockIsTakenOverWithAWarning) {
         write_file(out, ".surfvp.lock", "999999\n");  // root's, 0644, no process holds it
         const std::string err = fresh_path(std::string(kind) + ".err");
         const int status = std::system(("SURFVP_CACHE=off setpriv --reuid=65534 --regid=65534 --clear-groups " +
-                                        binary + " run " + scenario + " -q --out " + out + " 2>" + err).c_str());
+                                        binary + " run " + scenario + " -q --out " + out + " 2>" + err)
+                                           .c_str());
         EXPECT_EQ(WIFEXITED(status) ? WEXITSTATUS(status) : -1, 0) << kind << ": " << slurp(err);
         EXPECT_NE(slurp(err).find("took over the stale lock of another user's run (pid 999999, no longer running)"),
-                  std::string::npos) << kind << ": " << slurp(err);
+                  std::string::npos)
+            << kind << ": " << slurp(err);
         EXPECT_TRUE(fs::exists(out + "/report.json")) << kind;
     }
 }
@@ -230,13 +248,16 @@ TEST(Environment, AnotherUsersStaleLockIsTakenOverWithAWarning) {
 // (5), naming what it could not have, neither blaming the scenario (2) nor calling it a bug (3).
 TEST(Environment, OutOfMemoryIsItsOwnOutcomeNamingTheAllocation) {
     const std::vector<std::tuple<std::string, unsigned, std::string>> cases = {
-        {"run smoke --quiet", 150000, "surfvp: out of memory: the modelled DDR memory (memory, memory.size): cannot have 256 MiB"},
+        {"run smoke --quiet", 150000,
+         "surfvp: out of memory: the modelled DDR memory (memory, memory.size): cannot have 256 MiB"},
         {"run " + kBudget + kShort + " --set 'memory.size=1 MiB' --quiet", 200000,
          "surfvp: out of memory: mapping the image and video plugin "}};
     for (const auto& [args, kib, says] : cases) {
         const std::string err = fresh_path("oom.err");
-        const int status = std::system(("bash -c \"ulimit -v " + std::to_string(kib) + "; SURFVP_CACHE=off exec " +
-                                        std::string(SURFVP_BINARY) + " " + args + " --out " + fresh_dir("oom") + "\" 2>" + err).c_str());
+        const int status =
+            std::system(("bash -c \"ulimit -v " + std::to_string(kib) + "; SURFVP_CACHE=off exec " +
+                         std::string(SURFVP_BINARY) + " " + args + " --out " + fresh_dir("oom") + "\" 2>" + err)
+                            .c_str());
         EXPECT_EQ(WIFEXITED(status) ? WEXITSTATUS(status) : -1, 5) << args << ": " << slurp(err);
         EXPECT_NE(slurp(err).find(says), std::string::npos) << args << ": " << slurp(err);
     }
@@ -245,8 +266,8 @@ TEST(Environment, OutOfMemoryIsItsOwnOutcomeNamingTheAllocation) {
 // A truncated image and video plugin is refused before the loader maps it (it faulted with
 // SIGBUS when a segment lay past the file's end), naming the plugin and what is wrong.
 TEST(Environment, ATruncatedMediaPluginIsRefusedNotMapped) {
-    const std::string plugin = slurp(std::string(SURFVP_BINARY).substr(0, std::string(SURFVP_BINARY).rfind('/')) +
-                                     "/libsurfvp_media.so");
+    const std::string plugin =
+        slurp(std::string(SURFVP_BINARY).substr(0, std::string(SURFVP_BINARY).rfind('/')) + "/libsurfvp_media.so");
     ASSERT_GT(plugin.size(), 8000u);
     std::string segments_cut = plugin.substr(0, plugin.size() / 2);
     const uint64_t none = 0;  // no section headers: only the segments can tell the cut
@@ -260,8 +281,10 @@ TEST(Environment, ATruncatedMediaPluginIsRefusedNotMapped) {
              {"#!/bin/sh\n", "not a 64-bit ELF shared object"}}) {
         const std::string file = write_file(dir, "libsurfvp_media.so", bytes);
         const std::string err = fresh_path("plugin.err");
-        const int status = std::system(("SURFVP_CACHE=off SURFVP_MEDIA_PLUGIN=" + file + " " + std::string(SURFVP_BINARY) + " run " +
-                                        kBudget + kShort + " --quiet --out " + dir + "/out 2>" + err).c_str());
+        const int status =
+            std::system(("SURFVP_CACHE=off SURFVP_MEDIA_PLUGIN=" + file + " " + std::string(SURFVP_BINARY) + " run " +
+                         kBudget + kShort + " --quiet --out " + dir + "/out 2>" + err)
+                            .c_str());
         EXPECT_EQ(WIFEXITED(status) ? WEXITSTATUS(status) : -1, 2) << says << ": " << slurp(err);
         EXPECT_NE(slurp(err).find("cannot load the image and video plugin " + file + ": " + says), std::string::npos)
             << slurp(err);

@@ -26,7 +26,8 @@ void expect_refused(const Cli& r, const std::vector<std::string>& words, const s
     const std::string line = first_line(r.err);
     const std::string prefix = code == 4 ? "surfvp: cannot write: " : "surfvp: error: ";
     EXPECT_EQ(line.rfind(prefix, 0), 0u) << what << ": " << r.err;
-    for (const std::string& w : words) EXPECT_NE(line.find(w), std::string::npos) << what << ": '" << w << "' not in: " << line;
+    for (const std::string& w : words)
+        EXPECT_NE(line.find(w), std::string::npos) << what << ": '" << w << "' not in: " << line;
     const auto lines = std::count(r.err.begin(), r.err.end(), '\n');
     EXPECT_EQ(lines, r.err.find("Run with --help") == std::string::npos ? 1 : 2) << what << ": nothing else: " << r.err;
 }
@@ -37,8 +38,9 @@ std::string scenario(const std::string& text) { return write_file(fresh_dir("sce
 // frames' own size) on 7 and 8, no budget; `more` from line 11.
 std::string surf_scenario(const std::string& dir, const std::string& source, const std::string& more = "") {
     static int made = 0;
-    return write_file(dir, "surf_" + std::to_string(++made) + ".yaml", "name: errors\nrun:\n  workload: surf\nsurf:\n  source: " + source +
-                                            "\n  frames: 2\n  width: 0\n  height: 0\nbudget:\n  fps: 0\n" + more);
+    return write_file(dir, "surf_" + std::to_string(++made) + ".yaml",
+                      "name: errors\nrun:\n  workload: surf\nsurf:\n  source: " + source +
+                          "\n  frames: 2\n  width: 0\n  height: 0\nbudget:\n  fps: 0\n" + more);
 }
 
 std::string image(const std::string& dir, const std::string& name, int width, int height) {
@@ -59,10 +61,12 @@ TEST(BadInput, ScenarioSyntaxNamesFileAndLine) {
     // yaml-cpp 0.7 never returns on a ',' where a node begins (found by tests/fuzz scenario):
     // refused with its line, in a file and in --set faults.
     const std::string comma = scenario("# a scenario\n,: e!Un\n");
-    expect_refused(surfvp("validate " + comma), {comma + ":2", "not valid YAML", "a ',' where a node begins"}, "a comma");
+    expect_refused(surfvp("validate " + comma), {comma + ":2", "not valid YAML", "a ',' where a node begins"},
+                   "a comma");
     expect_refused(surfvp("validate smoke --set faults=,"), {"--set faults: not a YAML list"}, "a comma in --set");
     const std::string key = scenario("cpu:\n  ? [a, b]\n  : 1\n");
-    expect_refused(surfvp("validate " + key), {key + ":2", "a key must be a plain name, not a list"}, "a list as a key");
+    expect_refused(surfvp("validate " + key), {key + ":2", "a key must be a plain name, not a list"},
+                   "a list as a key");
 }
 
 TEST(BadInput, ScenarioFileMissingAFolderOrNotARegularFile) {
@@ -79,10 +83,11 @@ TEST(BadInput, RepeatedKeysInAnySectionNameBothPlaces) {
     const std::string name = scenario("name: a\nname: b\n");
     expect_refused(surfvp("validate " + name), {name + ":2: 'name' appears twice (first at " + name + ":1)"}, "name");
     const std::string text = scenario("description: a\ncpu:\n  clock: 300 MHz\ndescription: b\n");
-    expect_refused(surfvp("validate " + text), {text + ":4: 'description' appears twice (first at " + text + ":1)"}, "description");
+    expect_refused(surfvp("validate " + text), {text + ":4: 'description' appears twice (first at " + text + ":1)"},
+                   "description");
     const std::string section = scenario("cpu:\n  clock: 300 MHz\ncpu:\n  quantum: 1 us\n");
-    expect_refused(surfvp("validate " + section), {section + ":3: section 'cpu' appears twice (first at " + section + ":1)"},
-                   "section");
+    expect_refused(surfvp("validate " + section),
+                   {section + ":3: section 'cpu' appears twice (first at " + section + ":1)"}, "section");
     const std::string key = scenario("plb2:\n  width: 64 bit\n  clock: 1 MHz\n  width: 32 bit\n");
     expect_refused(surfvp("validate " + key), {key + ":4: plb2.width is set twice (first at " + key + ":2)"}, "key");
     expect_refused(surfvp("validate smoke --set 'cpu.clock=300 MHz' --set 'cpu.clock=400 MHz'"),
@@ -91,26 +96,30 @@ TEST(BadInput, RepeatedKeysInAnySectionNameBothPlaces) {
 
 TEST(BadInput, SeveralYamlDocumentsInOneFile) {
     const std::string path = scenario("name: a\ncpu:\n  clock: 300 MHz\n---\nname: b\n");
-    expect_refused(surfvp("validate " + path), {path + ": holds 2 YAML documents", "line 5", "a scenario is one"}, "two");
+    expect_refused(surfvp("validate " + path), {path + ": holds 2 YAML documents", "line 5", "a scenario is one"},
+                   "two");
 }
 
 TEST(BadInput, UnknownKeyNamesTheClosestKnownOne) {
     const std::string path = scenario("plb2:\n  widht: 64 bit\n");
-    expect_refused(surfvp("validate " + path), {path + ":2", "'plb2.widht' is not a parameter", "did you mean 'plb2.width'"},
-                   "misspelt");
-    expect_refused(surfvp("validate smoke --set cpu.clok=1MHz"), {"--set", "'cpu.clok'", "did you mean 'cpu.clock'"}, "--set");
+    expect_refused(surfvp("validate " + path),
+                   {path + ":2", "'plb2.widht' is not a parameter", "did you mean 'plb2.width'"}, "misspelt");
+    expect_refused(surfvp("validate smoke --set cpu.clok=1MHz"), {"--set", "'cpu.clok'", "did you mean 'cpu.clock'"},
+                   "--set");
 }
 
 TEST(BadInput, WrongOrMissingUnit) {
     const std::string wrong = scenario("cpu:\n  clock: 300 bit\n");
-    expect_refused(surfvp("validate " + wrong), {wrong + ":2: cpu.clock", "wrong unit 'bit'", "expected frequency"}, "wrong");
+    expect_refused(surfvp("validate " + wrong), {wrong + ":2: cpu.clock", "wrong unit 'bit'", "expected frequency"},
+                   "wrong");
     const std::string none = scenario("memory:\n  latency: 25\n");
     expect_refused(surfvp("validate " + none), {none + ":2: memory.latency", "has no unit"}, "missing");
 }
 
 TEST(BadInput, OutOfRangeAtAnyMagnitude) {
-    for (const char* line : {"surf:\n  frames: 1e400\n", "surf:\n  frames: -3\n", "smoke:\n  src: 0xFFFF_FFFF_FFFF_FFFF_FFFF\n",
-                             "smoke:\n  src: 0x1_0000_0000\n", "plb1:\n  max_burst: 32 beats\n"}) {
+    for (const char* line :
+         {"surf:\n  frames: 1e400\n", "surf:\n  frames: -3\n", "smoke:\n  src: 0xFFFF_FFFF_FFFF_FFFF_FFFF\n",
+          "smoke:\n  src: 0x1_0000_0000\n", "plb1:\n  max_burst: 32 beats\n"}) {
         const std::string path = scenario(line);
         expect_refused(surfvp("validate " + path), {path + ":2", "out of range", "must be between"}, line);
     }
@@ -120,14 +129,17 @@ TEST(BadInput, OutOfRangeAtAnyMagnitude) {
 TEST(BadInput, InconsistentParametersAreReportedAtTheirOrigin) {
     const std::string dir = fresh_dir("inconsistent");
     const std::string surf = surf_scenario(dir, kGraf1);
-    expect_refused(surfvp("validate " + surf + " --set surf.width=512"),
-                   {"--set surf.width: 512 with surf.height = 0 (from " + surf + ":8)", "resized only when both are set"},
-                   "half a size");
+    expect_refused(
+        surfvp("validate " + surf + " --set surf.width=512"),
+        {"--set surf.width: 512 with surf.height = 0 (from " + surf + ":8)", "resized only when both are set"},
+        "half a size");
     const std::string fault = surf_scenario(dir, kGraf1, "faults:\n  - {kind: fifo_overflow, frame: 5}\n");
-    expect_refused(surfvp("validate " + fault),
-                   {fault + ":12: faults: fifo_overflow on fhg, frame 5: past the last frame (surf.frames = 2: frames 0 to 1)"},
-                   "fault");
-    const std::string eval = surf_scenario(dir, kGraf1, "eval:\n  homography: " + std::string(OPENCV_DATA_DIR) + "/H1to3p.xml\n");
+    expect_refused(
+        surfvp("validate " + fault),
+        {fault + ":12: faults: fifo_overflow on fhg, frame 5: past the last frame (surf.frames = 2: frames 0 to 1)"},
+        "fault");
+    const std::string eval =
+        surf_scenario(dir, kGraf1, "eval:\n  homography: " + std::string(OPENCV_DATA_DIR) + "/H1to3p.xml\n");
     expect_refused(surfvp("validate " + eval + " --set surf.frames=1"),
                    {eval + ":12: eval.homography", "surf.frames is 1 (from --set)", "at least 2"}, "evaluation");
     const std::string plb = scenario("plb2:\n  width: 48 bit\n");
@@ -141,35 +153,39 @@ TEST(BadInput, InconsistentParametersAreReportedAtTheirOrigin) {
     // A model's own refusal (the FHG's fixed-point formats, its read sequence) names where each
     // parameter it names came from, and comes before a run makes its folder.
     expect_refused(surfvp("validate " + kBudget + " --set 'fhg.det_frac_bits=48 bit'"),
-                   {"fhg precision: det_frac_bits must not exceed 2 x response_frac_bits", "fhg.det_frac_bits = 48 bit from --set",
-                    "fhg.response_frac_bits = 9 bit from the default"},
+                   {"fhg precision: det_frac_bits must not exceed 2 x response_frac_bits",
+                    "fhg.det_frac_bits = 48 bit from --set", "fhg.response_frac_bits = 9 bit from the default"},
                    "precision");
     const std::string out = fresh_path("inconsistent_out");
     expect_refused(surfvp("run " + kBudget + kOneRun + " --quiet --out " + out + " --set fhg.line_fifo=sdp72"),
                    {"fhg.line_fifo: sdp72 serves 1 aligned pair", "fhg.line_fifo = sdp72 from --set"}, "sequence");
     // A line FIFO clocked at twice the FHG's must stay within the block RAM's clock.
-    expect_refused(surfvp("validate " + kBudget + " --set 'fhg.clock=250 MHz'"),
-                   {"tdp_x2 clocks the line FIFO's block RAM at 2 x fhg.clock = 500 MHz, above fpga.bram_fmax = 450 MHz",
-                    "lower fhg.clock (from --set)"},
-                   "block RAM clock");
+    expect_refused(
+        surfvp("validate " + kBudget + " --set 'fhg.clock=250 MHz'"),
+        {"tdp_x2 clocks the line FIFO's block RAM at 2 x fhg.clock = 500 MHz, above fpga.bram_fmax = 450 MHz",
+         "lower fhg.clock (from --set)"},
+        "block RAM clock");
     EXPECT_FALSE(fs::exists(out)) << "an empty output folder was made";
     expect_refused(surfvp("validate " + kBudget + " --set surf.frames=1"),
-                   {"--set surf.frames: 1 frames cannot give a frame rate", "budget.fps = 0 (from " + kBudget + ":12)"}, "budget");
+                   {"--set surf.frames: 1 frames cannot give a frame rate", "budget.fps = 0 (from " + kBudget + ":12)"},
+                   "budget");
 }
 
 TEST(BadInput, AParameterWithoutEffectIsAStatedWarning) {
     const auto threshold = surfvp("validate " + kBudget + " --set surf.threshold=300");
     EXPECT_EQ(threshold.exit_code, 0) << threshold.err;
-    EXPECT_EQ(first_line(threshold.err),
-              "surfvp: warning: --set surf.threshold = 300 has no effect: surf.target_keypoints is 100, so the threshold "
-              "is calibrated on frame 0");
+    EXPECT_EQ(
+        first_line(threshold.err),
+        "surfvp: warning: --set surf.threshold = 300 has no effect: surf.target_keypoints is 100, so the threshold "
+        "is calibrated on frame 0");
     EXPECT_EQ(surfvp("validate " + kBudget + " --set surf.threshold=500").err, "") << "at its default: nothing to say";
 
     const std::string out = fresh_dir("ineffective");
     const auto run = surfvp("run smoke --quiet --trace none --out " + out + " --set surf.frames=3");
     EXPECT_EQ(run.exit_code, 0) << run.err;
     EXPECT_EQ(run.err, "surfvp: warning: --set surf.frames = 3 has no effect: run.workload is smoke\n");
-    EXPECT_NE(slurp(out + "/config.yaml").find("frames: 3  # --set; no effect: run.workload is smoke"), std::string::npos)
+    EXPECT_NE(slurp(out + "/config.yaml").find("frames: 3  # --set; no effect: run.workload is smoke"),
+              std::string::npos)
         << slurp(out + "/config.yaml");
 }
 
@@ -184,8 +200,8 @@ TEST(BadInput, SourceMissingEmptyCorruptOrUnreadable) {
     ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
     const std::vector<std::pair<std::string, std::string>> cases{
         {dir + "/none.png", "no such file or folder"}, {empty, "file is empty (0 bytes)"},
-        {corrupt, "not an image OpenCV can decode"}, {truncated, "not an image OpenCV can decode"},
-        {folder, "no image files in the folder"}, {fifo, "not a regular file or a folder"}};
+        {corrupt, "not an image OpenCV can decode"},   {truncated, "not an image OpenCV can decode"},
+        {folder, "no image files in the folder"},      {fifo, "not a regular file or a folder"}};
     for (const auto& [source, problem] : cases) {
         const std::string path = surf_scenario(dir, source);
         expect_refused(surfvp("validate " + path), {path + ":5: surf.source: " + source, problem}, source);
@@ -198,7 +214,8 @@ TEST(BadInput, SourceMissingEmptyCorruptOrUnreadable) {
 TEST(BadInput, FramesTooSmallForTheFiltersOrLargerThanTheChipTakes) {
     const std::string dir = fresh_dir("sizes");
     const std::string tiny = surf_scenario(dir, image(dir, "tiny.png", 16, 16));
-    expect_refused(surfvp("validate " + tiny), {tiny + ":5: surf.source", "16x16 is too small", "at least 30x30"}, "tiny");
+    expect_refused(surfvp("validate " + tiny), {tiny + ":5: surf.source", "16x16 is too small", "at least 30x30"},
+                   "tiny");
     const std::string wide = surf_scenario(dir, image(dir, "wide.png", 1100, 64));
     expect_refused(surfvp("validate " + wide),
                    {wide + ":5: surf.source: frames of 1100x64 are larger than the chip takes: iig.max_width is 1024 "
@@ -231,7 +248,8 @@ TEST(BadInput, FewerFramesThanAskedOrFramesThatDoNotMatch) {
     expect_refused(surfvp("validate " + small), {"frame 1 (" + tiny + ") of 80x20 is too small"}, "sizes");
     const std::string list = write_file(dir, "missing.txt", a + "\n" + dir + "/gone.png\n");
     const std::string missing = surf_scenario(dir, list);
-    expect_refused(surfvp("validate " + missing), {missing + ":5: surf.source: " + list + ":2: image '" + dir + "/gone.png' does not exist"},
+    expect_refused(surfvp("validate " + missing),
+                   {missing + ":5: surf.source: " + list + ":2: image '" + dir + "/gone.png' does not exist"},
                    "list entry");
 }
 
@@ -249,7 +267,8 @@ TEST(BadInput, HomographyMissingEmptyCorruptSingularOrForOtherFrames) {
         const std::string path = surf_scenario(dir, kGraf1, "eval:\n  homography: " + file + "\n");
         expect_refused(surfvp("validate " + path), {path + ":12: eval.homography: " + file, problem}, file);
     }
-    const std::string good = surf_scenario(dir, kGraf1, "eval:\n  homography: " + std::string(OPENCV_DATA_DIR) + "/H1to3p.xml\n");
+    const std::string good =
+        surf_scenario(dir, kGraf1, "eval:\n  homography: " + std::string(OPENCV_DATA_DIR) + "/H1to3p.xml\n");
     expect_refused(surfvp("validate " + good + " --set surf.width=400 --set surf.height=320"),
                    {good + ":12: eval.homography", "at their own size (800x640)", "resize them to 400x320"}, "resized");
 }
@@ -266,7 +285,8 @@ TEST(BadInput, PosesMissingTooFewOrOfOtherFrames) {
     expect_refused(surfvp("validate " + few + " --set surf.frames=3"),
                    {few + ":12: eval.poses: 2 poses for 3 frames (surf.frames from --set)"}, "too few");
     const std::string none = surf_scenario(dir, images, "eval:\n  poses: " + dir + "/none\n");
-    expect_refused(surfvp("validate " + none), {none + ":12: eval.poses: " + dir + "/none/Images: no such folder"}, "missing");
+    expect_refused(surfvp("validate " + none), {none + ":12: eval.poses: " + dir + "/none/Images: no such folder"},
+                   "missing");
     const std::string single = surf_scenario(dir, kGraf1, "eval:\n  poses: " + kCastle + "\n");
     expect_refused(surfvp("validate " + single), {single + ":12: eval.poses", "is one image or a video"}, "one image");
     // Three frames, one camera position: no geometry between them (was: exit 3 after simulating).
@@ -278,11 +298,13 @@ TEST(BadInput, PosesMissingTooFewOrOfOtherFrames) {
     const std::string still = surf_scenario(dir, dir + "/still/Images", "eval:\n  poses: " + dir + "/still\n");
     expect_refused(surfvp("validate " + still + " --set surf.frames=3"),
                    {still + ":12: eval.poses: frames 0 and 1", "the camera centres coincide"}, "one place");
-    const std::string swapped = write_file(dir, "swapped.txt", images + "/Image_0002.pgm\n" + images + "/Image_0001.pgm\n");
+    const std::string swapped =
+        write_file(dir, "swapped.txt", images + "/Image_0002.pgm\n" + images + "/Image_0001.pgm\n");
     const std::string other = surf_scenario(dir, swapped, "eval:\n  poses: " + kCastle + "\n");
-    expect_refused(surfvp("validate " + other),
-                   {other + ":12: eval.poses: frame 0 is " + images + "/Image_0002.pgm, but pose 0 (Camera_001.txt) belongs to"},
-                   "other frames");
+    expect_refused(
+        surfvp("validate " + other),
+        {other + ":12: eval.poses: frame 0 is " + images + "/Image_0002.pgm, but pose 0 (Camera_001.txt) belongs to"},
+        "other frames");
 }
 
 TEST(BadInput, NamesThatWouldWriteOutsideTheOutputFolder) {
@@ -307,11 +329,11 @@ TEST(BadInput, AnOutputFolderThatCannotBeWrittenHasItsOwnExitCode) {
     // Root writes anywhere a disk is: /proc is no disk. A full disk:
     // Environment.AFullDiskWhileTracingEndsWithItsOwnExitCodeAndNoPartialFile.
     const std::string proc = "/proc/surfvp_" + std::to_string(::getpid());
-    expect_refused(surfvp("run smoke --quiet --trace none --out " + proc), {"--out " + proc + ": cannot create the folder"},
-                   "/proc", 4);
+    expect_refused(surfvp("run smoke --quiet --trace none --out " + proc),
+                   {"--out " + proc + ": cannot create the folder"}, "/proc", 4);
     const std::string file = write_file(fresh_dir("out_file"), "taken", "a file");
-    expect_refused(surfvp("run smoke --quiet --trace none --out " + file), {"--out " + file + ": cannot create the folder"},
-                   "a file", 4);
+    expect_refused(surfvp("run smoke --quiet --trace none --out " + file),
+                   {"--out " + file + ": cannot create the folder"}, "a file", 4);
     EXPECT_EQ(slurp(file), "a file");
 }
 

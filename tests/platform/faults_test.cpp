@@ -66,7 +66,8 @@ TEST(Faults, AFaultThatNeverStrikesFailsTheRun) {
     for (const auto& c : r["checks"])
         if (c["name"] == "every injected fault detected") {
             EXPECT_FALSE(c["passed"].get<bool>());
-            named = c["detail"].get<std::string>().find("bus_error on fhg's burst 999999999 never struck") != std::string::npos;
+            named = c["detail"].get<std::string>().find("bus_error on fhg's burst 999999999 never struck") !=
+                    std::string::npos;
         }
     EXPECT_TRUE(named) << r["checks"];
 }
@@ -89,8 +90,10 @@ TEST(Faults, AFaultThatCannotStrikeIsBadInput) {
     }
     const auto watchdog = surfvp("validate " + kFaults + " --set surf.watchdog=0s");
     EXPECT_EQ(watchdog.exit_code, 2);
-    EXPECT_NE(watchdog.err.find("faults.yaml:17: faults: lost_interrupt on fhg, frame 4: only the driver's watchdog finds it"),
-              std::string::npos) << watchdog.err;
+    EXPECT_NE(watchdog.err.find(
+                  "faults.yaml:17: faults: lost_interrupt on fhg, frame 4: only the driver's watchdog finds it"),
+              std::string::npos)
+        << watchdog.err;
     const auto smoke = surfvp("validate " + kFaults + " --set run.workload=smoke");
     EXPECT_NE(smoke.err.find("faults: need run.workload = surf"), std::string::npos) << smoke.err;
     const std::string out = fresh_path("direct");

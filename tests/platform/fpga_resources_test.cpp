@@ -9,14 +9,14 @@ namespace surfvp {
 namespace {
 
 TEST(FpgaResources, BlockRamsInTheRamb36AspectRatios) {
-    EXPECT_EQ(ramb36_for(1024, 32), 1u);   // a line-FIFO line (docs/sources.md#fhg)
+    EXPECT_EQ(ramb36_for(1024, 32), 1u);  // a line-FIFO line (docs/sources.md#fhg)
     EXPECT_EQ(ramb36_for(1025, 32), 2u);
     EXPECT_EQ(ramb36_for(1024, 36), 1u);
-    EXPECT_EQ(ramb36_for(1024, 37), 2u);   // 512 x 72: two deep
+    EXPECT_EQ(ramb36_for(1024, 37), 2u);  // 512 x 72: two deep
     EXPECT_EQ(ramb36_for(2048, 18), 1u);
     EXPECT_EQ(ramb36_for(32768, 1), 1u);
     EXPECT_EQ(ramb36_for(512, 72), 1u);
-    EXPECT_EQ(ramb36_for(60, 212), 3u);    // three 72-bit columns
+    EXPECT_EQ(ramb36_for(60, 212), 3u);  // three 72-bit columns
     EXPECT_EQ(ramb36_for(0, 32), 0u);
 }
 
@@ -52,7 +52,8 @@ TEST(FpgaResources, StructureMovesTheEstimate) {
     EXPECT_EQ(fpga_resources(config({"fhg.line_fifo=banked"})).total.ramb36, base + 56);
     EXPECT_EQ(fpga_resources(config({"fhg.line_fifo=tdp"})).total.ramb36, base);
     EXPECT_EQ(fpga_resources(config({"fhg.line_fifo=sdp72", "fhg.bus_word=scalar"})).total.ramb36 -
-                  fpga_resources(config({"fhg.bus_word=scalar"})).total.ramb36, 0);
+                  fpga_resources(config({"fhg.bus_word=scalar"})).total.ramb36,
+              0);
     EXPECT_EQ(fpga_resources(config({"fhg.response_bits=24 bit"})).total.dsp48e, 2 + 1 + 2 + 3);
     EXPECT_EQ(fpga_resources(config({"fpu.precision=double"})).total.dsp48e, 3 + 13);
     const FpgaResources two = fpga_resources(config({"soc.accelerators=2"}));

@@ -25,7 +25,8 @@ TEST(FrameSizes, ImagesOfDifferentSizesGoThroughOneRunEachAsAlone) {
     REQUIRE_CASTLE();
     REQUIRE_OPENCV_DATA("graf3.png");
     const std::string dir = fresh_dir("sizes");
-    const std::string list = test::write_file(dir, "mixed.txt", castle(1) + "\n" + graf(1) + "\n" + castle(2) + "\n" + graf(3) + "\n");
+    const std::string list =
+        test::write_file(dir, "mixed.txt", castle(1) + "\n" + graf(1) + "\n" + castle(2) + "\n" + graf(3) + "\n");
     const std::string sets = kRun + kFixed + " --set surf.frames=4 --set surf.source=" + list;
     const auto vp = surfvp("run " + kCastleScenario + sets + " --out " + dir + "/vp");
     ASSERT_EQ(vp.exit_code, 0) << vp.err;
@@ -35,7 +36,8 @@ TEST(FrameSizes, ImagesOfDifferentSizesGoThroughOneRunEachAsAlone) {
     ASSERT_EQ(surfvp("run " + kCastleScenario + sets + " --direct --out " + dir + "/direct").exit_code, 0);
     for (const auto& [frame, image] : {std::pair{1, graf(1)}, std::pair{2, castle(2)}}) {
         const std::string alone = dir + "/alone" + std::to_string(frame);
-        ASSERT_EQ(surfvp("run " + kCastleScenario + kRun + kFixed + " --set surf.frames=2 --set surf.source=" + image + " --out " + alone)
+        ASSERT_EQ(surfvp("run " + kCastleScenario + kRun + kFixed + " --set surf.frames=2 --set surf.source=" + image +
+                         " --out " + alone)
                       .exit_code,
                   0);
         const std::string f = "/keypoints/frame_000" + std::to_string(frame) + ".surf";
@@ -51,7 +53,8 @@ TEST(FrameSizes, AnImageTheChipCannotTakeIsNamed) {
     REQUIRE_OPENCV_DATA("graf1.png");
     const std::string dir = fresh_dir("too_wide");
     const std::string list = test::write_file(dir, "mixed.txt", castle(1) + "\n" + graf(1) + "\n");
-    const auto r = surfvp("validate " + kCastleScenario + kFixed + " --set surf.frames=2 --set iig.max_width=700 --set surf.source=" + list);
+    const auto r = surfvp("validate " + kCastleScenario + kFixed +
+                          " --set surf.frames=2 --set iig.max_width=700 --set surf.source=" + list);
     EXPECT_EQ(r.exit_code, 2);
     EXPECT_NE(r.err.find("frame 1 (" + graf(1) + ") of 800x640 is larger than the chip takes: iig.max_width is 700"),
               std::string::npos)

@@ -22,13 +22,11 @@ const fs::path kRoot = SURFVP_SOURCE_DIR;
 // its folder under platform/ (soc.* and address_map.h are units of their own), models/host,
 // models/common, another models block, or sw.
 const std::map<std::string, int> kRanks = {
-    {"models/host", 0},         {"models/common", 1},      {"models/block", 2},
-    {"sw", 3},                  {"platform/address_map", 4}, {"platform/scenario", 5},
-    {"platform/workload", 6},   {"platform/soc", 7},       {"platform/direct", 8},
-    {"platform/cost", 10},      {"platform/report", 11},   {"platform/run", 12},
-    {"platform/sweep", 13},     {"platform/verdict", 14},  {"platform/compare", 15},
-    {"platform/table2", 16},    {"platform/correlation", 17}, {"platform/tools", 18},
-    {"platform/quality", 19},   {"platform/cli", 20},
+    {"models/host", 0},           {"models/common", 1},     {"models/block", 2},      {"sw", 3},
+    {"platform/address_map", 4},  {"platform/scenario", 5}, {"platform/workload", 6}, {"platform/soc", 7},
+    {"platform/direct", 8},       {"platform/cost", 10},    {"platform/report", 11},  {"platform/run", 12},
+    {"platform/sweep", 13},       {"platform/verdict", 14}, {"platform/compare", 15}, {"platform/table2", 16},
+    {"platform/correlation", 17}, {"platform/tools", 18},   {"platform/quality", 19}, {"platform/cli", 20},
 };
 constexpr int kLastChipRank = 8;  // platform/direct: the chip library ends here
 
@@ -78,8 +76,8 @@ int rank_of(const std::string& unit) {
 TEST(Layering, EveryFolderHasItsPlace) {
     for (const auto& include : project_includes()) {
         EXPECT_NE(rank_of(unit_of(include.from)), -1)
-            << include.from << " is in a folder the layering does not know: give "
-            << unit_of(include.from) << " a rank here and a row in docs/architecture.md";
+            << include.from << " is in a folder the layering does not know: give " << unit_of(include.from)
+            << " a rank here and a row in docs/architecture.md";
     }
 }
 
@@ -89,8 +87,8 @@ TEST(Layering, NoIncludeRunsUp) {
     for (const auto& include : includes) {
         const auto from = unit_of(include.from), to = unit_of(include.to);
         EXPECT_LE(rank_of(to), rank_of(from))
-            << include.from.string() << ":" << include.line << " includes " << include.to
-            << ": " << from << " sits below " << to << " (docs/architecture.md, Folder map)";
+            << include.from.string() << ":" << include.line << " includes " << include.to << ": " << from
+            << " sits below " << to << " (docs/architecture.md, Folder map)";
     }
 }
 
@@ -100,8 +98,8 @@ TEST(Layering, TheChipIncludesNothingOfTheApplication) {
         if (rank_of(unit_of(include.from)) > kLastChipRank) continue;
         ++chip_includes;
         EXPECT_LE(rank_of(unit_of(include.to)), kLastChipRank)
-            << include.from.string() << ":" << include.line << " is part of the chip and includes "
-            << include.to << " of the application";
+            << include.from.string() << ":" << include.line << " is part of the chip and includes " << include.to
+            << " of the application";
     }
     EXPECT_GT(chip_includes, 100) << "the chip's files were not found";
 }

@@ -31,7 +31,8 @@ std::set<std::string> outputs_in(const std::string& dir) {
         if (top.is_regular_file()) files.insert(top.path().filename().string());
         if (top.is_directory())
             for (const auto& e : fs::recursive_directory_iterator(top.path()))
-                if (e.is_regular_file()) files.insert((top.path().filename() / e.path().lexically_relative(top.path())).string());
+                if (e.is_regular_file())
+                    files.insert((top.path().filename() / e.path().lexically_relative(top.path())).string());
     }
     return files;
 }
@@ -85,7 +86,8 @@ TEST(OutputFolder, AFolderTheUserMadeUnderAnOutputsNameIsRefusedBeforeAnythingCh
         publish_run(out, {"report.json", "keypoints/frame_0000.surf"});
         FAIL() << "published over the user's folder";
     } catch (const ConfigError& e) {
-        EXPECT_NE(std::string(e.what()).find("keypoints is a folder surfvp did not write"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("keypoints is a folder surfvp did not write"), std::string::npos)
+            << e.what();
     }
     EXPECT_EQ(slurp(out + "/keypoints/plan.txt"), "mine");
     EXPECT_EQ(runs_in(out), 1u);  // the refused run's folder is gone, the previous one stays
@@ -100,7 +102,8 @@ TEST(OutputFolder, FilesPutIntoAPublishedFolderKeepTheirRunFolder) {
     EXPECT_EQ(runs_in(out), 2u);  // the earlier run's folder, with mine.txt, is kept
     bool found = false;
     for (const auto& run : fs::directory_iterator(out + "/.surfvp-runs"))
-        found = found || (fs::exists(run.path() / "keypoints/mine.txt") && slurp((run.path() / "keypoints/mine.txt").string()) == "mine");
+        found = found || (fs::exists(run.path() / "keypoints/mine.txt") &&
+                          slurp((run.path() / "keypoints/mine.txt").string()) == "mine");
     EXPECT_TRUE(found);
 }
 
@@ -120,7 +123,8 @@ TEST(OutputFolder, LinksAndRunFoldersSomeoneElseMadeAreNeverFollowed) {
     fs::create_symlink(elsewhere + "/precious.txt", out + "/report.md");
     publish_run(out, {"report.json"});
     EXPECT_EQ(slurp(elsewhere + "/precious.txt"), "keep me");
-    EXPECT_EQ(outputs_in(out), (std::set<std::string>{"report.json", "report.md"}));  // a link not of surfvp's form is the user's
+    EXPECT_EQ(outputs_in(out),
+              (std::set<std::string>{"report.json", "report.md"}));  // a link not of surfvp's form is the user's
     const std::string other = root + "/other";
     fs::create_directories(other);
     fs::create_directory_symlink(elsewhere, other + "/.surfvp-runs");

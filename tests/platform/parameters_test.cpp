@@ -19,7 +19,8 @@ TEST(Parameters, EveryAssumptionHasABandThatParses) {
         if (p.band.low.empty()) continue;
         EXPECT_FALSE(p.band.high.empty()) << p.key;
         EXPECT_FALSE(p.band.why.empty()) << p.key;
-        for (const std::string& v : {p.band.low, p.band.high}) EXPECT_NO_THROW(parse_value(p, v)) << p.key << " = " << v;
+        for (const std::string& v : {p.band.low, p.band.high})
+            EXPECT_NO_THROW(parse_value(p, v)) << p.key << " = " << v;
     }
     EXPECT_GT(assumed, 40u);
     EXPECT_GE(band_parameters().size(), assumed);  // and a few uncertain sourced ones

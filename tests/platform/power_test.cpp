@@ -16,13 +16,15 @@ TEST(Power, EachBlockIsItsActivityTimesItsPrice) {
     const FpgaResources res = fpga_resources(c);
     // One second: the CPU computes half of it, the FHG a quarter, 1 GB each way on PLB2 in
     // 1000 bursts, 2 Gbit to and from DDR.
-    const Json r = {{"sim_time_s", 1.0},
-                    {"frames_done", 4},
-                    {"cpu", {{"cycles_consumed", 200'000'000}}},
-                    {"fhg", {{"computing_s", 0.25}}},
-                    {"iig", {{"computing_s", 0.0}}},
-                    {"buses", {{"plb2", {{"read", {{"bytes", 0}, {"bursts", 0}}}, {"write", {{"bytes", 125'000'000}, {"bursts", 1000}}}}}}},
-                    {"memory", {{"bytes_read", 125'000'000}, {"bytes_written", 125'000'000}}}};
+    const Json r = {
+        {"sim_time_s", 1.0},
+        {"frames_done", 4},
+        {"cpu", {{"cycles_consumed", 200'000'000}}},
+        {"fhg", {{"computing_s", 0.25}}},
+        {"iig", {{"computing_s", 0.0}}},
+        {"buses",
+         {{"plb2", {{"read", {{"bytes", 0}, {"bursts", 0}}}, {"write", {{"bytes", 125'000'000}, {"bursts", 1000}}}}}}},
+        {"memory", {{"bytes_read", 125'000'000}, {"bytes_written", 125'000'000}}}};
     const Json p = power_estimate(c, r, res);
     const auto& b = p["blocks"];
     EXPECT_DOUBLE_EQ(b["fpga static"]["watts"].get<double>(), 1.2);
@@ -33,8 +35,8 @@ TEST(Power, EachBlockIsItsActivityTimesItsPrice) {
     // determinants of 3 products per 60-cycle block.
     const double cycles = 0.25 * 100e6;
     const double fhg_cells = res.blocks[1].luts + res.blocks[1].ffs;
-    EXPECT_NEAR(b["fhg"]["watts"].get<double>(), fhg_cells * 0.05e-12 * cycles + cycles * 8 * 20e-12 + cycles / 53 * 18 * 3 * 10e-12,
-                1e-9);
+    EXPECT_NEAR(b["fhg"]["watts"].get<double>(),
+                fhg_cells * 0.05e-12 * cycles + cycles * 8 * 20e-12 + cycles / 53 * 18 * 3 * 10e-12, 1e-9);
     double sum = 0;
     for (const auto& [name, block] : b.items()) sum += block["watts"].get<double>();
     EXPECT_NEAR(p["watts"].get<double>(), sum, 1e-12);
@@ -55,8 +57,10 @@ TEST(Power, TheBudgetRunStaysWithinTenWattsAndAFasterFhgCostsMore) {
     EXPECT_LT(base["watts"].get<double>(), 10.0);  // the paper: less than 10 W
     EXPECT_TRUE(base["within_budget"].get<bool>());
     EXPECT_GT(fast["watts"].get<double>(), base["watts"].get<double>());
-    EXPECT_LT(fast["joules_per_frame"].get<double>(), base["joules_per_frame"].get<double>());  // static power over fewer seconds
-    EXPECT_NE(test::slurp(test::fresh_path("power_base") + "/report.md").find("## Power and energy"), std::string::npos);
+    EXPECT_LT(fast["joules_per_frame"].get<double>(),
+              base["joules_per_frame"].get<double>());  // static power over fewer seconds
+    EXPECT_NE(test::slurp(test::fresh_path("power_base") + "/report.md").find("## Power and energy"),
+              std::string::npos);
     // The cost parameters' band, re-evaluated on the same run: static power 1.2 W -> 0.8 .. 2 W.
     const auto& band = base["band"];
     EXPECT_LT(band["watts_range"][0].get<double>(), base["watts"].get<double>());

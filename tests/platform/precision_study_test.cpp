@@ -18,8 +18,10 @@ TEST(PrecisionStudy, TooFewBitsDropTheRowsAndTheReportNamesTheFewest) {
     REQUIRE_CASTLE();
     REQUIRE_OPENCV_DATA("graf3.png");
     const std::string out = fresh_dir("precision");
-    const auto r = surfvp("precision castle_sequence --pair graf --quiet --set surf.frames=8 --axis 'fhg.response_bits=8 bit' "
-                          "--axis 'fhg.accumulator_bits=22 bit' --out " + out);
+    const auto r = surfvp(
+        "precision castle_sequence --pair graf --quiet --set surf.frames=8 --axis 'fhg.response_bits=8 bit' "
+        "--axis 'fhg.accumulator_bits=22 bit' --out " +
+        out);
     ASSERT_EQ(r.exit_code, 0) << r.err;
     const json report = json::parse(slurp(out + "/report.json"));
     ASSERT_TRUE(report["full_precision"].contains("rounded"));

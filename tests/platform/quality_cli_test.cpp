@@ -154,7 +154,7 @@ TEST(QualityCli, EvalGrafPairUnderItsHomography) {
                           graf(1) + " " + graf(3));
     ASSERT_EQ(r.exit_code, 0) << r.err;
     const auto j = nlohmann::ordered_json::parse(r.out);  // keeps the printed key order
-    const std::vector<std::string> leading = {"candidates", "valid",           "distinguishability", "status",
+    const std::vector<std::string> leading = {"candidates",    "valid",           "distinguishability", "status",
                                               "repeatability", "correspondences", "precision"};
     std::vector<std::string> keys;
     for (const auto& item : j.items()) keys.push_back(item.key());
@@ -190,8 +190,8 @@ TEST(QualityCli, TheFloatReferenceIsAtLeastAsGoodAsTheBestCpuSurf) {
     ASSERT_EQ(s1.exit_code, 0) << s1.err;
     const std::string threshold = surf_summary(s1.err).threshold;
     ASSERT_EQ(surfvp("surf " + graf(3) + " --threshold " + threshold + " -q --out " + dir + "/g3.key").exit_code, 0);
-    const auto r = surfvp("eval " + dir + "/g1.key " + dir + "/g3.key -H " + kOpencvData + "/H1to3p.xml --images " + graf(1) +
-                          " " + graf(3));
+    const auto r = surfvp("eval " + dir + "/g1.key " + dir + "/g3.key -H " + kOpencvData + "/H1to3p.xml --images " +
+                          graf(1) + " " + graf(3));
     ASSERT_EQ(r.exit_code, 0) << r.err;
     const json best = json::parse(r.out);
     EXPECT_GE(best["precision"].get<double>(), 0.643);
@@ -224,7 +224,8 @@ TEST(QualityCli, EvalSeqTakesTheChipsKeypointFiles) {
     const std::string run = fresh_dir("chip_keypoints");
     ASSERT_EQ(surfvp("run castle_sequence --direct --quiet --set surf.frames=6 --out " + run).exit_code, 0);
     const json report = json::parse(slurp(run + "/report.json"));
-    const std::string common = "eval-seq " + kCastle + " --poses " + kCastle + "/CameraPose --intrinsics 700,700,320,240 --frames 6";
+    const std::string common =
+        "eval-seq " + kCastle + " --poses " + kCastle + "/CameraPose --intrinsics 700,700,320,240 --frames 6";
     const auto r = surfvp(common + " --quiet --keypoints-from " + run + "/keypoints");
     ASSERT_EQ(r.exit_code, 0) << r.err;
     const json row = json::parse(r.out)["gaps"][0]["rows"][0];

@@ -23,7 +23,8 @@ public:
         : doc_(xmlReadMemory(html.data(), int(html.size()), "report.html", nullptr, XML_PARSE_NONET), xmlFreeDoc) {}
     bool ok() const { return doc_ != nullptr; }
     std::vector<xmlNodePtr> all(const std::string& xpath) const {
-        std::unique_ptr<xmlXPathContext, decltype(&xmlXPathFreeContext)> ctx(xmlXPathNewContext(doc_.get()), xmlXPathFreeContext);
+        std::unique_ptr<xmlXPathContext, decltype(&xmlXPathFreeContext)> ctx(xmlXPathNewContext(doc_.get()),
+                                                                             xmlXPathFreeContext);
         xmlXPathRegisterNs(ctx.get(), BAD_CAST "h", BAD_CAST "http://www.w3.org/1999/xhtml");
         xmlXPathRegisterNs(ctx.get(), BAD_CAST "s", BAD_CAST "http://www.w3.org/2000/svg");
         std::unique_ptr<xmlXPathObject, decltype(&xmlXPathFreeObject)> found(
@@ -62,14 +63,16 @@ TEST(ReportHtml, SelfContainedChartsCarryTheRunsFigures) {
     ASSERT_EQ(tasks.size(), 9u);
     const auto frame1 = page.all("//s:svg[@id='gantt']/s:rect[@class='task'][@data-frame='1']");
     ASSERT_EQ(frame1.size(), 3u);
-    EXPECT_NEAR(std::stod(Page::attr(frame1[0], "data-start-ms")), r["workload"]["per_frame"][1]["start_ms"].get<double>(), 1e-3);
+    EXPECT_NEAR(std::stod(Page::attr(frame1[0], "data-start-ms")),
+                r["workload"]["per_frame"][1]["start_ms"].get<double>(), 1e-3);
     EXPECT_NEAR(std::stod(Page::attr(frame1[1], "data-end-ms")),
                 r["workload"]["per_frame"][1]["determinants_done_ms"].get<double>(), 1e-3);
 
     // Busy, waits, idle per resource: the FHG's busy time is the report's.
     const auto fhg_busy = page.all("//s:svg[@id='resources']/s:rect[@class='busy'][@data-resource='fhg']");
     ASSERT_EQ(fhg_busy.size(), 1u);
-    EXPECT_NEAR(std::stod(Page::attr(fhg_busy[0], "data-ms")), r["time_per_frame"]["fhg"]["busy_ms"].get<double>(), 1e-3);
+    EXPECT_NEAR(std::stod(Page::attr(fhg_busy[0], "data-ms")), r["time_per_frame"]["fhg"]["busy_ms"].get<double>(),
+                1e-3);
 
     // Utilisation and FIFO levels over time: the series' own peaks and lengths.
     const auto& write = r["buses"]["plb2"]["write"]["busy_series"]["values"];

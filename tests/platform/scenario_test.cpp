@@ -54,7 +54,8 @@ void expect_bad(const std::string& text, const std::vector<std::string>& sets, c
 }
 
 TEST(ScenarioErrors, UnknownKeyNamesFileLineKeyAndTheClosestKey) {
-    expect_bad("name: x\nplb2:\n  widht: 64 bit\n", {}, {"FILE:3", "'plb2.widht' is not a parameter", "did you mean 'plb2.width'"});
+    expect_bad("name: x\nplb2:\n  widht: 64 bit\n", {},
+               {"FILE:3", "'plb2.widht' is not a parameter", "did you mean 'plb2.width'"});
 }
 
 TEST(ScenarioErrors, UnknownSection) {
@@ -90,9 +91,13 @@ TEST(ScenarioErrors, NotYaml) { expect_bad("plb1:\n  clock: [100 MHz\n", {}, {"F
 
 TEST(ScenarioErrors, SectionMustBeAMap) { expect_bad("plb1: 100 MHz\n", {}, {"FILE:1", "'plb1' must be a section"}); }
 
-TEST(ScenarioErrors, ValueMustBeSingle) { expect_bad("plb1:\n  clock: [1, 2]\n", {}, {"FILE:2", "expected a single value, found a list"}); }
+TEST(ScenarioErrors, ValueMustBeSingle) {
+    expect_bad("plb1:\n  clock: [1, 2]\n", {}, {"FILE:2", "expected a single value, found a list"});
+}
 
-TEST(ScenarioErrors, DuplicateKey) { expect_bad("plb1:\n  clock: 1 MHz\n  clock: 2 MHz\n", {}, {"FILE:3", "set twice"}); }
+TEST(ScenarioErrors, DuplicateKey) {
+    expect_bad("plb1:\n  clock: 1 MHz\n  clock: 2 MHz\n", {}, {"FILE:3", "set twice"});
+}
 
 TEST(ScenarioErrors, RootMustBeAMap) { expect_bad("- a\n- b\n", {}, {"FILE:1", "map of sections"}); }
 
@@ -105,8 +110,9 @@ TEST(ScenarioErrors, SetOfUnknownKey) { expect_bad("", {"cpu.clok=1 MHz"}, {"--s
 TEST(ScenarioErrors, TextThatIsNotUtf8) {
     expect_bad("name: x\ndescription: caf\xe9\n", {}, {"FILE:2", "description: not UTF-8 text"});
     expect_bad("surf:\n  source: \xc0\xaf.png\n", {}, {"FILE:2", "surf.source: not UTF-8 text"});  // overlong '/'
-    expect_bad("", {"surf.source=\xed\xa0\x80.png"}, {"--set", "not UTF-8 text"});  // a surrogate
-    EXPECT_EQ(load_scenario(scenario("description: caf\xc3\xa9 \xf0\x9f\x9a\x80\n"), {}).description, "caf\xc3\xa9 \xf0\x9f\x9a\x80");
+    expect_bad("", {"surf.source=\xed\xa0\x80.png"}, {"--set", "not UTF-8 text"});                 // a surrogate
+    EXPECT_EQ(load_scenario(scenario("description: caf\xc3\xa9 \xf0\x9f\x9a\x80\n"), {}).description,
+              "caf\xc3\xa9 \xf0\x9f\x9a\x80");
 }
 
 TEST(Scenario, EffectiveConfigurationLoadsBackToTheSameValues) {
@@ -123,8 +129,9 @@ TEST(Scenario, EffectiveConfigurationLoadsBackToTheSameValues) {
 // Found by tests/fuzz scenario: a description with lone carriage returns did not load back from
 // config.yaml as it was; name and description are written double-quoted.
 TEST(Scenario, NameAndDescriptionLoadBackAsTheyWere) {
-    const std::string path = write_file(fresh_dir("cr"), "cr.yaml",
-                                        test::slurp(SURFVP_SOURCE_DIR "/tests/fuzz/regressions/scenario/description_with_lone_carriage_returns"));
+    const std::string path = write_file(
+        fresh_dir("cr"), "cr.yaml",
+        test::slurp(SURFVP_SOURCE_DIR "/tests/fuzz/regressions/scenario/description_with_lone_carriage_returns"));
     const Config original = load_scenario(path, {});
     ASSERT_NE(original.description.find('\r'), std::string::npos);
     const Config again = load_scenario(write_file(fresh_dir("cr_again"), "config.yaml", original.to_yaml()), {});

@@ -49,10 +49,12 @@ Json points_of(const std::string& dir) {
 
 TEST(Slurm, ASweepAsAJobArrayGivesTheResultsOfOneRunHere) {
     const std::string dir = fresh_dir("slurm");
-    const std::string sweep = write_file(dir, "sweep.yaml",
-                                         "scenario: " + kBudget + "\n"
-                                         "set: {surf.frames: 3, surf.width: 256, surf.height: 192, surf.target_keypoints: 20}\n"
-                                         "axes:\n  fhg.clock: [25 MHz, 50 MHz]\n  fhg.read_buses: [2, 4]\n");
+    const std::string sweep =
+        write_file(dir, "sweep.yaml",
+                   "scenario: " + kBudget +
+                       "\n"
+                       "set: {surf.frames: 3, surf.width: 256, surf.height: 192, surf.target_keypoints: 20}\n"
+                       "axes:\n  fhg.clock: [25 MHz, 50 MHz]\n  fhg.read_buses: [2, 4]\n");
     Cluster cluster(dir + "/cluster");
     ASSERT_TRUE(cluster.started()) << "the one-node Slurm cluster did not start:\n" << cluster.why();
     const auto submitted = surfvp("sweep " + sweep + " --slurm 2 --jobs 1 --out " + dir + "/cluster_out");
@@ -64,8 +66,9 @@ TEST(Slurm, ASweepAsAJobArrayGivesTheResultsOfOneRunHere) {
     while (!fs::exists(dir + "/cluster_out/results.json") && std::chrono::steady_clock::now() < deadline)
         std::this_thread::sleep_for(std::chrono::milliseconds(250));
     ASSERT_TRUE(fs::exists(dir + "/cluster_out/results.json"))
-        << "no results after 3 minutes; shard 1's log:\n" << slurp(dir + "/cluster_out/slurm/shard-1.log")
-        << "\nmerge log:\n" << slurp(dir + "/cluster_out/slurm/merge.log");
+        << "no results after 3 minutes; shard 1's log:\n"
+        << slurp(dir + "/cluster_out/slurm/shard-1.log") << "\nmerge log:\n"
+        << slurp(dir + "/cluster_out/slurm/merge.log");
     EXPECT_TRUE(fs::exists(dir + "/cluster_out/shard-1-of-2.db"));
     EXPECT_TRUE(fs::exists(dir + "/cluster_out/shard-2-of-2.db"));
     ASSERT_EQ(surfvp("sweep " + sweep + " --quiet --out " + dir + "/here").exit_code, 0);

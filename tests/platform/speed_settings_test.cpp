@@ -35,18 +35,22 @@ nlohmann::json report(const std::string& name, const std::string& sets) {
 // where they differ.
 double g_tolerance = 1e-9;  // relative
 
-void compare(const nlohmann::json& a, const nlohmann::json& b, const std::set<std::string>& skip, const std::string& path,
-             std::vector<std::string>& differences) {
+void compare(const nlohmann::json& a, const nlohmann::json& b, const std::set<std::string>& skip,
+             const std::string& path, std::vector<std::string>& differences) {
     if (a.is_object()) {
         for (const auto& [key, value] : a.items()) {
             if (path.empty() && skip.count(key)) continue;
-            if (!b.contains(key)) differences.push_back(path + "/" + key + " missing");
-            else compare(value, b[key], skip, path + "/" + key, differences);
+            if (!b.contains(key))
+                differences.push_back(path + "/" + key + " missing");
+            else
+                compare(value, b[key], skip, path + "/" + key, differences);
         }
     } else if (a.is_array()) {
-        if (a.size() != b.size()) differences.push_back(path + " sizes differ");
+        if (a.size() != b.size())
+            differences.push_back(path + " sizes differ");
         else
-            for (size_t i = 0; i < a.size(); ++i) compare(a[i], b[i], skip, path + "/" + std::to_string(i), differences);
+            for (size_t i = 0; i < a.size(); ++i)
+                compare(a[i], b[i], skip, path + "/" + std::to_string(i), differences);
     } else if (a.is_number() && b.is_number()) {
         const double x = a.get<double>(), y = b.get<double>();
         if (std::abs(x - y) > g_tolerance * std::max({std::abs(x), std::abs(y), 1e-12}))
@@ -58,23 +62,26 @@ void compare(const nlohmann::json& a, const nlohmann::json& b, const std::set<st
 
 void expect_same_figures(const nlohmann::json& a, const nlohmann::json& b, const std::string& what) {
     std::set<std::string> skip{"wall_clock_fields", "simulation_fields", "outputs"};
-    for (const char* list : {"wall_clock_fields", "simulation_fields"})  // direct mode's report has no simulation_fields
+    for (const char* list :
+         {"wall_clock_fields", "simulation_fields"})  // direct mode's report has no simulation_fields
         for (const auto& f : a.value(list, nlohmann::json::array())) skip.insert(f.get<std::string>());
     std::vector<std::string> differences;
     compare(a, b, skip, "", differences);
-    EXPECT_TRUE(differences.empty()) << what << ": " << differences.size() << " figures differ, first: " << differences[0];
+    EXPECT_TRUE(differences.empty()) << what << ": " << differences.size()
+                                     << " figures differ, first: " << differences[0];
 }
 
 class SpeedSettings : public testing::TestWithParam<const char*> {};
 
 TEST_P(SpeedSettings, DmaGranularityAndQuantumMoveNoFigure) {
     const std::string which = GetParam();
-    const std::string scenario = which == "contention" ? kContention
+    const std::string scenario = which == "contention"     ? kContention
                                  : which == "short_bursts" ? " --set 'iig.burst=8 beats' --set 'fhg.burst=4 beats'"
                                                            : "";
     const auto reference = report("line_1us", scenario);
-    for (const char* setting : {" --set run.dma_granularity=burst", " --set 'cpu.quantum=10 ns'",
-                                " --set 'cpu.quantum=100 us'", " --set run.dma_granularity=burst --set 'cpu.quantum=1 ms'"}) {
+    for (const char* setting :
+         {" --set run.dma_granularity=burst", " --set 'cpu.quantum=10 ns'", " --set 'cpu.quantum=100 us'",
+          " --set run.dma_granularity=burst --set 'cpu.quantum=1 ms'"}) {
         const auto other = report("other", scenario + setting);
         // Known deviation (issue 33): DMA bursts shorter than a line, moved as one line
         // transaction, take their DRAM time when handed over, while the CPU's fills take it at
@@ -137,10 +144,11 @@ TEST(SpeedSettings, TheSecondThreadMovesNoFigureAndNoByte) {
     namespace fs = std::filesystem;
     // Direct mode computes a frame's block rows ahead on the second thread; with two pairs
     // their frames share it.
-    for (const std::string& scenario : {kBudget + kOneRun + " --trace all", kBudget + kOneRun + kContention + " --trace none",
-                                        std::string("faults --trace none"), kBudget + kOneRun + " --direct --trace none",
-                                        std::string("castle_sequence --direct --set surf.frames=6 --set soc.accelerators=2"),
-                                        kBudget + kOneRun + " --trace none --set 'run.max_time=250 ms'"}) {
+    for (const std::string& scenario :
+         {kBudget + kOneRun + " --trace all", kBudget + kOneRun + kContention + " --trace none",
+          std::string("faults --trace none"), kBudget + kOneRun + " --direct --trace none",
+          std::string("castle_sequence --direct --set surf.frames=6 --set soc.accelerators=2"),
+          kBudget + kOneRun + " --trace none --set 'run.max_time=250 ms'"}) {
         std::string outs[2];
         for (int on = 0; on < 2; ++on) {
             outs[on] = fresh_dir(on ? "parallel_on" : "parallel_off");
@@ -156,9 +164,11 @@ TEST(SpeedSettings, TheSecondThreadMovesNoFigureAndNoByte) {
              e != fs::recursive_directory_iterator(); ++e) {
             const std::string name = e->path().filename().string();
             if (name[0] == '.') e.disable_recursion_pending();
-            if (!e->is_regular_file() || name[0] == '.' || name.rfind("report", 0) == 0 || name == "config.yaml") continue;
+            if (!e->is_regular_file() || name[0] == '.' || name.rfind("report", 0) == 0 || name == "config.yaml")
+                continue;
             const fs::path other = fs::path(outs[1]) / e->path().lexically_relative(outs[0]);
-            EXPECT_EQ(comparable(e->path().string(), outs[0]), comparable(other.string(), outs[1])) << scenario << ": " << other;
+            EXPECT_EQ(comparable(e->path().string(), outs[0]), comparable(other.string(), outs[1]))
+                << scenario << ": " << other;
             ++files;
         }
         EXPECT_GE(files, 3u) << scenario;  // frames.csv and keypoint files at least

@@ -13,14 +13,24 @@ TEST(Statistics, TreeLegendAndMarkdownFromOneRegistry) {
     const sc_core::sc_time busy(250, sc_core::SC_MS);
     for (int k = 0; k < 2; ++k) {
         const Statistics::Scope s = registry.scope("fhg." + std::to_string(k));
-        s.count("frames", [&, k] { return frames + uint64_t(k); }, "frames", "frames ended");
-        s.high_water("maxima_fifo_high_water", [&] { return level; }, "entries", "highest level");
-        s.share("utilisation", [&] { return busy; }, "busy over the run");
+        s.count(
+            "frames", [&, k] { return frames + uint64_t(k); }, "frames", "frames ended");
+        s.high_water(
+            "maxima_fifo_high_water", [&] { return level; }, "entries", "highest level");
+        s.share(
+            "utilisation", [&] { return busy; }, "busy over the run");
     }
     const Statistics::Scope bus = registry.scope("buses.plb2");
-    bus.time("busy_s", [&] { return busy; }, "carrying bursts");
-    bus.text("arbitration", [] { return std::string("round_robin"); }, "the arbitration");
-    bus.histogram("waits", [] { return std::vector<std::pair<std::string, uint64_t>>{{"0", 5}, {"1", 2}}; }, "bursts", "by wait");
+    bus.time(
+        "busy_s", [&] { return busy; }, "carrying bursts");
+    bus.text(
+        "arbitration", [] { return std::string("round_robin"); }, "the arbitration");
+    bus.histogram(
+        "waits",
+        [] {
+            return std::vector<std::pair<std::string, uint64_t>>{{"0", 5}, {"1", 2}};
+        },
+        "bursts", "by wait");
     const auto tree = statistics_tree(registry, 0.5);
     ASSERT_TRUE(tree["fhg"].is_array());
     EXPECT_EQ(tree["fhg"].size(), 2u);

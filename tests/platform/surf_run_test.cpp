@@ -24,7 +24,6 @@ using test::kOneRun;
 const std::string kCastle = std::string(SURFVP_SOURCE_DIR) + "/scenarios/castle_sequence.yaml";
 using test::fresh_path;
 
-
 nlohmann::json run(const std::string& name, const std::string& sets, int expected_exit,
                    const std::string& scenario = kBudget) {
     const std::string out = fresh_dir(name);
@@ -53,8 +52,9 @@ TEST(SurfRun, VpKeypointsEqualDirectModeByteForByte) {
 // same candidates.
 TEST(SurfRun, VpAndDirectModeReportTheSameOverflowOnATinyFifo) {
     const std::string vp = fresh_dir("vp_overflow"), direct = fresh_dir("direct_overflow");
-    const std::string sets = " --set surf.frames=1 --set surf.width=512 --set surf.height=384 --set budget.fps=0"
-                             " --set fhg.maxima_fifo_depth=8 --set surf.fifo_irq_level=1024";
+    const std::string sets =
+        " --set surf.frames=1 --set surf.width=512 --set surf.height=384 --set budget.fps=0"
+        " --set fhg.maxima_fifo_depth=8 --set surf.fifo_irq_level=1024";
     EXPECT_EQ(surfvp("run " + kBudget + " --trace none --quiet --out " + vp + kOneRun + sets).exit_code, 1);
     EXPECT_EQ(surfvp("run " + kBudget + " --direct --quiet --out " + direct + sets).exit_code, 1);
     const auto in_vp = nlohmann::json::parse(slurp(vp + "/report.json"));
@@ -98,10 +98,13 @@ TEST(SurfRun, LimitWithAFiftyTwoLineFifoIsLineFifoStarvation) {
 }
 
 TEST(SurfRun, LimitWithTwoPairsAndTwoTasksIsTheTaskLimit) {
-    const auto r = run("limit_tasks", " --set surf.frames=6 --set budget.fps=0 --set soc.accelerators=2 --set surf.tasks_in_flight=2", 0);
+    const auto r =
+        run("limit_tasks",
+            " --set surf.frames=6 --set budget.fps=0 --set soc.accelerators=2 --set surf.tasks_in_flight=2", 0);
     // Each pair waits for a free task slot; the limit named is that wait (or, since the CPU's
     // fills overlap (issue 33), the IIG held back behind it on the PixelBus), not a busy block.
-    EXPECT_TRUE(r["limit"]["resource"] == "task slots" || r["limit"]["cause"] == "PixelBus back-pressure") << r["limit"];
+    EXPECT_TRUE(r["limit"]["resource"] == "task slots" || r["limit"]["cause"] == "PixelBus back-pressure")
+        << r["limit"];
     EXPECT_GT(r["time_per_frame"]["accelerator pair"]["waits_ms"]["free task slot"].get<double>(), 10.0);
     EXPECT_LT(r["time_per_frame"]["cpu"]["load"].get<double>(), 0.95);  // not the CPU: it still waits for interrupts
 }
@@ -109,10 +112,13 @@ TEST(SurfRun, LimitWithTwoPairsAndTwoTasksIsTheTaskLimit) {
 // Every resource's frame adds up: busy + each wait + idle = its period, with no negative idle
 // (the whole run's time per frame), at the defaults, under bus contention and with two pairs.
 TEST(SurfRun, EveryResourcesFrameAddsUpToItsPeriod) {
-    const std::string contention = " --set soc.accelerators=2 --set surf.tasks_in_flight=3 --set 'plb2.width=32 bit'"
-                                   " --set 'memory.clock=100 MHz' --set 'memory.width=32 bit'";
+    const std::string contention =
+        " --set soc.accelerators=2 --set surf.tasks_in_flight=3 --set 'plb2.width=32 bit'"
+        " --set 'memory.clock=100 MHz' --set 'memory.width=32 bit'";
     for (const auto& [name, sets] : std::vector<std::pair<std::string, std::string>>{
-             {"adds_default", ""}, {"adds_contention", contention}, {"adds_two_pairs", " --set soc.accelerators=2 --set surf.tasks_in_flight=2"}}) {
+             {"adds_default", ""},
+             {"adds_contention", contention},
+             {"adds_two_pairs", " --set soc.accelerators=2 --set surf.tasks_in_flight=2"}}) {
         const auto r = run(name, " --set surf.frames=5 --set budget.fps=0" + sets, 0);
         const double run_period = r["sim_time_s"].get<double>() * 1e3 / r["frames_done"].get<double>();
         const double pairs = r["iig"].is_array() ? double(r["iig"].size()) : 1.0;
@@ -121,10 +127,12 @@ TEST(SurfRun, EveryResourcesFrameAddsUpToItsPeriod) {
             double sum = row["busy_ms"].get<double>() + row["idle_ms"].get<double>();
             for (const auto& [cause, ms] : row["waits_ms"].items()) sum += ms.get<double>();
             const bool per_pair = resource == "iig" || resource == "fhg" || resource == "accelerator pair";
-            EXPECT_NEAR(row["period_ms"].get<double>(), run_period * (per_pair ? pairs : 1.0), 1e-9) << name << " " << resource;
+            EXPECT_NEAR(row["period_ms"].get<double>(), run_period * (per_pair ? pairs : 1.0), 1e-9)
+                << name << " " << resource;
             EXPECT_NEAR(sum, row["period_ms"].get<double>(), 1e-6) << name << " " << resource << ": " << row;
             EXPECT_GE(row["idle_ms"].get<double>(), 0.0) << name << " " << resource;
-            EXPECT_NEAR(row["busy_share"].get<double>(), row["busy_ms"].get<double>() / row["period_ms"].get<double>(), 1e-12);
+            EXPECT_NEAR(row["busy_share"].get<double>(), row["busy_ms"].get<double>() / row["period_ms"].get<double>(),
+                        1e-12);
         }
     }
 }
@@ -151,13 +159,16 @@ TEST(SurfRun, BudgetVerdictFollowsTheFhgClock) {
 TEST(SurfRun, HardwareErrorFailsOnlyItsTask) {
     // Castle frames differ from each other, so a frame described from another's buffers shows.
     const std::string sets = " --set surf.frames=4";
-    const auto r = run("fault", sets + " --set 'faults=[{kind: dma_outside_memory, block: fhg, frame: 1}]'", 0, kCastle);
+    const auto r =
+        run("fault", sets + " --set 'faults=[{kind: dma_outside_memory, block: fhg, frame: 1}]'", 0, kCastle);
     run("no_fault", sets, 0, kCastle);
     // The other frames' keypoints are those of a run without the fault: the failed task did not
     // let a later one overwrite buffers the CPU was still reading.
     for (const char* f : {"frame_0000.surf", "frame_0002.surf", "frame_0003.surf"})
-        EXPECT_EQ(slurp(fresh_path("fault") + "/keypoints/" + f), slurp(fresh_path("no_fault") + "/keypoints/" + f)) << f;
-    EXPECT_FALSE(std::filesystem::exists(fresh_path("fault") + "/keypoints/frame_0001.surf"));  // a failed frame has none
+        EXPECT_EQ(slurp(fresh_path("fault") + "/keypoints/" + f), slurp(fresh_path("no_fault") + "/keypoints/" + f))
+            << f;
+    EXPECT_FALSE(
+        std::filesystem::exists(fresh_path("fault") + "/keypoints/frame_0001.surf"));  // a failed frame has none
     const auto& frames = r["workload"]["per_frame"];
     ASSERT_EQ(frames.size(), 4u);
     EXPECT_NE(frames[1]["error"].get<std::string>().find("bus error"), std::string::npos) << frames[1];
@@ -216,10 +227,12 @@ TEST(SurfRun, ChipKeypointsMatchTheFloatReference) {
     ASSERT_FALSE(frame.empty()) << "install the Debian package opencv-doc";
     cv::resize(frame, resized, cv::Size(1024, 768), 0, 0, cv::INTER_AREA);
     cv::imwrite(out + "/frame.png", resized);
-    ASSERT_EQ(surfvp(fmt::format("surf {}/frame.png --out {}/reference.surf --threshold {:.9g} --paper --octaves 2 --init-step 1 -q",
-                                 out, out, threshold))
-                  .exit_code,
-              0);
+    ASSERT_EQ(
+        surfvp(fmt::format(
+                   "surf {}/frame.png --out {}/reference.surf --threshold {:.9g} --paper --octaves 2 --init-step 1 -q",
+                   out, out, threshold))
+            .exit_code,
+        0);
     const auto reference = eval::load_keypoints(out + "/reference.surf");
     const auto chip = eval::load_keypoints(chip_dir + "/keypoints/frame_0000.surf");
     ASSERT_GT(reference.size(), 200u);
@@ -251,7 +264,8 @@ TEST(SurfRun, CpuMemoryOverPlb1) {
     EXPECT_EQ(plb1["cpu"]["memory"]["path"], "plb1");
     EXPECT_EQ(plb1["buses"]["plb1"]["masters"]["cpu memory"]["bytes_read"], mci["cpu"]["memory"]["bytes_read"]);
     EXPECT_FALSE(plb1.contains("mci"));  // no MCI link on the chip, so no statistics of one
-    EXPECT_NEAR(plb1["throughput_fps"].get<double>(), mci["throughput_fps"].get<double>(), 0.01 * mci["throughput_fps"].get<double>());
+    EXPECT_NEAR(plb1["throughput_fps"].get<double>(), mci["throughput_fps"].get<double>(),
+                0.01 * mci["throughput_fps"].get<double>());
     EXPECT_GT(plb1["cpu"]["memory"]["fill_stall_s"].get<double>(), mci["cpu"]["memory"]["fill_stall_s"].get<double>());
 }
 
@@ -271,8 +285,10 @@ TEST(SurfRun, DeterminantWidthSetsTheTrafficItCauses) {
     const uint64_t blocks = 512 * 384;
     EXPECT_EQ(wide["buses"]["plb2"]["masters"]["fhg"]["bytes_written"].get<uint64_t>(), 2 * blocks * 18 * 4);
     EXPECT_EQ(narrow["buses"]["plb2"]["masters"]["fhg"]["bytes_written"].get<uint64_t>(), 2 * blocks * 18 * 2);
-    EXPECT_LT(narrow["buses"]["plb2"]["write"]["busy_s"].get<double>(), 0.6 * wide["buses"]["plb2"]["write"]["busy_s"].get<double>());
-    EXPECT_LT(narrow["cpu"]["memory"]["line_fills"].get<uint64_t>(), wide["cpu"]["memory"]["line_fills"].get<uint64_t>());
+    EXPECT_LT(narrow["buses"]["plb2"]["write"]["busy_s"].get<double>(),
+              0.6 * wide["buses"]["plb2"]["write"]["busy_s"].get<double>());
+    EXPECT_LT(narrow["cpu"]["memory"]["line_fills"].get<uint64_t>(),
+              wide["cpu"]["memory"]["line_fills"].get<uint64_t>());
 }
 
 }  // namespace
@@ -296,9 +312,9 @@ TEST(SurfRunReport, FramesCsvAndAReadableWorkloadSection) {
     // The rate first, then the blocks, the buses and DDR, the workload, every statistic.
     size_t at = md.find(" frames/s; limited by ");  // "**N frames/s; limited by X.**" heads the report
     ASSERT_NE(at, std::string::npos) << md;
-    for (const char* section : {"## Frames", "## SSA FHG", "## SSA IIG", "## CPU (PPC440)", "### Software stage",
-                                "| descriptor |", "## Buses and DDR", "### DDR", "## Workload", "## Every statistic",
-                                "| `fhg.maxima_fifo_high_water` |"}) {
+    for (const char* section :
+         {"## Frames", "## SSA FHG", "## SSA IIG", "## CPU (PPC440)", "### Software stage", "| descriptor |",
+          "## Buses and DDR", "### DDR", "## Workload", "## Every statistic", "| `fhg.maxima_fifo_high_water` |"}) {
         const size_t next = md.find(section, at);
         EXPECT_NE(next, std::string::npos) << section << " missing or out of order";
         if (next != std::string::npos) at = next;

@@ -27,10 +27,12 @@ using Json = nlohmann::json;
 std::string small_sweep(const std::string& dir, const std::string& axes, const std::string& extra = "") {
     return write_file(dir, "sweep.yaml",
                       "name: small\n"
-                      "scenario: " + kBudget + "\n"
-                      "set:\n"
-                      "  surf.frames: 3\n  surf.width: 256\n  surf.height: 192\n  surf.target_keypoints: 20\n" + extra +
-                      "axes:\n" + axes);
+                      "scenario: " +
+                          kBudget +
+                          "\n"
+                          "set:\n"
+                          "  surf.frames: 3\n  surf.width: 256\n  surf.height: 192\n  surf.target_keypoints: 20\n" +
+                          extra + "axes:\n" + axes);
 }
 
 const std::string kTwoByTwo = "  fhg.clock: {from: 25 MHz, to: 50 MHz, step: 25 MHz}\n  fhg.read_buses: [2, 4]\n";
@@ -61,7 +63,8 @@ TEST(SweepPlan, BadAxesAreNamedAtTheirLine) {
         {"  fhg.clock: {from: 50 MHz, to: 60 MHz, step: 0 MHz}\n", "step 0 MHz must be above zero"},
         {"  fhg.clock: {from: 50 MHz, to: 60 GHz, step: 5 MHz}\n", "must share one unit"},
         {"  fhg.clock: {from: 50 MHz, to: 60 MHz}\n", "'step' is missing"},
-        {"  fhg.clock: {from: 1e400 MHz, to: 60 MHz, step: 5 MHz}\n", "'1e400 MHz' is out of range (not a finite number)"},  // was exit 3
+        {"  fhg.clock: {from: 1e400 MHz, to: 60 MHz, step: 5 MHz}\n",
+         "'1e400 MHz' is out of range (not a finite number)"},  // was exit 3
         {"  fhg.clock: {from: 50 MHz, to: 60 MHz, step: fast}\n", "'fast' is not a number with an optional unit"},
         {"  surf.frames: [2, 4]\n", "axis surf.frames is also in set:"},
     };
@@ -101,9 +104,10 @@ TEST(SweepPlan, TooManyPointsAreRefusedBeforeTheyAreMade) {
         return std::string("accepted");
     };
     EXPECT_EQ(refusal("s.yaml", "scenario: smoke\naxes:\n" + thousand),
-              dir + "/s.yaml:2: combine: the axes make 1000000000000000 points, more than the 100000 a sweep may have: "
-                    "fhg.clock (1000 values) x smoke.copies (1000 values) x smoke.polls (1000 values) x "
-                    "smoke.poll_interval (1000 values) x plb1.clock (1000 values)");
+              dir +
+                  "/s.yaml:2: combine: the axes make 1000000000000000 points, more than the 100000 a sweep may have: "
+                  "fhg.clock (1000 values) x smoke.copies (1000 values) x smoke.polls (1000 values) x "
+                  "smoke.poll_interval (1000 values) x plb1.clock (1000 values)");
     const std::string huge =
         "combine: cartesian\naxes:\n"
         "  smoke.copies: {from: 1, to: 100000, step: 1}\n"
@@ -114,9 +118,10 @@ TEST(SweepPlan, TooManyPointsAreRefusedBeforeTheyAreMade) {
     EXPECT_NE(message.find("huge.yaml:2: combine: the axes make 1e+20 points, more than the 100000"), std::string::npos)
         << message;
     // At the limit, the points are made.
-    const SweepPlan at_limit = load_sweep(write_file(dir, "ok.yaml", "scenario: smoke\naxes:\n"
-                                                                     "  smoke.copies: {from: 1, to: 1000, step: 1}\n"
-                                                                     "  smoke.polls: {from: 1, to: 100, step: 1}\n"));
+    const SweepPlan at_limit = load_sweep(write_file(dir, "ok.yaml",
+                                                     "scenario: smoke\naxes:\n"
+                                                     "  smoke.copies: {from: 1, to: 1000, step: 1}\n"
+                                                     "  smoke.polls: {from: 1, to: 100, step: 1}\n"));
     EXPECT_EQ(at_limit.points.size(), 100000u);
     EXPECT_EQ(at_limit.points.back().id, "smoke.copies=1000, smoke.polls=100");
 }
@@ -125,7 +130,8 @@ TEST(SweepPlan, TooManyPointsAreRefusedBeforeTheyAreMade) {
 TEST(SweepPlan, ANameFollowsTheScenarioNameRuleAtItsLine) {
     const std::string dir = fresh_dir("names");
     auto named = [&](const std::string& name) {
-        return write_file(dir, "named.yaml", "name: " + name + "\nscenario: smoke\naxes:\n  plb2.width: [32 bit, 64 bit]\n");
+        return write_file(dir, "named.yaml",
+                          "name: " + name + "\nscenario: smoke\naxes:\n  plb2.width: [32 bit, 64 bit]\n");
     };
     for (const std::string name : {"../up", "a/b", "'..'", "'.'", "'a\\b'", "\"tab\\there\"", "''"}) {
         try {
@@ -202,9 +208,11 @@ TEST(Sweep, PointsRunInParallelAndResultsComeOutAsCsvJsonAndPlots) {
 // A base scenario that evaluates its keypoints gives each row its quality, and the front weighs it.
 TEST(Sweep, QualityComesWithAScenarioThatEvaluates) {
     const std::string dir = fresh_dir("quality");
-    const std::string file = write_file(dir, "q.yaml",
-                                        "scenario: " + std::string(SURFVP_SOURCE_DIR) + "/scenarios/graf.yaml\n"
-                                        "set: {surf.target_keypoints: 300}\naxes:\n  surf.haar: [rounded, exact]\n");
+    const std::string file =
+        write_file(dir, "q.yaml",
+                   "scenario: " + std::string(SURFVP_SOURCE_DIR) +
+                       "/scenarios/graf.yaml\n"
+                       "set: {surf.target_keypoints: 300}\naxes:\n  surf.haar: [rounded, exact]\n");
     const auto r = surfvp("sweep " + file + " --quiet --out " + dir + "/out");
     ASSERT_EQ(r.exit_code, 0) << r.err;
     const Json j = results(dir + "/out");
@@ -226,7 +234,8 @@ TEST(Sweep, ShardsMergeIntoTheResultsOfOneRun) {
     const std::string file = small_sweep(dir, kTwoByTwo);
     ASSERT_EQ(surfvp("sweep " + file + " --quiet --out " + dir + "/whole").exit_code, 0);
     for (const char* shard : {"1/3", "2/3", "3/3"})
-        ASSERT_EQ(surfvp("sweep " + file + " --quiet --shard " + shard + " --out " + dir + "/sharded").exit_code, 0) << shard;
+        ASSERT_EQ(surfvp("sweep " + file + " --quiet --shard " + shard + " --out " + dir + "/sharded").exit_code, 0)
+            << shard;
     EXPECT_FALSE(fs::exists(dir + "/sharded/results.json"));
     const auto merged = surfvp("sweep-merge " + dir + "/sharded");
     ASSERT_EQ(merged.exit_code, 0) << merged.err;
@@ -240,7 +249,8 @@ TEST(Sweep, ShardsMergeIntoTheResultsOfOneRun) {
 TEST(Sweep, APointThatCannotRunIsRecordedAndTheOthersGoOn) {
     const std::string dir = fresh_dir("failing");
     // 8 MiB holds two buffer sets of 256x192 frames, 1 MiB does not.
-    const auto r = surfvp("sweep " + small_sweep(dir, "  memory.size: [1 MiB, 8 MiB]\n") + " --quiet --out " + dir + "/out");
+    const auto r =
+        surfvp("sweep " + small_sweep(dir, "  memory.size: [1 MiB, 8 MiB]\n") + " --quiet --out " + dir + "/out");
     EXPECT_EQ(r.exit_code, 1) << r.err;
     const Json j = results(dir + "/out");
     ASSERT_EQ(j["points"].size(), 2u);
@@ -258,7 +268,8 @@ TEST(Sweep, APointThatCannotRunIsRecordedAndTheOthersGoOn) {
 // The smoke scenario, copied next to the sweep file and named by a relative path: a sweep of
 // two points that runs in a fraction of a second.
 std::string smoke_sweep(const std::string& dir, const std::string& body) {
-    fs::copy_file(std::string(SURFVP_SOURCE_DIR) + "/scenarios/smoke.yaml", dir + "/base.yaml", fs::copy_options::overwrite_existing);
+    fs::copy_file(std::string(SURFVP_SOURCE_DIR) + "/scenarios/smoke.yaml", dir + "/base.yaml",
+                  fs::copy_options::overwrite_existing);
     return write_file(dir, "s.yaml", "name: tiny\nscenario: base.yaml\n" + body);
 }
 const std::string kTinyAxes = "set: {smoke.copies: 2, surf.source: frame.png}\naxes:\n  plb2.width: [32 bit, 64 bit]\n";
@@ -290,10 +301,11 @@ TEST(Sweep, ItsIdentityIsItsContentNotTheSpellingOfItsFiles) {
     ASSERT_EQ(first["points"].size(), 2u);
     // A path among the sets is kept as its file's one absolute spelling.
     const std::string frame = (fs::canonical(dir + "/a") / "frame.png").string();
-    EXPECT_EQ(slurp(dir + "/a/out/results.json").find("frame.png"), std::string::npos);  // sets are not in the results...
+    EXPECT_EQ(slurp(dir + "/a/out/results.json").find("frame.png"),
+              std::string::npos);  // sets are not in the results...
     InFolder here(dir);
-    for (const std::string& spelling :
-         std::vector<std::string>{"a/s.yaml", "./a/../a/s.yaml", dir + "/a/s.yaml", dir + "/link/s.yaml", "link/./s.yaml"}) {
+    for (const std::string& spelling : std::vector<std::string>{"a/s.yaml", "./a/../a/s.yaml", dir + "/a/s.yaml",
+                                                                dir + "/link/s.yaml", "link/./s.yaml"}) {
         const auto again = surfvp("sweep " + spelling + " --out a/out");
         EXPECT_EQ(again.exit_code, 0) << spelling << ": " << again.err;
         EXPECT_NE(again.err.find("2 of 2 points already done"), std::string::npos) << spelling << ": " << again.err;
@@ -309,7 +321,8 @@ TEST(Sweep, ItsIdentityIsItsContentNotTheSpellingOfItsFiles) {
     EXPECT_EQ(whole, sharded);
     // ...but an axis of paths names each point by its file's one spelling.
     const SweepPlan plan = load_sweep(dir + "/link/s.yaml");
-    const SweepPlan paths = load_sweep(write_file(dir + "/link", "p.yaml", "scenario: base.yaml\naxes:\n  surf.source: [x.png, ../a/y.png]\n"));
+    const SweepPlan paths = load_sweep(
+        write_file(dir + "/link", "p.yaml", "scenario: base.yaml\naxes:\n  surf.source: [x.png, ../a/y.png]\n"));
     EXPECT_EQ(paths.points[0].id, "surf.source=" + (fs::canonical(dir + "/a") / "x.png").string());
     EXPECT_EQ(paths.points[1].id, "surf.source=" + (fs::canonical(dir + "/a") / "y.png").string());
     EXPECT_NE(plan.fingerprint.find(frame), std::string::npos) << plan.fingerprint;
@@ -329,7 +342,8 @@ TEST(Sweep, AnEditedSweepIsRefusedWithWhatChangedUnlessFresh) {
         const auto r = surfvp("sweep " + file + " --out " + dir + "/out");
         EXPECT_EQ(r.exit_code, 2) << body << r.err;
         EXPECT_NE(r.err.find(dir + "/out/sweep.db: holds the points of another sweep: "), std::string::npos) << r.err;
-        for (const std::string& phrase : phrases) EXPECT_NE(r.err.find(phrase), std::string::npos) << phrase << "\n" << r.err;
+        for (const std::string& phrase : phrases)
+            EXPECT_NE(r.err.find(phrase), std::string::npos) << phrase << "\n" << r.err;
         EXPECT_NE(r.err.find("give --fresh to discard them"), std::string::npos) << r.err;
         EXPECT_EQ(slurp(dir + "/out/sweep.db"), db);
         EXPECT_EQ(slurp(dir + "/out/results.json"), json);
@@ -340,7 +354,8 @@ TEST(Sweep, AnEditedSweepIsRefusedWithWhatChangedUnlessFresh) {
             {"set changed (smoke.copies: 2, now 3; smoke.polls added; surf.source removed)"});
     refused("set: {smoke.copies: 2, surf.source: frame.png}\naxes:\n  plb1.width: [32 bit, 64 bit]\n",
             {"axes added: plb1.width", "axes removed: plb2.width"});
-    refused(kTinyAxes + "  plb1.width: [32 bit, 64 bit]\ncombine: zip\n", {"axes added: plb1.width", "combine changed (cartesian, now zip)"});
+    refused(kTinyAxes + "  plb1.width: [32 bit, 64 bit]\ncombine: zip\n",
+            {"axes added: plb1.width", "combine changed (cartesian, now zip)"});
     // The same sets in another order are the same sweep; the base scenario's text is not.
     smoke_sweep(dir, "set: {surf.source: frame.png, smoke.copies: 2}\naxes:\n  plb2.width: [32 bit, 64 bit]\n");
     EXPECT_EQ(surfvp("sweep " + file + " --quiet --out " + dir + "/out").exit_code, 0);
@@ -376,15 +391,18 @@ TEST(Sweep, AnEditedSweepIsRefusedWithWhatChangedUnlessFresh) {
 TEST(Sweep, PointsThatCouldNotRunAreRunAgainOnResume) {
     const std::string dir = fresh_dir("retry");
     fs::copy_file(kOpencvData + "/graf1.png", dir + "/a.png");
-    const std::string file = write_file(dir, "s.yaml",
-                                        "scenario: " + kBudget + "\n"
-                                        "set: {surf.frames: 3, surf.width: 256, surf.height: 192, surf.target_keypoints: 20, "
-                                        "budget.fps: 100000}\n"
-                                        "axes:\n  surf.source: [a.png, b.png]\n");
+    const std::string file =
+        write_file(dir, "s.yaml",
+                   "scenario: " + kBudget +
+                       "\n"
+                       "set: {surf.frames: 3, surf.width: 256, surf.height: 192, surf.target_keypoints: 20, "
+                       "budget.fps: 100000}\n"
+                       "axes:\n  surf.source: [a.png, b.png]\n");
     const std::string out = " --out " + dir + "/out";
     const auto first = surfvp("sweep " + file + " --quiet" + out);
     EXPECT_EQ(first.exit_code, 1) << first.err;
-    EXPECT_NE(first.err.find("1 points could not run: point 1 (surf.source=" + dir + "/b.png, exit 2)"), std::string::npos)
+    EXPECT_NE(first.err.find("1 points could not run: point 1 (surf.source=" + dir + "/b.png, exit 2)"),
+              std::string::npos)
         << first.err;
     Json j = results(dir + "/out");
     EXPECT_EQ(j["points"][0]["status"], "failed");
@@ -400,8 +418,10 @@ TEST(Sweep, PointsThatCouldNotRunAreRunAgainOnResume) {
 
     const auto still = surfvp("sweep " + file + out);  // run again, and still missing
     EXPECT_EQ(still.exit_code, 1) << still.err;
-    EXPECT_NE(still.err.find("1 of 2 points already done in " + dir + "/out/sweep.db; 1 that could not run are run again"),
-              std::string::npos) << still.err;
+    EXPECT_NE(
+        still.err.find("1 of 2 points already done in " + dir + "/out/sweep.db; 1 that could not run are run again"),
+        std::string::npos)
+        << still.err;
 
     fs::copy_file(kOpencvData + "/graf1.png", dir + "/b.png");
     const auto again = surfvp("sweep " + file + out);
@@ -417,13 +437,15 @@ TEST(Sweep, PointsThatCouldNotRunAreRunAgainOnResume) {
 // file is not well-formed XML.
 std::optional<std::vector<std::string>> svg_texts(const std::string& svg) {
     std::unique_ptr<xmlDoc, decltype(&xmlFreeDoc)> doc(
-        xmlReadMemory(svg.data(), int(svg.size()), "plot.svg", nullptr, XML_PARSE_NONET | XML_PARSE_NOERROR | XML_PARSE_NOWARNING),
+        xmlReadMemory(svg.data(), int(svg.size()), "plot.svg", nullptr,
+                      XML_PARSE_NONET | XML_PARSE_NOERROR | XML_PARSE_NOWARNING),
         xmlFreeDoc);
     if (!doc) return std::nullopt;
     std::vector<std::string> texts;
     std::function<void(xmlNodePtr)> walk = [&](xmlNodePtr n) {
         for (; n; n = n->next) {
-            if (n->type == XML_ELEMENT_NODE && (xmlStrEqual(n->name, BAD_CAST "text") || xmlStrEqual(n->name, BAD_CAST "title"))) {
+            if (n->type == XML_ELEMENT_NODE &&
+                (xmlStrEqual(n->name, BAD_CAST "text") || xmlStrEqual(n->name, BAD_CAST "title"))) {
                 xmlChar* t = xmlNodeGetContent(n);
                 texts.emplace_back(reinterpret_cast<const char*>(t));
                 xmlFree(t);
@@ -453,14 +475,18 @@ TEST(Sweep, PlotsEscapeEveryTextTheyShow) {
         EXPECT_EQ(svg.find("<script"), std::string::npos) << plot;
         const auto texts = svg_texts(svg);
         ASSERT_TRUE(texts.has_value()) << plot << " is not well-formed:\n" << svg;
-        EXPECT_NE(std::find_if(texts->begin(), texts->end(), [&](const std::string& t) { return t.rfind(name + ": frames/s against", 0) == 0; }),
-                  texts->end()) << plot;
+        EXPECT_NE(std::find_if(texts->begin(), texts->end(),
+                               [&](const std::string& t) { return t.rfind(name + ": frames/s against", 0) == 0; }),
+                  texts->end())
+            << plot;
         // Each point's title is its id, the control character shown as U+FFFD.
         const std::string b = "surf.source=" + (fs::canonical(dir) / "<script>a & 'b'.png").string();
         const std::string d = "surf.source=" + (fs::canonical(dir) / "c\"d<e>\xEF\xBF\xBD.png").string();
         for (const std::string& id : {b, d})
-            EXPECT_NE(std::find_if(texts->begin(), texts->end(), [&](const std::string& t) { return t.rfind(id + ":", 0) == 0; }),
-                      texts->end()) << plot << ": no point titled " << id;
+            EXPECT_NE(std::find_if(texts->begin(), texts->end(),
+                                   [&](const std::string& t) { return t.rfind(id + ":", 0) == 0; }),
+                      texts->end())
+                << plot << ": no point titled " << id;
     }
 }
 
@@ -493,27 +519,47 @@ TEST(Sweep, ADamagedDatabaseIsBadInputNamingTheFileAndThePoint) {
         EXPECT_NE(r.err.find("surfvp: error: " + db + ": " + message), std::string::npos) << what << ": " << r.err;
         EXPECT_EQ(r.err.find("points run"), std::string::npos) << what << ": " << r.err;
     };
-    refused("not SQLite", [&] { write_file(dir + "/out", "sweep.db", "name: not a database\n"); },
-            "not a sweep database, or a damaged one");
-    refused("cut short", [&] { write_file(dir + "/out", "sweep.db", good.substr(0, good.size() / 2)); }, "not a sweep database, or a damaged one");
-    refused("an index without a row", [&] {  // SQLite reads through it (found by tests/fuzz sweep_db)
-        fs::copy_file(std::string(SURFVP_SOURCE_DIR) + "/tests/fuzz/regressions/sweep_db/index_missing_a_row", db,
-                      fs::copy_options::overwrite_existing);
-    }, "not a sweep database, or a damaged one (integrity check: row 2 missing from index");
-    refused("other tables", [&] { sql(db, "DROP TABLE points; CREATE TABLE points (a, b);"); },
-            "is not a sweep database: its table points has the columns (a, b), not (idx, id, params, exit, error, figures, wall_s)");
+    refused(
+        "not SQLite", [&] { write_file(dir + "/out", "sweep.db", "name: not a database\n"); },
+        "not a sweep database, or a damaged one");
+    refused(
+        "cut short", [&] { write_file(dir + "/out", "sweep.db", good.substr(0, good.size() / 2)); },
+        "not a sweep database, or a damaged one");
+    refused(
+        "an index without a row",
+        [&] {  // SQLite reads through it (found by tests/fuzz sweep_db)
+            fs::copy_file(std::string(SURFVP_SOURCE_DIR) + "/tests/fuzz/regressions/sweep_db/index_missing_a_row", db,
+                          fs::copy_options::overwrite_existing);
+        },
+        "not a sweep database, or a damaged one (integrity check: row 2 missing from index");
+    refused(
+        "other tables", [&] { sql(db, "DROP TABLE points; CREATE TABLE points (a, b);"); },
+        "is not a sweep database: its table points has the columns (a, b), not (idx, id, params, exit, error, figures, "
+        "wall_s)");
     const std::string point1 = "point 1 (plb2.width=64 bit): ";
-    refused("params not JSON", [&] { sql(db, "UPDATE points SET params = '{\"plb2.width\": ' WHERE idx = 1"); },
-            point1 + "params is not JSON: [json.exception.parse_error.101]");
-    refused("params a list", [&] { sql(db, "UPDATE points SET params = '[1]' WHERE idx = 1"); }, point1 + "params is a JSON array, not an object");
-    refused("a value a number", [&] { sql(db, "UPDATE points SET params = '{\"plb2.width\": 64}' WHERE idx = 1"); },
-            point1 + "params.plb2.width is a JSON number, not a text");
-    refused("figures a text", [&] { sql(db, "UPDATE points SET figures = '\"fast\"' WHERE idx = 1"); }, point1 + "figures is a JSON string, not an object");
-    refused("frames/s a text", [&] { sql(db, "UPDATE points SET figures = '{\"fps\": \"fast\"}' WHERE idx = 1"); },
-            point1 + "figures.fps is a JSON string, not a number");
-    refused("exit not an exit code", [&] { sql(db, "UPDATE points SET exit = 1000 WHERE idx = 1"); }, point1 + "exit 1000 is not an exit code");
-    refused("index a text", [&] { sql(db, "UPDATE points SET idx = 'one' WHERE id = 'plb2.width=64 bit'"); }, "point in row ");
-    EXPECT_NE(surfvp("sweep " + file + " --out " + dir + "/out").err.find(" (plb2.width=64 bit): its idx is text, not an integer"),
+    refused(
+        "params not JSON", [&] { sql(db, "UPDATE points SET params = '{\"plb2.width\": ' WHERE idx = 1"); },
+        point1 + "params is not JSON: [json.exception.parse_error.101]");
+    refused(
+        "params a list", [&] { sql(db, "UPDATE points SET params = '[1]' WHERE idx = 1"); },
+        point1 + "params is a JSON array, not an object");
+    refused(
+        "a value a number", [&] { sql(db, "UPDATE points SET params = '{\"plb2.width\": 64}' WHERE idx = 1"); },
+        point1 + "params.plb2.width is a JSON number, not a text");
+    refused(
+        "figures a text", [&] { sql(db, "UPDATE points SET figures = '\"fast\"' WHERE idx = 1"); },
+        point1 + "figures is a JSON string, not an object");
+    refused(
+        "frames/s a text", [&] { sql(db, "UPDATE points SET figures = '{\"fps\": \"fast\"}' WHERE idx = 1"); },
+        point1 + "figures.fps is a JSON string, not a number");
+    refused(
+        "exit not an exit code", [&] { sql(db, "UPDATE points SET exit = 1000 WHERE idx = 1"); },
+        point1 + "exit 1000 is not an exit code");
+    refused(
+        "index a text", [&] { sql(db, "UPDATE points SET idx = 'one' WHERE id = 'plb2.width=64 bit'"); },
+        "point in row ");
+    EXPECT_NE(surfvp("sweep " + file + " --out " + dir + "/out")
+                  .err.find(" (plb2.width=64 bit): its idx is text, not an integer"),
               std::string::npos);
 }
 
@@ -536,8 +582,9 @@ TEST(SweepMerge, RefusesWhatItCannotMergeAndLeavesTheFolderAsItWas) {
     ASSERT_EQ(surfvp("sweep-merge " + out).exit_code, 0);
     const std::string shard1 = slurp(out + "/shard-1-of-2.db"), shard2 = slurp(out + "/shard-2-of-2.db");
     // Another sweep's shard 2.
-    const std::string other = write_file(dir, "other.yaml", "scenario: base.yaml\nset: {smoke.copies: 2, surf.source: frame.png}\n"
-                                                            "axes:\n  plb2.width: [32 bit, 128 bit]\n");
+    const std::string other = write_file(dir, "other.yaml",
+                                         "scenario: base.yaml\nset: {smoke.copies: 2, surf.source: frame.png}\n"
+                                         "axes:\n  plb2.width: [32 bit, 128 bit]\n");
     ASSERT_EQ(surfvp("sweep " + other + " --quiet --shard 2/2 --out " + dir + "/other").exit_code, 0);
 
     auto refused = [&](const std::string& what, const std::function<void()>& damage, const std::string& message,
@@ -552,25 +599,49 @@ TEST(SweepMerge, RefusesWhatItCannotMergeAndLeavesTheFolderAsItWas) {
         EXPECT_EQ(files_in(out), before) << what;
     };
     const std::string s2 = out + "/shard-2-of-2.db";
-    refused("empty", [&] { write_file(out, "shard-2-of-2.db", ""); }, s2 + ": is empty: it holds no sweep");
-    refused("foreign", [&] { fs::copy_file(dir + "/other/shard-2-of-2.db", s2, fs::copy_options::overwrite_existing); },
-            s2 + ": is not of the sweep of " + out + "/sweep.db: axis plb2.width: values changed (32 bit, 64 bit; now 32 bit, 128 bit)");
-    refused("not SQLite", [&] { write_file(out, "shard-2-of-2.db", "shard\n"); }, s2 + ": not a sweep database, or a damaged one");
-    refused("damaged row", [&] { sql(s2, "UPDATE points SET figures = '{' WHERE idx = 1"); },
-            s2 + ": point 1 (plb2.width=64 bit): figures is not JSON");
-    refused("values not the id", [&] { sql(s2, "UPDATE points SET params = '{\"plb2.width\": \"16 bit\"}' WHERE idx = 1"); },
-            s2 + ": point 1 (plb2.width=64 bit): its values give another id (plb2.width=16 bit)");
-    refused("damaged axes", [&] { sql(s2, "UPDATE sweep SET value = '[\"../../x\"]' WHERE key = 'axes'"); },
-            s2 + ": its record of the sweep's axes is damaged");
-    refused("renamed", [&] { write_file(out, "shard-2-of-2.db", shard1); }, s2 + ": point 0 (plb2.width=32 bit) is not of shard 2 of 2");
-    refused("damaged sweep.db", [&] { write_file(out, "sweep.db.keep", slurp(out + "/sweep.db")); write_file(out, "sweep.db", "x"); },
-            out + "/sweep.db: not a sweep database, or a damaged one");
+    refused(
+        "empty", [&] { write_file(out, "shard-2-of-2.db", ""); }, s2 + ": is empty: it holds no sweep");
+    refused(
+        "foreign", [&] { fs::copy_file(dir + "/other/shard-2-of-2.db", s2, fs::copy_options::overwrite_existing); },
+        s2 + ": is not of the sweep of " + out +
+            "/sweep.db: axis plb2.width: values changed (32 bit, 64 bit; now 32 bit, 128 bit)");
+    refused(
+        "not SQLite", [&] { write_file(out, "shard-2-of-2.db", "shard\n"); },
+        s2 + ": not a sweep database, or a damaged one");
+    refused(
+        "damaged row", [&] { sql(s2, "UPDATE points SET figures = '{' WHERE idx = 1"); },
+        s2 + ": point 1 (plb2.width=64 bit): figures is not JSON");
+    refused(
+        "values not the id",
+        [&] { sql(s2, "UPDATE points SET params = '{\"plb2.width\": \"16 bit\"}' WHERE idx = 1"); },
+        s2 + ": point 1 (plb2.width=64 bit): its values give another id (plb2.width=16 bit)");
+    refused(
+        "damaged axes", [&] { sql(s2, "UPDATE sweep SET value = '[\"../../x\"]' WHERE key = 'axes'"); },
+        s2 + ": its record of the sweep's axes is damaged");
+    refused(
+        "renamed", [&] { write_file(out, "shard-2-of-2.db", shard1); },
+        s2 + ": point 0 (plb2.width=32 bit) is not of shard 2 of 2");
+    refused(
+        "damaged sweep.db",
+        [&] {
+            write_file(out, "sweep.db.keep", slurp(out + "/sweep.db"));
+            write_file(out, "sweep.db", "x");
+        },
+        out + "/sweep.db: not a sweep database, or a damaged one");
     write_file(out, "sweep.db", slurp(out + "/sweep.db.keep"));
     fs::remove(out + "/sweep.db.keep");
-    refused("missing", [&] { fs::remove(s2); }, out + ": shard 2 of 2 is missing (shard-2-of-2.db): their points would not be in "
-                                                       "the results; give --partial");
-    refused("no shards", [&] { fs::remove(s2); fs::remove(out + "/shard-1-of-2.db"); },
-            out + ": holds no shard databases (shard-K-of-N.db) to merge");
+    refused(
+        "missing", [&] { fs::remove(s2); },
+        out +
+            ": shard 2 of 2 is missing (shard-2-of-2.db): their points would not be in "
+            "the results; give --partial");
+    refused(
+        "no shards",
+        [&] {
+            fs::remove(s2);
+            fs::remove(out + "/shard-1-of-2.db");
+        },
+        out + ": holds no shard databases (shard-K-of-N.db) to merge");
 
     // A point a shard ran replaces the same point that sweep.db has as not run (a shard run
     // again); a point no database ran makes the merge exit 1, named.
@@ -580,10 +651,12 @@ TEST(SweepMerge, RefusesWhatItCannotMergeAndLeavesTheFolderAsItWas) {
     const auto rerun = surfvp("sweep-merge " + out);
     EXPECT_EQ(rerun.exit_code, 0) << rerun.err;
     EXPECT_EQ(results(out)["points"][1]["status"], "passed");
-    for (const std::string& db : {out + "/sweep.db", s2}) sql(db, "UPDATE points SET exit = 3, error = 'killed' WHERE idx = 1");
+    for (const std::string& db : {out + "/sweep.db", s2})
+        sql(db, "UPDATE points SET exit = 3, error = 'killed' WHERE idx = 1");
     const auto killed = surfvp("sweep-merge " + out);
     EXPECT_EQ(killed.exit_code, 1) << killed.err;
-    EXPECT_NE(killed.err.find("1 points could not run: point 1 (plb2.width=64 bit, exit 3)"), std::string::npos) << killed.err;
+    EXPECT_NE(killed.err.find("1 points could not run: point 1 (plb2.width=64 bit, exit 3)"), std::string::npos)
+        << killed.err;
     EXPECT_EQ(results(out)["points"][1]["status"], "error");
 
     // --partial merges the shards there are and says which are missing.
@@ -594,7 +667,8 @@ TEST(SweepMerge, RefusesWhatItCannotMergeAndLeavesTheFolderAsItWas) {
     EXPECT_EQ(r.exit_code, 0) << r.err;
     EXPECT_NE(r.err.find("2 shard databases, 1 new points, 1 in all; results in " + part +
                          " (partial: shard 2 of 3 is missing (shard-2-of-3.db), their points are not in the results)"),
-              std::string::npos) << r.err;
+              std::string::npos)
+        << r.err;
     const Json j = results(part);
     EXPECT_EQ(j["missing_shards"], Json::array({"shard-2-of-3.db"}));
     ASSERT_EQ(j["points"].size(), 1u);

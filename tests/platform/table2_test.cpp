@@ -53,8 +53,15 @@ TEST(Table2, CastleGivesEveryRowForBothColumnsWithTheTruthAndThePaperBeside) {
     // Each of the chip's software settings alone in float, the paper's SURF, all of them, then
     // the chip: the first line is the CPU column and the last the FPGA column, row for row.
     const json& lines = r["contributions"];
-    const std::vector<std::string> names{"cpu", "cpu_2_octaves", "cpu_4_intervals", "cpu_max_offset",
-                                         "cpu_surf_descriptor", "cpu_rounded_haar", "cpu_paper", "cpu_chip_settings", "fpga"};
+    const std::vector<std::string> names{"cpu",
+                                         "cpu_2_octaves",
+                                         "cpu_4_intervals",
+                                         "cpu_max_offset",
+                                         "cpu_surf_descriptor",
+                                         "cpu_rounded_haar",
+                                         "cpu_paper",
+                                         "cpu_chip_settings",
+                                         "fpga"};
     ASSERT_EQ(lines.size(), names.size());
     for (size_t i = 0; i < names.size(); ++i) EXPECT_EQ(lines[i]["name"], names[i]);
     for (size_t i = 0; i < 4; ++i) {
@@ -69,7 +76,8 @@ TEST(Table2, CastleGivesEveryRowForBothColumnsWithTheTruthAndThePaperBeside) {
     EXPECT_NE(lines[1]["ransac"], lines[0]["ransac"]);  // 2 octaves change the keypoints
     const std::string md = slurp(out + "/report.md");
     EXPECT_NE(md.find("## What each difference costs"), std::string::npos);
-    EXPECT_NE(md.find("| limited search | Laplacian | CPU | FPGA | FPGA − CPU | paper CPU | paper FPGA |"), std::string::npos);
+    EXPECT_NE(md.find("| limited search | Laplacian | CPU | FPGA | FPGA − CPU | paper CPU | paper FPGA |"),
+              std::string::npos);
     EXPECT_NE(md.find("F from the camera poses"), std::string::npos);
     EXPECT_NE(md.find("## What the columns differ in"), std::string::npos);
 }
@@ -107,7 +115,8 @@ TEST(Table2, TheGrafPairUnderItsHomography) {
         EXPECT_GT(h["repeatability"].get<double>(), 0.45) << column;  // measured 0.589 and 0.527
         EXPECT_LT(h["repeatability"].get<double>(), 0.65) << column;
         EXPECT_GT(h["precision"].get<double>(), 0.5) << column;  // measured 0.828 and 0.576
-        EXPECT_EQ(h["precision_correct"].get<double>() / h["precision_candidates"].get<double>(), h["precision"].get<double>());
+        EXPECT_EQ(h["precision_correct"].get<double>() / h["precision_candidates"].get<double>(),
+                  h["precision"].get<double>());
     }
     EXPECT_EQ(r["gaps"].size(), 1u);  // two frames: one pair
     // The chip's lower precision is its software settings: the float reference with all of them
@@ -120,7 +129,8 @@ TEST(Table2, TheGrafPairUnderItsHomography) {
     for (size_t i = 1; i <= 5; ++i)
         EXPECT_LT(lines[i]["precision"].get<double>(), lines[0]["precision"].get<double>() - 0.01) << lines[i]["name"];
     EXPECT_NEAR(lines[7]["precision"].get<double>(), r["homography"]["fpga"]["precision"].get<double>(), 0.02);
-    EXPECT_GT(r["homography"]["cpu"]["precision"].get<double>(), r["homography"]["fpga"]["precision"].get<double>() + 0.1);
+    EXPECT_GT(r["homography"]["cpu"]["precision"].get<double>(),
+              r["homography"]["fpga"]["precision"].get<double>() + 0.1);
 }
 
 // Bad input is refused before anything is written: another sequence under the castle's poses,
@@ -129,7 +139,8 @@ TEST(Table2, InputsThatCannotGiveTheTableAreRefused) {
     REQUIRE_OPENCV_DATA("vtest.avi");
     const std::string out = test::fresh_path("t2bad");
     fs::remove_all(out);
-    const auto poses = surfvp("table2 castle_sequence --out " + out + " --set surf.source=" + test::kOpencvData + "/vtest.avi");
+    const auto poses =
+        surfvp("table2 castle_sequence --out " + out + " --set surf.source=" + test::kOpencvData + "/vtest.avi");
     EXPECT_EQ(poses.exit_code, 2);
     EXPECT_NE(poses.err.find("eval.poses"), std::string::npos) << poses.err;
     const auto smoke = surfvp("table2 smoke --out " + out);

@@ -37,14 +37,15 @@ TEST(ThresholdControl, EachFrameLearnsFromTheFrameTwoBeforeInTheVpAndDirectModeA
     ASSERT_EQ(frames.size(), 40u);
     const double first = frames[0]["threshold"];
     EXPECT_NEAR(first, r["threshold"].get<double>(), 1.0 / 65536);  // the calibrated one, as the register holds it
-    EXPECT_EQ(frames[1]["threshold"].get<double>(), first);          // two buffer sets: nothing reported yet
+    EXPECT_EQ(frames[1]["threshold"].get<double>(), first);         // two buffer sets: nothing reported yet
     for (size_t n = 2; n < frames.size(); ++n) {
         const double before = frames[n - 2]["threshold"], now = frames[n]["threshold"];
         const double step = std::clamp(std::sqrt(frames[n - 2]["keypoints"].get<double>() / 100), 0.5, 2.0);
         EXPECT_NEAR(now, before * step, 1.0 / 65536) << "frame " << n;  // to the register's last bit
     }
     // Timing plays no part: direct mode gives the same keypoints.
-    ASSERT_EQ(surfvp("run castle_sequence --quiet --direct --set surf.threshold_control=track --out " + direct).exit_code, 0);
+    ASSERT_EQ(
+        surfvp("run castle_sequence --quiet --direct --set surf.threshold_control=track --out " + direct).exit_code, 0);
     for (int i = 0; i < 40; i += 3) {
         const std::string f = fmt::format("/keypoints/frame_{:04}.surf", i);
         EXPECT_EQ(slurp(track + f), slurp(direct + f)) << f;
@@ -63,7 +64,8 @@ TEST(ThresholdControl, EachFrameLearnsFromTheFrameTwoBeforeInTheVpAndDirectModeA
 TEST(ThresholdControl, TrackingNeedsATarget) {
     const auto r = surfvp("validate castle_sequence --set surf.threshold_control=track --set surf.target_keypoints=0");
     EXPECT_EQ(r.exit_code, 2);
-    EXPECT_NE(r.err.find("surf.threshold_control: track holds the keypoints per frame near surf.target_keypoints, which is 0"),
+    EXPECT_NE(r.err.find(
+                  "surf.threshold_control: track holds the keypoints per frame near surf.target_keypoints, which is 0"),
               std::string::npos)
         << r.err;
 }
@@ -73,7 +75,10 @@ TEST(ThresholdControl, TrackingNeedsATarget) {
 TEST(ThresholdControl, AnUnreachableTargetIsAFailedCheck) {
     REQUIRE_CASTLE();
     const std::string out = fresh_dir("unreachable");
-    const auto r = surfvp("run castle_sequence --quiet --trace none --direct --set surf.frames=2 --set surf.target_keypoints=50000 --out " + out);
+    const auto r = surfvp(
+        "run castle_sequence --quiet --trace none --direct --set surf.frames=2 --set surf.target_keypoints=50000 "
+        "--out " +
+        out);
     EXPECT_EQ(r.exit_code, 1) << r.err;
     const json report = json::parse(slurp(out + "/report.json"));
     bool found = false;
@@ -81,7 +86,8 @@ TEST(ThresholdControl, AnUnreachableTargetIsAFailedCheck) {
         if (c["name"] == "keypoint target reachable") {
             found = true;
             EXPECT_FALSE(c["passed"].get<bool>());
-            EXPECT_NE(c["detail"].get<std::string>().find("not more than surf.target_keypoints = 50000"), std::string::npos);
+            EXPECT_NE(c["detail"].get<std::string>().find("not more than surf.target_keypoints = 50000"),
+                      std::string::npos);
         }
     EXPECT_TRUE(found);
     EXPECT_EQ(report["threshold"].get<double>(), 0.0);

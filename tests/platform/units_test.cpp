@@ -83,10 +83,13 @@ TEST(Units, TimeConversionsRoundLikeSystemC) {
     }
     for (double mhz : {100.0, 125.0, 133.333, 266.0, 400.0})
         for (double n : {0.0, 1.0, 3.0, 7.5, 1e3, 12345.0, 1e7})
-            ASSERT_EQ(cycles(Frequency{mhz * 1e6}, n), sc_core::sc_time(n * Frequency{mhz * 1e6}.period_ps(), sc_core::SC_PS)) << mhz << " " << n;
+            ASSERT_EQ(cycles(Frequency{mhz * 1e6}, n),
+                      sc_core::sc_time(n * Frequency{mhz * 1e6}.period_ps(), sc_core::SC_PS))
+                << mhz << " " << n;
     for (uint64_t bytes : {0u, 1u, 4u, 32u, 128u, 4096u, 786432u})
         for (double rate : {400e6, 800e6, 1.6e9, 3.2e9 / 3})
-            ASSERT_EQ(transfer_time(bytes, rate), sc_core::sc_time(double(bytes) / rate, sc_core::SC_SEC)) << bytes << " " << rate;
+            ASSERT_EQ(transfer_time(bytes, rate), sc_core::sc_time(double(bytes) / rate, sc_core::SC_SEC))
+                << bytes << " " << rate;
 }
 
 }  // namespace

@@ -20,7 +20,8 @@ using test::surfvp;
 
 // 512x384 at ~20 keypoints, FHG-bound: 53 cycles x 49,152 blocks at 100 MHz, 38.4 frames/s
 // (the CPU's 20 keypoints allow ~55).
-const std::string kSmall = " --set surf.width=512 --set surf.height=384 --set surf.target_keypoints=20 --set surf.frames=4";
+const std::string kSmall =
+    " --set surf.width=512 --set surf.height=384 --set surf.target_keypoints=20 --set surf.frames=4";
 
 nlohmann::json verdict(const std::string& name, const std::string& sets, int expected_exit) {
     const std::string out = fresh_dir(name);
@@ -31,7 +32,8 @@ nlohmann::json verdict(const std::string& name, const std::string& sets, int exp
 
 double fps_at(const std::string& name, const std::string& sets) {
     const std::string out = fresh_dir(name);
-    const auto r = surfvp("run " + kBudget + " --trace none --quiet --out " + out + kSmall + test::kOneRun + " " + sets);
+    const auto r =
+        surfvp("run " + kBudget + " --trace none --quiet --out " + out + kSmall + test::kOneRun + " " + sets);
     EXPECT_LE(r.exit_code, 1) << r.err;
     return nlohmann::json::parse(slurp(out + "/report.json"))["throughput_fps"].get<double>();
 }
@@ -93,7 +95,8 @@ TEST(Verdict, BandReSimulatesEveryAssumptionAndNamesWhatFlipsIt) {
             const bool other_side = (s["fps"].get<double>() >= 40) != (run_fps >= 40);
             flips += other_side;
             const std::string name = a["parameter"].get<std::string>() + " = " + s["value"].get<std::string>();
-            const bool listed = std::find(band["flipping"].begin(), band["flipping"].end(), name) != band["flipping"].end();
+            const bool listed =
+                std::find(band["flipping"].begin(), band["flipping"].end(), name) != band["flipping"].end();
             EXPECT_EQ(other_side, listed) << name;
         }
     EXPECT_GT(flips, 0u) << "the FHG clock's high alone crosses 40 frames/s from 38.4";
@@ -125,8 +128,10 @@ TEST(Verdict, JobsDoNotChangeTheVerdict) {
 // The band splits by role: the unknowns one at a time (the tornado) and jointly, design choices
 // and the workload apart, as what a review can change.
 TEST(Verdict, TheDoubtIsTheUnknownsJointlyAndTheChangesApart) {
-    const auto r = verdict("doubt", "--set budget.fps=40 --set verdict.break_even=off --set verdict.software=off "
-                                    "--set verdict.samples=40", 1);
+    const auto r = verdict("doubt",
+                           "--set budget.fps=40 --set verdict.break_even=off --set verdict.software=off "
+                           "--set verdict.samples=40",
+                           1);
     const auto& v = r["verdict"];
     std::set<std::string> unknown, change;
     for (const auto& a : v["band"]["axes"]) unknown.insert(a["parameter"].get<std::string>());
@@ -178,8 +183,11 @@ TEST(Verdict, TheChainRelievesEachLimitAndNamesTheNext) {
 // A CPU stalled (a blocking cache) on memory latency is not relieved by its clock: the search goes to the
 // latency, down, and its value passes the whole run's check.
 TEST(Verdict, ACpuStalledOnFillsIsRelievedByTheMemory) {
-    const auto r = verdict("stalled", "--set budget.fps=30 --set 'memory.latency=400 cycles' --set cpu.outstanding_fills=1 --set verdict.band=off "
-                                      "--set verdict.software=off", 1);
+    const auto r = verdict(
+        "stalled",
+        "--set budget.fps=30 --set 'memory.latency=400 cycles' --set cpu.outstanding_fills=1 --set verdict.band=off "
+        "--set verdict.software=off",
+        1);
     const auto& first = r["verdict"]["chain"][0];
     EXPECT_EQ(first["resource"], "cpu") << first;
     std::map<std::string, nlohmann::json> by;
@@ -202,7 +210,8 @@ TEST(Verdict, SoftwareSettingsSayWhatTheCpuTimeRestsOn) {
         cpu_ms[row["setting"].get<std::string>()] = row["cpu_ms_per_frame"].get<double>();
         EXPECT_GT(row["fps"].get<double>(), 0.0) << row;
     }
-    ASSERT_EQ(cpu_ms.size(), 8u);  // the scenario (20 keypoints), the double FPU, exact Haar, upright, 50 ... 200 keypoints
+    ASSERT_EQ(cpu_ms.size(),
+              8u);  // the scenario (20 keypoints), the double FPU, exact Haar, upright, 50 ... 200 keypoints
     const double base = cpu_ms["as the scenario"];
     EXPECT_GT(cpu_ms["fpu.precision = double"], 1.2 * base);
     EXPECT_GT(cpu_ms["surf.haar = exact"], 2.5 * base);
@@ -217,4 +226,3 @@ TEST(Verdict, SoftwareSettingsSayWhatTheCpuTimeRestsOn) {
 
 }  // namespace
 }  // namespace surfvp
-

@@ -136,9 +136,9 @@ TEST(CacheModel, InvalidateDropsEveryLine) {
 }
 
 TEST(CacheModel, RefusesGeometryItCannotIndex) {
-    EXPECT_THROW(CacheModel(CacheParams{32768, 24, 64, Replacement::lru}), std::invalid_argument);  // line
+    EXPECT_THROW(CacheModel(CacheParams{32768, 24, 64, Replacement::lru}), std::invalid_argument);     // line
     EXPECT_THROW(CacheModel(CacheParams{3 * 2048, 32, 64, Replacement::lru}), std::invalid_argument);  // 3 sets
-    EXPECT_THROW(CacheModel(CacheParams{1000, 32, 4, Replacement::lru}), std::invalid_argument);  // not whole sets
+    EXPECT_THROW(CacheModel(CacheParams{1000, 32, 4, Replacement::lru}), std::invalid_argument);       // not whole sets
     EXPECT_THROW(CacheModel(CacheParams{32768, 32, 0, Replacement::lru}), std::invalid_argument);
 }
 
@@ -177,7 +177,9 @@ public:
         set.push_front(line);
         return false;
     }
-    void invalidate() { for (auto& set : order_) set.clear(); }
+    void invalidate() {
+        for (auto& set : order_) set.clear();
+    }
 
 private:
     uint32_t sets_, ways_;

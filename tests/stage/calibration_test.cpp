@@ -27,7 +27,8 @@ const char* kMap =
 std::string block(uint32_t pc, const std::vector<std::string>& insns) {
     std::ostringstream s;
     s << "----------------\nIN: f\n";
-    for (size_t i = 0; i < insns.size(); ++i) s << "0x" << std::hex << pc + 4 * i << ":  00000000  " << insns[i] << "\n";
+    for (size_t i = 0; i < insns.size(); ++i)
+        s << "0x" << std::hex << pc + 4 * i << ":  00000000  " << insns[i] << "\n";
     s << "\n";
     return s.str();
 }
@@ -45,7 +46,7 @@ TEST(InstructionTrace, CutsTheStreamIntoCandidatesAndSteps) {
     EXPECT_TRUE(layout.in_libm(0x3004));
     EXPECT_FALSE(layout.in_libm(0x3100));
 
-    std::string log = block(0x1000, {"blr"}) + exec(0x1000) +                        // mark check
+    std::string log = block(0x1000, {"blr"}) + exec(0x1000) +  // mark check
                       block(0x2000, {"add      r3, r4, r5", "lwz      r6, 0(r1)", "bl       0x3000"}) + exec(0x2000) +
                       block(0x3000, {"fadds    f1, f2, f3", "blr"}) + exec(0x3000) +  // libm
                       block(0x1050, {"blr"}) + exec(0x1050) +                         // idle
@@ -148,11 +149,14 @@ TEST(Calibration, PricesHoldWhereSeveralKnobsMove) {
     for (const auto& check : c.checks) {
         PipelineParams p;
         for (const PipelineKnob& k : pipeline_knobs()) p.*k.field = check["knobs"][k.key].get<double>();
-        const auto prices = unit_prices(check["haar"] == "rounded" ? surf::HaarMode::rounded : surf::HaarMode::exact, p);
+        const auto prices =
+            unit_prices(check["haar"] == "rounded" ? surf::HaarMode::rounded : surf::HaarMode::exact, p);
         double model = 0;
-        for (size_t u = 0; u < kUnits; ++u) model += check["units_per_keypoint"][unit_name(Unit(u))].get<double>() * prices[u];
+        for (size_t u = 0; u < kUnits; ++u)
+            model += check["units_per_keypoint"][unit_name(Unit(u))].get<double>() * prices[u];
         const double stream = check["stream_cycles_per_keypoint"];
-        EXPECT_NEAR(model / stream, 1.0, 0.02) << check["scenario"] << " " << check["haar"] << " point " << check["point"];
+        EXPECT_NEAR(model / stream, 1.0, 0.02)
+            << check["scenario"] << " " << check["haar"] << " point " << check["point"];
         points.insert(check["point"].get<int>());
     }
     EXPECT_GE(points.size(), 5u);
@@ -174,12 +178,14 @@ TEST(Calibration, RecordedAgreementWithTheInstructionStream) {
         for (size_t u = 0; u < kUnits; ++u)
             model[size_t(step_of(Unit(u)))] += run["units_per_keypoint"][unit_name(Unit(u))].get<double>() * prices[u];
         double stream_total = 0, model_total = 0;
-        for (size_t s = 0; s < kSteps; ++s) stream_total += run["steps"][step_name(Step(s))]["stream_cycles_per_keypoint"].get<double>();
+        for (size_t s = 0; s < kSteps; ++s)
+            stream_total += run["steps"][step_name(Step(s))]["stream_cycles_per_keypoint"].get<double>();
         for (size_t s = 0; s < kSteps; ++s) {
             const double stream = run["steps"][step_name(Step(s))]["stream_cycles_per_keypoint"];
             model_total += model[s];
             if (stream > 0.01 * stream_total) {
-                EXPECT_NEAR(model[s] / stream, 1.0, 0.10) << scenario << " " << run["haar"] << " " << step_name(Step(s));
+                EXPECT_NEAR(model[s] / stream, 1.0, 0.10)
+                    << scenario << " " << run["haar"] << " " << step_name(Step(s));
             }
         }
         EXPECT_NEAR(model_total / stream_total, 1.0, 0.05) << scenario << " " << run["haar"];

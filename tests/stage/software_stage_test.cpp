@@ -115,13 +115,14 @@ void report(const char* title, const surf::Keypoints& reference, const StageRun&
         std::printf("stage %llu keypoints from %llu candidates\n", (unsigned long long)st.keypoints,
                     (unsigned long long)st.candidates);
     } else {
-        std::printf("reference %zu keypoints; stage %llu keypoints from %llu candidates "
-                    "(border %llu, not maximum %llu, interpolation %llu)\n",
-                    reference.size(), (unsigned long long)st.keypoints, (unsigned long long)st.candidates,
-                    (unsigned long long)st.rejected_border, (unsigned long long)st.rejected_not_maximum,
-                    (unsigned long long)st.rejected_interpolation);
-        std::printf("matched %zu / %zu reference keypoints (%.1f %%), Laplacian agrees %zu\n", a.matched, reference.size(),
-                    100.0 * double(a.matched) / double(reference.size()), a.laplacian_agrees);
+        std::printf(
+            "reference %zu keypoints; stage %llu keypoints from %llu candidates "
+            "(border %llu, not maximum %llu, interpolation %llu)\n",
+            reference.size(), (unsigned long long)st.keypoints, (unsigned long long)st.candidates,
+            (unsigned long long)st.rejected_border, (unsigned long long)st.rejected_not_maximum,
+            (unsigned long long)st.rejected_interpolation);
+        std::printf("matched %zu / %zu reference keypoints (%.1f %%), Laplacian agrees %zu\n", a.matched,
+                    reference.size(), 100.0 * double(a.matched) / double(reference.size()), a.laplacian_agrees);
         std::printf("position distance px: median %.4f p90 %.4f max %.4f\n", percentile(a.distance, 0.5),
                     percentile(a.distance, 0.9), percentile(a.distance, 1.0));
         std::printf("descriptor L2 distance: median %.4f p90 %.4f p99 %.4f max %.4f\n",
@@ -176,7 +177,8 @@ void end_to_end(int target, bool upright) {
     EXPECT_EQ(run.stats.candidates, run.stats.keypoints + run.stats.rejected_border + run.stats.rejected_not_maximum +
                                         run.stats.rejected_interpolation);
     ::testing::Test::RecordProperty("matched_fraction", std::to_string(double(a.matched) / double(reference.size())));
-    ::testing::Test::RecordProperty("cycles_per_keypoint", std::to_string(double(run.cycles) / double(run.stats.keypoints)));
+    ::testing::Test::RecordProperty("cycles_per_keypoint",
+                                    std::to_string(double(run.cycles) / double(run.stats.keypoints)));
     ::testing::Test::RecordProperty("cache_hit_rate", std::to_string(run.breakdown.hit_rate));
 }
 
@@ -321,7 +323,8 @@ void end_to_end_rounded(int target, bool upright) {
         identical += same;
     }
     EXPECT_EQ(identical, run.keypoints.size());
-    ::testing::Test::RecordProperty("cycles_per_keypoint", std::to_string(double(run.cycles) / double(run.stats.keypoints)));
+    ::testing::Test::RecordProperty("cycles_per_keypoint",
+                                    std::to_string(double(run.cycles) / double(run.stats.keypoints)));
 }
 
 TEST(SoftwareStage, RoundedHaarAgreesWithReferenceAt1000Keypoints) { end_to_end_rounded(1000, false); }
@@ -348,10 +351,11 @@ TEST(SoftwareStage, RoundedHaarCostsLessPerKeypoint) {
             report(title, {}, run, none);
             per_kp[upright][mode == surf::HaarMode::rounded] = double(run.cycles) / double(run.stats.keypoints);
         }
-    std::printf("cycles per keypoint: oriented exact %.0f rounded %.0f (%.2fx); upright exact %.0f rounded %.0f "
-                "(%.2fx)\n",
-                per_kp[0][0], per_kp[0][1], per_kp[0][0] / per_kp[0][1], per_kp[1][0], per_kp[1][1],
-                per_kp[1][0] / per_kp[1][1]);
+    std::printf(
+        "cycles per keypoint: oriented exact %.0f rounded %.0f (%.2fx); upright exact %.0f rounded %.0f "
+        "(%.2fx)\n",
+        per_kp[0][0], per_kp[0][1], per_kp[0][0] / per_kp[0][1], per_kp[1][0], per_kp[1][1],
+        per_kp[1][0] / per_kp[1][1]);
     ::testing::Test::RecordProperty("rounded_cycles_per_keypoint", std::to_string(per_kp[0][1]));
     ::testing::Test::RecordProperty("exact_cycles_per_keypoint", std::to_string(per_kp[0][0]));
     // Measured: oriented 966,700 -> 303,818 (3.18x), upright 725,501 -> 203,576 (3.56x).

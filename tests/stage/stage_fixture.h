@@ -41,8 +41,8 @@ inline cv::Mat graf1_1024x768() {
     return resized;
 }
 
-constexpr uint32_t kIntegralAddress = 0x01000000;      // arbitrary DDR addresses of the task's
-constexpr uint32_t kDeterminantAddress = 0x02000000;   // buffers (line-aligned, as a driver would)
+constexpr uint32_t kIntegralAddress = 0x01000000;     // arbitrary DDR addresses of the task's
+constexpr uint32_t kDeterminantAddress = 0x02000000;  // buffers (line-aligned, as a driver would)
 
 struct HardwareFrame {
     int width = 0, height = 0;

@@ -76,9 +76,11 @@ TEST(MediaCache, TheCacheFileIsReadAndAChangedImageIsDecodedAgain) {
     // Doctor the entry: the next read returns it, so the cache is really used.
     ASSERT_EQ(entries(cache, "image"), 1u);
     const fs::path entry = fs::directory_iterator(cache)->path();
-    doctor(entry, [](std::string& data) { data.back() = char(77); }, false);  // the last pixel, checksum left
+    doctor(
+        entry, [](std::string& data) { data.back() = char(77); }, false);  // the last pixel, checksum left
     EXPECT_EQ(media::read_image(image.string(), cv::IMREAD_GRAYSCALE).at<uchar>(39, 49), 10);  // a miss, decoded again
-    doctor(entry, [](std::string& data) { data.back() = char(77); }, true);
+    doctor(
+        entry, [](std::string& data) { data.back() = char(77); }, true);
     EXPECT_EQ(media::read_image(image.string(), cv::IMREAD_GRAYSCALE).at<uchar>(39, 49), 77);
     // A new file under the same name (another size, a later time) is decoded again.
     ASSERT_TRUE(cv::imwrite(image.string(), cv::Mat(30, 50, CV_8UC1, cv::Scalar(20))));
@@ -136,7 +138,9 @@ TEST(MediaCache, StoredResponsesAreTheDetectorsAndAreRead) {
     EXPECT_EQ(entries(cache, "ranked"), 2u);
     // Doctored: the file is what is read.
     auto last_to = [](float value) {
-        return [value](std::string& data) { std::memcpy(data.data() + data.size() - sizeof(float), &value, sizeof(float)); };
+        return [value](std::string& data) {
+            std::memcpy(data.data() + data.size() - sizeof(float), &value, sizeof(float));
+        };
     };
     for (const auto& e : fs::directory_iterator(cache)) doctor(e.path(), last_to(12345.0f), false);
     EXPECT_EQ(surf::stored_ranked_responses(graf, p), other);  // flipped bytes: a miss, computed again

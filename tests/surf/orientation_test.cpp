@@ -295,8 +295,8 @@ TEST(Rotation, NinetyDegreesWithRoundedHaarWavelets) {
     const double max = descriptor_distances.back();
     size_t exact_turns = 0;
     for (double t : orientation_differences) exact_turns += t < 1e-4;
-    std::cout << "rotation (rounded Haar): " << a.size() << " / " << b.size() << " keypoints, " << paired
-              << " paired, " << within_bin << " within pi/18, " << exact_turns << " within 1e-4 rad, orientation p95 "
+    std::cout << "rotation (rounded Haar): " << a.size() << " / " << b.size() << " keypoints, " << paired << " paired, "
+              << within_bin << " within pi/18, " << exact_turns << " within 1e-4 rad, orientation p95 "
               << orientation_differences[n * 95 / 100] << " max " << orientation_differences.back()
               << "; descriptor distance median " << median << " p95 " << p95 << " max " << max << "\n";
     RecordProperty("descriptor_distance_median", std::to_string(median));

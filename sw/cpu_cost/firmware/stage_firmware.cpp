@@ -31,11 +31,21 @@ using namespace surfvp::sw;
 struct MarkingMeter {
     void enter(Step s) {
         switch (s) {
-            case Step::check: surfvp_mark_check(); break;
-            case Step::interpolation: surfvp_mark_interpolation(); break;
-            case Step::laplacian: surfvp_mark_laplacian(); break;
-            case Step::orientation: surfvp_mark_orientation(); break;
-            case Step::descriptor: surfvp_mark_descriptor(); break;
+            case Step::check:
+                surfvp_mark_check();
+                break;
+            case Step::interpolation:
+                surfvp_mark_interpolation();
+                break;
+            case Step::laplacian:
+                surfvp_mark_laplacian();
+                break;
+            case Step::orientation:
+                surfvp_mark_orientation();
+                break;
+            case Step::descriptor:
+                surfvp_mark_descriptor();
+                break;
         }
     }
     void leave() { surfvp_mark_idle(); }
