@@ -14,6 +14,7 @@ readonly RUN_PACKAGES=(
 # The test suite and the benchmarks, on top of RUN_PACKAGES.
 readonly TEST_PACKAGES=(
   libgtest-dev libbenchmark-dev
+  clang-format                  # tests/platform/style_test.cpp: the layout .clang-format gives
   libxml2-dev                   # tests read report.html as XML
   g++-powerpc-linux-gnu qemu-user  # surfvp calibrate: the software stage built for the PPC440, run on an ISS
   slurm-wlm munge               # a one-node Slurm cluster in a test: surfvp sweep --slurm end to end
