@@ -12,7 +12,7 @@ namespace surfvp {
 namespace {
 using test::Initiator;
 
-struct Bench {
+struct DmaBench {
     Tracer tracer;
     DdrMemory memory;
     PlbBus bus{"bus", PlbBus::Params{}, tracer};
@@ -20,7 +20,7 @@ struct Bench {
     sc_core::sc_signal<bool> irq;
     Initiator cpu;
 
-    explicit Bench(Initiator::Script script) : memory("memory", small()), cpu("cpu", std::move(script)) {
+    explicit DmaBench(Initiator::Script script) : memory("memory", small()), cpu("cpu", std::move(script)) {
         bus.connect_master(dma.mplb, "dma");
         bus.slaves.bind(memory.ports);
         bus.map(0, 1 << 20, 0, "ddr");
@@ -34,28 +34,28 @@ struct Bench {
     }
 };
 
-uint32_t rd(Initiator& m, uint32_t offset) {
+uint32_t dma_read(Initiator& m, uint32_t offset) {
     uint8_t b[4];
     m.transact(tlm::TLM_READ_COMMAND, offset, b, 4);
     return load_be32(b);
 }
-void wr(Initiator& m, uint32_t offset, uint32_t v) {
+void dma_write(Initiator& m, uint32_t offset, uint32_t v) {
     uint8_t b[4];
     store_be32(b, v);
     m.transact(tlm::TLM_WRITE_COMMAND, offset, b, 4);
 }
 
 TEST(Dma, CopiesInBurstsAndRaisesItsInterrupt) {
-    Bench* b = nullptr;
-    Bench bench([&](Initiator& m) {
-        wr(m, dma::SRC, 0x1000);
-        wr(m, dma::DST, 0x8000);
-        wr(m, dma::LEN, 1000);  // 3 full 256-byte bursts and one of 232
-        wr(m, dma::CTRL, dma::CTRL_START | dma::CTRL_IRQ_EN);
-        EXPECT_EQ(rd(m, dma::STATUS), dma::STATUS_BUSY);
+    DmaBench* b = nullptr;
+    DmaBench bench([&](Initiator& m) {
+        dma_write(m, dma::SRC, 0x1000);
+        dma_write(m, dma::DST, 0x8000);
+        dma_write(m, dma::LEN, 1000);  // 3 full 256-byte bursts and one of 232
+        dma_write(m, dma::CTRL, dma::CTRL_START | dma::CTRL_IRQ_EN);
+        EXPECT_EQ(dma_read(m, dma::STATUS), dma::STATUS_BUSY);
         sc_core::wait(b->irq.posedge_event());
-        EXPECT_EQ(rd(m, dma::STATUS), dma::STATUS_DONE);
-        wr(m, dma::STATUS, dma::STATUS_DONE);
+        EXPECT_EQ(dma_read(m, dma::STATUS), dma::STATUS_DONE);
+        dma_write(m, dma::STATUS, dma::STATUS_DONE);
         sc_core::wait(sc_core::sc_time(1, sc_core::SC_NS));
         EXPECT_FALSE(b->irq.read());
     });
@@ -69,16 +69,16 @@ TEST(Dma, CopiesInBurstsAndRaisesItsInterrupt) {
 }
 
 TEST(Dma, BusErrorSetsErrorWithCodeAndAddress) {
-    Bench* b = nullptr;
-    Bench bench([&](Initiator& m) {
-        wr(m, dma::SRC, 0x1000);
-        wr(m, dma::DST, (1 << 20) - 256);  // the second burst falls off the end of memory
-        wr(m, dma::LEN, 512);
-        wr(m, dma::CTRL, dma::CTRL_START | dma::CTRL_IRQ_EN);
+    DmaBench* b = nullptr;
+    DmaBench bench([&](Initiator& m) {
+        dma_write(m, dma::SRC, 0x1000);
+        dma_write(m, dma::DST, (1 << 20) - 256);  // the second burst falls off the end of memory
+        dma_write(m, dma::LEN, 512);
+        dma_write(m, dma::CTRL, dma::CTRL_START | dma::CTRL_IRQ_EN);
         sc_core::wait(b->irq.posedge_event());
-        EXPECT_EQ(rd(m, dma::STATUS), dma::STATUS_ERROR);
-        EXPECT_EQ(rd(m, dma::ERROR_CODE), uint32_t(dma::ERR_WRITE));
-        EXPECT_EQ(rd(m, dma::ERROR_ADDR), uint32_t(1 << 20));
+        EXPECT_EQ(dma_read(m, dma::STATUS), dma::STATUS_ERROR);
+        EXPECT_EQ(dma_read(m, dma::ERROR_CODE), uint32_t(dma::ERR_WRITE));
+        EXPECT_EQ(dma_read(m, dma::ERROR_ADDR), uint32_t(1 << 20));
     });
     b = &bench;
     sc_core::sc_start();
@@ -86,17 +86,17 @@ TEST(Dma, BusErrorSetsErrorWithCodeAndAddress) {
 }
 
 TEST(Dma, ProgrammingErrorsAreFlagged) {
-    Bench bench([&](Initiator& m) {
-        wr(m, dma::LEN, 0);
-        wr(m, dma::CTRL, dma::CTRL_START);
-        EXPECT_EQ(rd(m, dma::STATUS), dma::STATUS_ERROR);
-        EXPECT_EQ(rd(m, dma::ERROR_CODE), uint32_t(dma::ERR_ZERO_LENGTH));
-        wr(m, dma::STATUS, dma::STATUS_ERROR);
-        wr(m, dma::LEN, 4096);
-        wr(m, dma::CTRL, dma::CTRL_START);
-        wr(m, dma::CTRL, dma::CTRL_START);  // while busy
-        EXPECT_EQ(rd(m, dma::STATUS), dma::STATUS_BUSY | dma::STATUS_ERROR);
-        EXPECT_EQ(rd(m, dma::ERROR_CODE), uint32_t(dma::ERR_START_BUSY));
+    DmaBench bench([&](Initiator& m) {
+        dma_write(m, dma::LEN, 0);
+        dma_write(m, dma::CTRL, dma::CTRL_START);
+        EXPECT_EQ(dma_read(m, dma::STATUS), dma::STATUS_ERROR);
+        EXPECT_EQ(dma_read(m, dma::ERROR_CODE), uint32_t(dma::ERR_ZERO_LENGTH));
+        dma_write(m, dma::STATUS, dma::STATUS_ERROR);
+        dma_write(m, dma::LEN, 4096);
+        dma_write(m, dma::CTRL, dma::CTRL_START);
+        dma_write(m, dma::CTRL, dma::CTRL_START);  // while busy
+        EXPECT_EQ(dma_read(m, dma::STATUS), dma::STATUS_BUSY | dma::STATUS_ERROR);
+        EXPECT_EQ(dma_read(m, dma::ERROR_CODE), uint32_t(dma::ERR_START_BUSY));
     });
     sc_core::sc_start();
 }

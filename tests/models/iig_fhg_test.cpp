@@ -21,7 +21,7 @@ namespace r = fhg_regs;
 constexpr uint32_t kIig = 0x1000, kFhg = 0x2000;  // register windows on the test's PLB1
 constexpr uint32_t kImage = 0x10'0000, kIntegral = 0x40'0000, kDets = 0x80'0000;
 
-struct Bench {
+struct PairBench {
     Tracer tracer;
     DdrMemory memory{"memory", DdrMemory::Params{}};
     PlbBus plb1{"plb1", PlbBus::Params{}, tracer};
@@ -31,7 +31,7 @@ struct Bench {
     sc_core::sc_signal<bool> iig_irq, fhg_irq;
     Initiator cpu;
 
-    Bench(const Iig::Params& ip, const Fhg::Params& fp, Initiator::Script script)
+    PairBench(const Iig::Params& ip, const Fhg::Params& fp, Initiator::Script script)
         : iig("iig", ip, tracer), fhg("fhg", fp, tracer), cpu("cpu", std::move(script)) {
         plb1.connect_master(cpu.socket, "cpu");
         plb1.slaves.bind(iig.regs);
@@ -48,14 +48,14 @@ struct Bench {
     }
 };
 
-uint32_t rd(Initiator& m, uint32_t a) {
+uint32_t pair_read(Initiator& m, uint32_t a) {
     uint8_t b[4];
     EXPECT_EQ(m.transact(tlm::TLM_READ_COMMAND, a, b, 4), tlm::TLM_OK_RESPONSE) << std::hex << a;
     sc_core::wait(m.local);
     m.local = sc_core::SC_ZERO_TIME;
     return load_be32(b);
 }
-void wr(Initiator& m, uint32_t a, uint32_t v) {
+void pair_write(Initiator& m, uint32_t a, uint32_t v) {
     uint8_t b[4];
     store_be32(b, v);
     EXPECT_EQ(m.transact(tlm::TLM_WRITE_COMMAND, a, b, 4), tlm::TLM_OK_RESPONSE) << std::hex << a;
@@ -69,28 +69,28 @@ struct Outcome {
 };
 
 // The frame as the driver will run it: FHG first, then the IIG streaming into it.
-Initiator::Script frame(const cv::Mat& image, int32_t threshold, Outcome& out, Bench*& bench) {
+Initiator::Script frame(const cv::Mat& image, int32_t threshold, Outcome& out, PairBench*& bench) {
     return [&image, threshold, &out, &bench](Initiator& m) {
-        wr(m, kFhg + r::DET_ADDR, kDets);
-        wr(m, kFhg + r::WIDTH, image.cols);
-        wr(m, kFhg + r::HEIGHT, image.rows);
-        wr(m, kFhg + r::THRESHOLD, uint32_t(threshold));
-        wr(m, kFhg + r::CTRL, r::CTRL_START | r::CTRL_IRQ_EN_DONE);
-        wr(m, kIig + iig::SRC, kImage);
-        wr(m, kIig + iig::DST, kIntegral);
-        wr(m, kIig + iig::WIDTH, image.cols);
-        wr(m, kIig + iig::HEIGHT, image.rows);
-        wr(m, kIig + iig::CTRL, iig::CTRL_START | iig::CTRL_IRQ_EN | iig::CTRL_STREAM);
+        pair_write(m, kFhg + r::DET_ADDR, kDets);
+        pair_write(m, kFhg + r::WIDTH, image.cols);
+        pair_write(m, kFhg + r::HEIGHT, image.rows);
+        pair_write(m, kFhg + r::THRESHOLD, uint32_t(threshold));
+        pair_write(m, kFhg + r::CTRL, r::CTRL_START | r::CTRL_IRQ_EN_DONE);
+        pair_write(m, kIig + iig::SRC, kImage);
+        pair_write(m, kIig + iig::DST, kIntegral);
+        pair_write(m, kIig + iig::WIDTH, image.cols);
+        pair_write(m, kIig + iig::HEIGHT, image.rows);
+        pair_write(m, kIig + iig::CTRL, iig::CTRL_START | iig::CTRL_IRQ_EN | iig::CTRL_STREAM);
         while (!bench->fhg_irq.read()) sc_core::wait(bench->fhg_irq.posedge_event());
-        for (uint32_t word; (word = rd(m, kFhg + r::FIFO_DATA)) >> 31;) out.fifo.push_back(word);
-        out.iig_status = rd(m, kIig + iig::STATUS);
-        out.fhg_status = rd(m, kFhg + r::STATUS);
-        out.stall_cycles = rd(m, kIig + iig::STALL_CYCLES);
-        out.overflow = rd(m, kFhg + r::OVERFLOW_COUNT);
+        for (uint32_t word; (word = pair_read(m, kFhg + r::FIFO_DATA)) >> 31;) out.fifo.push_back(word);
+        out.iig_status = pair_read(m, kIig + iig::STATUS);
+        out.fhg_status = pair_read(m, kFhg + r::STATUS);
+        out.stall_cycles = pair_read(m, kIig + iig::STALL_CYCLES);
+        out.overflow = pair_read(m, kFhg + r::OVERFLOW_COUNT);
     };
 }
 
-void load(Bench& bench, const cv::Mat& image) {
+void load(PairBench& bench, const cv::Mat& image) {
     uint8_t* ddr = bench.memory.backdoor(kImage, size_t(image.cols) * image.rows);
     for (int y = 0; y < image.rows; ++y) std::memcpy(ddr + size_t(y) * image.cols, image.ptr(y), image.cols);
 }
@@ -101,10 +101,10 @@ TEST(IigFhg, FrameGivesTheCoresResultsInMemoryAndFifo) {
     Fhg::Params fp;
     fp.maxima_fifo_depth = 100000;
     Outcome out;
-    Bench* bench = nullptr;
+    PairBench* bench = nullptr;
     const fhg::HessianCore core(fp.precision);
     const int32_t threshold = core.from_float(200);
-    Bench b(Iig::Params{}, fp, frame(image, threshold, out, bench));
+    PairBench b(Iig::Params{}, fp, frame(image, threshold, out, bench));
     bench = &b;
     load(b, image);
     sc_core::sc_start();
@@ -144,8 +144,8 @@ TEST(IigFhg, SlowFhgStallsTheIigThroughPixelBus) {
     Fhg::Params slow;
     slow.clock = Frequency{10e6};
     Outcome out;
-    Bench* bench = nullptr;
-    Bench b(Iig::Params{}, slow, frame(image, 1 << 30, out, bench));
+    PairBench* bench = nullptr;
+    PairBench b(Iig::Params{}, slow, frame(image, 1 << 30, out, bench));
     bench = &b;
     load(b, image);
     sc_core::sc_start();
@@ -164,8 +164,8 @@ TEST(IigFhg, SlowIigNeverStalls) {
     slow.clock = Frequency{2e6};
     const Fhg::Params fast;
     Outcome out;
-    Bench* bench = nullptr;
-    Bench b(slow, fast, frame(image, 1 << 30, out, bench));
+    PairBench* bench = nullptr;
+    PairBench b(slow, fast, frame(image, 1 << 30, out, bench));
     bench = &b;
     load(b, image);
     sc_core::sc_start();
@@ -179,8 +179,8 @@ TEST(IigFhg, FullMaximaFifoCountsWhatItDrops) {
     Fhg::Params fp;
     fp.maxima_fifo_depth = 16;
     Outcome out;
-    Bench* bench = nullptr;
-    Bench b(Iig::Params{}, fp, frame(image, 0, out, bench));
+    PairBench* bench = nullptr;
+    PairBench b(Iig::Params{}, fp, frame(image, 0, out, bench));
     bench = &b;
     load(b, image);
     sc_core::sc_start();
@@ -192,15 +192,15 @@ TEST(IigFhg, FullMaximaFifoCountsWhatItDrops) {
 
 TEST(IigFhg, SizeBeyondTheLimitIsAnErrorWithInterrupt) {
     uint32_t status = 0, code = 0;
-    Bench* bench = nullptr;
-    Bench b(Iig::Params{}, Fhg::Params{}, [&](Initiator& m) {
-        wr(m, kFhg + r::WIDTH, 2048);
-        wr(m, kFhg + r::HEIGHT, 768);
-        wr(m, kFhg + r::CTRL, r::CTRL_START | r::CTRL_IRQ_EN_DONE);
+    PairBench* bench = nullptr;
+    PairBench b(Iig::Params{}, Fhg::Params{}, [&](Initiator& m) {
+        pair_write(m, kFhg + r::WIDTH, 2048);
+        pair_write(m, kFhg + r::HEIGHT, 768);
+        pair_write(m, kFhg + r::CTRL, r::CTRL_START | r::CTRL_IRQ_EN_DONE);
         sc_core::wait(sc_core::sc_time(1, sc_core::SC_US));
         EXPECT_TRUE(bench->fhg_irq.read());
-        status = rd(m, kFhg + r::STATUS);
-        code = rd(m, kFhg + r::ERROR_CODE);
+        status = pair_read(m, kFhg + r::STATUS);
+        code = pair_read(m, kFhg + r::ERROR_CODE);
     });
     bench = &b;
     sc_core::sc_start();
@@ -210,23 +210,23 @@ TEST(IigFhg, SizeBeyondTheLimitIsAnErrorWithInterrupt) {
 
 TEST(IigFhg, IigBusErrorAndAbortEndBothFrames) {
     uint32_t iig_status = 0, iig_code = 0, fhg_code = 0;
-    Bench* bench = nullptr;
-    Bench b(Iig::Params{}, Fhg::Params{}, [&](Initiator& m) {
-        wr(m, kFhg + r::WIDTH, 64);
-        wr(m, kFhg + r::HEIGHT, 64);
-        wr(m, kFhg + r::DET_ADDR, kDets);
-        wr(m, kFhg + r::CTRL, r::CTRL_START | r::CTRL_IRQ_EN_DONE);
-        wr(m, kIig + iig::SRC, 0x0FFF'FF00);  // the image runs off the end of memory at row 4
-        wr(m, kIig + iig::DST, kIntegral);
-        wr(m, kIig + iig::WIDTH, 64);
-        wr(m, kIig + iig::HEIGHT, 64);
-        wr(m, kIig + iig::CTRL, iig::CTRL_START | iig::CTRL_IRQ_EN | iig::CTRL_STREAM);
+    PairBench* bench = nullptr;
+    PairBench b(Iig::Params{}, Fhg::Params{}, [&](Initiator& m) {
+        pair_write(m, kFhg + r::WIDTH, 64);
+        pair_write(m, kFhg + r::HEIGHT, 64);
+        pair_write(m, kFhg + r::DET_ADDR, kDets);
+        pair_write(m, kFhg + r::CTRL, r::CTRL_START | r::CTRL_IRQ_EN_DONE);
+        pair_write(m, kIig + iig::SRC, 0x0FFF'FF00);  // the image runs off the end of memory at row 4
+        pair_write(m, kIig + iig::DST, kIntegral);
+        pair_write(m, kIig + iig::WIDTH, 64);
+        pair_write(m, kIig + iig::HEIGHT, 64);
+        pair_write(m, kIig + iig::CTRL, iig::CTRL_START | iig::CTRL_IRQ_EN | iig::CTRL_STREAM);
         while (!bench->iig_irq.read()) sc_core::wait(bench->iig_irq.posedge_event());
-        iig_status = rd(m, kIig + iig::STATUS);
-        iig_code = rd(m, kIig + iig::ERROR_CODE);
-        wr(m, kFhg + r::CTRL, r::CTRL_ABORT | r::CTRL_IRQ_EN_DONE);
+        iig_status = pair_read(m, kIig + iig::STATUS);
+        iig_code = pair_read(m, kIig + iig::ERROR_CODE);
+        pair_write(m, kFhg + r::CTRL, r::CTRL_ABORT | r::CTRL_IRQ_EN_DONE);
         while (!bench->fhg_irq.read()) sc_core::wait(bench->fhg_irq.posedge_event());
-        fhg_code = rd(m, kFhg + r::ERROR_CODE);
+        fhg_code = pair_read(m, kFhg + r::ERROR_CODE);
     });
     bench = &b;
     sc_core::sc_start();

@@ -11,14 +11,14 @@ using test::Initiator;
 using test::ns;
 using test::ZeroTarget;
 
-struct Bench {
+struct PlbBench {
     Tracer tracer;
     PlbBus bus;
     ZeroTarget target;
     std::vector<std::unique_ptr<Initiator>> masters;
 
     // Several benches may share one simulation under different names.
-    explicit Bench(const PlbBus::Params& p, const std::string& name = "bus")
+    explicit PlbBench(const PlbBus::Params& p, const std::string& name = "bus")
         : bus(name.c_str(), p, tracer), target((name + "_target").c_str(), 1 << 20) {
         bus.slaves.bind(target.socket);
         bus.map(0x1000'0000, 1 << 20, 0, "target");
@@ -45,7 +45,7 @@ TEST_P(SingleBurst, TakesArbitrationPlusAddressPlusBeats) {
     p.clock = Frequency{c.clock_mhz * 1e6};
     p.arbitration_cycles = 3;
     p.address_cycles = 1;
-    Bench bench(p);
+    PlbBench bench(p);
     sc_core::sc_time end;
     std::vector<uint8_t> data(c.beats * c.width_bits / 8);
     bench.add("m", [&](Initiator& m) {
@@ -71,7 +71,7 @@ INSTANTIATE_TEST_SUITE_P(WidthsClocksBeats, SingleBurst,
 
 TEST(PlbBus, LongTransactionIsSplitIntoMaxBursts) {
     PlbBus::Params p;  // 128 bit, 100 MHz, 16-beat bursts, 3 + 1 overhead
-    Bench bench(p);
+    PlbBench bench(p);
     sc_core::sc_time end;
     std::vector<uint8_t> data(40 * 16);  // 40 beats: bursts of 16, 16, 8
     bench.add("m", [&](Initiator& m) {
@@ -87,10 +87,10 @@ struct Contention {
     std::vector<sc_core::sc_time> ends[2];
 };
 
-Contention contend(PlbBus::Arbitration policy, Bench*& out_bench, std::unique_ptr<Bench>& holder) {
+Contention contend(PlbBus::Arbitration policy, PlbBench*& out_bench, std::unique_ptr<PlbBench>& holder) {
     PlbBus::Params p;
     p.arbitration = policy;
-    holder = std::make_unique<Bench>(p);
+    holder = std::make_unique<PlbBench>(p);
     out_bench = holder.get();
     static Contention result;
     result = {};
@@ -108,8 +108,8 @@ Contention contend(PlbBus::Arbitration policy, Bench*& out_bench, std::unique_pt
 }
 
 TEST(PlbArbitration, RoundRobinAlternatesMasters) {
-    std::unique_ptr<Bench> holder;
-    Bench* bench = nullptr;
+    std::unique_ptr<PlbBench> holder;
+    PlbBench* bench = nullptr;
     const Contention c = contend(PlbBus::Arbitration::round_robin, bench, holder);
     const sc_core::sc_time D = ns(200);
     // Grants alternate m0, m1, m0, m1, ...: m0 ends at D, 3D, 5D, 7D; m1 at 2D, 4D, 6D, 8D.
@@ -126,8 +126,8 @@ TEST(PlbArbitration, RoundRobinAlternatesMasters) {
 }
 
 TEST(PlbArbitration, FixedPriorityServesTheFirstMasterFirst) {
-    std::unique_ptr<Bench> holder;
-    Bench* bench = nullptr;
+    std::unique_ptr<PlbBench> holder;
+    PlbBench* bench = nullptr;
     const Contention c = contend(PlbBus::Arbitration::fixed_priority, bench, holder);
     const sc_core::sc_time D = ns(200);
     EXPECT_EQ(c.ends[0], (std::vector<sc_core::sc_time>{D, 2 * D, 3 * D, 4 * D}));
@@ -163,7 +163,7 @@ struct Interleaving {
     }
     const PlbBus::MasterStats& stats(int m) const { return bench.bus.master_stats()[size_t(m)]; }
 
-    Bench bench;
+    PlbBench bench;
     sc_core::sc_time end[2];
 };
 
@@ -195,7 +195,7 @@ TEST(PlbArbitration, OneTransactionPerLineOrPerBurstGivesTheSameFigures) {
 }
 
 TEST(PlbBus, ReadAndWriteDataPathsDoNotContend) {
-    Bench bench(PlbBus::Params{});
+    PlbBench bench(PlbBus::Params{});
     sc_core::sc_time ends[2];
     static uint8_t data[256];
     bench.add("reader", [&](Initiator& m) {
@@ -212,7 +212,7 @@ TEST(PlbBus, ReadAndWriteDataPathsDoNotContend) {
 }
 
 TEST(PlbBus, UnmappedAddressIsAnErrorResponseAndTheBusGoesOn) {
-    Bench bench(PlbBus::Params{});
+    PlbBench bench(PlbBus::Params{});
     tlm::tlm_response_status unmapped{}, straddling{}, after{};
     uint8_t data[16] = {1, 2, 3};
     bench.add("m", [&](Initiator& m) {
@@ -237,7 +237,7 @@ TEST(PlbBus, RejectsWidthsThePlbDoesNotHave) {
 }
 
 TEST(PlbBus, OverlappingRegionsAreRefused) {
-    Bench bench(PlbBus::Params{});
+    PlbBench bench(PlbBus::Params{});
     EXPECT_THROW(bench.bus.map(0x1008'0000, 0x1000, 0, "overlap"), std::invalid_argument);
 }
 

@@ -16,7 +16,7 @@ using test::ZeroTarget;
 constexpr uint32_t kRegs = 0x8000'0000;
 
 // CPU -> PLB1 -> a register-like target at kRegs; CPU memory -> MCI link -> DDR.
-struct Bench {
+struct CpuBench {
     Tracer tracer;
     DdrMemory memory{"memory", DdrMemory::Params{}};
     PlbBus bus{"bus", PlbBus::Params{}, tracer};
@@ -25,7 +25,7 @@ struct Bench {
     sc_core::sc_signal<bool> irq;
     Ppc440 cpu;
 
-    explicit Bench(Ppc440::Software software, const Ppc440::Params& params = {})
+    explicit CpuBench(Ppc440::Software software, const Ppc440::Params& params = {})
         : cpu("cpu", params, std::move(software), tracer) {
         bus.connect_master(cpu.bus, "cpu");
         bus.slaves.bind(regs.socket);
@@ -50,7 +50,7 @@ struct Bench {
 
 TEST(ByteOrder, SoftwareAndBusMastersSeeOneBigEndianMemory) {
     uint32_t word = 0, half = 0, byte = 0;
-    Bench bench([&](sw::Hal& hal) {
+    CpuBench bench([&](sw::Hal& hal) {
         sw::store32(hal, 0x100, 0x12345678);
         word = sw::load32(hal, 0x200);
         uint8_t b[2];
@@ -69,7 +69,7 @@ TEST(ByteOrder, SoftwareAndBusMastersSeeOneBigEndianMemory) {
 
 TEST(ByteOrder, RegisterWordsTravelMostSignificantByteFirst) {
     uint32_t back = 0;
-    Bench bench([&](sw::Hal& hal) {
+    CpuBench bench([&](sw::Hal& hal) {
         hal.write32(kRegs + 8, 0x11223344);
         back = hal.read32(kRegs + 8);
     });
@@ -80,7 +80,7 @@ TEST(ByteOrder, RegisterWordsTravelMostSignificantByteFirst) {
 }
 
 TEST(Ppc440, TimeIsMmioPlusMemoryPlusConsumedCycles) {
-    Bench bench([&](sw::Hal& hal) {
+    CpuBench bench([&](sw::Hal& hal) {
         hal.write32(kRegs, 1);  // one beat: (3 + 1 + 1) x 10 ns
         hal.consume(400);       // 400 cycles at 400 MHz: 1 us
         std::vector<uint8_t> data(1000);
@@ -101,7 +101,7 @@ TEST(Ppc440, TimeIsMmioPlusMemoryPlusConsumedCycles) {
 // write-back does not.
 TEST(Ppc440, ComputeStallsForEachFillAndPostsWriteBacks) {
     uint64_t spent = 0;
-    Bench bench([&](sw::Hal& hal) {
+    CpuBench bench([&](sw::Hal& hal) {
         spent = hal.compute(1000,
                             {{0x2000, 100, false}, {0x2020, 100, false}, {0x3000, 900, true}, {0x2040, 950, false}}, 0);
     });
@@ -125,7 +125,7 @@ std::pair<sc_core::sc_time, uint64_t> burst_of_four(unsigned outstanding, double
     Ppc440::Params p;
     p.outstanding_fills = outstanding;
     p.critical_word_lead = Duration{uint64_t(lead_ns * 1000)};
-    Bench bench(
+    CpuBench bench(
         [](sw::Hal& hal) {
             hal.compute(1000, {{0x2000, 100, false}, {0x2100, 100, false}, {0x2200, 100, false}, {0x2300, 100, false}},
                         0);
@@ -150,7 +150,7 @@ TEST(Ppc440, OneOutstandingFillIsABlockingCache) { EXPECT_EQ(burst_of_four(1, 0)
 // DRAM at 1020 ns, after the link's address phase); a DMA asks 128 bytes at 1015 ns and gets
 // the DRAM at once (50 ns), the fill waits behind it.
 TEST(Ppc440, DdrGrantsTheCpusFillsAndTheDmaInRequestOrder) {
-    Bench bench([](sw::Hal& hal) { hal.compute(2000, {{0x2000, 400, false}}, 0); });
+    CpuBench bench([](sw::Hal& hal) { hal.compute(2000, {{0x2000, 400, false}}, 0); });
     uint8_t data[128];
     test::Initiator dma("dma", [&](test::Initiator& i) {
         sc_core::wait(ns(1015));
@@ -202,7 +202,7 @@ TEST(Ppc440, WriteBacksOverASynchronisingBusKeepTimeForward) {
 TEST(Ppc440, TimesEveryFillAndRefusesACount) {
     bool timed = false;
     std::string refused;
-    Bench bench([&](sw::Hal& hal) {
+    CpuBench bench([&](sw::Hal& hal) {
         timed = hal.times_fills();
         try {
             hal.compute(100, {}, 1);
@@ -218,8 +218,8 @@ TEST(Ppc440, TimesEveryFillAndRefusesACount) {
 
 TEST(Ppc440, WaitForIrqSleepsUntilTheLineRises) {
     sc_core::sc_time woke;
-    Bench* b = nullptr;
-    Bench bench([&](sw::Hal& hal) {
+    CpuBench* b = nullptr;
+    CpuBench bench([&](sw::Hal& hal) {
         hal.wait_for_irq();
         woke = sc_core::sc_time_stamp();
     });
@@ -235,7 +235,7 @@ TEST(Ppc440, WaitForIrqSleepsUntilTheLineRises) {
 
 TEST(Ppc440, BusErrorStopsTheSoftwareWithTheAddress) {
     bool after = false;
-    Bench bench([&](sw::Hal& hal) {
+    CpuBench bench([&](sw::Hal& hal) {
         hal.read32(0x9000'0000);
         after = true;
     });
