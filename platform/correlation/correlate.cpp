@@ -28,7 +28,7 @@ using Sets = std::vector<std::pair<std::string, std::string>>;
 
 constexpr double kClockStep = 5e6;  // the FHG clock's grid over its band, Hz
 
-Config with(const Config& base, const Sets& sets) { return base.with(sets, "correlate"); }
+Config correlate_variant(const Config& base, const Sets& sets) { return base.with(sets, "correlate"); }
 
 // A parameter's low, current and high values (its band), each once.
 std::vector<std::string> band_values(const std::string& key, const Config& c) {
@@ -67,7 +67,7 @@ Json schedule_row(const Config& base, const Sets& sets) {
     Json row = Json::object();
     for (const auto& [key, value] : sets) row[key] = value;
     try {
-        const Config c = with(base, sets);
+        const Config c = correlate_variant(base, sets);
         Fhg::Params p = fhg_params(c);
         p.sequence.scheduler = fhg::Scheduler::basic;
         const fhg::Sequence& s = fhg::cached_sequence(p.sequence);
@@ -85,7 +85,7 @@ Json schedule_row(const Config& base, const Sets& sets) {
     return row;
 }
 
-struct Point {
+struct CorrelationPoint {
     size_t schedule;  // index into the schedules
     Sets sets;        // the frame-rate axes' values
     Json result;
@@ -99,11 +99,12 @@ std::string point_label(const Sets& sets) {
 
 // frames/s against the FHG clock at 100 keypoints for the first reproducing schedule: a line
 // per CPU clock and FPU ratio, the paper's 9 to 11 frames/s shaded, the scenario's point ringed.
-std::string plot(const std::vector<Point>& points, size_t schedule, const Sets& defaults, double default_fps) {
+std::string plot(const std::vector<CorrelationPoint>& points, size_t schedule, const Sets& defaults,
+                 double default_fps) {
     constexpr double W = 680, H = 420, L = 64, R = 190, T = 40, B = 48;
     double x0 = 1e300, x1 = 0, y1 = paper::kFps * (1 + paper::kAbout);
     std::map<std::string, std::vector<std::pair<double, double>>> lines;
-    for (const Point& p : points) {
+    for (const CorrelationPoint& p : points) {
         if (p.schedule != schedule || p.result.contains("error") || p.sets[3].second != "100") continue;
         const double x = std::stod(p.sets[0].second), y = p.result["fps"].get<double>();
         x0 = std::min(x0, x), x1 = std::max(x1, x), y1 = std::max(y1, y);
@@ -174,7 +175,7 @@ std::string clock_runs(const Json& grid) {
     return out;
 }
 
-std::string markdown(const Json& r) {
+std::string correlate_markdown(const Json& r) {
     std::string md = fmt::format(
         "# Correlation: where the VP reproduces the paper ({})\n\nThe unknowns the paper's figures depend on, over "
         "their "
@@ -236,11 +237,11 @@ int correlate_command(const CorrelateOptions& o) {
     check_scenario(config);
     const unsigned frames = unsigned(std::min(
         std::max(config.count("verdict.frames"), config.count("soc.accelerators") + 1), config.count("surf.frames")));
-    const Config reference = with(config, {{"surf.frames", std::to_string(frames)},
-                                           {"run.parallel", "off"},
-                                           {"verdict.band", "off"},
-                                           {"verdict.break_even", "off"},
-                                           {"verdict.software", "off"}});
+    const Config reference = correlate_variant(config, {{"surf.frames", std::to_string(frames)},
+                                                        {"run.parallel", "off"},
+                                                        {"verdict.band", "off"},
+                                                        {"verdict.break_even", "off"},
+                                                        {"verdict.software", "off"}});
 
     // The schedules, from their sequences alone.
     Json schedules = Json::array();
@@ -257,7 +258,7 @@ int correlate_command(const CorrelateOptions& o) {
     std::map<int, size_t> representative;
     for (size_t i = 0; i < schedules.size(); ++i)
         if (schedules[i]["reproduces"].get<bool>()) representative.emplace(schedules[i]["block_cycles"].get<int>(), i);
-    std::vector<Point> points;
+    std::vector<CorrelationPoint> points;
     const std::vector<std::string> cpus = band_values("cpu.clock", config),
                                    ratios = band_values("cpu.fpu_ratio", config);
     const std::vector<std::string> keypoints{"90", "100", "110"};  // around the paper's 100
@@ -285,11 +286,11 @@ int correlate_command(const CorrelateOptions& o) {
     Resimulation::prepare(reference);
     {
         Resimulation pool(o.jobs, out.staging() / ".points");
-        for (Point& p : points) {
+        for (CorrelationPoint& p : points) {
             Sets sets = p.sets;
             for (const char* key : {"fhg.bus_word", "fhg.line_fifo", "fhg.read_buses"})
                 sets.emplace_back(key, schedules[p.schedule][key].get<std::string>());
-            pool.submit(with(reference, sets), [&p](const Json& r) { p.result = r; });
+            pool.submit(correlate_variant(reference, sets), [&p](const Json& r) { p.result = r; });
         }
         pool.submit(reference, [&](const Json& r) { default_point = r; });
         ProgressLine progress(o.quiet, "correlate", 0.0, 0.5, 5.0);
@@ -303,7 +304,7 @@ int correlate_command(const CorrelateOptions& o) {
     // The region: per schedule and CPU-side values, the FHG clocks that reproduce the rate.
     Json region = Json::array(), failed = Json::array(), all = Json::array();
     std::map<std::string, size_t> group_of;
-    for (const Point& p : points) {
+    for (const CorrelationPoint& p : points) {
         Json row = {{"schedule", p.schedule}};
         for (const auto& [key, value] : p.sets) row[key] = value;
         if (p.result.contains("error")) {
@@ -362,7 +363,7 @@ int correlate_command(const CorrelateOptions& o) {
               {"defaults", defaults_json}};
     const fs::path staging = out.staging();
     write_file_atomically((staging / "correlate.json").string(), r.dump(2) + "\n");
-    write_file_atomically((staging / "correlate.md").string(), markdown(r));
+    write_file_atomically((staging / "correlate.md").string(), correlate_markdown(r));
     const size_t drawn = representative.count(own.value("block_cycles", 0))
                              ? representative.at(own["block_cycles"].get<int>())
                          : representative.empty() ? 0

@@ -26,7 +26,7 @@ using namespace table2;
 namespace fs = std::filesystem;
 using Json = nlohmann::ordered_json;
 
-constexpr double kTolerance = 0.01;  // issue: "within 0.01 of full precision" on every row
+constexpr double kPrecisionTolerance = 0.01;  // issue: "within 0.01 of full precision" on every row
 
 using Axis = PrecisionAxis;
 
@@ -86,7 +86,7 @@ std::vector<std::string> point_sets(const Config& base,
     return sets;
 }
 
-struct Point {
+struct PrecisionPoint {
     std::string key, value;  // the width narrowed ("" for the scenario as it is, "all" for the fewest together)
     std::vector<std::string> sets;
     Json result;
@@ -137,7 +137,7 @@ void compare(Json& r, const Json& reference) {
     }
     r["change"] = change;
     r["worst_change"] = worst;
-    r["within"] = worst >= -kTolerance;
+    r["within"] = worst >= -kPrecisionTolerance;
 }
 
 bool numeric(const std::string& value) { return split_quantity(value).has_value(); }
@@ -146,13 +146,14 @@ double number(const std::string& value) { return split_quantity(value)->first; }
 // Per numeric axis: the fewest bits such that it and every wider value tried (and the
 // scenario's own) keep every row within the tolerance; nothing when even the widest fails.
 std::vector<std::pair<std::string, std::string>> fewest_bits(const std::vector<Axis>& axes,
-                                                             const std::vector<Point>& points, const Config& base) {
+                                                             const std::vector<PrecisionPoint>& points,
+                                                             const Config& base) {
     std::vector<std::pair<std::string, std::string>> out;
     for (const Axis& a : axes) {
         if (a.values.empty() || !numeric(a.values[0])) continue;
         std::vector<std::pair<double, bool>> tried{
             {number(base.value(a.key)), points[0].result.value("within", false)}};
-        for (const Point& p : points)
+        for (const PrecisionPoint& p : points)
             if (p.key == a.key) tried.push_back({number(p.value), p.result.value("within", false)});
         std::sort(tried.rbegin(), tried.rend());
         std::optional<double> fewest;
@@ -169,18 +170,19 @@ std::string cell(const Json& r, const char* key, const char* format) {
     return r.contains(key) ? fmt::format(fmt::runtime(format), r[key].get<double>()) : "-";
 }
 
-std::string markdown(const Json& report) {
+std::string precision_markdown(const Json& report) {
     std::string md = fmt::format(
         "# Precision study: {}\n\nThe chip (direct mode) on `{}`{} with one width narrowed at a time. "
         "Rows: distinguishability on consecutive frames, RANSAC F (limited search Y/N, Laplacian Y/N); "
         "change from full precision (the same algorithm in float) in brackets. A point is within when "
         "no row lost more than {:g}.\n\n",
         report["scenario"].get<std::string>(), report["scenario"].get<std::string>(),
-        report["pair"].is_null() ? "" : fmt::format(" and `{}`", report["pair"].get<std::string>()), kTolerance);
+        report["pair"].is_null() ? "" : fmt::format(" and `{}`", report["pair"].get<std::string>()),
+        kPrecisionTolerance);
     const double error = report["standard_error"].get<double>();
-    const std::string noise =
-        error > 0 ? fmt::format("and the tolerance of {:g} is {:.1f} of them", kTolerance, kTolerance / error)
-                  : std::string("and here the pairs do not spread at all");
+    const std::string noise = error > 0 ? fmt::format("and the tolerance of {:g} is {:.1f} of them",
+                                                      kPrecisionTolerance, kPrecisionTolerance / error)
+                                        : std::string("and here the pairs do not spread at all");
     md += fmt::format(
         "Keypoints per frame: {}. Over {} pairs the rows' standard error is about {:.3f}: a change smaller than that "
         "is noise, {}.\n\n",
@@ -210,7 +212,7 @@ std::string markdown(const Json& report) {
     for (const auto& [haar, r] : report["full_precision"].items())
         md += line("full precision", "float, Haar " + haar, r);
     for (const Json& p : report["points"]) md += line(p["key"], p["value"], p["result"]);
-    md += "\n## Fewest bits\n\n| width | fewest bits within " + fmt::format("{:g}", kTolerance) +
+    md += "\n## Fewest bits\n\n| width | fewest bits within " + fmt::format("{:g}", kPrecisionTolerance) +
           " | the scenario's |\n|---|---|---|\n";
     for (const Json& f : report["fewest_bits"])
         md += fmt::format("| {} | {} | {} |\n", f["key"].get<std::string>(), f["fewest"].get<std::string>(),
@@ -248,7 +250,7 @@ std::string plot(const Json& report) {
     svg += fmt::format(
         "<text x=\"8\" y=\"16\" font-size=\"13\">worst row's change from full precision against each width "
         "(dashed: -{:g})</text>",
-        kTolerance);
+        kPrecisionTolerance);
     double y0 = -0.05, y1 = 0.03;  // widened to every point's change
     for (const Json& p : report["points"])
         if (p["result"].contains("worst_change") && p["key"] != "all")
@@ -268,9 +270,9 @@ std::string plot(const Json& report) {
         svg += fmt::format("<text x=\"{}\" y=\"{}\">{}</text>", ox + L, oy + 14, keys[k]);
         svg += fmt::format(
             "<line x1=\"{0}\" y1=\"{1:.1f}\" x2=\"{2}\" y2=\"{1:.1f}\" stroke=\"#c00\" stroke-dasharray=\"5 3\"/>",
-            ox + L, py(-kTolerance), ox + W - 12);
+            ox + L, py(-kPrecisionTolerance), ox + W - 12);
         svg += fmt::format("<text x=\"{}\" y=\"{}\" text-anchor=\"end\">bit</text>", ox + W - 12, oy + 14);
-        for (double y : {y0, -kTolerance, 0.0, y1})
+        for (double y : {y0, -kPrecisionTolerance, 0.0, y1})
             svg +=
                 fmt::format("<text x=\"{}\" y=\"{:.1f}\" text-anchor=\"end\">{:+.2f}</text>", ox + L - 4, py(y) + 4, y);
         std::string line;
@@ -340,7 +342,7 @@ int precision_command(const PrecisionOptions& o) {
     std::vector<Axis> axes;
     for (const std::string& a : o.axes) axes.push_back(parse_precision_axis(a));
     if (axes.empty()) axes = default_axes();
-    std::vector<Point> points{{"", "as the scenario", {}, {}}};
+    std::vector<PrecisionPoint> points{{"", "as the scenario", {}, {}}};
     for (const Axis& a : axes)
         for (const std::string& v : a.values) {
             try {
@@ -357,7 +359,7 @@ int precision_command(const PrecisionOptions& o) {
     const fs::path staging = out.staging();
     Json reference = Json::object();
     std::vector<std::string> haars{seq.choice("surf.haar")};
-    for (const Point& p : points)
+    for (const PrecisionPoint& p : points)
         if (p.key == "surf.haar" && std::find(haars.begin(), haars.end(), p.value) == haars.end())
             haars.push_back(p.value);
     for (const std::string& h : haars) reference[h] = full_precision(seq, pair, h);
@@ -382,7 +384,8 @@ int precision_command(const PrecisionOptions& o) {
     engine.run([&](size_t done, size_t all) {
         progress.update([&](double) { return fmt::format("{} of {} points", done, all); });
     });
-    for (Point& p : points) compare(p.result, reference[p.key == "surf.haar" ? p.value : seq.choice("surf.haar")]);
+    for (PrecisionPoint& p : points)
+        compare(p.result, reference[p.key == "surf.haar" ? p.value : seq.choice("surf.haar")]);
     const auto fewest = fewest_bits(axes, points, seq);
     if (!fewest.empty()) {  // all of them at once
         points.push_back({"all", "the fewest bits together", point_sets(seq, fewest), {}});
@@ -394,7 +397,7 @@ int precision_command(const PrecisionOptions& o) {
     Json report;
     report["scenario"] = seq.name;
     report["pair"] = pair ? Json(pair->name) : Json(nullptr);
-    report["tolerance"] = kTolerance;
+    report["tolerance"] = kPrecisionTolerance;
     report["threshold_control"] = seq.choice("surf.threshold_control");
     {  // how far apart two points must be to differ: the rows' standard error over the pairs
         const Json& full = reference[seq.choice("surf.haar")];
@@ -409,7 +412,7 @@ int precision_command(const PrecisionOptions& o) {
     for (const Axis& a : axes) report["scenario_values"][a.key] = seq.value(a.key);
     report["points"] = Json::array();
     bool all_ran = true;
-    for (const Point& p : points) {
+    for (const PrecisionPoint& p : points) {
         report["points"].push_back({{"key", p.key}, {"value", p.value}, {"sets", p.sets}, {"result", p.result}});
         all_ran = all_ran && !p.result.contains("error");
     }
@@ -421,7 +424,7 @@ int precision_command(const PrecisionOptions& o) {
     try {
         fs::remove_all(staging / ".points");
         write_file_atomically(staging / "report.json", report.dump(2) + "\n");
-        write_file_atomically(staging / "report.md", markdown(report));
+        write_file_atomically(staging / "report.md", precision_markdown(report));
         write_file_atomically(staging / "results.csv", csv(report));
         write_file_atomically(staging / "precision.svg", plot(report));
         out.publish();

@@ -132,7 +132,7 @@ void markdown_contributions(std::string& md, const Json& lines) {
     }
 }
 
-std::string markdown(const Json& r) {
+std::string table2_markdown(const Json& r) {
     std::string md = fmt::format("# Table II: {}\n\n{}\n\n", r["scenario"]["name"].get<std::string>(),
                                  r["scenario"]["description"].get<std::string>());
     md += fmt::format(
@@ -240,7 +240,7 @@ int table2_command(const Table2Options& o) {
             r["contributions"].push_back(quality_line(cpu_column(config, float_variants[i]), geometry));
         r["contributions"].push_back(quality_line(columns[1], measures[1]));
         write_file_atomically(staging / "report.json", r.dump(2) + "\n");
-        write_file_atomically(staging / "report.md", markdown(r));
+        write_file_atomically(staging / "report.md", table2_markdown(r));
         write_file_atomically(staging / "config.yaml", config.to_yaml());
         out.publish();
         if (!o.quiet) print_summary(r, out.folder());

@@ -33,7 +33,7 @@ constexpr const char* kQemu = "qemu-ppc";
 constexpr const char* kQemuCpu = "440-xilinx-w-dfpu";  // QEMU's Virtex-5 PPC440 with the APU FPU
 // Float tolerance of the firmware's keypoints against the VP's: both are IEEE single precision
 // without contraction; only libm (atan2f, sinf, cosf) may differ in the last place.
-constexpr double kTolerance = 1e-4;
+constexpr double kKeypointTolerance = 1e-4;
 
 struct Frame {
     sw::calibration_dump::FrameHeader header;
@@ -89,7 +89,7 @@ std::vector<std::array<uint64_t, sw::kUnits>> native_units(const std::vector<Fra
 }
 
 // The firmware's results against the VP's: the same words became keypoints, with the same
-// values within kTolerance.
+// values within kKeypointTolerance.
 Json compare_results(const std::vector<sw::calibration_dump::Result>& vp,
                      const std::vector<sw::calibration_dump::Result>& iss) {
     if (vp.size() != iss.size())
@@ -110,11 +110,12 @@ Json compare_results(const std::vector<sw::calibration_dump::Result>& vp,
         for (int k = 0; k < 64; ++k)
             diff = std::max(diff, double(std::fabs(vp[i].descriptor[k] - iss[i].descriptor[k])));
         if (diff == 0) ++exact;
-        if (diff > kTolerance) ++mismatched;
+        if (diff > kKeypointTolerance) ++mismatched;
         worst = std::max(worst, diff);
     }
-    return {{"words", vp.size()},      {"keypoints", keypoints},   {"bit_exact", exact},      {"max_difference", worst},
-            {"tolerance", kTolerance}, {"mismatched", mismatched}, {"agree", mismatched == 0}};
+    return {{"words", vp.size()},      {"keypoints", keypoints},          {"bit_exact", exact},
+            {"max_difference", worst}, {"tolerance", kKeypointTolerance}, {"mismatched", mismatched},
+            {"agree", mismatched == 0}};
 }
 
 // The stream sample the table keeps (unit_prices re-times it): runs of candidates to a
@@ -325,7 +326,8 @@ std::string calibration_markdown(const Json& out) {
             md += fmt::format(
                 "Keypoints: {} of {} words, {} bit-exact, largest difference {:.2g} (tolerance {:.0e}).\n\n",
                 r["results"]["keypoints"].get<size_t>(), r["results"]["words"].get<size_t>(),
-                r["results"]["bit_exact"].get<size_t>(), r["results"]["max_difference"].get<double>(), kTolerance);
+                r["results"]["bit_exact"].get<size_t>(), r["results"]["max_difference"].get<double>(),
+                kKeypointTolerance);
             md +=
                 "| step | instructions / keypoint | stream cycles / keypoint | model cycles / keypoint | model vs "
                 "stream | "

@@ -12,12 +12,13 @@
 #include "platform/scenario/block_params.h"
 
 namespace surfvp {
-namespace {
-using Json = nlohmann::ordered_json;
 
-Config with(const Config& base, const std::vector<std::pair<std::string, std::string>>& sets) {
+Config verdict_variant(const Config& base, const std::vector<std::pair<std::string, std::string>>& sets) {
     return base.with(sets, "verdict");
 }
+
+namespace {
+using Json = nlohmann::ordered_json;
 
 // The parameter that moves the limiting resource's time, and how the frame rate follows it:
 // +1 rises with the value, -1 falls; `linear` when the resource's time is proportional to the
@@ -273,7 +274,7 @@ void LimitChain::drive(size_t k, size_t i) {
     BreakEven& search = *s.searches[i];
     if (const auto v = search.next()) {
         pool_.submit(
-            with(s.base, {{search.axis().key, as_text(search.spec(), *v)}}),
+            verdict_variant(s.base, {{search.axis().key, as_text(search.spec(), *v)}}),
             [this, k, i, v](const Json& r) {
                 Step& step = *steps_[k];
                 step.searches[i]->record(*v, step.goal.meets(r), r.contains("error") ? -1.0 : r["fps"].get<double>());
@@ -292,7 +293,7 @@ void LimitChain::check(size_t k, size_t i, double value) {
     std::vector<std::pair<std::string, std::string>> sets = s.relieved;
     sets.emplace_back(s.searches[i]->axis().key, as_text(s.searches[i]->spec(), value));
     pool_.submit(
-        with(config_, sets),
+        verdict_variant(config_, sets),
         [this, k, i](const Json& r) {
             Step& step = *steps_[k];
             const bool met = step.goal.meets(r);
@@ -321,7 +322,7 @@ void LimitChain::done(size_t k) {
         auto next = std::make_unique<Step>();
         next->relieved = s.relieved;
         next->relieved.emplace_back(search->axis().key, as_text(search->spec(), *answer));
-        next->base = with(reference_, next->relieved);
+        next->base = verdict_variant(reference_, next->relieved);
         steps_.push_back(std::move(next));
         pool_.submit(
             steps_.back()->base, [this, k](const Json& r) { begin(k + 1, r); }, Resimulation::point_summary, "", "none",

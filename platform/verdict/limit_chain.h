@@ -25,6 +25,9 @@
 
 namespace surfvp {
 
+// A re-simulation's configuration: `base` with `sets` applied, their origin "verdict".
+Config verdict_variant(const Config& base, const std::vector<std::pair<std::string, std::string>>& sets);
+
 class LimitChain {
 public:
     // `config` is the scenario (its whole-run checks), `reference` the re-simulations' version.

@@ -45,10 +45,6 @@ bool same_value(const ParamSpec& p, const std::string& a, const std::string& b) 
     return parse_value(p, a) == parse_value(p, b);
 }
 
-Config with(const Config& base, const std::vector<std::pair<std::string, std::string>>& sets) {
-    return base.with(sets, "verdict");
-}
-
 struct BandSide {
     std::string value;
     Json result;  // the point's summary, or null when this side is the current value
@@ -183,7 +179,8 @@ int run_with_verdict(const Config& config, const std::string& out, const std::st
     const bool want_band = config.choice("verdict.band") == "on";
     const bool want_break_even = config.choice("verdict.break_even") == "on" && budget > 0;
     // The re-simulations run one thread each: the jobs share the cores (run.parallel moves no figure).
-    const Config reference = with(config, {{"surf.frames", std::to_string(frames)}, {"run.parallel", "off"}});
+    const Config reference =
+        verdict_variant(config, {{"surf.frames", std::to_string(frames)}, {"run.parallel", "off"}});
 
     // Prepare once what every child needs: the frames, the calibration, the FHG's sequences.
     Resimulation::prepare(config);
@@ -216,7 +213,7 @@ int run_with_verdict(const Config& config, const std::string& out, const std::st
         for (BandAxis& axis : *axes)
             for (BandSide* side : {&axis.low, &axis.high}) {
                 if (same_value(*axis.spec, side->value, axis.current)) continue;
-                pool.submit(with(reference, {{axis.spec->key, side->value}}),
+                pool.submit(verdict_variant(reference, {{axis.spec->key, side->value}}),
                             [side](const Json& r) { side->result = r; });
             }
     const std::vector<Unknown> unknowns = unknowns_of(effective, config);
@@ -224,13 +221,14 @@ int run_with_verdict(const Config& config, const std::string& out, const std::st
         joint_design(unknowns, want_band ? size_t(config.count("verdict.samples")) : 0, kJointSeed);
     std::vector<Json> joint_results(joint.sets.size());
     for (size_t i = 0; i < joint.sets.size(); ++i)
-        pool.submit(with(reference, joint.sets[i]), [&joint_results, i](const Json& r) { joint_results[i] = r; });
+        pool.submit(verdict_variant(reference, joint.sets[i]),
+                    [&joint_results, i](const Json& r) { joint_results[i] = r; });
     const bool want_software = config.choice("verdict.software") == "on";
     const auto settings =
         want_software ? software_settings(config) : std::vector<std::pair<std::string, std::string>>{};
     std::vector<Json> software(settings.size());
     for (size_t i = 0; i < settings.size(); ++i)
-        pool.submit(with(reference, {settings[i]}), [&software, i](const Json& r) { software[i] = r; });
+        pool.submit(verdict_variant(reference, {settings[i]}), [&software, i](const Json& r) { software[i] = r; });
     {
         ProgressLine progress(quiet, config.name, 0.0, 0.5, 5.0);
         pool.run([&](size_t done, size_t total) {
