@@ -282,7 +282,8 @@ int correlate_command(const CorrelateOptions& o) {
                         {"surf.target_keypoints", config.value("surf.target_keypoints")}};
     Json default_point;
 
-    OutputFolder out(o.out.empty() ? fs::path("traces") / ("correlate_" + config.name) : fs::path(o.out));
+    OutputFolder out(o.out.empty() ? fs::path("traces") / ("correlate_" + config.name) : fs::path(o.out),
+                     {"correlate.json", "correlate.md", "correlate.svg"});
     Resimulation::prepare(reference);
     {
         Resimulation pool(o.jobs, out.staging() / ".points");

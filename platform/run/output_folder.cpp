@@ -3,6 +3,7 @@
 #include <cerrno>
 #include <chrono>
 #include <cstdio>
+#include <algorithm>
 #include <cstring>
 #include <fcntl.h>
 #include <fmt/format.h>
@@ -85,11 +86,28 @@ bool alive(const std::string& pid) {
     return n > 0 && *end == '\0' && (::kill(pid_t(n), 0) == 0 || errno == EPERM);
 }
 
-std::string first_line(const fs::path& file) {
-    std::string line;
-    std::ifstream in(file);
-    std::getline(in, line);
-    return line.substr(0, 32);
+// The pid a lock names: its first bytes if they are digits, else "?" (a lock is read no further
+// than a pid's length, and none of its text reaches the terminal).
+std::string pid_in(int fd) {
+    char text[24] = {};
+    const ssize_t got = ::pread(fd, text, sizeof text - 1, 0);
+    std::string pid(text, size_t(std::max<ssize_t>(got, 0)));
+    pid = pid.substr(0, pid.find('\n'));
+    const bool digits = !pid.empty() && pid.size() < 20 && pid.find_first_not_of("0123456789") == std::string::npos;
+    return got <= 0 ? "" : digits ? pid : "?";
+}
+
+// Whether `fd` and `path` are one file: a lock taken on a file that another run removed and
+// made again in the meantime is no lock at all.
+bool same_file(int fd, const fs::path& path) {
+    struct stat a {
+    }, b{};
+    return ::fstat(fd, &a) == 0 && ::lstat(path.c_str(), &b) == 0 && a.st_dev == b.st_dev && a.st_ino == b.st_ino;
+}
+
+bool empty_folder(const fs::path& dir) {
+    std::error_code error;
+    return type_of(dir) == fs::file_type::directory && fs::is_empty(dir, error) && !error;
 }
 
 // Every regular file under `dir` but its list, relative to it.
@@ -152,36 +170,59 @@ bool legacy_folder(const fs::path& dir) {
 
 }  // namespace
 
-OutputFolder::OutputFolder(const fs::path& folder) : folder_(folder) {
+OutputFolder::OutputFolder(const fs::path& folder, const std::set<std::string>& outputs) : folder_(folder) {
+    check_before_writing(outputs);
     std::error_code error;
+    made_folder_ = type_of(folder_) == fs::file_type::not_found;
     fs::create_directories(folder_, error);
     if (error || !fs::is_directory(folder_))
         refuse(folder_, "cannot create the folder: " + (error ? error.message() : "a file is in the way"));
-    lock();
-    // Holding the lock, every run folder but the current one is a killed run's; a real folder
-    // only (a link there is not surfvp's, and removing through it would reach outside).
-    const fs::path runs = folder_ / kRuns;
-    if (type_of(runs) == fs::file_type::not_found) fs::create_directory(runs, error);
-    if (type_of(runs) != fs::file_type::directory)
-        throw ConfigError(fmt::format("--out {}: {} is not a folder surfvp made (a link or a file); remove it",
-                                      folder_.string(), runs.string()));
-    remove_runs_but(runs, current_run(folder_));
-    for (const auto& entry : fs::directory_iterator(folder_, error)) {
-        const std::string name = entry.path().filename().string();
-        const fs::file_type type = type_of(entry.path());
-        if ((name.rfind(kLegacyStagingPrefix, 0) == 0 &&
-             type == fs::file_type::directory) ||  // an older surfvp's killed run
-            ((name.rfind(".surfvp-link-", 0) == 0 || name.rfind(".surfvp-current-", 0) == 0) &&
-             type == fs::file_type::symlink))
-            fs::remove_all(entry.path(), error);  // a killed run's link not yet in place
-        else if (!output_of_link(entry.path()).empty() && !fs::exists(entry.path(), error))
-            fs::remove(entry.path(), error);  // killed between its links and their switch
+    try {
+        lock();
+        // Holding the lock, every run folder but the current one is a killed run's.
+        const fs::path runs = folder_ / kRuns;
+        made_runs_ = type_of(runs) == fs::file_type::not_found && fs::create_directory(runs, error);
+        if (error) refuse(folder_, "cannot create " + runs.string() + ": " + error.message());
+        remove_runs_but(runs, current_run(folder_));
+        for (const auto& entry : fs::directory_iterator(folder_, error)) {
+            const std::string name = entry.path().filename().string();
+            const fs::file_type type = type_of(entry.path());
+            if ((name.rfind(kLegacyStagingPrefix, 0) == 0 &&
+                 type == fs::file_type::directory) ||  // an older surfvp's killed run
+                ((name.rfind(".surfvp-link-", 0) == 0 || name.rfind(".surfvp-current-", 0) == 0) &&
+                 type == fs::file_type::symlink))
+                fs::remove_all(entry.path(), error);  // a killed run's link not yet in place
+            else if (!output_of_link(entry.path()).empty() && !fs::exists(entry.path(), error))
+                fs::remove(entry.path(), error);  // killed between its links and their switch
+        }
+        const auto now = std::chrono::system_clock::now().time_since_epoch();
+        staging_ =
+            runs / fmt::format("{}-{}", ::getpid(), std::chrono::duration_cast<std::chrono::microseconds>(now).count());
+        fs::create_directory(staging_, error);
+        if (error) refuse(folder_, "cannot create " + staging_.string() + ": " + error.message());
+    } catch (...) {
+        undo_unpublished();
+        throw;
     }
-    const auto now = std::chrono::system_clock::now().time_since_epoch();
-    staging_ =
-        runs / fmt::format("{}-{}", ::getpid(), std::chrono::duration_cast<std::chrono::microseconds>(now).count());
-    fs::create_directory(staging_, error);
-    if (error) refuse(folder_, "cannot create " + staging_.string() + ": " + error.message());
+}
+
+// What would stop the publication, found before anything is written or simulated: a folder of
+// the user's under an output's name, a .surfvp-current that is a folder (the outputs' links
+// would lead into it), a .surfvp-runs that is not a folder (removing through a link would reach
+// outside).
+void OutputFolder::check_before_writing(const std::set<std::string>& outputs) const {
+    for (const std::string& name : outputs)
+        if (type_of(folder_ / name) == fs::file_type::directory && !legacy_folder(folder_ / name))
+            throw ConfigError(
+                fmt::format("--out {}: {} is a folder surfvp did not write; move it away, or give another --out",
+                            folder_.string(), (folder_ / name).string()));
+    if (type_of(folder_ / kCurrent) == fs::file_type::directory)
+        throw ConfigError(fmt::format("--out {}: {} is a folder, not surfvp's link; remove it", folder_.string(),
+                                      (folder_ / kCurrent).string()));
+    const fs::file_type runs = type_of(folder_ / kRuns);
+    if (runs != fs::file_type::not_found && runs != fs::file_type::directory)
+        throw ConfigError(fmt::format("--out {}: {} is not a folder surfvp made (a link or a file); remove it",
+                                      folder_.string(), (folder_ / kRuns).string()));
 }
 
 // flock is released when its holder ends, so a lock file no process holds is stale, whatever
@@ -189,22 +230,29 @@ OutputFolder::OutputFolder(const fs::path& folder) : folder_(folder) {
 // read-only descriptor and taken over, made again as ours where the folder lets us remove it.
 void OutputFolder::lock() {
     const fs::path lock = folder_ / kLock;
-    const fs::file_type type = type_of(lock);
-    if (type != fs::file_type::not_found && type != fs::file_type::regular)
+    struct stat st {};
+    const bool exists = ::lstat(lock.c_str(), &st) == 0;
+    if (exists && !S_ISREG(st.st_mode))
         throw ConfigError(fmt::format("--out {}: {} is not a regular file (surfvp's lock is); remove it",
                                       folder_.string(), lock.string()));
-    lock_ = ::open(lock.c_str(), O_RDWR | O_CREAT | O_CLOEXEC | O_NOFOLLOW, 0644);
+    if (exists && st.st_nlink != 1)  // a hard link: emptying it would empty a file elsewhere
+        throw ConfigError(fmt::format("--out {}: {} has {} names (a hard link; surfvp's lock has one); remove it",
+                                      folder_.string(), lock.string(), st.st_nlink));
+    lock_ = ::open(lock.c_str(), O_RDWR | O_CREAT | O_CLOEXEC | O_NOFOLLOW | O_NONBLOCK, 0644);
+    made_lock_ = !exists && lock_ >= 0;
     const bool foreign = lock_ < 0 && errno == EACCES;
-    if (foreign) lock_ = ::open(lock.c_str(), O_RDONLY | O_CLOEXEC | O_NOFOLLOW);
+    if (foreign) lock_ = ::open(lock.c_str(), O_RDONLY | O_CLOEXEC | O_NOFOLLOW | O_NONBLOCK);
     if (lock_ < 0) refuse(folder_, fmt::format("cannot create {} ({})", lock.string(), std::strerror(errno)));
-    const std::string previous = first_line(lock);
+    const std::string previous = pid_in(lock_);
     auto busy = [&] {
         if (lock_ >= 0) ::close(lock_);
         lock_ = -1;
+        made_lock_ = false;
         refuse(folder_, fmt::format("another surfvp run (pid {}) is writing there; wait for it or give another --out",
                                     previous.empty() ? "?" : previous));
     };
-    if (::flock(lock_, LOCK_EX | LOCK_NB) != 0) busy();
+    if (::flock(lock_, LOCK_EX | LOCK_NB) != 0 || !same_file(lock_, lock)) busy();
+    if (::fstat(lock_, &st) != 0 || st.st_nlink != 1) busy();  // linked elsewhere since: not ours to empty
     if (!foreign && !previous.empty())  // a run that ends empties its lock: this one's was killed
         std::fprintf(stderr,
                      "surfvp: warning: --out %s: took over the stale lock of a run that did not finish (pid %s, %s)\n",
@@ -216,6 +264,7 @@ void OutputFolder::lock() {
         if (::unlink(lock.c_str()) != 0) return;  // a folder that keeps others' files (sticky): locked through theirs
         ::close(lock_);
         lock_ = ::open(lock.c_str(), O_RDWR | O_CREAT | O_EXCL | O_CLOEXEC | O_NOFOLLOW, 0644);
+        made_lock_ = lock_ >= 0;
         if (lock_ < 0 || ::flock(lock_, LOCK_EX | LOCK_NB) != 0) busy();  // another run made it first
     }
     const std::string pid = std::to_string(::getpid()) + "\n";
@@ -223,9 +272,27 @@ void OutputFolder::lock() {
         refuse(folder_, fmt::format("cannot write {} ({})", lock.string(), std::strerror(errno)));
 }
 
-OutputFolder::~OutputFolder() {
+// A run that published nothing into a folder it made leaves no trace: its lock (removed while
+// held, so a run that opened it meanwhile finds it is not the file's name any more), its
+// .surfvp-runs and the folder itself, each only where nothing else came into it.
+void OutputFolder::undo_unpublished() noexcept {
     std::error_code ignored;
-    if (!published_) fs::remove_all(staging_, ignored);
+    if (!staging_.empty()) fs::remove_all(staging_, ignored);
+    if (made_runs_ && empty_folder(folder_ / kRuns)) fs::remove(folder_ / kRuns, ignored);
+    if (made_lock_ && type_of(folder_ / kRuns) == fs::file_type::not_found) ::unlink((folder_ / kLock).c_str());
+    if (lock_ >= 0) {
+        [[maybe_unused]] const int emptied = ::ftruncate(lock_, 0);  // finished: nothing stale
+        ::close(lock_);                                              // releases the lock
+        lock_ = -1;
+    }
+    if (made_folder_ && empty_folder(folder_)) fs::remove(folder_, ignored);
+}
+
+OutputFolder::~OutputFolder() {
+    if (!published_) {
+        undo_unpublished();
+        return;
+    }
     [[maybe_unused]] const int emptied = ::ftruncate(lock_, 0);  // finished: nothing stale (another user's stays)
     ::close(lock_);                                              // releases the lock
 }

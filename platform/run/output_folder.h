@@ -24,9 +24,14 @@ namespace surfvp {
 class OutputFolder {
 public:
     // Creates and locks `folder`; throws EnvironmentError when it cannot be created or
-    // locked, or another run holds it.
-    explicit OutputFolder(const std::filesystem::path& folder);
-    ~OutputFolder();  // an unpublished run folder is removed; the lock is released
+    // locked, or another run holds it, and ConfigError when it holds what surfvp cannot
+    // publish over: a folder of the user's under one of `outputs` (the top-level names the
+    // command writes), a `.surfvp-current` or `.surfvp-runs` that is not surfvp's, a lock that
+    // is not a plain file of one name. A refusal leaves the folder as it was.
+    explicit OutputFolder(const std::filesystem::path& folder, const std::set<std::string>& outputs = {});
+    // An unpublished run folder is removed; the lock is released. A run that published nothing
+    // removes what it made (the lock, .surfvp-runs, the folder) where nothing else is there.
+    ~OutputFolder();
     OutputFolder(const OutputFolder&) = delete;
     OutputFolder& operator=(const OutputFolder&) = delete;
 
@@ -42,7 +47,9 @@ public:
     std::string as_published(std::string message) const;
 
 private:
+    void check_before_writing(const std::set<std::string>& outputs) const;
     void lock();
+    void undo_unpublished() noexcept;
     void link_outputs(const std::set<std::string>& names) const;
     void switch_current() const;
     void remove_stale(const std::set<std::string>& names) const;
@@ -51,6 +58,7 @@ private:
     std::filesystem::path folder_, staging_;
     int lock_ = -1;
     bool published_ = false;
+    bool made_folder_ = false, made_lock_ = false, made_runs_ = false;  // what a run that published nothing undoes
 };
 
 }  // namespace surfvp

@@ -209,7 +209,8 @@ int table2_command(const Table2Options& o) {
                                       config.faults.front().origin));
     check_scenario(config);
     const Geometry geometry = read_geometry(config);
-    OutputFolder out(o.out.empty() ? fs::path("traces") / config.name : fs::path(o.out));
+    OutputFolder out(o.out.empty() ? fs::path("traces") / config.name : fs::path(o.out),
+                     {"cpu", "fpga", "report.json", "report.md", "config.yaml"});
     const fs::path staging = out.staging();
     Json r;
     try {

@@ -132,5 +132,71 @@ TEST(OutputFolder, LinksAndRunFoldersSomeoneElseMadeAreNeverFollowed) {
     EXPECT_EQ(slurp(elsewhere + "/precious.txt"), "keep me");
 }
 
+// The names left in `dir`, hidden ones included.
+std::set<std::string> names_in(const std::string& dir) {
+    std::set<std::string> names;
+    for (const auto& e : fs::directory_iterator(dir)) names.insert(e.path().filename().string());
+    return names;
+}
+
+TEST(OutputFolder, WhatWouldStopThePublicationIsRefusedBeforeAnythingIsMade) {
+    const std::string out = fresh_dir("publish_refused_first");
+    fs::create_directories(out + "/keypoints");
+    write_file(out + "/keypoints", "plan.txt", "mine");
+    EXPECT_THROW(OutputFolder(out, {"report.json", "keypoints"}), ConfigError);
+    fs::remove_all(out + "/keypoints");
+    fs::create_directories(out + "/.surfvp-current");
+    write_file(out + "/.surfvp-current", "report.json", "{}");
+    try {
+        OutputFolder refused(out, {"report.json"});
+        FAIL() << "took a .surfvp-current that is a folder";
+    } catch (const ConfigError& e) {
+        EXPECT_NE(std::string(e.what()).find(".surfvp-current is a folder, not surfvp's link"), std::string::npos)
+            << e.what();
+    }
+    EXPECT_EQ(names_in(out), (std::set<std::string>{".surfvp-current"}));  // no lock, no run folders, no links
+}
+
+TEST(OutputFolder, ARunThatPublishedNothingLeavesNoTrace) {
+    const std::string root = fresh_dir("publish_nothing"), out = root + "/new";
+    { OutputFolder unpublished(out); }
+    EXPECT_FALSE(fs::exists(out));  // the folder it made, gone with its lock and run folders
+    fs::create_directories(out);
+    write_file(out, "mine.txt", "mine");
+    { OutputFolder unpublished(out); }
+    EXPECT_EQ(names_in(out), (std::set<std::string>{"mine.txt"}));
+    publish_run(out, {"report.json"});
+    { OutputFolder unpublished(out); }
+    EXPECT_EQ(names_in(out), (std::set<std::string>{"mine.txt", "report.json", ".surfvp-current", ".surfvp-runs",
+                                                    ".surfvp.lock"}));  // a published set stays whole
+}
+
+TEST(OutputFolder, ALockThatIsAHardLinkIsRefusedAndTheOtherNameKeepsItsText) {
+    const std::string root = fresh_dir("publish_hard_lock"), out = root + "/out";
+    fs::create_directories(out);
+    write_file(root, "victim.txt", "keep me");
+    fs::create_hard_link(root + "/victim.txt", out + "/.surfvp.lock");
+    try {
+        OutputFolder refused(out);
+        FAIL() << "took a lock with two names";
+    } catch (const ConfigError& e) {
+        EXPECT_NE(std::string(e.what()).find("has 2 names (a hard link"), std::string::npos) << e.what();
+    }
+    EXPECT_EQ(slurp(root + "/victim.txt"), "keep me");
+}
+
+TEST(OutputFolder, AStaleLockIsReadOnlyAsFarAsAPidAndItsTextNeverShown) {
+    const std::string out = fresh_dir("publish_odd_lock");
+    write_file(out, ".surfvp.lock", "\x1b[2J not a pid\n");
+    testing::internal::CaptureStderr();
+    publish_run(out, {"report.json"});
+    const std::string said = testing::internal::GetCapturedStderr();
+    EXPECT_NE(said.find("took over the stale lock of a run that did not finish (pid ?, no longer running)"),
+              std::string::npos)
+        << said;
+    EXPECT_EQ(said.find('\x1b'), std::string::npos);
+    EXPECT_EQ(slurp(out + "/report.json"), "run of 1: report.json");
+}
+
 }  // namespace
 }  // namespace surfvp::test
