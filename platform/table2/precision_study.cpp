@@ -340,22 +340,34 @@ int precision_command(const PrecisionOptions& o) {
                         "it has none",
                         o.pair));
     std::vector<Axis> axes;
-    for (const std::string& a : o.axes) axes.push_back(parse_precision_axis(a));
+    for (const std::string& a : o.axes) {
+        axes.push_back(parse_precision_axis(a));
+        for (size_t i = 0; i + 1 < axes.size(); ++i)
+            if (axes[i].key == axes.back().key)
+                throw ConfigError(fmt::format("--axis {}: '{}' has an --axis already ({}); give its values in one", a,
+                                              axes.back().key, o.axes[i]));
+    }
     if (axes.empty()) axes = default_axes();
     std::vector<PrecisionPoint> points{{"", "as the scenario", {}, {}}};
     for (const Axis& a : axes)
         for (const std::string& v : a.values) {
             try {
                 points.push_back({a.key, v, point_sets(seq, {{a.key, v}}), {}});
-                if (!pair) continue;
-                Config p = *pair;  // the pair takes them too: refused now, not after the reference ran
-                apply_overrides(p, points.back().sets);
+                // Each point's scenario, and the pair under its widths, checked as `validate` would
+                // (a width the model refuses): refused now, not after the reference ran.
+                for (const Config* c : std::vector<const Config*>{&seq, pair ? &*pair : nullptr}) {
+                    if (!c) continue;
+                    Config at = *c;
+                    apply_overrides(at, points.back().sets);
+                    check_scenario(at);
+                }
             } catch (const ConfigError& e) {
                 throw ConfigError(fmt::format("--axis {}={}: {}", a.key, v, e.what()));
             }
         }
 
-    OutputFolder out(o.out.empty() ? fs::path("traces") / ("precision_" + seq.name) : fs::path(o.out));
+    OutputFolder out(o.out.empty() ? fs::path("traces") / ("precision_" + seq.name) : fs::path(o.out),
+                     {"report.json", "report.md", "results.csv", "precision.svg"});
     const fs::path staging = out.staging();
     Json reference = Json::object();
     std::vector<std::string> haars{seq.choice("surf.haar")};

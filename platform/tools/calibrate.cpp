@@ -431,6 +431,10 @@ int calibrate_command(const CalibrateOptions& options) {
     if (!fs::exists(o.firmware))
         throw ConfigError("calibrate: no PPC440 firmware at " + o.firmware +
                           ": install g++-powerpc-linux-gnu and rebuild (./scripts/bootstrap.sh does both)");
+    if (!fs::is_regular_file(o.firmware))
+        throw ConfigError("calibrate: --firmware " + o.firmware + ": not a regular file (a PPC440 ELF is)");
+    if (!fs::is_regular_file(o.firmware + ".map"))  // read after the VP's runs: checked before them
+        throw ConfigError("calibrate: no link map " + o.firmware + ".map beside the firmware");
     if (std::system((std::string("command -v ") + kQemu + " > /dev/null").c_str()) != 0)
         throw ConfigError(std::string("calibrate: no ") + kQemu + ": install qemu-user (./scripts/bootstrap.sh does)");
     check_options(o);

@@ -72,7 +72,9 @@ TEST(Calibrate, RefusesWhatItCannotUse) {
              {"--check nope", "--check nope: nope: no such scenario file"},
              {"--fit graf --set surf.frames=x", "--fit graf: --set: surf.frames: 'x' is not a whole number"},
              {"--table /nonexistent/calibration.json", "--table /nonexistent/calibration.json: no folder /nonexistent"},
-             {"--table " + fresh_dir("calibrate_table"), "is a folder, not a file to write"}}) {
+             {"--table " + fresh_dir("calibrate_table"), "is a folder, not a file to write"},
+             {"--firmware " + fresh_dir("calibrate_firmware_folder"), "not a regular file (a PPC440 ELF is)"},
+             {"--firmware " + std::string(SURFVP_SOURCE_DIR) + "/README.md", "README.md.map beside the firmware"}}) {
         const Cli r = surfvp("calibrate " + args + " --out " + out);
         EXPECT_EQ(r.exit_code, 2) << args << ": " << r.err;
         EXPECT_NE(r.err.find(says), std::string::npos) << args << ": " << r.err;

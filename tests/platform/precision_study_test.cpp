@@ -62,7 +62,9 @@ TEST(PrecisionStudy, BadAxesAndPairsAreRefusedBeforeAnyPointRuns) {
              {"--axis 'fhg.det_bits=24 bit,'", "value 2 is empty"},
              {"--axis 'fhg.det_bits=, 20 bit'", "value 1 is empty"},
              {"--pair faults", "faults.yaml:15: faults: the precision study runs the chip without time"},
-             {"--set surf.frames=0", "surf.frames"}}) {
+             {"--set surf.frames=0", "surf.frames"},
+             {"--axis 'fhg.det_frac_bits=40 bit'", "det_frac_bits must not exceed 2 x response_frac_bits"},
+             {"--axis 'fhg.det_bits=24 bit' --axis 'fhg.det_bits=20 bit'", "has an --axis already"}}) {
         const auto r = surfvp("precision castle_sequence " + args + " --out " + out);
         EXPECT_EQ(r.exit_code, 2) << args;
         EXPECT_NE(r.err.find(says), std::string::npos) << args << ": " << r.err;
