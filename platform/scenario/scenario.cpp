@@ -99,10 +99,19 @@ void check_folder_name(const std::string& where, const std::string& name) {
                         where, name));
 }
 
+// A file reached through a symbolic link is read where it lies: its paths are relative to
+// the real file's folder, so every spelling of it means the same files.
+std::string folder_of_file(const std::string& file) {
+    std::error_code error;
+    if (!fs::is_symlink(file, error)) return fs::path(file).parent_path().string();
+    const fs::path real = fs::weakly_canonical(file, error);
+    return (error ? fs::path(file) : real).parent_path().string();
+}
+
 std::string relative_to_file(const std::string& file, const std::string& key, const std::string& value) {
     const ParamSpec* spec = find_parameter(key);
     if (spec && spec->kind == ParamKind::text && !value.empty() && fs::path(value).is_relative())
-        return (fs::path(file).parent_path() / value).lexically_normal().string();
+        return (fs::path(folder_of_file(file)) / value).lexically_normal().string();
     return value;
 }
 

@@ -18,8 +18,11 @@ Config load_scenario(const std::string& path, const std::vector<std::string>& ov
 // One YAML document from a file (a `what`: "scenario", "sweep"); throws ConfigError for a
 // file that is missing, not regular, not YAML, or holds several documents.
 YAML::Node load_yaml_file(const std::string& path, const std::string& what);
+// The folder a file's relative paths start from: its own, or the real file's when `file` is a
+// symbolic link (so that a link from another folder means the same files).
+std::string folder_of_file(const std::string& file);
 // A path parameter's value (a text parameter: surf.source, eval.*) as given in `file`: relative
-// to that file's folder; any other value as it is.
+// to that file's folder (folder_of_file); any other value as it is.
 std::string relative_to_file(const std::string& file, const std::string& key, const std::string& value);
 // Well-formed UTF-8: what a YAML value must be for config.yaml (or a sweep's results.json) to
 // give it back.

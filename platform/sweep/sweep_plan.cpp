@@ -310,7 +310,7 @@ SweepPlan load_sweep(const std::string& path) {
             const std::string s = scalar(path, item.second, key);
             const bool a_path = s.find('/') != std::string::npos || fs::path(s).extension() == ".yaml";
             plan.scenario = a_path && fs::path(s).is_relative()
-                                ? (fs::path(path).parent_path() / s).lexically_normal().string()
+                                ? (fs::path(folder_of_file(path)) / s).lexically_normal().string()
                                 : resolve_scenario(s);
         } else if (key == "set") {
             if (!item.second.IsMap())

@@ -223,6 +223,15 @@ void SweepStore::check_tables() const {
             throw ConfigError(
                 fmt::format("{}: not a sweep database, or a damaged one (integrity check: {})", file_, check.text(0)));
     }
+    {  // another program's tables: a sweep would add its own beside them
+        Statement others(db_,
+                         "SELECT name FROM sqlite_master WHERE type = 'table' AND name NOT IN ('sweep', 'points') "
+                         "AND name NOT LIKE 'sqlite_%'",
+                         file_);
+        if (others.step())
+            throw ConfigError(fmt::format("{}: is not a sweep database: it holds a table '{}' a sweep's has not", file_,
+                                          is_utf8(others.text(0)) ? others.text(0) : "?"));
+    }
     for (const auto& [table, expected] :
          {std::make_pair("sweep", kSweepColumns), std::make_pair("points", kPointColumns)}) {
         Statement info(db_, fmt::format("PRAGMA table_info({})", table), file_);

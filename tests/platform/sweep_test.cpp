@@ -291,6 +291,7 @@ TEST(Sweep, ItsIdentityIsItsContentNotTheSpellingOfItsFiles) {
     fs::create_directories(dir + "/a");
     smoke_sweep(dir + "/a", kTinyAxes);
     fs::create_directory_symlink(dir + "/a", dir + "/link");
+    fs::create_symlink(dir + "/a/s.yaml", dir + "/s_link.yaml");  // the file itself, linked from another folder
     {
         InFolder here(dir + "/a");
         const auto r = surfvp("sweep s.yaml --quiet --out out");
@@ -305,7 +306,7 @@ TEST(Sweep, ItsIdentityIsItsContentNotTheSpellingOfItsFiles) {
               std::string::npos);  // sets are not in the results...
     InFolder here(dir);
     for (const std::string& spelling : std::vector<std::string>{"a/s.yaml", "./a/../a/s.yaml", dir + "/a/s.yaml",
-                                                                dir + "/link/s.yaml", "link/./s.yaml"}) {
+                                                                dir + "/link/s.yaml", "link/./s.yaml", "s_link.yaml"}) {
         const auto again = surfvp("sweep " + spelling + " --out a/out");
         EXPECT_EQ(again.exit_code, 0) << spelling << ": " << again.err;
         EXPECT_NE(again.err.find("2 of 2 points already done"), std::string::npos) << spelling << ": " << again.err;
@@ -536,6 +537,13 @@ TEST(Sweep, ADamagedDatabaseIsBadInputNamingTheFileAndThePoint) {
         "other tables", [&] { sql(db, "DROP TABLE points; CREATE TABLE points (a, b);"); },
         "is not a sweep database: its table points has the columns (a, b), not (idx, id, params, exit, error, figures, "
         "wall_s)");
+    refused(
+        "another program's database",
+        [&] {
+            fs::remove(db);
+            sql(db, "CREATE TABLE t (x);");
+        },
+        "is not a sweep database: it holds a table 't' a sweep's has not");
     const std::string point1 = "point 1 (plb2.width=64 bit): ";
     refused(
         "params not JSON", [&] { sql(db, "UPDATE points SET params = '{\"plb2.width\": ' WHERE idx = 1"); },
