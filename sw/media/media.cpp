@@ -51,10 +51,11 @@ void bind(void* handle, const fs::path& path, const char* name, F& f) {
 // (a truncated copy) is mapped all the same and faults (SIGBUS) when first touched. So the
 // headers are checked against the file before it is handed to dlopen.
 std::string elf_problem(const fs::path& path) {
-    std::ifstream in(path, std::ios::binary);
     std::error_code ec;
+    if (!fs::is_regular_file(path, ec)) return "not a readable regular file";  // before opening: a FIFO would block
+    std::ifstream in(path, std::ios::binary);
     const uintmax_t size = fs::file_size(path, ec);
-    if (!in || ec || !fs::is_regular_file(path, ec)) return "not a readable regular file";
+    if (!in || ec) return "not a readable regular file";
     Elf64_Ehdr header{};
     if (!in.read(reinterpret_cast<char*>(&header), sizeof header) ||
         std::memcmp(header.e_ident, ELFMAG, SELFMAG) != 0 || header.e_ident[EI_CLASS] != ELFCLASS64 ||

@@ -13,6 +13,7 @@
 #include <nlohmann/json.hpp>
 #include <random>
 #include <tuple>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -289,6 +290,16 @@ TEST(Environment, ATruncatedMediaPluginIsRefusedNotMapped) {
         EXPECT_NE(slurp(err).find("cannot load the image and video plugin " + file + ": " + says), std::string::npos)
             << slurp(err);
     }
+    // A FIFO under the plugin's name: refused without opening it (opening would wait for a writer).
+    const std::string fifo = dir + "/fifo.so";
+    ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+    const std::string err = fresh_path("plugin_fifo.err");
+    const int status =
+        std::system(("SURFVP_CACHE=off SURFVP_MEDIA_PLUGIN=" + fifo + " timeout 60 " + std::string(SURFVP_BINARY) +
+                     " run " + kBudget + kShort + " --quiet --out " + dir + "/out 2>" + err)
+                        .c_str());
+    EXPECT_EQ(WIFEXITED(status) ? WEXITSTATUS(status) : -1, 2) << slurp(err);
+    EXPECT_NE(slurp(err).find(fifo + ": not a readable regular file"), std::string::npos) << slurp(err);
 }
 
 }  // namespace
