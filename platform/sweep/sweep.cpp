@@ -404,7 +404,11 @@ int sweep_command(const SweepOptions& options) {
 int sweep_merge_command(const std::string& folder, bool partial) {
     const fs::path dir(folder), whole = fs::path(folder) / "sweep.db";
     std::error_code ec;
-    if (!fs::is_directory(dir, ec)) throw ConfigError(fmt::format("{}: no such sweep folder", folder));
+    if (!fs::is_directory(dir, ec))
+        throw ConfigError(fmt::format("{}: {}", folder,
+                                      fs::exists(fs::symlink_status(dir, ec))
+                                          ? "not a folder (give the sweep's --out folder)"
+                                          : "no such sweep folder"));
     const std::vector<ShardFile> shards = shard_files(dir);
     if (shards.empty())
         throw ConfigError(fmt::format("{}: holds no shard databases (shard-K-of-N.db) to merge", folder));

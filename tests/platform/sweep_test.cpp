@@ -651,6 +651,11 @@ TEST(SweepMerge, RefusesWhatItCannotMergeAndLeavesTheFolderAsItWas) {
         },
         out + ": holds no shard databases (shard-K-of-N.db) to merge");
 
+    const auto a_file = surfvp("sweep-merge " + file);
+    EXPECT_EQ(a_file.exit_code, 2) << a_file.err;
+    EXPECT_NE(a_file.err.find(file + ": not a folder (give the sweep's --out folder)"), std::string::npos)
+        << a_file.err;
+
     // A point a shard ran replaces the same point that sweep.db has as not run (a shard run
     // again); a point no database ran makes the merge exit 1, named.
     write_file(out, "shard-1-of-2.db", shard1);
