@@ -7,6 +7,7 @@
 #include <opencv2/core/mat.hpp>
 
 #include "models/host/atomic_file.h"
+#include "platform/workload/keypoint_sink.h"
 #include "platform/workload/workload.h"
 #include "sw/eval/distinguishability.h"
 #include "sw/eval/homography.h"

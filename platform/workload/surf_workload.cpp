@@ -1,35 +1,29 @@
 // The SURF workload: frames in memory, libSSA2 driving the accelerators, the software stage
-// describing the candidates; judged on frame rate against the budget.
+// describing the candidates; judged on frame rate against the budget. The frames come from
+// frame_source, the keypoint files go to keypoint_sink, the feature quality is
+// surf_evaluation's.
 #include <algorithm>
 #include <chrono>
 #include <filesystem>
 #include <map>
-#include <mutex>
-#include <optional>
 #include <fmt/format.h>
-#include <opencv2/imgcodecs.hpp>  // cv::IMREAD_GRAYSCALE
 #include <opencv2/imgproc.hpp>
 #include <yaml-cpp/binary.h>
 
-#include "models/host/worker.h"
 #include "models/common/zeroed_memory.h"
-#include "platform/address_map.h"
-#include "platform/workload/describer.h"
 #include "models/fhg/fhg_regs.h"
 #include "models/fhg/hessian_core.h"
+#include "models/host/worker.h"
+#include "platform/address_map.h"
 #include "platform/scenario/block_params.h"
-#include "sw/eval/distinguishability.h"
-#include "sw/eval/homography.h"
-#include "sw/eval/keypoint_file.h"
-#include "sw/eval/pose_geometry.h"
-#include "sw/eval/repeatability.h"
-#include "sw/eval/sequence.h"
+#include "platform/workload/describer.h"
+#include "platform/workload/frame_source.h"
+#include "platform/workload/keypoint_sink.h"
+#include "platform/workload/surf_evaluation.h"
+#include "platform/workload/workload.h"
 #include "sw/libssa2/libssa2.h"
 #include "sw/media/media.h"
-#include "sw/surf/image_io.h"
 #include "sw/surf/surf.h"
-#include "models/host/xml_text.h"
-#include "platform/workload/workload.h"
 
 namespace surfvp {
 namespace {
@@ -65,232 +59,6 @@ Layout layout_for(const Config& c, int width, int height) {
                         c.where("memory.size"), sets, c.source_of("surf.tasks_in_flight"), width, height,
                         format_bytes(Bytes{end}), format_bytes(c.bytes("memory.size"))));
     return l;
-}
-
-// The frames surf.source names, as the chip takes them (grey, resized to surf.width x
-// surf.height when both are set). Every frame is decoded and checked once before anything is
-// built, and none is kept but frame 0 (the threshold's calibration, the report's picture): a
-// run decodes each again as it arrives (FrameStream), so host memory does not grow with the
-// frames either.
-struct SourceFrames {
-    size_t count = 0;
-    bool repeated = false;        // one image, every frame
-    cv::Mat first;                // frame 0 as the chip takes it
-    std::vector<fs::path> files;  // each frame's file; empty for a video or one repeated image
-    cv::Size original;            // frame 0 before resizing
-    std::vector<cv::Size> sizes;  // each frame's size as the chip takes it (images of a folder or list may differ)
-    cv::Size largest() const {
-        cv::Size most;
-        for (const cv::Size& s : sizes) most = cv::Size(std::max(most.width, s.width), std::max(most.height, s.height));
-        return most;
-    }
-};
-
-// A frame's size as the chip takes it: surf.width x surf.height when both are set.
-cv::Size chip_size(const Config& c, cv::Size frame) {
-    const int w = int(c.count("surf.width")), h = int(c.count("surf.height"));
-    return w && h ? cv::Size(w, h) : frame;
-}
-
-cv::Mat as_the_chip_takes(const Config& c, const cv::Mat& frame) {
-    const cv::Size size = chip_size(c, frame.size());
-    if (frame.size() == size) return frame;
-    cv::Mat resized;
-    cv::resize(frame, resized, size, 0, 0, cv::INTER_AREA);
-    return resized;
-}
-
-// Frames the chip can take: at least the filters' minimum (the float reference that
-// calibrates the threshold runs on frame 0), at most what the IIG and FHG accept.
-void check_frame_size(const Config& c, const SourceFrames& f) {
-    const int side = surf::minimum_image_side(chip_surf_params(c));
-    const bool resized = f.first.size() != f.original;
-    const bool alike = std::all_of(f.sizes.begin(), f.sizes.end(), [&](const cv::Size& s) { return s == f.sizes[0]; });
-    const std::string where = resized ? c.where("surf.width") : c.where("surf.source");
-    for (size_t i = 0; i < f.sizes.size(); ++i) {
-        const cv::Size size = f.sizes[i];
-        if (i > 0 && size == f.sizes[i - 1]) continue;
-        const std::string what =
-            resized ? fmt::format("frames resized to {}x{} (surf.width x surf.height) are", size.width, size.height)
-            : alike ? fmt::format("frames of {}x{} are", size.width, size.height)
-                    : fmt::format("frame {} ({}) of {}x{} is", i, f.files[i].string(), size.width, size.height);
-        if (size.width < side || size.height < side)
-            throw ConfigError(fmt::format("{}: {} too small: the first octave's largest filter needs at least {}x{}",
-                                          where, what, side, side));
-        for (const char* block : {"iig", "fhg"})
-            for (const auto& [key, pixels] : {std::pair{fmt::format("{}.max_width", block), size.width},
-                                              std::pair{fmt::format("{}.max_height", block), size.height}})
-                if (uint64_t(pixels) > c.count(key))
-                    throw ConfigError(fmt::format("{}: {} larger than the chip takes: {} is {} (from {})", where, what,
-                                                  key, c.count(key), c.source_of(key)));
-    }
-}
-
-// A sequence's frames (a folder, a list or a video), decoded in order.
-eval::SequenceReader open_frames(const Config& c) {
-    return eval::SequenceReader(eval::open_sequence(c.text("surf.source"), c.count("surf.frames")));
-}
-
-// Every frame of a sequence decoded once: its file, and its size against frame 0's.
-void read_sequence(const Config& c, SourceFrames& out) {
-    const std::string source = c.text("surf.source");
-    auto too_few = [&](size_t has) {
-        return ConfigError(fmt::format("{}: surf.frames is {} (from {}), but {} has only {}", c.where("surf.source"),
-                                       out.count, c.source_of("surf.frames"), source, has));
-    };
-    eval::SequenceReader reader = open_frames(c);
-    if (reader.sequence().frames.size() < out.count) throw too_few(reader.sequence().frames.size());  // before decoding
-    size_t n = 0;
-    for (cv::Mat frame; n < out.count && reader.next(frame); ++n) {
-        const fs::path& file = reader.sequence().frames[n].image;
-        if (!file.empty()) out.files.push_back(file);
-        if (n == 0) {
-            out.first = frame.clone();
-            out.original = frame.size();
-        }
-        out.sizes.push_back(chip_size(c, frame.size()));
-    }
-    if (n < out.count) throw too_few(n);
-}
-
-SourceFrames read_frames(const Config& c) {
-    const std::string source = c.text("surf.source");
-    const std::string where = c.where("surf.source");
-    std::error_code ec;
-    const fs::file_status status = fs::status(source, ec);
-    if (!fs::exists(status)) throw ConfigError(fmt::format("{}: {}: no such file or folder", where, source));
-    // A FIFO or a device would be read until it ends, which may be never.
-    if (!fs::is_regular_file(status) && !fs::is_directory(status))
-        throw ConfigError(fmt::format("{}: {}: not a regular file or a folder", where, source));
-    SourceFrames out;
-    out.count = c.count("surf.frames");
-    try {
-        surf::QuietDecoding quiet;
-        if (fs::is_regular_file(status) &&
-            (eval::is_image_file(source) || !media::read_image(source, cv::IMREAD_GRAYSCALE).empty())) {
-            out.repeated = true;
-            out.first = surf::load_gray(source, chip_surf_params(c));
-            out.original = out.first.size();
-            out.sizes.assign(out.count, chip_size(c, out.first.size()));
-        } else {
-            read_sequence(c, out);
-        }
-    } catch (const ConfigError&) {
-        throw;
-    } catch (const OutOfMemory&) {  // the machine's, not the source's fault
-        throw;
-    } catch (const std::bad_alloc&) {
-        throw OutOfMemory(fmt::format("reading the frames of {}", where));
-    } catch (const cv::Exception& e) {
-        if (e.code == cv::Error::StsNoMem) throw OutOfMemory(fmt::format("reading the frames of {}: {}", where, e.err));
-        throw ConfigError(fmt::format("{}: {}", where, e.what()));
-    } catch (const std::exception& e) {
-        throw ConfigError(fmt::format("{}: {}", where, e.what()));
-    }
-    out.first = as_the_chip_takes(c, out.first);
-    check_frame_size(c, out);
-    return out;
-}
-
-// The frames of a run as they arrive, in order; one decoded at a time.
-class FrameStream {
-public:
-    FrameStream(const Config& c, const SourceFrames& source) : config_(c), source_(source) {}
-
-    // Frame i as the chip takes it: the next after the one before (a frame before it starts
-    // the sequence again).
-    const cv::Mat& frame(size_t i) {
-        if (source_.repeated || i == 0) return source_.first;
-        if (!reader_ || i < reader_->position()) reader_.emplace(open_frames(config_));
-        surf::QuietDecoding quiet;
-        cv::Mat decoded;
-        while (reader_->position() <= i)
-            if (!reader_->next(decoded))
-                throw std::runtime_error(
-                    fmt::format("{}: frame {} can no longer be read", config_.text("surf.source"), i));
-        current_ = as_the_chip_takes(config_, decoded);
-        return current_;
-    }
-
-private:
-    const Config& config_;
-    const SourceFrames& source_;
-    std::optional<eval::SequenceReader> reader_;
-    cv::Mat current_;
-};
-
-// Frames, and frame 0's ranked responses for the calibration, are read once per process and
-// source: the verdict's re-simulations are forked from one process and inherit them.
-std::string source_key(const Config& c) {
-    return fmt::format("{}|{}x{}", c.text("surf.source"), c.count("surf.width"), c.count("surf.height"));
-}
-
-const SourceFrames& load_source(const Config& c) {
-    static std::map<std::string, SourceFrames> cache;
-    const std::string key = fmt::format("{}|{}", source_key(c), c.count("surf.frames"));
-    auto it = cache.find(key);
-    if (it == cache.end()) it = cache.emplace(key, read_frames(c)).first;
-    return it->second;
-}
-
-// Pairs (i, i + gap) the evaluation measures: consecutive frames and eval.gap.
-std::vector<size_t> evaluated_gaps(const Config& c) {
-    std::vector<size_t> gaps{1};
-    if (c.count("eval.gap") > 1) gaps.push_back(c.count("eval.gap"));
-    return gaps;
-}
-
-// The evaluation's geometry, read before anything is built: a homography from frame 0 to
-// frame 1 at the frames' own size, and camera poses that belong to the very frames the source
-// gives, one each.
-void check_eval_inputs(const Config& c, const SourceFrames& frames) {
-    const std::string homography = c.text("eval.homography");
-    if (!homography.empty()) {
-        try {
-            eval::read_homography_file(homography);
-        } catch (const std::exception& e) {
-            throw ConfigError(fmt::format("{}: {}", c.where("eval.homography"), e.what()));
-        }
-        if (frames.first.size() != frames.original)
-            throw ConfigError(
-                fmt::format("{}: the homography maps frame 0 to frame 1 at their own size ({}x{}), but "
-                            "surf.width x surf.height (from {}) resize them to {}x{}; set both to 0",
-                            c.where("eval.homography"), frames.original.width, frames.original.height,
-                            c.source_of("surf.width"), frames.first.cols, frames.first.rows));
-    }
-    const std::string poses = c.text("eval.poses");
-    if (poses.empty()) return;
-    std::vector<eval::PosedFrame> posed;
-    try {
-        posed = eval::list_posed_frames(poses);
-    } catch (const std::exception& e) {
-        throw ConfigError(fmt::format("{}: {}", c.where("eval.poses"), e.what()));
-    }
-    if (frames.files.size() != frames.count)
-        throw ConfigError(
-            fmt::format("{}: poses belong to image files, but surf.source {} (from {}) is one image or a video",
-                        c.where("eval.poses"), c.text("surf.source"), c.source_of("surf.source")));
-    if (posed.size() < frames.count)
-        throw ConfigError(fmt::format("{}: {} poses for {} frames (surf.frames from {})", c.where("eval.poses"),
-                                      posed.size(), frames.count, c.source_of("surf.frames")));
-    // The evaluation's pairs (evaluation() below) need two distinct camera centres.
-    for (size_t i = 0; i < frames.count; ++i)
-        for (size_t gap : evaluated_gaps(c)) {
-            const size_t j = i + gap;
-            if (j < frames.count) try {
-                    eval::fundamental_from_poses(eval::kCastleIntrinsics, posed[i].c_m_o, posed[j].c_m_o);
-                } catch (const std::invalid_argument& e) {
-                    throw ConfigError(fmt::format("{}: frames {} and {} ({} and {}): {}", c.where("eval.poses"), i, j,
-                                                  posed[i].pose_file.string(), posed[j].pose_file.string(), e.what()));
-                }
-        }
-    for (size_t i = 0; i < frames.files.size(); ++i) {
-        std::error_code ec;
-        if (!fs::equivalent(frames.files[i], posed[i].image, ec))
-            throw ConfigError(fmt::format("{}: frame {} is {}, but pose {} ({}) belongs to {}", c.where("eval.poses"),
-                                          i, frames.files[i].string(), i, posed[i].pose_file.filename().string(),
-                                          posed[i].image.string()));
-    }
 }
 
 // The float reference on frame 0, limited to the chip's two octaves at step 1: the threshold,
@@ -363,15 +131,11 @@ public:
     void attach_memory(const Backdoor& memory) override { memory_ = memory; }
     void inject(FaultPlan& faults) override { faults_ = &faults; }
     void share_worker(Worker* worker) override {
-        finish_writes();  // the files handed to the worker before
-        // With a second thread (run.parallel) the files get a thread of their own: their system
-        // calls block (creating a file alone took ~0.1 ms on ext4 here, two files a frame),
-        // which on the shared worker held up the block rows queued behind them.
-        writer_ = worker ? std::make_unique<Worker>(std::chrono::microseconds(0)) : nullptr;
+        keypoint_files_.use_thread(worker != nullptr);  // with a second thread (run.parallel), one of their own
         surfvp::share_worker(*describer_, worker);
     }
-    void write_into(const std::string& dir) override { out_ = dir; }
-    std::vector<std::string> files_written() override;
+    void write_into(const std::string& dir) override { keypoint_files_.write_into(dir); }
+    std::vector<std::string> files_written() override { return keypoint_files_.files_written(); }
 
     Ppc440::Software software() override {
         return [this](sw::Hal& hal) {
@@ -455,11 +219,15 @@ public:
 private:
     void deliver(const cv::Mat& frame, const sw::ssa2::Task& task);
     void reported(const sw::ssa2::Task& task, surf::Keypoints&& keypoints);
-    void write_keypoints(const sw::ssa2::Task& task, const surf::Keypoints& keypoints);
-    bool kept(size_t frame) const;
+    bool kept(size_t frame) const { return frame == 0 || evaluation_needs(config_, frame); }  // 0: the picture
 
     double throughput() const;
-    nlohmann::ordered_json evaluation() const;
+    nlohmann::ordered_json evaluation() const {
+        if (done_ != source_.count) return nlohmann::ordered_json::object();
+        std::vector<const surf::Keypoints*> keypoints;
+        for (const FrameResult& r : results_) keypoints.push_back(&r.keypoints);
+        return evaluate(config_, source_, keypoints);
+    }
     void give_buffers_outside_memory(std::vector<sw::ssa2::Task>& tasks, uint64_t now_ps) const;
     bool struck_by_fault(int frame) const;
     bool detected(const Fault& fault) const;
@@ -490,18 +258,7 @@ private:
     std::vector<double> frame_wall_s_;
     FaultPlan* faults_ = nullptr;
     Backdoor memory_;
-    std::string out_;                   // where keypoint files go as frames are reported ("" : nowhere)
-    std::vector<std::string> written_;  // their names, relative to out_
-    std::exception_ptr write_failure_;  // the first that failed; no more are handed out after it
-                                        // (one on the writer counts from finish_writes())
-    // With a worker lent, each file is formatted and written on a thread of the files' own (the
-    // simulation's or the software's thread has better to do); finish_writes() waits for them
-    // and takes their failure.
-    void finish_writes();
-    std::unique_ptr<Worker> writer_;
-    std::optional<size_t> last_write_;  // the writer's job number of the last file handed to it
-    std::mutex write_mutex_;
-    std::exception_ptr writer_failure_;  // a file the writer failed to write; under write_mutex_
+    KeypointSink keypoint_files_;
     sw::ssa2::Driver::Recovery recovery_;
     double budget_fps_ = 0, cpu_hz_ = 0;
     std::vector<sw::ssa2::AcceleratorTime> accelerator_time_;
@@ -683,52 +440,11 @@ nlohmann::ordered_json SurfWorkload::report() const {
             {"per_frame", frames}};
 }
 
-// Feature quality on the chip's own keypoints, when the scenario gives the geometry.
-nlohmann::ordered_json SurfWorkload::evaluation() const {
-    nlohmann::ordered_json out = nlohmann::ordered_json::object();
-    if (done_ != source_.count) return out;
-    const std::string homography = config_.text("eval.homography");
-    if (!homography.empty() && results_.size() >= 2) {
-        const Eigen::Matrix3d h = eval::read_homography_file(homography);
-        const cv::Size size = source_.sizes[0], size_b = source_.sizes[1];
-        const auto rep = eval::repeatability(results_[0].keypoints, results_[1].keypoints, h, size, size_b);
-        const auto prec = eval::matching_precision(results_[0].keypoints, results_[1].keypoints, h);
-        out["homography"] = {{"repeatability", rep.repeatability},
-                             {"correspondences", rep.correspondences},
-                             {"precision", prec.precision},
-                             {"candidates", prec.candidates}};
-    }
-    const std::string poses = config_.text("eval.poses");
-    if (!poses.empty() && results_.size() >= 2) {
-        std::vector<surf::Keypoints> all;
-        for (const FrameResult& r : results_) all.push_back(r.keypoints);
-        const auto posed = eval::list_posed_frames(poses);
-        const eval::CameraIntrinsics k = eval::kCastleIntrinsics;
-        for (size_t gap : evaluated_gaps(config_)) {
-            if (gap >= results_.size()) continue;
-            const auto ransac = eval::sequence_distinguishability(all, gap);
-            const auto truth = eval::sequence_distinguishability(all, gap, [&](size_t i, size_t j) {
-                return eval::fundamental_from_poses(k, posed.at(i).c_m_o, posed.at(j).c_m_o);
-            });
-            out[fmt::format("distinguishability_gap{}", gap)] = {
-                {"ransac", ransac.mean}, {"ground_truth", truth.mean}, {"pairs", ransac.pairs.size()}};
-        }
-    }
-    return out;
-}
-
 // Frame i arrives in its task's image buffer; the fault plan learns which frame is there.
 void SurfWorkload::deliver(const cv::Mat& frame, const sw::ssa2::Task& task) {
     uint8_t* at = memory_(task.image, uint64_t(frame.cols) * frame.rows);
     for (int y = 0; y < frame.rows; ++y) std::copy_n(frame.ptr(y), frame.cols, at + size_t(y) * frame.cols);
     if (faults_) faults_->frame_arrived(task.image, task.id);
-}
-
-// The evaluation needs frames 0 and 1 (a homography) or every frame (camera poses); the
-// report's picture frame 0. Keypoints of the others live in their files only.
-bool SurfWorkload::kept(size_t frame) const {
-    return frame == 0 || (frame == 1 && !config_.text("eval.homography").empty()) ||
-           !config_.text("eval.poses").empty();
 }
 
 void SurfWorkload::reported(const sw::ssa2::Task& task, surf::Keypoints&& keypoints) {
@@ -739,57 +455,14 @@ void SurfWorkload::reported(const sw::ssa2::Task& task, surf::Keypoints&& keypoi
     r.reported = true;
     ++done_;
     frame_wall_s_.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - software_start_).count());
-    if (task.phase == sw::ssa2::Phase::done) write_keypoints(task, keypoints);  // a failed frame has no keypoints
+    if (task.phase == sw::ssa2::Phase::done)
+        keypoint_files_.write(size_t(task.id), keypoints);  // a failed frame has no keypoints
     if (kept(size_t(task.id))) r.keypoints = std::move(keypoints);
-}
-
-// A frame's keypoint file, written as the frame is reported. A write that fails (a full disk)
-// is kept for files_written() to throw after the run, and no further file is tried.
-void SurfWorkload::write_keypoints(const sw::ssa2::Task& task, const surf::Keypoints& keypoints) {
-    if (out_.empty() || write_failure_) return;
-    try {
-        const fs::path folder = fs::path(out_) / "keypoints";
-        if (written_.empty()) fs::create_directories(folder);
-        const fs::path file = keypoint_file(out_, task.id);
-        written_.push_back(file.lexically_relative(out_).string());
-        if (!writer_) return eval::write_keypoint_file(file, keypoints);
-        last_write_ = writer_->submit([this, file, keypoints] {
-            try {
-                eval::write_keypoint_file(file, keypoints);
-            } catch (...) {
-                const std::lock_guard<std::mutex> lock(write_mutex_);
-                if (!writer_failure_) writer_failure_ = std::current_exception();
-            }
-        });
-    } catch (...) {
-        write_failure_ = std::current_exception();
-    }
-}
-
-void SurfWorkload::finish_writes() {
-    if (writer_ && last_write_) writer_->wait(*last_write_);
-    last_write_.reset();
-    const std::lock_guard<std::mutex> lock(write_mutex_);
-    if (writer_failure_ && !write_failure_) write_failure_ = writer_failure_;
-}
-
-std::vector<std::string> SurfWorkload::files_written() {
-    finish_writes();
-    if (write_failure_) std::rethrow_exception(write_failure_);
-    std::vector<std::string> names = written_;
-    std::sort(names.begin(), names.end());  // frames are reported in the order they finish
-    return names;
 }
 
 }  // namespace
 
 std::unique_ptr<Workload> make_surf_workload(const Config& config) { return std::make_unique<SurfWorkload>(config); }
-
-void for_each_chip_frame(const Config& config, const std::function<void(size_t, const cv::Mat&)>& take) {
-    const SourceFrames& source = load_source(config);
-    FrameStream stream(config, source);
-    for (size_t i = 0; i < source.count; ++i) take(i, stream.frame(i));
-}
 
 void check_surf_inputs(const Config& config) {
     if (config.choice("run.workload") != "surf") return;
@@ -846,10 +519,6 @@ std::string threshold_rule_text(const Config& c, const std::string& whose) {
         "{} for the first {} frames, then each from the keypoint count of the frame {} before it "
         "(surf.threshold_control = track)",
         first, delay, delay);
-}
-
-fs::path keypoint_file(const fs::path& folder, size_t frame) {
-    return folder / "keypoints" / fmt::format("frame_{:04}.surf", frame);
 }
 
 }  // namespace surfvp

@@ -107,7 +107,4 @@ surf::Params chip_surf_params(const Config& config);
 // surf.threshold_control), in words; `whose` names the responses ranked on frame 0.
 std::string threshold_rule_text(const Config& config, const std::string& whose);
 
-// A frame's keypoint file in a run folder: keypoints/frame_NNNN.surf.
-std::filesystem::path keypoint_file(const std::filesystem::path& folder, size_t frame);
-
 }  // namespace surfvp
