@@ -11,6 +11,8 @@
 #include <string_view>
 #include <vector>
 
+#include "models/common/frame_status.h"
+
 namespace surfvp {
 
 enum class FaultKind {
@@ -91,6 +93,21 @@ public:
     unsigned pair() const { return pair_; }
     // The interrupt line the INTC sees: stuck high, or the block's own line unless lost.
     bool line(bool raised) const { return irq_stuck || (raised && !irq_lost); }
+
+    // CTRL.RESET, as both blocks take it: a frame that never ended (hung) is dropped, STATUS
+    // cleared and `busy` (the block's BUSY signal) low; one in progress is ended by `abort`;
+    // a stuck or lost interrupt lets go. The block then drives its line again.
+    template <class Busy, class Abort>
+    void reset(FrameStatus& status, Busy& busy, const Abort& abort) {
+        if (hung) {
+            hung = false;
+            status.reset();
+            busy.write(false);
+        } else if (status.busy()) {
+            abort();
+        }
+        irq_stuck = irq_lost = false;
+    }
 
     bool hung = false;       // the frame's end withheld: STATUS stays BUSY until CTRL.RESET
     bool irq_lost = false;   // the frame's end raises no interrupt

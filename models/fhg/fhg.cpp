@@ -116,17 +116,10 @@ void Fhg::start(const FhgRegisters::Frame& f) {
     start_.notify(sc_core::SC_ZERO_TIME);
 }
 
-// CTRL.RESET: a frame that never ended is dropped (the registers then clear STATUS and the
-// FIFO), one in progress is aborted; an injected stuck line lets go.
+// CTRL.RESET (BlockFaults::reset): a hung frame dropped (the registers clear the FIFO), one in
+// progress aborted.
 void Fhg::reset() {
-    if (faults_.hung) {
-        faults_.hung = false;
-        registers_.status().reset();
-        busy_.write(false);
-    } else if (registers_.status().busy()) {
-        fail(r::ERR_ABORTED);
-    }
-    faults_.irq_stuck = faults_.irq_lost = false;
+    faults_.reset(registers_.status(), busy_, [this] { fail(r::ERR_ABORTED); });
     changed();
 }
 

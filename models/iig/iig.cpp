@@ -72,17 +72,9 @@ void Iig::start(const IigRegisters::Frame& f) {
     start_.notify(sc_core::SC_ZERO_TIME);
 }
 
-// CTRL.RESET: a frame that never ended is dropped (the registers then clear STATUS), one in
-// progress is aborted; an injected stuck line lets go.
+// CTRL.RESET (BlockFaults::reset): a hung frame dropped, one in progress aborted.
 void Iig::reset() {
-    if (faults_.hung) {
-        faults_.hung = false;
-        registers_.status().reset();
-        busy_.write(false);
-    } else if (registers_.status().busy()) {
-        fail(iig::ERR_ABORTED);
-    }
-    faults_.irq_stuck = faults_.irq_lost = false;
+    faults_.reset(registers_.status(), busy_, [this] { fail(iig::ERR_ABORTED); });
     irq_changed_.notify(sc_core::SC_ZERO_TIME);
 }
 
