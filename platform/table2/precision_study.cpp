@@ -310,53 +310,63 @@ std::string csv(const Json& report) {
     return out;
 }
 
-}  // namespace
-
-int precision_command(const PrecisionOptions& o) {
-    Config seq = load_scenario(resolve_scenario(o.scenario), o.sets);
+// The sequence and the pair (each point's widths apply to both), loaded and checked.
+struct Study {
+    Config seq;
     std::optional<Config> pair;
-    if (!o.pair.empty()) pair = load_scenario(resolve_scenario(o.pair), {});  // it takes each point's widths, not --set
+    std::vector<const Config*> both() const { return pair ? std::vector{&seq, &*pair} : std::vector{&seq}; }
+};
+
+Study load_study(const PrecisionOptions& o) {
+    Study s{load_scenario(resolve_scenario(o.scenario), o.sets), std::nullopt};
+    if (!o.pair.empty())
+        s.pair = load_scenario(resolve_scenario(o.pair), {});  // it takes each point's widths, not --set
     // Narrower arithmetic scales the determinants, so a held threshold would change the keypoint
     // count and with it distinguishability: each point holds its count, unless told otherwise.
-    for (Config* c : std::vector<Config*>{&seq, pair ? &*pair : nullptr})
+    for (Config* c : std::vector<Config*>{&s.seq, s.pair ? &*s.pair : nullptr})
         if (c && c->origin("surf.threshold_control") == "default" && c->count("surf.target_keypoints") > 0)
             apply_overrides(*c, {"surf.threshold_control=track"});
-    for (const Config* c : std::vector<const Config*>{&seq, pair ? &*pair : nullptr}) {
-        if (!c) continue;
+    for (const Config* c : s.both()) {
         if (c->choice("run.workload") != "surf")
             throw ConfigError(fmt::format("{}: the precision study needs SURF scenarios (run.workload: surf)",
                                           c->where("run.workload")));
         check_scenario(*c);
-    }
-    for (const Config* c : std::vector<const Config*>{&seq, pair ? &*pair : nullptr})
-        if (c && !c->faults.empty())  // the study runs the chip without time, where no fault can strike
+        if (!c->faults.empty())  // the study runs the chip without time, where no fault can strike
             throw ConfigError(
                 fmt::format("{}: faults: the precision study runs the chip without time; give a scenario without "
                             "faults",
                             c->faults.front().origin));
-    if (pair && pair->text("eval.homography").empty())
+    }
+    if (s.pair && s.pair->text("eval.homography").empty())
         throw ConfigError(
             fmt::format("--pair {}: a pair under a homography (eval.homography) gives repeatability and precision; "
                         "it has none",
                         o.pair));
+    return s;
+}
+
+// The --axis options (one each key), or the built-in widths.
+std::vector<Axis> study_axes(const std::vector<std::string>& given) {
     std::vector<Axis> axes;
-    for (const std::string& a : o.axes) {
+    for (const std::string& a : given) {
         axes.push_back(parse_precision_axis(a));
         for (size_t i = 0; i + 1 < axes.size(); ++i)
             if (axes[i].key == axes.back().key)
                 throw ConfigError(fmt::format("--axis {}: '{}' has an --axis already ({}); give its values in one", a,
-                                              axes.back().key, o.axes[i]));
+                                              axes.back().key, given[i]));
     }
-    if (axes.empty()) axes = default_axes();
+    return axes.empty() ? default_axes() : axes;
+}
+
+// The scenario as it is, then each value of each axis alone. Each point's scenario, and the
+// pair under its widths, is checked as `validate` would (a width the model refuses): refused
+// now, not after the reference ran.
+std::vector<PrecisionPoint> plan_points(const Study& s, const std::vector<Axis>& axes) {
     std::vector<PrecisionPoint> points{{"", "as the scenario", {}, {}}};
     for (const Axis& a : axes)
-        for (const std::string& v : a.values) {
-            try {
-                points.push_back({a.key, v, point_sets(seq, {{a.key, v}}), {}});
-                // Each point's scenario, and the pair under its widths, checked as `validate` would
-                // (a width the model refuses): refused now, not after the reference ran.
-                for (const Config* c : std::vector<const Config*>{&seq, pair ? &*pair : nullptr}) {
-                    if (!c) continue;
+        for (const std::string& v : a.values) try {
+                points.push_back({a.key, v, point_sets(s.seq, {{a.key, v}}), {}});
+                for (const Config* c : s.both()) {
                     Config at = *c;
                     apply_overrides(at, points.back().sets);
                     check_scenario(at);
@@ -364,28 +374,34 @@ int precision_command(const PrecisionOptions& o) {
             } catch (const ConfigError& e) {
                 throw ConfigError(fmt::format("--axis {}={}: {}", a.key, v, e.what()));
             }
-        }
+    return points;
+}
 
-    OutputFolder out(o.out.empty() ? fs::path("traces") / ("precision_" + seq.name) : fs::path(o.out),
-                     {"report.json", "report.md", "results.csv", "precision.svg"});
-    const fs::path staging = out.staging();
-    Json reference = Json::object();
-    std::vector<std::string> haars{seq.choice("surf.haar")};
+// Full precision under each Haar mode the points use: what each point is compared with.
+Json references(const Study& s, const std::vector<PrecisionPoint>& points) {
+    std::vector<std::string> haars{s.seq.choice("surf.haar")};
     for (const PrecisionPoint& p : points)
         if (p.key == "surf.haar" && std::find(haars.begin(), haars.end(), p.value) == haars.end())
             haars.push_back(p.value);
-    for (const std::string& h : haars) reference[h] = full_precision(seq, pair, h);
-    const std::vector<cv::Size> pair_sizes =
-        pair ? cpu_column(*pair, variants(*pair)[0]).sizes : std::vector<cv::Size>{};
+    Json reference = Json::object();
+    for (const std::string& h : haars) reference[h] = full_precision(s.seq, s.pair, h);
+    return reference;
+}
 
-    Resimulation::prepare(seq);
-    if (pair) Resimulation::prepare(*pair);
+// Runs every point in children (and, once they are in, the fewest bits of each axis
+// together), each compared with its reference; returns the fewest bits.
+std::vector<std::pair<std::string, std::string>> run_points(const Study& s, const std::vector<Axis>& axes,
+                                                            std::vector<PrecisionPoint>& points, Json& reference,
+                                                            const PrecisionOptions& o, const fs::path& staging) {
+    const std::vector<cv::Size> pair_sizes =
+        s.pair ? cpu_column(*s.pair, variants(*s.pair)[0]).sizes : std::vector<cv::Size>{};
+    for (const Config* c : s.both()) Resimulation::prepare(*c);
     Resimulation engine(o.jobs, staging / ".points");
     ProgressLine progress(o.quiet, "precision", 1.0, 0.5, 10.0);
     auto submit = [&](size_t i) {
-        Config c = seq;
+        Config c = s.seq;
         apply_overrides(c, points[i].sets);
-        std::optional<Config> p = pair;
+        std::optional<Config> p = s.pair;
         if (p) apply_overrides(*p, points[i].sets);
         const fs::path scratch = staging / ".points" / fmt::format("point{}", i);
         engine.submit_work(
@@ -396,19 +412,24 @@ int precision_command(const PrecisionOptions& o) {
     engine.run([&](size_t done, size_t all) {
         progress.update([&](double) { return fmt::format("{} of {} points", done, all); });
     });
-    for (PrecisionPoint& p : points)
-        compare(p.result, reference[p.key == "surf.haar" ? p.value : seq.choice("surf.haar")]);
-    const auto fewest = fewest_bits(axes, points, seq);
+    const std::string haar = s.seq.choice("surf.haar");
+    for (PrecisionPoint& p : points) compare(p.result, reference[p.key == "surf.haar" ? p.value : haar]);
+    const auto fewest = fewest_bits(axes, points, s.seq);
     if (!fewest.empty()) {  // all of them at once
-        points.push_back({"all", "the fewest bits together", point_sets(seq, fewest), {}});
+        points.push_back({"all", "the fewest bits together", point_sets(s.seq, fewest), {}});
         submit(points.size() - 1);
         engine.run({});
-        compare(points.back().result, reference[seq.choice("surf.haar")]);
+        compare(points.back().result, reference[haar]);
     }
+    return fewest;
+}
 
+Json study_report(const Study& s, const std::vector<Axis>& axes, const std::vector<PrecisionPoint>& points,
+                  const Json& reference, const std::vector<std::pair<std::string, std::string>>& fewest) {
+    const Config& seq = s.seq;
     Json report;
     report["scenario"] = seq.name;
-    report["pair"] = pair ? Json(pair->name) : Json(nullptr);
+    report["pair"] = s.pair ? Json(s.pair->name) : Json(nullptr);
     report["tolerance"] = kPrecisionTolerance;
     report["threshold_control"] = seq.choice("surf.threshold_control");
     {  // how far apart two points must be to differ: the rows' standard error over the pairs
@@ -423,16 +444,18 @@ int precision_command(const PrecisionOptions& o) {
     report["scenario_values"] = Json::object();
     for (const Axis& a : axes) report["scenario_values"][a.key] = seq.value(a.key);
     report["points"] = Json::array();
-    bool all_ran = true;
-    for (const PrecisionPoint& p : points) {
+    for (const PrecisionPoint& p : points)
         report["points"].push_back({{"key", p.key}, {"value", p.value}, {"sets", p.sets}, {"result", p.result}});
-        all_ran = all_ran && !p.result.contains("error");
-    }
     report["fewest_bits"] = Json::array();
     for (const auto& [key, value] : fewest)
         report["fewest_bits"].push_back(Json{{"key", key}, {"fewest", value}, {"scenario", seq.value(key)}});
     report["all_fewest_together"] =
         fewest.empty() ? Json(nullptr) : Json{{"sets", points.back().sets}, {"result", points.back().result}};
+    return report;
+}
+
+void write_study(OutputFolder& out, const Json& report) {
+    const fs::path staging = out.staging();
     try {
         fs::remove_all(staging / ".points");
         write_file_atomically(staging / "report.json", report.dump(2) + "\n");
@@ -444,9 +467,24 @@ int precision_command(const PrecisionOptions& o) {
         throw EnvironmentError(
             fmt::format("{}; what was in {} before is as it was", out.as_published(e.what()), out.folder().string()));
     }
+}
+
+}  // namespace
+
+int precision_command(const PrecisionOptions& o) {
+    const Study study = load_study(o);
+    const std::vector<Axis> axes = study_axes(o.axes);
+    std::vector<PrecisionPoint> points = plan_points(study, axes);
+    OutputFolder out(o.out.empty() ? fs::path("traces") / ("precision_" + study.seq.name) : fs::path(o.out),
+                     {"report.json", "report.md", "results.csv", "precision.svg"});
+    Json reference = references(study, points);
+    const auto fewest = run_points(study, axes, points, reference, o, out.staging());
+    write_study(out, study_report(study, axes, points, reference, fewest));
     if (!o.quiet)
         std::fprintf(stderr, "surfvp: precision: %zu points; report in %s\n", points.size(),
                      (out.folder() / "report.md").c_str());
+    const bool all_ran =
+        std::none_of(points.begin(), points.end(), [](const PrecisionPoint& p) { return p.result.contains("error"); });
     return all_ran ? kExitOk : kExitFailed;
 }
 
