@@ -171,64 +171,118 @@ bool verdict_requested(const Config& config) {
             config.choice("verdict.software") == "on");
 }
 
-int run_with_verdict(const Config& config, const std::string& out, const std::string& trace, bool quiet) {
-    const double budget = config.real("budget.fps");
+namespace {
+
+// What the verdict re-simulates beside the whole run, and their results as they come in (the
+// re-simulations' callbacks hold pointers into it: nothing is added once they are submitted).
+struct VerdictWork {
+    double budget = 0;
+    unsigned frames = 0;  // the re-simulations' frame count
+    bool band = false, break_even = false, software = false;
+    std::vector<BandAxis> unknown_axes, changes;  // the unknowns one at a time (the tornado); what a review can change
+    std::vector<Unknown> unknowns;                // and jointly
+    JointDesign joint;
+    std::vector<Json> joint_results;
+    std::vector<std::pair<std::string, std::string>> settings;  // the software's what-ifs
+    std::vector<Json> software_results;
+    Json base, reference_point;  // the whole run; the scenario at the re-simulations' frame count
+};
+
+VerdictWork plan_verdict(const Config& config) {
+    VerdictWork w;
+    w.budget = config.real("budget.fps");
     // Enough frames for every pair to reach its steady state (throughput needs pairs + 1).
-    const unsigned frames = unsigned(std::min(
-        std::max(config.count("verdict.frames"), config.count("soc.accelerators") + 1), config.count("surf.frames")));
-    const bool want_band = config.choice("verdict.band") == "on";
-    const bool want_break_even = config.choice("verdict.break_even") == "on" && budget > 0;
-    // The re-simulations run one thread each: the jobs share the cores (run.parallel moves no figure).
-    const Config reference =
-        verdict_variant(config, {{"surf.frames", std::to_string(frames)}, {"run.parallel", "off"}});
-
-    // Prepare once what every child needs: the frames, the calibration, the FHG's sequences.
-    Resimulation::prepare(config);
-    Resimulation::prepare(reference);
-
-    Resimulation pool(unsigned(config.count("verdict.jobs")), fs::path(out) / fmt::format(".verdict.{}", ::getpid()));
-    Json base, reference_point;
-    LimitChain chain(config, reference, budget, pool, want_break_even ? kChainDepth : 0);
-    // The reference (the scenario at the re-simulations' frame count) first: it names the
-    // limit the chain starts from, while the whole run and the band's points go on.
-    pool.submit(reference, [&](const Json& r) {
-        reference_point = r;
-        if (want_break_even) chain.start(r);
-    });
-    pool.submit(
-        config, [&](const Json& r) { base = r; }, Resimulation::whole, out, trace);
-
-    // The band: the unknowns one at a time (the tornado) and jointly; design choices and the
-    // workload one at a time, apart (what a review can change).
-    std::vector<BandAxis> band, changes;
+    w.frames = unsigned(std::min(std::max(config.count("verdict.frames"), config.count("soc.accelerators") + 1),
+                                 config.count("surf.frames")));
+    w.band = config.choice("verdict.band") == "on";
+    w.break_even = config.choice("verdict.break_even") == "on" && w.budget > 0;
+    w.software = config.choice("verdict.software") == "on";
     std::vector<const ParamSpec*> effective;
-    if (want_band)
+    if (w.band)
         for (const ParamSpec* p : band_parameters())
             if (takes_effect(*p, config)) {
                 effective.push_back(p);
-                (p->role == ParamRole::unknown ? band : changes)
+                (p->role == ParamRole::unknown ? w.unknown_axes : w.changes)
                     .push_back({p, config.value(p->key), {p->band.low, {}}, {p->band.high, {}}});
             }
-    for (std::vector<BandAxis>* axes : {&band, &changes})
+    w.unknowns = unknowns_of(effective, config);
+    w.joint = joint_design(w.unknowns, w.band ? size_t(config.count("verdict.samples")) : 0, kJointSeed);
+    w.joint_results.resize(w.joint.sets.size());
+    if (w.software) w.settings = software_settings(config);
+    w.software_results.resize(w.settings.size());
+    return w;
+}
+
+// The band's sides (each away from the current value), the joint sample and the software's
+// what-ifs, each the reference with its settings.
+void submit_variants(VerdictWork& w, Resimulation& pool, const Config& reference) {
+    for (std::vector<BandAxis>* axes : {&w.unknown_axes, &w.changes})
         for (BandAxis& axis : *axes)
             for (BandSide* side : {&axis.low, &axis.high}) {
                 if (same_value(*axis.spec, side->value, axis.current)) continue;
                 pool.submit(verdict_variant(reference, {{axis.spec->key, side->value}}),
                             [side](const Json& r) { side->result = r; });
             }
-    const std::vector<Unknown> unknowns = unknowns_of(effective, config);
-    const JointDesign joint =
-        joint_design(unknowns, want_band ? size_t(config.count("verdict.samples")) : 0, kJointSeed);
-    std::vector<Json> joint_results(joint.sets.size());
-    for (size_t i = 0; i < joint.sets.size(); ++i)
-        pool.submit(verdict_variant(reference, joint.sets[i]),
-                    [&joint_results, i](const Json& r) { joint_results[i] = r; });
-    const bool want_software = config.choice("verdict.software") == "on";
-    const auto settings =
-        want_software ? software_settings(config) : std::vector<std::pair<std::string, std::string>>{};
-    std::vector<Json> software(settings.size());
-    for (size_t i = 0; i < settings.size(); ++i)
-        pool.submit(verdict_variant(reference, {settings[i]}), [&software, i](const Json& r) { software[i] = r; });
+    for (size_t i = 0; i < w.joint.sets.size(); ++i)
+        pool.submit(verdict_variant(reference, w.joint.sets[i]), [&w, i](const Json& r) { w.joint_results[i] = r; });
+    for (size_t i = 0; i < w.settings.size(); ++i)
+        pool.submit(verdict_variant(reference, {w.settings[i]}), [&w, i](const Json& r) { w.software_results[i] = r; });
+}
+
+// The verdict from the results: the budget and margin, the chain of limits, the band with its
+// tornado (written into `out`), the doubt, the software's what-ifs and the statement.
+Json verdict_json(VerdictWork& w, const LimitChain& chain, const std::string& out) {
+    Json verdict;
+    const double fps = w.base.value("throughput_fps", 0.0), budget = w.budget;
+    if (budget > 0) {
+        verdict["budget_fps"] = budget;
+        verdict["fps"] = fps;
+        verdict["met"] = fps >= budget;
+        verdict["margin"] = fps / budget - 1;
+    }
+    if (w.base.contains("limit")) verdict["limit"] = w.base["limit"];
+    if (w.break_even) {
+        verdict["chain"] = chain.json();
+        verdict["break_even"] = verdict["chain"].empty() ? Json::array() : verdict["chain"][0]["break_even"];
+    }
+    Json band_result, doubt;
+    if (w.band) {
+        band_result = band_json(w.unknown_axes, w.reference_point, fps, budget, w.frames);
+        verdict["band"] = band_result;
+        verdict["changes"] = band_json(w.changes, w.reference_point, fps, budget, w.frames);
+        if (!w.joint.sets.empty()) {
+            doubt = doubt_json(w.unknowns, w.joint, w.joint_results, fps, fps_of(w.reference_point), budget, w.frames);
+            verdict["doubt"] = doubt;
+        }
+        write_file_atomically((fs::path(out) / "tornado.svg").string(), tornado_svg(band_result, budget));
+        w.base["outputs"].push_back("tornado.svg");
+    }
+    if (w.software) verdict["software"] = software_json(w.settings, w.software_results, w.reference_point, fps, budget);
+    if (budget > 0) verdict["statement"] = statement(fps, budget, band_result, doubt);
+    return verdict;
+}
+
+}  // namespace
+
+int run_with_verdict(const Config& config, const std::string& out, const std::string& trace, bool quiet) {
+    VerdictWork w = plan_verdict(config);
+    // The re-simulations run one thread each: the jobs share the cores (run.parallel moves no figure).
+    const Config reference =
+        verdict_variant(config, {{"surf.frames", std::to_string(w.frames)}, {"run.parallel", "off"}});
+    // Prepare once what every child needs: the frames, the calibration, the FHG's sequences.
+    Resimulation::prepare(config);
+    Resimulation::prepare(reference);
+    Resimulation pool(unsigned(config.count("verdict.jobs")), fs::path(out) / fmt::format(".verdict.{}", ::getpid()));
+    LimitChain chain(config, reference, w.budget, pool, w.break_even ? kChainDepth : 0);
+    // The reference first: it names the limit the chain starts from, while the whole run and
+    // the band's points go on.
+    pool.submit(reference, [&](const Json& r) {
+        w.reference_point = r;
+        if (w.break_even) chain.start(r);
+    });
+    pool.submit(
+        config, [&](const Json& r) { w.base = r; }, Resimulation::whole, out, trace);
+    submit_variants(w, pool, reference);
     {
         ProgressLine progress(quiet, config.name, 0.0, 0.5, 5.0);
         pool.run([&](size_t done, size_t total) {
@@ -236,40 +290,12 @@ int run_with_verdict(const Config& config, const std::string& out, const std::st
                 [&](double wall) { return fmt::format("verdict: {}/{} re-simulations, {:.1f} s", done, total, wall); });
         });
     }
-    if (base.contains("error")) {
-        if (base["exit"] == 2) throw ConfigError(base["error"].get<std::string>());
-        throw std::runtime_error(base["error"].get<std::string>());
+    if (w.base.contains("error")) {
+        if (w.base["exit"] == 2) throw ConfigError(w.base["error"].get<std::string>());
+        throw std::runtime_error(w.base["error"].get<std::string>());
     }
-
-    Json verdict;
-    const double fps = base.value("throughput_fps", 0.0);
-    if (budget > 0) {
-        verdict["budget_fps"] = budget;
-        verdict["fps"] = fps;
-        verdict["met"] = fps >= budget;
-        verdict["margin"] = fps / budget - 1;
-    }
-    if (base.contains("limit")) verdict["limit"] = base["limit"];
-    if (want_break_even) {
-        verdict["chain"] = chain.json();
-        verdict["break_even"] = verdict["chain"].empty() ? Json::array() : verdict["chain"][0]["break_even"];
-    }
-    Json band_result, doubt;
-    if (want_band) {
-        band_result = band_json(band, reference_point, fps, budget, frames);
-        verdict["band"] = band_result;
-        verdict["changes"] = band_json(changes, reference_point, fps, budget, frames);
-        if (!joint.sets.empty()) {
-            doubt = doubt_json(unknowns, joint, joint_results, fps, fps_of(reference_point), budget, frames);
-            verdict["doubt"] = doubt;
-        }
-        write_file_atomically((fs::path(out) / "tornado.svg").string(), tornado_svg(band_result, budget));
-        base["outputs"].push_back("tornado.svg");
-    }
-    if (want_software) verdict["software"] = software_json(settings, software, reference_point, fps, budget);
-    if (budget > 0) verdict["statement"] = statement(fps, budget, band_result, doubt);
-    base["verdict"] = verdict;
-    return write_run(config, out, base);
+    w.base["verdict"] = verdict_json(w, chain, out);
+    return write_run(config, out, w.base);
 }
 
 }  // namespace surfvp
