@@ -245,8 +245,7 @@ void Fhg::frame_thread() {
         if (worker_) worker_->drain();  // rows queued past a failure: done before lines_ is reused
         const int tail = std::max(0, sequence_.span - sequence_.interval);  // the last block's x3 still adding
         sc_core::wait(cycles(params_.clock, double(tail + int(params_.pipeline_latency_cycles))));
-        stats_.busy += sc_core::sc_time_stamp() - frame_.began;
-        ++stats_.frames;
+        stats_.ended(frame_.began);
         frame_.running = false;
         if (strikes(FaultKind::never_finishes)) {
             faults_.hung = true;  // the units are idle, STATUS stays BUSY
@@ -307,19 +306,11 @@ void Fhg::trace_levels() {
 void Fhg::update_irq() { irq.write(faults_.line(registers_.irq())); }
 
 void Fhg::register_statistics(Statistics::Scope s) const {
-    s.count(
-        "frames", [this] { return stats_.frames; }, "frames", "frames ended (done or failed)");
-    s.count(
-        "errors", [this] { return errors(); }, "errors", "ERRORs flagged");
+    stats_.register_statistics(
+        s, [this] { return errors(); }, "from START to the last determinants written, summed", "computing block rows");
     s.value("cycles_per_block", block_cycles_, "cycles", "FHG cycles per 2x2 block");
     s.text(
         "block_limit", [this] { return std::string(block_limit()); }, "what sets the cycles per block");
-    s.time(
-        "busy_s", [this] { return stats_.busy; }, "from START to the last determinants written, summed");
-    s.time(
-        "computing_s", [this] { return stats_.computing; }, "computing block rows");
-    s.share(
-        "utilisation", [this] { return stats_.computing; }, "computing over the run");
     s.time(
         "waiting_for_lines_s", [this] { return stats_.waiting_for_lines; },
         "waiting for the line FIFO to hold a block row's window");

@@ -31,6 +31,7 @@
 #include "models/common/tracer.h"
 #include "models/host/worker.h"
 #include "models/common/zeroed_memory.h"
+#include "models/common/frame_stats.h"
 #include "models/common/units.h"
 #include "models/pixelbus/pixel_bus.h"
 #include "sequence_generator.h"
@@ -65,10 +66,10 @@ public:
     // busy: the frames' whole time; computing: block rows; waiting for lines: the line FIFO
     // did not yet hold the next block row's window (the IIG and PixelBus behind); waiting for
     // the writer: every determinant row buffer still waiting for the DMA (PLB2 behind).
-    struct Stats {
-        uint64_t frames = 0, candidates = 0, dropped = 0;
+    struct Stats : FrameStats {
+        uint64_t candidates = 0, dropped = 0;
         unsigned fifo_high_water = 0, lines_high_water = 0;
-        sc_core::sc_time busy, computing, waiting_for_lines, waiting_for_writer;
+        sc_core::sc_time waiting_for_lines, waiting_for_writer;
     };
 
     tlm_utils::simple_target_socket<Fhg> regs;     // SPLB on PLB1

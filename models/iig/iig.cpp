@@ -154,8 +154,7 @@ void Iig::send_thread() {
 void Iig::finish_row() {
     if (++frame_.rows_finished < frame_.height * (frame_.stream ? 2 : 1)) return;
     stats_.stalled += stall_total_;
-    stats_.busy += sc_core::sc_time_stamp() - frame_.began;
-    ++stats_.frames;
+    stats_.ended(frame_.began);
     if (strikes(FaultKind::never_finishes)) {
         faults_.hung = true;  // the units are idle, STATUS stays BUSY
     } else {
@@ -172,16 +171,9 @@ void Iig::finish_row() {
 void Iig::update_irq() { irq.write(faults_.line(registers_.irq())); }
 
 void Iig::register_statistics(Statistics::Scope s) const {
-    s.count(
-        "frames", [this] { return stats_.frames; }, "frames", "frames ended (done or failed)");
-    s.count(
-        "errors", [this] { return errors(); }, "errors", "ERRORs flagged");
-    s.time(
-        "busy_s", [this] { return stats_.busy; }, "from START to the last row written and sent, summed");
-    s.time(
-        "computing_s", [this] { return stats_.computing; }, "the integral core adding rows");
-    s.share(
-        "utilisation", [this] { return stats_.computing; }, "computing over the run");
+    stats_.register_statistics(
+        s, [this] { return errors(); }, "from START to the last row written and sent, summed",
+        "the integral core adding rows");
     s.time(
         "waiting_for_image_s", [this] { return stats_.waiting_for_image; },
         "the core waiting for image rows (image DMA)");

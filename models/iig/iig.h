@@ -24,6 +24,7 @@
 #include "models/common/parameter.h"
 #include "models/common/register_target.h"
 #include "models/common/tracer.h"
+#include "models/common/frame_stats.h"
 #include "models/common/units.h"
 #include "models/pixelbus/pixel_bus.h"
 
@@ -50,11 +51,9 @@ public:
     // rows, waiting for the fetch unit's image rows (image DMA), or waiting for room to hand a
     // row on because the write unit (integral DMA) or the send unit (PixelBus back-pressure) is
     // behind; `busy` is the frames' whole time, start to last row written and sent.
-    struct Stats {
-        uint64_t frames = 0;
-        sc_core::sc_time busy;
+    struct Stats : FrameStats {
         sc_core::sc_time stalled;  // the send unit waiting on PixelBus back-pressure
-        sc_core::sc_time computing, waiting_for_image, blocked_by_write, blocked_by_pixelbus;
+        sc_core::sc_time waiting_for_image, blocked_by_write, blocked_by_pixelbus;
     };
 
     tlm_utils::simple_target_socket<Iig> regs;     // SPLB on PLB1
