@@ -5,6 +5,7 @@
 // that fails shows ERROR only when it has ended and BUSY is clear, so that the next START
 // finds the block idle. The bits live in the block's RegisterBank; this names their rules.
 #include <cstdint>
+#include <functional>
 
 namespace surfvp {
 
@@ -38,6 +39,16 @@ private:
     uint32_t& bits_;
     uint32_t& code_;
     uint64_t errors_ = 0;
+};
+
+// What a block's registers call in the block: START, CTRL.ABORT and CTRL.RESET accepted, and
+// a change the interrupt line may follow. `Frame` is what START programmed.
+template <class Frame>
+struct FrameHooks {
+    std::function<void(const Frame&)> start;  // STATUS is BUSY: the units take the frame
+    std::function<void()> abort;              // CTRL.ABORT while busy
+    std::function<void()> changed;            // a write (or a FIFO pop): levels and the interrupt may change
+    std::function<void()> reset;              // CTRL.RESET: abort a running frame, drop one that never ended
 };
 
 }  // namespace surfvp

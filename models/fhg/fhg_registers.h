@@ -28,12 +28,7 @@ public:
         uint32_t det_addr, width, height;
         int32_t threshold;
     };
-    struct Hooks {
-        std::function<void(const Frame&)> start;  // STATUS is BUSY: take the frame
-        std::function<void()> abort;              // CTRL.ABORT while busy
-        std::function<void()> changed;            // a write or a FIFO pop: levels and the interrupt may change
-        std::function<void()> reset;              // CTRL.RESET: abort a running frame, drop one that never ended
-    };
+    using Hooks = FrameHooks<Frame>;
 
     FhgRegisters(const Limits& limits, Hooks hooks);
     FhgRegisters(const FhgRegisters&) = delete;  // the hooks and the status point into this one

@@ -21,12 +21,7 @@ public:
         uint32_t src, dst, width, height, src_stride, dst_stride;
         bool stream;
     };
-    struct Hooks {
-        std::function<void(const Frame&)> start;  // STATUS is BUSY: run the frame
-        std::function<void()> abort;              // CTRL.ABORT while busy
-        std::function<void()> changed;            // after any write: the interrupt line may change
-        std::function<void()> reset;              // CTRL.RESET: abort a running frame, drop one that never ended
-    };
+    using Hooks = FrameHooks<Frame>;
 
     IigRegisters(const Limits& limits, Hooks hooks);
     IigRegisters(const IigRegisters&) = delete;  // the hooks and the status point into this one
