@@ -308,6 +308,7 @@ void Fhg::update_irq() { irq.write(faults_.line(registers_.irq())); }
 void Fhg::register_statistics(Statistics::Scope s) const {
     stats_.register_statistics(
         s, [this] { return errors(); }, "from START to the last determinants written, summed", "computing block rows");
+    s.value("clock_hz", params_.clock.hz, "Hz", "the FHG's clock");
     s.value("cycles_per_block", block_cycles_, "cycles", "FHG cycles per 2x2 block");
     s.text(
         "block_limit", [this] { return std::string(block_limit()); }, "what sets the cycles per block");

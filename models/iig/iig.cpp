@@ -174,6 +174,8 @@ void Iig::register_statistics(Statistics::Scope s) const {
     stats_.register_statistics(
         s, [this] { return errors(); }, "from START to the last row written and sent, summed",
         "the integral core adding rows");
+    s.value("clock_hz", params_.clock.hz, "Hz", "the IIG's clock");
+    s.value("pixels_per_clock", params_.pixels_per_clock, "pixels", "pixels the integral core adds a cycle");
     s.time(
         "waiting_for_image_s", [this] { return stats_.waiting_for_image; },
         "the core waiting for image rows (image DMA)");

@@ -260,6 +260,7 @@ void Ppc440::end() {
 }
 
 void Ppc440::register_statistics(Statistics::Scope s) const {
+    s.value("clock_hz", params_.clock.hz, "Hz", "the CPU's clock");
     s.count(
         "mmio_reads", [this] { return stats_.mmio_reads; }, "accesses", "register reads over PLB1");
     s.count(

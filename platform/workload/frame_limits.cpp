@@ -92,7 +92,8 @@ std::vector<Account> accounts(const Json& r) {
 
 double ms(double s) { return s * 1e3; }
 
-std::string busy_reason(const Account& a, const Json& r, const Config& c) {
+// Why the busiest resource is busy, in its own statistics (its clock among them).
+std::string busy_reason(const Account& a, const Json& r) {
     const int width = r["image"]["width"], height = r["image"]["height"];
     if (a.name == "fhg") {
         const Json& fhg = r["fhg"].is_array() ? r["fhg"][0] : r["fhg"];
@@ -101,21 +102,23 @@ std::string busy_reason(const Account& a, const Json& r, const Config& c) {
             "per block ({}) at {:g} MHz (fhg.clock)",
             ms(a.busy), 100 * a.share(a.busy), ((width + 1) / 2) * ((height + 1) / 2),
             fhg["cycles_per_block"].get<int>(), fhg["block_limit"].get<std::string>(),
-            c.frequency("fhg.clock").hz / 1e6);
+            fhg["clock_hz"].get<double>() / 1e6);
     }
-    if (a.name == "iig")
+    if (a.name == "iig") {
+        const Json& iig = r["iig"].is_array() ? r["iig"][0] : r["iig"];
         return fmt::format(
             "the IIG adds {} pixels at {} a cycle at {:g} MHz (iig.clock): {:.2f} ms a frame ({:.1f} % of the "
             "steady-state period)",
-            width * height, c.count("iig.pixels_per_clock"), c.frequency("iig.clock").hz / 1e6, ms(a.busy),
+            width * height, iig["pixels_per_clock"].get<double>(), iig["clock_hz"].get<double>() / 1e6, ms(a.busy),
             100 * a.share(a.busy));
+    }
     if (a.name == "cpu") {
         const double stall = r["cpu"]["memory"]["fill_stall_s"].get<double>() / double(r["frames_done"].get<size_t>());
         return fmt::format(
             "the CPU is busy {:.2f} ms a frame ({:.1f} % of the steady-state period; {:.2f} ms of it stalled "
             "on line fills): {:.1f} keypoints at {:.0f} cycles each at {:g} MHz (cpu.clock)",
             ms(a.busy), 100 * a.share(a.busy), ms(stall), r["keypoints_per_frame"].get<double>(),
-            r["software_cycles_per_keypoint"].get<double>(), c.frequency("cpu.clock").hz / 1e6);
+            r["software_cycles_per_keypoint"].get<double>(), r["cpu"]["clock_hz"].get<double>() / 1e6);
     }
     return fmt::format("{} is busy {:.2f} ms a frame ({:.1f} % of the steady-state period)", a.name, ms(a.busy),
                        100 * a.share(a.busy));
@@ -133,7 +136,7 @@ Json limit(const std::vector<Account>& accounts, const Json& r, const Config& c)
     for (const Account& a : accounts)
         if (a.name != "accelerator pair" && a.share(a.busy) > busiest->share(busiest->busy)) busiest = &a;
     if (busiest->share(busiest->busy) >= kBusyLimit)
-        return {{"resource", busiest->name}, {"cause", "busy"}, {"reason", busy_reason(*busiest, r, c)}};
+        return {{"resource", busiest->name}, {"cause", "busy"}, {"reason", busy_reason(*busiest, r)}};
     // 2. A buffer between two blocks, both occupied.
     const Account* fhg = find("fhg");
     const Account* iig = find("iig");
@@ -167,7 +170,7 @@ Json limit(const std::vector<Account>& accounts, const Json& r, const Config& c)
         for (const auto& [why, s] : a.waits)
             if (a.name != "cpu" && a.share(s) > most) most = a.share(s), waiting = &a, cause = why;
     if (!waiting || most <= 0)
-        return {{"resource", busiest->name}, {"cause", "busy"}, {"reason", busy_reason(*busiest, r, c)}};
+        return {{"resource", busiest->name}, {"cause", "busy"}, {"reason", busy_reason(*busiest, r)}};
     return {
         {"resource", waiting->name},
         {"cause", cause},
