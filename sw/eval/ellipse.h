@@ -30,7 +30,7 @@ Ellipse map_ellipse(const Ellipse& e, const Eigen::Matrix3d& h);
 // spaced rows across the common vertical extent, the two chords are intersected exactly and
 // their common length summed (midpoint rule); the areas are exact. The error comes from the
 // square-root ends of the chord-length function, O(rows^-1.5): with the default 2048 rows the
-// overlap is within 2e-5 of the exact value (tests/eval/ellipse_test.cpp checks 1e-5 on
+// overlap is within 2e-5 of the exact value (tests/sw/eval/ellipse_test.cpp checks 1e-5 on
 // closed-form cases).
 double ellipse_overlap(const Ellipse& a, const Ellipse& b, int rows = 2048);
 

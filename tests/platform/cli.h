@@ -63,6 +63,8 @@ inline std::string write_file(const std::string& dir, const std::string& name, c
 
 // Test data of Debian packages: a missing file fails the test with the package's name.
 inline const std::string kOpencvData = OPENCV_DATA_DIR;
+// graf<n>.png of opencv-doc's data.
+inline std::string graf(int n) { return kOpencvData + "/graf" + std::to_string(n) + ".png"; }
 inline const std::string kCastle = std::string(VISP_DATA_DIR) + "/mbt-depth/Castle-simu";
 
 inline ::testing::AssertionResult have_data(const std::string& path, const std::string& package) {

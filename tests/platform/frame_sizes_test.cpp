@@ -19,14 +19,13 @@ const std::string kFixed = " --set eval.poses= --set surf.target_keypoints=0 --s
 const std::string kRun = " --quiet --trace none";
 
 std::string castle(int n) { return test::kCastle + "/Images/Image_000" + std::to_string(n) + ".pgm"; }
-std::string graf(int n) { return test::kOpencvData + "/graf" + std::to_string(n) + ".png"; }
 
 TEST(FrameSizes, ImagesOfDifferentSizesGoThroughOneRunEachAsAlone) {
     REQUIRE_CASTLE();
     REQUIRE_OPENCV_DATA("graf3.png");
     const std::string dir = fresh_dir("sizes");
-    const std::string list =
-        test::write_file(dir, "mixed.txt", castle(1) + "\n" + graf(1) + "\n" + castle(2) + "\n" + graf(3) + "\n");
+    const std::string list = test::write_file(
+        dir, "mixed.txt", castle(1) + "\n" + test::graf(1) + "\n" + castle(2) + "\n" + test::graf(3) + "\n");
     const std::string sets = kRun + kFixed + " --set surf.frames=4 --set surf.source=" + list;
     const auto vp = surfvp("run " + kCastleScenario + sets + " --out " + dir + "/vp");
     ASSERT_EQ(vp.exit_code, 0) << vp.err;
@@ -34,7 +33,7 @@ TEST(FrameSizes, ImagesOfDifferentSizesGoThroughOneRunEachAsAlone) {
     EXPECT_EQ(r["frame_sizes"], json::array({"640x480", "800x640"}));
     EXPECT_EQ(r["image"]["width"], 640);  // frame 0's
     ASSERT_EQ(surfvp("run " + kCastleScenario + sets + " --direct --out " + dir + "/direct").exit_code, 0);
-    for (const auto& [frame, image] : {std::pair{1, graf(1)}, std::pair{2, castle(2)}}) {
+    for (const auto& [frame, image] : {std::pair{1, test::graf(1)}, std::pair{2, castle(2)}}) {
         const std::string alone = dir + "/alone" + std::to_string(frame);
         ASSERT_EQ(surfvp("run " + kCastleScenario + kRun + kFixed + " --set surf.frames=2 --set surf.source=" + image +
                          " --out " + alone)
@@ -52,12 +51,13 @@ TEST(FrameSizes, AnImageTheChipCannotTakeIsNamed) {
     REQUIRE_CASTLE();
     REQUIRE_OPENCV_DATA("graf1.png");
     const std::string dir = fresh_dir("too_wide");
-    const std::string list = test::write_file(dir, "mixed.txt", castle(1) + "\n" + graf(1) + "\n");
+    const std::string list = test::write_file(dir, "mixed.txt", castle(1) + "\n" + test::graf(1) + "\n");
     const auto r = surfvp("validate " + kCastleScenario + kFixed +
                           " --set surf.frames=2 --set iig.max_width=700 --set surf.source=" + list);
     EXPECT_EQ(r.exit_code, 2);
-    EXPECT_NE(r.err.find("frame 1 (" + graf(1) + ") of 800x640 is larger than the chip takes: iig.max_width is 700"),
-              std::string::npos)
+    EXPECT_NE(
+        r.err.find("frame 1 (" + test::graf(1) + ") of 800x640 is larger than the chip takes: iig.max_width is 700"),
+        std::string::npos)
         << r.err;
 }
 

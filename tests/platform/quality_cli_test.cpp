@@ -24,8 +24,6 @@ using test::write_file;
 using test::kCastle;
 using test::kOpencvData;
 
-std::string graf(int n) { return kOpencvData + "/graf" + std::to_string(n) + ".png"; }
-
 // A keypoint file as the Mikolajczyk format writes it: dimension, count, then one line of
 // x y a b c [sign] d1..d64 per keypoint. Each line's value count is checked.
 struct KeypointFileText {
@@ -69,7 +67,7 @@ SurfSummary surf_summary(const std::string& err) {
 TEST(QualityCli, SurfWritesExactlyTheTargetCount) {
     REQUIRE_OPENCV_DATA("graf1.png");
     const std::string dir = fresh_dir("surf_count");
-    const auto r = surfvp("surf " + graf(1) + " --target-count 500 --out " + dir + "/g1.key");
+    const auto r = surfvp("surf " + test::graf(1) + " --target-count 500 --out " + dir + "/g1.key");
     ASSERT_EQ(r.exit_code, 0) << r.err;
     const SurfSummary summary = surf_summary(r.err);
     EXPECT_EQ(summary.keypoints, 500u);
@@ -84,8 +82,8 @@ TEST(QualityCli, SurfWritesExactlyTheTargetCount) {
     EXPECT_TRUE(fs::exists(dir + "/g1.key.meta"));
 
     // The threshold it printed gives the same keypoints; --no-laplacian drops the sign column.
-    const auto again = surfvp("surf " + graf(1) + " --threshold " + summary.threshold + " --no-laplacian -q --out " +
-                              dir + "/again.key");
+    const auto again = surfvp("surf " + test::graf(1) + " --threshold " + summary.threshold +
+                              " --no-laplacian -q --out " + dir + "/again.key");
     ASSERT_EQ(again.exit_code, 0) << again.err;
     EXPECT_EQ(again.err, "") << "--quiet";
     const KeypointFileText same = parse_keypoint_file(dir + "/again.key");
@@ -98,7 +96,7 @@ TEST(QualityCli, SurfWritesExactlyTheTargetCount) {
 TEST(QualityCli, SurfThresholdAndTargetCountExcludeEachOther) {
     REQUIRE_OPENCV_DATA("graf1.png");
     const std::string dir = fresh_dir("surf_excludes");
-    const auto r = surfvp("surf " + graf(1) + " --threshold 30 --target-count 100 --out " + dir + "/x.key");
+    const auto r = surfvp("surf " + test::graf(1) + " --threshold 30 --target-count 100 --out " + dir + "/x.key");
     EXPECT_EQ(r.exit_code, 2);
     EXPECT_NE(r.err.find("excludes"), std::string::npos) << r.err;
     EXPECT_FALSE(fs::exists(dir + "/x.key"));
@@ -123,10 +121,10 @@ TEST(QualityCli, SurfOnATooSmallImageSaysWhy) {
 TEST(QualityCli, EvalOfAFileWithItselfIsPerfect) {
     REQUIRE_OPENCV_DATA("graf1.png");
     const std::string dir = fresh_dir("eval_self");
-    ASSERT_EQ(surfvp("surf " + graf(1) + " --target-count 300 -q --out " + dir + "/g1.key").exit_code, 0);
+    ASSERT_EQ(surfvp("surf " + test::graf(1) + " --target-count 300 -q --out " + dir + "/g1.key").exit_code, 0);
     const std::string identity = write_file(dir, "identity.txt", "1 0 0\n0 1 0\n0 0 1\n");
     const auto r = surfvp("eval " + dir + "/g1.key " + dir + "/g1.key --homography " + identity + " --images " +
-                          graf(1) + " " + graf(1));
+                          test::graf(1) + " " + test::graf(1));
     ASSERT_EQ(r.exit_code, 0) << r.err;
     const json j = json::parse(r.out);
     // Each keypoint's nearest descriptor is its own copy at distance 0.
@@ -145,13 +143,14 @@ TEST(QualityCli, EvalGrafPairUnderItsHomography) {
     REQUIRE_OPENCV_DATA("H1to3p.xml");
     const std::string dir = fresh_dir("eval_graf");
     // One threshold for both images, the one that gives graf1 3000 keypoints (as sw/surf's test).
-    const auto s1 = surfvp("surf " + graf(1) + " --target-count 3000 --out " + dir + "/g1.key");
+    const auto s1 = surfvp("surf " + test::graf(1) + " --target-count 3000 --out " + dir + "/g1.key");
     ASSERT_EQ(s1.exit_code, 0) << s1.err;
     const std::string threshold = surf_summary(s1.err).threshold;
-    ASSERT_EQ(surfvp("surf " + graf(3) + " --threshold " + threshold + " -q --out " + dir + "/g3.key").exit_code, 0);
+    ASSERT_EQ(surfvp("surf " + test::graf(3) + " --threshold " + threshold + " -q --out " + dir + "/g3.key").exit_code,
+              0);
 
     const auto r = surfvp("eval " + dir + "/g1.key " + dir + "/g3.key -H " + kOpencvData + "/H1to3p.xml --images " +
-                          graf(1) + " " + graf(3));
+                          test::graf(1) + " " + test::graf(3));
     ASSERT_EQ(r.exit_code, 0) << r.err;
     const auto j = nlohmann::ordered_json::parse(r.out);  // keeps the printed key order
     const std::vector<std::string> leading = {"candidates",    "valid",           "distinguishability", "status",
@@ -186,12 +185,13 @@ TEST(QualityCli, TheFloatReferenceIsAtLeastAsGoodAsTheBestCpuSurf) {
     ASSERT_EQ(castle.exit_code, 0) << castle.err;
     EXPECT_GE(json::parse(castle.out)["gaps"][0]["rows"][0]["mean"].get<double>(), 0.921);
     const std::string dir = fresh_dir("best_cpu_surf");
-    const auto s1 = surfvp("surf " + graf(1) + " --target-count 2900 --out " + dir + "/g1.key");
+    const auto s1 = surfvp("surf " + test::graf(1) + " --target-count 2900 --out " + dir + "/g1.key");
     ASSERT_EQ(s1.exit_code, 0) << s1.err;
     const std::string threshold = surf_summary(s1.err).threshold;
-    ASSERT_EQ(surfvp("surf " + graf(3) + " --threshold " + threshold + " -q --out " + dir + "/g3.key").exit_code, 0);
+    ASSERT_EQ(surfvp("surf " + test::graf(3) + " --threshold " + threshold + " -q --out " + dir + "/g3.key").exit_code,
+              0);
     const auto r = surfvp("eval " + dir + "/g1.key " + dir + "/g3.key -H " + kOpencvData + "/H1to3p.xml --images " +
-                          graf(1) + " " + graf(3));
+                          test::graf(1) + " " + test::graf(3));
     ASSERT_EQ(r.exit_code, 0) << r.err;
     const json best = json::parse(r.out);
     EXPECT_GE(best["precision"].get<double>(), 0.643);
@@ -201,7 +201,7 @@ TEST(QualityCli, TheFloatReferenceIsAtLeastAsGoodAsTheBestCpuSurf) {
 TEST(QualityCli, EvalWithAHomographyNeedsTheImages) {
     REQUIRE_OPENCV_DATA("graf1.png");
     const std::string dir = fresh_dir("eval_needs");
-    ASSERT_EQ(surfvp("surf " + graf(1) + " --target-count 50 -q --out " + dir + "/g1.key").exit_code, 0);
+    ASSERT_EQ(surfvp("surf " + test::graf(1) + " --target-count 50 -q --out " + dir + "/g1.key").exit_code, 0);
     const std::string identity = write_file(dir, "identity.txt", "1 0 0\n0 1 0\n0 0 1\n");
     const auto r = surfvp("eval " + dir + "/g1.key " + dir + "/g1.key --homography " + identity);
     EXPECT_EQ(r.exit_code, 2);
@@ -341,8 +341,8 @@ bool coloured_near(const cv::Mat& canvas, double x, double y, int laplacian) {
 TEST(QualityCli, DrawMarksEachKeypointInItsSignsColour) {
     REQUIRE_OPENCV_DATA("graf1.png");
     const std::string dir = fresh_dir("draw");
-    ASSERT_EQ(surfvp("surf " + graf(1) + " --target-count 40 -q --out " + dir + "/g1.key").exit_code, 0);
-    const auto r = surfvp("draw " + graf(1) + " " + dir + "/g1.key --out " + dir + "/g1.png");
+    ASSERT_EQ(surfvp("surf " + test::graf(1) + " --target-count 40 -q --out " + dir + "/g1.key").exit_code, 0);
+    const auto r = surfvp("draw " + test::graf(1) + " " + dir + "/g1.key --out " + dir + "/g1.png");
     ASSERT_EQ(r.exit_code, 0) << r.err;
     const cv::Mat canvas = cv::imread(dir + "/g1.png", cv::IMREAD_UNCHANGED);
     ASSERT_FALSE(canvas.empty());
@@ -382,8 +382,8 @@ TEST(QualityCli, DrawMarksEachKeypointInItsSignsColour) {
 TEST(QualityCli, DrawRefusesAnUnknownImageType) {
     REQUIRE_OPENCV_DATA("graf1.png");
     const std::string dir = fresh_dir("draw_type");
-    ASSERT_EQ(surfvp("surf " + graf(1) + " --target-count 10 -q --out " + dir + "/g1.key").exit_code, 0);
-    const auto r = surfvp("draw " + graf(1) + " " + dir + "/g1.key --out " + dir + "/g1.nope");
+    ASSERT_EQ(surfvp("surf " + test::graf(1) + " --target-count 10 -q --out " + dir + "/g1.key").exit_code, 0);
+    const auto r = surfvp("draw " + test::graf(1) + " " + dir + "/g1.key --out " + dir + "/g1.nope");
     EXPECT_EQ(r.exit_code, 2);
     EXPECT_NE(r.err.find("--out " + dir + "/g1.nope"), std::string::npos) << r.err;
     EXPECT_FALSE(fs::exists(dir + "/g1.nope"));

@@ -16,7 +16,7 @@ using test::kBudget;
 using test::slurp;
 using test::surfvp;
 
-const std::string kOneRun = test::kOneRun + " --set surf.frames=4";
+const std::string kShortRun = test::kOneRun + " --set surf.frames=4";
 // Two accelerator pairs on a 32-bit PLB2 and a slower DDR: the DMA masters wait for the bus
 // and the DRAM, and the CPU's fills meet them there.
 const std::string kContention =
@@ -25,7 +25,7 @@ const std::string kContention =
 
 nlohmann::json report(const std::string& name, const std::string& sets) {
     const std::string out = fresh_dir(name);
-    const auto r = surfvp("run " + kBudget + " --trace none --quiet --out " + out + kOneRun + sets);
+    const auto r = surfvp("run " + kBudget + " --trace none --quiet --out " + out + kShortRun + sets);
     EXPECT_LE(r.exit_code, 1) << r.err;
     return nlohmann::json::parse(slurp(out + "/report.json"));
 }
@@ -112,7 +112,7 @@ TEST(SpeedSettings, ContentionScenarioContends) {
 TEST(SpeedSettings, DirectModeGivesTheSoftwareCyclesWithinContention) {
     const auto vp = report("vp", "");
     const std::string out = fresh_dir("direct");
-    ASSERT_LE(surfvp("run " + kBudget + " --direct --quiet --out " + out + kOneRun).exit_code, 1);
+    ASSERT_LE(surfvp("run " + kBudget + " --direct --quiet --out " + out + kShortRun).exit_code, 1);
     const auto direct = nlohmann::json::parse(slurp(out + "/report.json"));
     const auto& a = vp["workload"]["per_frame"];
     const auto& b = direct["workload"]["per_frame"];
@@ -145,10 +145,10 @@ TEST(SpeedSettings, TheSecondThreadMovesNoFigureAndNoByte) {
     // Direct mode computes a frame's block rows ahead on the second thread; with two pairs
     // their frames share it.
     for (const std::string& scenario :
-         {kBudget + kOneRun + " --trace all", kBudget + kOneRun + kContention + " --trace none",
-          std::string("faults --trace none"), kBudget + kOneRun + " --direct --trace none",
+         {kBudget + kShortRun + " --trace all", kBudget + kShortRun + kContention + " --trace none",
+          std::string("faults --trace none"), kBudget + kShortRun + " --direct --trace none",
           std::string("castle_sequence --direct --set surf.frames=6 --set soc.accelerators=2"),
-          kBudget + kOneRun + " --trace none --set 'run.max_time=250 ms'"}) {
+          kBudget + kShortRun + " --trace none --set 'run.max_time=250 ms'"}) {
         std::string outs[2];
         for (int on = 0; on < 2; ++on) {
             outs[on] = fresh_dir(on ? "parallel_on" : "parallel_off");

@@ -19,7 +19,7 @@
 #include "models/host/disk_cache.h"
 #include "sw/media/media.h"
 #include "sw/surf/surf.h"
-#include "tests/surf/test_data.h"
+#include "tests/sw/surf/test_data.h"
 
 namespace surfvp {
 namespace {

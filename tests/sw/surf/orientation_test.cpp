@@ -12,7 +12,7 @@
 #include "sw/surf/haar.h"
 #include "sw/surf/orientation.h"
 #include "sw/surf/surf.h"
-#include "tests/surf/test_data.h"
+#include "tests/sw/surf/test_data.h"
 
 namespace surfvp::surf {
 namespace {

@@ -10,7 +10,7 @@
 
 #include <gtest/gtest.h>
 
-#include "eval/eval_test_support.h"
+#include "sw/eval/eval_test_support.h"
 
 namespace surfvp::eval {
 namespace {

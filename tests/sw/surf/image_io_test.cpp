@@ -10,7 +10,7 @@
 
 #include "sw/surf/image_io.h"
 #include "sw/surf/surf.h"
-#include "tests/surf/test_data.h"
+#include "tests/sw/surf/test_data.h"
 
 namespace surfvp::surf {
 namespace {

@@ -9,7 +9,7 @@
 #include <gtest/gtest.h>
 #include <opencv2/imgcodecs.hpp>
 
-#include "eval/eval_test_support.h"
+#include "sw/eval/eval_test_support.h"
 #include "sw/eval/homography.h"
 #include "sw/eval/region.h"
 

@@ -9,7 +9,7 @@
 #include <opencv2/core.hpp>
 
 #include "sw/surf/surf.h"
-#include "tests/surf/test_data.h"
+#include "tests/sw/surf/test_data.h"
 
 namespace surfvp::surf {
 namespace {

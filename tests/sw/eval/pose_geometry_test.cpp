@@ -9,7 +9,7 @@
 #include <Eigen/Dense>
 #include <gtest/gtest.h>
 
-#include "eval/eval_test_support.h"
+#include "sw/eval/eval_test_support.h"
 #include "sw/eval/distinguishability.h"
 
 namespace surfvp::eval {

@@ -9,7 +9,7 @@
 #include <algorithm>
 #include <opencv2/core.hpp>
 
-#include "eval/eval_test_support.h"
+#include "sw/eval/eval_test_support.h"
 
 namespace surfvp::eval {
 namespace {

@@ -11,7 +11,7 @@
 #include <gtest/gtest.h>
 #include <opencv2/core.hpp>
 
-#include "eval/eval_test_support.h"
+#include "sw/eval/eval_test_support.h"
 #include "sw/eval/pose_geometry.h"
 
 namespace surfvp::eval {
