@@ -74,26 +74,26 @@ public:
 
         void count(const std::string& name, std::function<uint64_t()> get, const std::string& unit,
                    const std::string& meaning) const {
-            add(name, StatKind::count, unit, meaning, [get](double) { return double(get()); });
+            add(name, StatKind::count, unit, meaning, [get = std::move(get)](double) { return double(get()); });
         }
         void bytes(const std::string& name, std::function<uint64_t()> get, const std::string& meaning) const {
-            add(name, StatKind::bytes, "B", meaning, [get](double) { return double(get()); });
+            add(name, StatKind::bytes, "B", meaning, [get = std::move(get)](double) { return double(get()); });
         }
         void high_water(const std::string& name, std::function<uint64_t()> get, const std::string& unit,
                         const std::string& meaning) const {
-            add(name, StatKind::high_water, unit, meaning, [get](double) { return double(get()); });
+            add(name, StatKind::high_water, unit, meaning, [get = std::move(get)](double) { return double(get()); });
         }
         using Time = std::function<sc_core::sc_time()>;
         void time(const std::string& name, Time get, const std::string& meaning) const {
-            add(name, StatKind::time, "s", meaning, [get](double) { return get().to_seconds(); });
+            add(name, StatKind::time, "s", meaning, [get = std::move(get)](double) { return get().to_seconds(); });
         }
         void max_time(const std::string& name, Time get, const std::string& meaning) const {
-            add(name, StatKind::max, "s", meaning, [get](double) { return get().to_seconds(); });
+            add(name, StatKind::max, "s", meaning, [get = std::move(get)](double) { return get().to_seconds(); });
         }
         // A share of the run: the time `get` gives over the run's simulated time.
         void share(const std::string& name, Time get, const std::string& meaning) const {
             add(name, StatKind::ratio, "", meaning,
-                [get](double elapsed) { return elapsed > 0 ? get().to_seconds() / elapsed : 0.0; });
+                [get = std::move(get)](double elapsed) { return elapsed > 0 ? get().to_seconds() / elapsed : 0.0; });
         }
         void value(const std::string& name, double v, const std::string& unit, const std::string& meaning) const {
             add(name, StatKind::value, unit, meaning, [v](double) { return v; });
