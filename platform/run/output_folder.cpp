@@ -168,6 +168,22 @@ bool legacy_folder(const fs::path& dir) {
     return !error;
 }
 
+// A folder the user made under one of `names` (one an older surfvp wrote is replaced instead).
+void refuse_users_folders(const fs::path& folder, const std::set<std::string>& names) {
+    for (const std::string& name : names)
+        if (type_of(folder / name) == fs::file_type::directory && !legacy_folder(folder / name))
+            throw ConfigError(
+                fmt::format("--out {}: {} is a folder surfvp did not write; move it away, or give another --out",
+                            folder.string(), (folder / name).string()));
+}
+
+// A .surfvp-current that is a folder: the outputs' links would lead into it.
+void refuse_current_folder(const fs::path& folder) {
+    if (type_of(folder / kCurrent) == fs::file_type::directory)
+        throw ConfigError(fmt::format("--out {}: {} is a folder, not surfvp's link; remove it", folder.string(),
+                                      (folder / kCurrent).string()));
+}
+
 }  // namespace
 
 OutputFolder::OutputFolder(const fs::path& folder, const std::set<std::string>& outputs) : folder_(folder) {
@@ -211,14 +227,8 @@ OutputFolder::OutputFolder(const fs::path& folder, const std::set<std::string>& 
 // would lead into it), a .surfvp-runs that is not a folder (removing through a link would reach
 // outside).
 void OutputFolder::check_before_writing(const std::set<std::string>& outputs) const {
-    for (const std::string& name : outputs)
-        if (type_of(folder_ / name) == fs::file_type::directory && !legacy_folder(folder_ / name))
-            throw ConfigError(
-                fmt::format("--out {}: {} is a folder surfvp did not write; move it away, or give another --out",
-                            folder_.string(), (folder_ / name).string()));
-    if (type_of(folder_ / kCurrent) == fs::file_type::directory)
-        throw ConfigError(fmt::format("--out {}: {} is a folder, not surfvp's link; remove it", folder_.string(),
-                                      (folder_ / kCurrent).string()));
+    refuse_users_folders(folder_, outputs);
+    refuse_current_folder(folder_);
     const fs::file_type runs = type_of(folder_ / kRuns);
     if (runs != fs::file_type::not_found && runs != fs::file_type::directory)
         throw ConfigError(fmt::format("--out {}: {} is not a folder surfvp made (a link or a file); remove it",
@@ -321,11 +331,7 @@ void OutputFolder::publish() {
 // run always replaced it) is replaced by its link; a folder only when an older surfvp wrote
 // it: one the user made is refused before anything changes.
 void OutputFolder::link_outputs(const std::set<std::string>& names) const {
-    for (const std::string& name : names)
-        if (type_of(folder_ / name) == fs::file_type::directory && !legacy_folder(folder_ / name))
-            throw ConfigError(
-                fmt::format("--out {}: {} is a folder surfvp did not write; move it away, or give another --out",
-                            folder_.string(), (folder_ / name).string()));
+    refuse_users_folders(folder_, names);  // checked before the run too; a folder made since
     for (const std::string& name : names) {
         const fs::path at = folder_ / name;
         if (!output_of_link(at).empty()) continue;
@@ -344,9 +350,7 @@ void OutputFolder::link_outputs(const std::set<std::string>& names) const {
 // The one step: .surfvp-current renamed to name this run's folder.
 void OutputFolder::switch_current() const {
     const fs::path next = folder_ / fmt::format(".surfvp-current-{}", ::getpid()), current = folder_ / kCurrent;
-    if (type_of(current) == fs::file_type::directory)
-        throw ConfigError(
-            fmt::format("--out {}: {} is a folder, not surfvp's link; remove it", folder_.string(), current.string()));
+    refuse_current_folder(folder_);  // checked before the run too; a folder made since
     std::error_code error;
     fs::remove(next, error);
     fs::create_symlink(fs::path(kRuns) / staging_.filename(), next, error);
