@@ -92,7 +92,7 @@ void Dma::copy_thread() {
     }
 }
 
-void Dma::register_statistics(Statistics::Scope s) const {
+void Dma::register_statistics(const Statistics::Scope& s) const {
     s.count(
         "copies", [this] { return copies_; }, "copies", "copies done");
     s.bytes(

@@ -305,7 +305,7 @@ void Fhg::trace_levels() {
 
 void Fhg::update_irq() { irq.write(faults_.line(registers_.irq())); }
 
-void Fhg::register_statistics(Statistics::Scope s) const {
+void Fhg::register_statistics(const Statistics::Scope& s) const {
     stats_.register_statistics(
         s, [this] { return errors(); }, "from START to the last determinants written, summed", "computing block rows");
     s.value("clock_hz", params_.clock.hz, "Hz", "the FHG's clock");

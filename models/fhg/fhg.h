@@ -103,7 +103,7 @@ public:
     void send_line(int y, const uint32_t* data, int width, const sc_core::sc_time& transfer) override;
 
     // Its statistics, registered at elaboration (after every connection) under `scope`.
-    void register_statistics(Statistics::Scope scope) const;
+    void register_statistics(const Statistics::Scope& scope) const;
     // Faults to inject (none by default); it is the FHG of accelerator pair `pair`.
     void set_faults(FaultPlan* faults, unsigned pair) { faults_.attach(faults, pair); }
 

@@ -170,7 +170,7 @@ void Iig::finish_row() {
 
 void Iig::update_irq() { irq.write(faults_.line(registers_.irq())); }
 
-void Iig::register_statistics(Statistics::Scope s) const {
+void Iig::register_statistics(const Statistics::Scope& s) const {
     stats_.register_statistics(
         s, [this] { return errors(); }, "from START to the last row written and sent, summed",
         "the integral core adding rows");

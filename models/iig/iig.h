@@ -68,7 +68,7 @@ public:
     const Params& params() const { return params_; }
 
     // Its statistics, registered at elaboration (after every connection) under `scope`.
-    void register_statistics(Statistics::Scope scope) const;
+    void register_statistics(const Statistics::Scope& scope) const;
     // Faults to inject (none by default); it is the IIG of accelerator pair `pair`.
     void set_faults(FaultPlan* faults, unsigned pair) { faults_.attach(faults, pair); }
 

@@ -54,7 +54,7 @@ unsigned Intc::transport_dbg(tlm::tlm_generic_payload& tx) {
     return tx.is_response_ok() ? 4 : 0;
 }
 
-void Intc::register_statistics(Statistics::Scope s) const {
+void Intc::register_statistics(const Statistics::Scope& s) const {
     s.count(
         "raised", [this] { return raised_; }, "interrupts", "rising edges of the line to the CPU");
 }

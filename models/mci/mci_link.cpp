@@ -67,7 +67,7 @@ bool MciLink::get_direct_mem_ptr(tlm::tlm_generic_payload& tx, tlm::tlm_dmi& dmi
 
 unsigned MciLink::transport_dbg(tlm::tlm_generic_payload& tx) { return memory->transport_dbg(tx); }
 
-void MciLink::register_statistics(Statistics::Scope s) const {
+void MciLink::register_statistics(const Statistics::Scope& s) const {
     s.count(
         "reads", [this] { return stats_.reads; }, "accesses", "reads");
     s.count(

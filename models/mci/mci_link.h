@@ -53,7 +53,7 @@ public:
     const Params& params() const { return params_; }
 
     // Its statistics, registered at elaboration (after every connection) under `scope`.
-    void register_statistics(Statistics::Scope scope) const;
+    void register_statistics(const Statistics::Scope& scope) const;
 
 private:
     void b_transport(tlm::tlm_generic_payload& tx, sc_core::sc_time& delay);

@@ -126,7 +126,7 @@ unsigned DdrMemory::transport_dbg(int, tlm::tlm_generic_payload& tx) {
     return n;
 }
 
-void DdrMemory::register_statistics(Statistics::Scope s) const {
+void DdrMemory::register_statistics(const Statistics::Scope& s) const {
     auto total = [this](uint64_t PortStats::*field) {
         return [this, field] {
             uint64_t sum = 0;

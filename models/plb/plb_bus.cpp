@@ -287,7 +287,7 @@ void PlbBus::invalidate_direct_mem_ptr(int slave, sc_dt::uint64 start, sc_dt::ui
     }
 }
 
-void PlbBus::register_statistics(Statistics::Scope s) const {
+void PlbBus::register_statistics(const Statistics::Scope& s) const {
     s.value("clock_hz", params_.clock.hz, "Hz", "bus clock");
     s.value("width_bits", params_.width_bits, "bit", "data width");
     for (const auto& [name, path] : {std::pair{"read", &read_}, std::pair{"write", &write_}}) {

@@ -105,7 +105,7 @@ public:
     }  // a simulation figure: depends on how masters batch
 
     // Its statistics, registered at elaboration (after every connection) under `scope`.
-    void register_statistics(Statistics::Scope scope) const;
+    void register_statistics(const Statistics::Scope& scope) const;
 
 private:
     struct Route {

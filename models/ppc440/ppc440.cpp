@@ -259,7 +259,7 @@ void Ppc440::end() {
     spans_.pop_back();
 }
 
-void Ppc440::register_statistics(Statistics::Scope s) const {
+void Ppc440::register_statistics(const Statistics::Scope& s) const {
     s.value("clock_hz", params_.clock.hz, "Hz", "the CPU's clock");
     s.count(
         "mmio_reads", [this] { return stats_.mmio_reads; }, "accesses", "register reads over PLB1");

@@ -67,7 +67,7 @@ public:
     const Stats& stats() const { return stats_; }
 
     // Its statistics, registered at elaboration (after every connection) under `scope`.
-    void register_statistics(Statistics::Scope scope) const;
+    void register_statistics(const Statistics::Scope& scope) const;
 
 private:
     void run();

@@ -83,7 +83,7 @@ Command add_validate(CLI::App& app) {
 
 // A command without options that prints a text.
 Command add_listing(CLI::App& app, const char* name, const char* description, std::function<std::string()> text) {
-    return {app.add_subcommand(name, description), [text] {
+    return {app.add_subcommand(name, description), [text = std::move(text)] {
                 std::fputs(text().c_str(), stdout);
                 return kExitOk;
             }};

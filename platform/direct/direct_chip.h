@@ -36,7 +36,7 @@ namespace surfvp {
 class DirectChip : public sw::Hal {
 public:
     DirectChip(const Config& config, unsigned accelerators);
-    ~DirectChip();  // its worker stopped, its memory given back in the background
+    ~DirectChip() override;  // its worker stopped, its memory given back in the background
 
     uint8_t* backdoor(uint64_t address, uint64_t bytes);
     uint64_t cycles_consumed() const { return cycles_; }

@@ -81,10 +81,9 @@ std::vector<Ineffective> ineffective_parameters(const Config& c) {
         const std::string& key = e.spec->key;
         if (e.origin == "default" || at_default(e)) continue;
         std::string reason;
-        if (workload != "surf" && (in_section(key, "surf") || in_section(key, "budget") || in_section(key, "eval") ||
-                                   in_section(key, "verdict") || in_section(key, "fault")))
-            reason = fmt::format("run.workload is {}", workload);
-        else if (workload != "smoke" && in_section(key, "smoke"))
+        if ((workload != "surf" && (in_section(key, "surf") || in_section(key, "budget") || in_section(key, "eval") ||
+                                    in_section(key, "verdict") || in_section(key, "fault"))) ||
+            (workload != "smoke" && in_section(key, "smoke")))
             reason = fmt::format("run.workload is {}", workload);
         else if (key == "surf.threshold" && c.count("surf.target_keypoints") > 0)
             reason = fmt::format("surf.target_keypoints is {}, so the threshold is calibrated on frame 0",

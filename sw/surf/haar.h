@@ -95,6 +95,7 @@ template <bool kInside, class View>
 
 // Rounded mode's half-size: round(v) (halves up), at least 1 pixel.
 inline int rounded_half(float v) {
+    // NOLINTNEXTLINE(bugprone-incorrect-roundings): in float, as the reference rounds; lround differs at x.5-ulp
     const int h = static_cast<int>(v + 0.5f);
     return h < 1 ? 1 : h;
 }
