@@ -5,6 +5,7 @@
 
 #include "platform/address_map.h"
 #include "platform/scenario/block_params.h"
+#include "platform/scenario/run_settings.h"
 #include "models/dma/dma_regs.h"
 #include "models/fhg/fhg_regs.h"
 #include "models/iig/iig_regs.h"
@@ -34,7 +35,7 @@ Soc::Soc(const Config& c, Tracer& tracer) : faults_(c.faults), workload_(make_wo
 }
 
 void Soc::build(const Config& c, Tracer& tracer) {
-    const unsigned pairs = unsigned(c.count("soc.accelerators"));
+    const unsigned pairs = run_settings(c).accelerators;
     // The VCD's groups in GTKWave, in the order of the paper's Fig. 3.
     std::vector<std::pair<std::string, std::string>> titles{
         {"sw", "Tasks (libSSA2)"}, {"irq", "Interrupts"}, {"cpu", "PPC440"}};
@@ -46,7 +47,7 @@ void Soc::build(const Config& c, Tracer& tracer) {
     titles.insert(titles.end(),
                   {{"plb1", "PLB1 (CPU, registers)"}, {"plb2", "PLB2 (DMA traffic)"}, {"dma", "Test DMA"}});
     tracer.group_titles(std::move(titles));
-    cpu_memory_path_ = c.choice("cpu.memory_path");
+    cpu_memory_path_ = cpu_memory_on_plb1(c) ? "plb1" : "mci";
     memory_ = std::make_unique<DdrMemory>("memory", memory_params(c));
     plb1_ = std::make_unique<PlbBus>("plb1", plb_params(c, "plb1"), tracer);
     plb2_ = std::make_unique<PlbBus>("plb2", plb_params(c, "plb2"), tracer);
@@ -88,7 +89,7 @@ void Soc::build(const Config& c, Tracer& tracer) {
     }
 
     // PLB2: the DMA masters to DDR.
-    plb2_->connect_master(dma_->mplb, "dma", c.beats("dma.burst"));
+    plb2_->connect_master(dma_->mplb, "dma", dma_params(c).burst_beats);
     for (unsigned k = 0; k < pairs; ++k) {
         plb2_->connect_master(iigs_[k]->mplb, iigs_[k]->basename(), iigs_[k]->params().burst_beats);
         plb2_->connect_master(fhgs_[k]->mplb, fhgs_[k]->basename(), fhgs_[k]->params().burst_beats);

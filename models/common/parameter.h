@@ -67,6 +67,8 @@ public:
     virtual uint64_t count(const std::string& key) const = 0;
     virtual double real(const std::string& key) const = 0;
     virtual const std::string& choice(const std::string& key) const = 0;
+    virtual const std::string& text(const std::string& key) const = 0;
+    virtual uint32_t address(const std::string& key) const = 0;
 };
 
 template <typename Params>
@@ -89,6 +91,8 @@ inline double number(const ParamSpec& s, const ParamValues& v) {
             return double(v.bytes(s.key).n);
         case ParamKind::real:
             return v.real(s.key);
+        case ParamKind::address:
+            return v.address(s.key);
         default:
             return double(v.count(s.key));
     }
@@ -104,6 +108,8 @@ void assign(T& target, const ParamSpec& s, const ParamValues& v) {
         target = v.bytes(s.key);
     else if constexpr (std::is_same_v<T, bool>)
         target = v.choice(s.key) == "on";
+    else if constexpr (std::is_same_v<T, std::string>)
+        target = s.kind == ParamKind::choice ? v.choice(s.key) : v.text(s.key);
     else if constexpr (std::is_floating_point_v<T>)
         target = T(number(s, v));
     else

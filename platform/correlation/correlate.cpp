@@ -18,6 +18,8 @@
 #include "platform/scenario/parameters.h"
 #include "platform/scenario/scenario.h"
 #include "platform/scenario/block_params.h"
+#include "platform/scenario/run_settings.h"
+#include "platform/catalog.h"
 #include "platform/run/resimulation.h"
 
 namespace surfvp {
@@ -51,7 +53,7 @@ std::vector<double> fhg_clocks(const Config& c) {
     const ParamSpec& p = *find_parameter("fhg.clock");
     std::vector<double> hz;
     for (double f = parse_value(p, p.band.low); f <= parse_value(p, p.band.high) + 1; f += kClockStep) hz.push_back(f);
-    hz.push_back(c.frequency("fhg.clock").hz);
+    hz.push_back(fhg_params(c).clock.hz);
     std::sort(hz.begin(), hz.end());
     hz.erase(std::unique(hz.begin(), hz.end()), hz.end());
     return hz;
@@ -231,12 +233,11 @@ std::string correlate_markdown(const Json& r) {
 
 int correlate_command(const CorrelateOptions& o) {
     const Config config = load_scenario(resolve_scenario(o.scenario), o.sets);
-    if (config.choice("run.workload") != "surf")
+    if (run_settings(config).workload != "surf")
         throw ConfigError(
             fmt::format("{}: correlate needs a SURF scenario (run.workload: surf)", config.where("run.workload")));
     check_scenario(config);
-    const unsigned frames = unsigned(std::min(
-        std::max(config.count("verdict.frames"), config.count("soc.accelerators") + 1), config.count("surf.frames")));
+    const unsigned frames = resimulation_frames(config);
     const Config reference = correlate_variant(config, {{"surf.frames", std::to_string(frames)},
                                                         {"run.parallel", "off"},
                                                         {"verdict.band", "off"},
@@ -273,13 +274,9 @@ int correlate_command(const CorrelateOptions& o) {
                                            {"cpu.fpu_ratio", ratio},
                                            {"surf.target_keypoints", kp}},
                                           {}});
-    const Sets schedule_keys{{"fhg.bus_word", config.choice("fhg.bus_word")},
-                             {"fhg.line_fifo", config.choice("fhg.line_fifo")},
-                             {"fhg.read_buses", config.value("fhg.read_buses")}};
-    const Sets defaults{{"fhg.clock", mhz(config.frequency("fhg.clock").hz)},
-                        {"cpu.clock", config.value("cpu.clock")},
-                        {"cpu.fpu_ratio", config.value("cpu.fpu_ratio")},
-                        {"surf.target_keypoints", config.value("surf.target_keypoints")}};
+    const Sets schedule_keys = config.sets_of({"fhg.bus_word", "fhg.line_fifo", "fhg.read_buses"});
+    Sets defaults = config.sets_of({"cpu.clock", "cpu.fpu_ratio", "surf.target_keypoints"});
+    defaults.insert(defaults.begin(), {"fhg.clock", mhz(fhg_params(config).clock.hz)});
     Json default_point;
 
     OutputFolder out(o.out.empty() ? fs::path("traces") / ("correlate_" + config.name) : fs::path(o.out),

@@ -8,6 +8,8 @@
 #include "models/fhg/fhg_regs.h"
 #include "models/fhg/sequence_cache.h"
 #include "platform/scenario/block_params.h"
+#include "platform/scenario/run_settings.h"
+#include "platform/workload/describer.h"
 
 namespace surfvp {
 namespace {
@@ -66,14 +68,12 @@ BlockResources fhg_block(const Config& c) {
 
 // The IIG of one pair: its line buffers of integral words, a row-sum adder and a column adder.
 BlockResources iig_block(const Config& c) {
-    const unsigned width = unsigned(c.count("iig.max_width")), sum = c.bits("iig.sum_bits");
-    const unsigned ram = unsigned(c.count("iig.line_buffers")) * ramb36_for(width, 32);
-    return {"iig",
-            double(ram),
-            0,
-            4.0 * sum + 200,
-            6.0 * sum + 200,
-            fmt::format("{} line buffers of {} integral words", c.count("iig.line_buffers"), width)};
+    const Iig::Params iig = iig_params(c);
+    const unsigned width = iig.max_width, sum = iig.sum_bits;
+    const unsigned ram = iig.line_buffers * ramb36_for(width, 32);
+    return {
+        "iig",           double(ram),     0,
+        4.0 * sum + 200, 6.0 * sum + 200, fmt::format("{} line buffers of {} integral words", iig.line_buffers, width)};
 }
 
 }  // namespace
@@ -96,13 +96,14 @@ unsigned dsp48e_for(unsigned a, unsigned b) {
 
 FpgaResources fpga_resources(const Config& c) {
     FpgaResources r;
-    r.device = c.choice("fpga.device");
-    r.ramb36_capacity = double(c.count("fpga.ramb36"));
-    r.dsp48e_capacity = double(c.count("fpga.dsp48e"));
-    r.lut_capacity = 4.0 * double(c.count("fpga.slices"));  // a Virtex-5 slice: 4 LUT6, 4 flip-flops
+    const FpgaDevice device = fpga_device(c);
+    r.device = device.device;
+    r.ramb36_capacity = double(device.ramb36);
+    r.dsp48e_capacity = double(device.dsp48e);
+    r.lut_capacity = 4.0 * double(device.slices);  // a Virtex-5 slice: 4 LUT6, 4 flip-flops
     r.ff_capacity = r.lut_capacity;
-    const double pairs = double(c.count("soc.accelerators"));
-    const double ip_luts = double(c.count("fpga.ip_interface_luts")), ip_ffs = double(c.count("fpga.ip_interface_ffs"));
+    const double pairs = run_settings(c).accelerators;
+    const double ip_luts = double(device.ip_interface_luts), ip_ffs = double(device.ip_interface_ffs);
     for (BlockResources b : {iig_block(c), fhg_block(c)}) {
         b.luts += ip_luts;  // its PLB slave (registers) and master (DMA) interface
         b.ffs += ip_ffs;
@@ -110,11 +111,11 @@ FpgaResources fpga_resources(const Config& c) {
         b.block = pairs > 1 ? fmt::format("{} (x{})", b.block, pairs) : b.block;
         r.blocks.push_back(b);
     }
-    const bool dp = c.choice("fpu.precision") == "double";
+    const bool dp = pipeline_params(c).double_precision != 0;
     r.blocks.push_back({"apu fpu", 0, dp ? 13.0 : 3.0, dp ? 4950.0 : 2620.0, dp ? 4950.0 : 2620.0,
-                        fmt::format("DS693, {} precision (LUT-FF pairs)", c.choice("fpu.precision"))});
-    r.blocks.push_back({"infrastructure", double(c.count("fpga.infrastructure_ramb36")), 0,
-                        double(c.count("fpga.infrastructure_luts")), double(c.count("fpga.infrastructure_ffs")),
+                        fmt::format("DS693, {} precision (LUT-FF pairs)", dp ? "double" : "single")});
+    r.blocks.push_back({"infrastructure", double(device.infrastructure_ramb36), 0, double(device.infrastructure_luts),
+                        double(device.infrastructure_ffs),
                         "MPMC, two PLBs, INTC and the rest of an EDK system (fpga.infrastructure_*)"});
     r.total.block = "total";
     for (const BlockResources& b : r.blocks) {

@@ -13,6 +13,19 @@
 
 namespace surfvp {
 
+// The device the resources are counted against, and what the estimate cannot derive: one IP
+// block's PLB interfaces and the rest of the system (fpga.*).
+struct FpgaDevice {
+    std::string device;  // fpga.device, by name
+    uint64_t ramb36 = 0, dsp48e = 0, slices = 0;
+    Frequency bram_fmax;
+    uint64_t ip_interface_luts = 0, ip_interface_ffs = 0;
+    uint64_t infrastructure_luts = 0, infrastructure_ffs = 0, infrastructure_ramb36 = 0;
+
+    static const ParamTable<FpgaDevice>& parameter_table();
+};
+FpgaDevice fpga_device(const ParamValues& values);
+
 struct BlockResources {
     std::string block;  // "fhg (x2)": a pair's blocks count once per pair
     double ramb36 = 0, dsp48e = 0, luts = 0, ffs = 0;

@@ -6,6 +6,8 @@
 #include "models/fhg/sequence_cache.h"
 #include "platform/scenario/parameters.h"
 #include "platform/scenario/block_params.h"
+#include "platform/scenario/run_settings.h"
+#include "platform/workload/describer.h"
 
 namespace surfvp {
 namespace {
@@ -34,7 +36,8 @@ Json power_estimate(const Config& c, const Json& r, const FpgaResources& res) {
     const double seconds = r.value("sim_time_s", 0.0);
     const double frames = r.value("frames_done", 0.0);
     const double pj = 1e-12;
-    const double cell = c.real("power.logic_pj_per_cell_cycle") * pj;
+    const PowerPrices price = power_prices(c);
+    const double cell = price.logic_pj_per_cell_cycle * pj;
     Json blocks = Json::object();
     double total_j = 0;
     auto add = [&](const std::string& name, double joules, const std::string& basis) {
@@ -42,34 +45,33 @@ Json power_estimate(const Config& c, const Json& r, const FpgaResources& res) {
         total_j += joules;
     };
     // Always on.
-    const double static_w = c.real("power.static_w"), ddr_w = c.real("power.ddr_background_w"),
-                 infra_w = c.real("power.infrastructure_w");
+    const double static_w = price.static_w, ddr_w = price.ddr_background_w, infra_w = price.infrastructure_w;
     add("fpga static", static_w * seconds, "power.static_w");
     add("ddr background", ddr_w * seconds, "power.ddr_background_w");
     add("infrastructure", infra_w * seconds, "power.infrastructure_w: MPMC, PLBs, INTC, clocks");
     // The CPU and its FPU while they compute (the PPC440 waits for interrupts clock-gated).
-    const double cpu_hz = c.frequency("cpu.clock").hz;
+    const double cpu_hz = cpu_params(c).clock.hz;
     const double cpu_s = r.contains("cpu") ? double(r["cpu"].value("cycles_consumed", uint64_t(0))) / cpu_hz : 0.0;
-    add("ppc440", c.real("power.ppc440_mw_per_mhz") * 1e-3 * cpu_hz * 1e-6 * cpu_s,
+    add("ppc440", price.ppc440_mw_per_mhz * 1e-3 * cpu_hz * 1e-6 * cpu_s,
         fmt::format("{:.3f} s computing at {:g} MHz x power.ppc440_mw_per_mhz", cpu_s, cpu_hz * 1e-6));
-    const double fpu_hz = cpu_hz / double(c.count("cpu.fpu_ratio"));
+    const double fpu_hz = cpu_hz / pipeline_params(c).fpu_ratio;
     add("apu fpu", cells(res, "apu fpu") * cell * fpu_hz * cpu_s,
         "its LUT-FF pairs x power.logic_pj_per_cell_cycle, while the CPU computes");
     // The accelerators while they compute: their logic cells each cycle, the FHG's line-FIFO
     // reads (a quad word reads two lines, other words one) and writes, its three products per
     // determinant.
     const Fhg::Params fhg = fhg_params(c);
-    const double fhg_hz = c.frequency("fhg.clock").hz, iig_hz = c.frequency("iig.clock").hz;
+    const double fhg_hz = fhg.clock.hz, iig_hz = iig_params(c).clock.hz;
     const double fhg_s = summed(r, "fhg", "computing_s"), iig_s = summed(r, "iig", "computing_s");
-    const double pairs = double(c.count("soc.accelerators"));
+    const double pairs = run_settings(c).accelerators;
     const double fhg_cycles = fhg_s * fhg_hz;
     const double determinants = fhg_cycles / Fhg::block_cycles(fhg::cached_sequence(fhg.sequence), fhg) * 18;
     const double lines_per_word = fhg.sequence.bus_word == fhg::BusWord::quad ? 2 : 1;
     const double bram_accesses =
         fhg_cycles * fhg.sequence.read_buses * lines_per_word + iig_s * iig_hz;  // reads + line writes
     add("fhg",
-        cells(res, "fhg") / pairs * cell * fhg_cycles + bram_accesses * c.real("power.bram_pj_per_access") * pj +
-            determinants * 3 * c.real("power.dsp_pj_per_product") * pj,
+        cells(res, "fhg") / pairs * cell * fhg_cycles + bram_accesses * price.bram_pj_per_access * pj +
+            determinants * 3 * price.dsp_pj_per_product * pj,
         fmt::format("{:.3g} cycles computing, {:.3g} block-RAM accesses, {:.3g} determinants x 3 products", fhg_cycles,
                     bram_accesses, determinants));
     add("iig", cells(res, "iig") / pairs * cell * iig_s * iig_hz,
@@ -82,15 +84,14 @@ Json power_estimate(const Config& c, const Json& r, const FpgaResources& res) {
                 bus_bits += 8.0 * bus[dir].value("bytes", 0.0);
                 bursts += bus[dir].value("bursts", 0.0);
             }
-    add("buses", bus_bits * c.real("power.bus_pj_per_bit") * pj + bursts * c.real("power.bus_pj_per_burst") * pj,
+    add("buses", bus_bits * price.bus_pj_per_bit * pj + bursts * price.bus_pj_per_burst * pj,
         fmt::format("{:.3g} bits in {:.3g} bursts on the PLBs", bus_bits, bursts));
     const double ddr_bits = r.contains("memory")
                                 ? 8.0 * (r["memory"].value("bytes_read", 0.0) + r["memory"].value("bytes_written", 0.0))
                                 : 0;
-    add("ddr traffic", ddr_bits * c.real("power.ddr_pj_per_bit") * pj,
-        fmt::format("{:.3g} bits read and written", ddr_bits));
+    add("ddr traffic", ddr_bits * price.ddr_pj_per_bit * pj, fmt::format("{:.3g} bits read and written", ddr_bits));
     const double watts = seconds > 0 ? total_j / seconds : 0.0;
-    const double budget = c.real("power.budget_w");
+    const double budget = price.budget_w;
     return {{"watts", watts},
             {"joules_per_frame", frames > 0 ? total_j / frames : 0.0},
             {"budget_w", budget},

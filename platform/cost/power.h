@@ -11,6 +11,16 @@
 
 namespace surfvp {
 
+// The power estimate's prices (power.*): watts of what is always on, and energy per event.
+struct PowerPrices {
+    double budget_w = 0, static_w = 0, ddr_background_w = 0, infrastructure_w = 0;
+    double ppc440_mw_per_mhz = 0, logic_pj_per_cell_cycle = 0, bram_pj_per_access = 0, dsp_pj_per_product = 0;
+    double bus_pj_per_bit = 0, bus_pj_per_burst = 0, ddr_pj_per_bit = 0;
+
+    static const ParamTable<PowerPrices>& parameter_table();
+};
+PowerPrices power_prices(const ParamValues& values);
+
 // `report`: the run's report.json as built so far (sim_time_s, frames_done, cpu, iig, fhg,
 // buses, memory, time_per_frame).
 nlohmann::ordered_json power_estimate(const Config& config, const nlohmann::ordered_json& report,

@@ -14,6 +14,7 @@
 #include "models/iig/integral_core.h"
 #include "models/intc/intc_regs.h"
 #include "platform/scenario/block_params.h"
+#include "platform/scenario/run_settings.h"
 
 namespace surfvp {
 namespace f = fhg_regs;
@@ -58,15 +59,15 @@ void DirectChip::Pair::stop_listening() {
 }
 
 DirectChip::DirectChip(const Config& config, unsigned accelerators)
-    : memory_size_(config.bytes("memory.size").n),
+    : memory_size_(memory_params(config).size.n),
       memory_(zeroed_memory(memory_size_, "the modelled DDR memory of direct mode (memory.size)")),
-      intc_(unsigned(config.count("intc.inputs")), [this] { return levels(); }),
-      sum_bits_(config.bits("iig.sum_bits")),
+      intc_(intc_params(config).inputs, [this] { return levels(); }),
+      sum_bits_(iig_params(config).sum_bits),
       core_(fhg_params(config).precision),
       fills_(uncontended_fills(config)),
-      cpu_hz_(config.frequency("cpu.clock").hz),
+      cpu_hz_(cpu_params(config).clock.hz),
       // The software's thread waits for rows only when it has nothing else to do.
-      worker_(config.choice("run.parallel") == "on"
+      worker_(run_settings(config).parallel
                   ? std::make_unique<Worker>(std::chrono::microseconds(200), Worker::Waiter::runs_any)
                   : nullptr) {
     const Iig::Params iig = iig_params(config);

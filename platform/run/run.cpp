@@ -25,6 +25,7 @@
 #include "platform/report/statistics_json.h"
 #include "platform/report/schedule_figures.h"
 #include "platform/scenario/consistency.h"
+#include "platform/scenario/run_settings.h"
 #include "platform/scenario/scenario.h"
 #include "platform/soc.h"
 
@@ -72,7 +73,8 @@ struct Outcome {
 
 // Simulates in slices until the software returns, a stall, or run.max_time.
 Outcome simulate(Soc& soc, const Config& config, ProgressLine& progress) {
-    const sc_core::sc_time limit(double(config.duration("run.max_time").ps), sc_core::SC_PS);
+    const Duration max_time = run_settings(config).max_time;
+    const sc_core::sc_time limit(double(max_time.ps), sc_core::SC_PS);
     const sc_core::sc_time slice(100, sc_core::SC_US);
     sc_core::sc_spawn_options pause_when_done;
     pause_when_done.spawn_method();
@@ -82,8 +84,8 @@ Outcome simulate(Soc& soc, const Config& config, ProgressLine& progress) {
 
     while (!soc.cpu().finished()) {
         if (sc_core::sc_time_stamp() >= limit)
-            return {sc_core::sc_time_stamp(), fmt::format("the software had not finished after run.max_time ({})",
-                                                          format_duration(config.duration("run.max_time")))};
+            return {sc_core::sc_time_stamp(),
+                    fmt::format("the software had not finished after run.max_time ({})", format_duration(max_time))};
         if (sc_core::sc_time_stamp() > sc_core::SC_ZERO_TIME && !sc_core::sc_pending_activity())
             return {sc_core::sc_time_stamp(),
                     "stalled: nothing is left to simulate but the software has not finished "
@@ -143,7 +145,7 @@ nlohmann::ordered_json build_report(const Config& config, Soc& soc, const Outcom
     r["fpga_resources"] = resources_json(resources);
     r["power"] = power_estimate(config, r, resources);
     r["power"]["band"] = cost_band(config, r);
-    if (config.choice("run.workload") == "surf") r["correlation"] = correlation_json(r);
+    if (run_settings(config).workload == "surf") r["correlation"] = correlation_json(r);
     r["workload"] = soc.workload().report();
     r["outputs"] = outputs;
     return r;
@@ -185,7 +187,7 @@ std::string with_origins(const Config& config, const std::string& message) {
 // The same driver and software without SystemC: keypoints, no time.
 int run_direct(const Config& config, const fs::path& dir) {
     const auto workload = make_workload(config);
-    DirectChip chip(config, unsigned(config.count("soc.accelerators")));
+    DirectChip chip(config, run_settings(config).accelerators);
     const WorkerLoan loan(*workload, chip.worker());  // ends before the chip (its memory and worker) goes
     workload->attach_memory([&chip](uint64_t address, uint64_t bytes) { return chip.backdoor(address, bytes); });
     workload->write_into(dir.string());

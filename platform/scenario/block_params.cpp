@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "platform/scenario/run_settings.h"
+
 namespace surfvp {
 namespace {
 
@@ -14,7 +16,7 @@ Params on_plb1(Params p, const Config& c) {
 
 // One TLM transaction per line (fast) or per burst (finest contention).
 uint64_t dma_transaction_bytes(const Config& c, unsigned burst_beats) {
-    return c.choice("run.dma_granularity") == "burst" ? uint64_t(burst_beats) * c.bits("plb2.width") / 8 : 0;
+    return run_settings(c).dma_per_burst ? uint64_t(burst_beats) * plb_params(c, "plb2").width_bits / 8 : 0;
 }
 
 }  // namespace
@@ -23,7 +25,7 @@ PlbBus::Params plb_params(const Config& c, const std::string& bus) {
     for (const PlbDeclaration& d : plb_declarations()) {
         if (d.bus != bus) continue;
         PlbBus::Params p = d.table.make(c);
-        p.series_bin = c.duration("run.series_bin");
+        p.series_bin = run_settings(c).series_bin;
         if (p.width_bits != 32 && p.width_bits != 64 && p.width_bits != 128)
             throw ConfigError(bus + ".width: a PLB is 32, 64 or 128 bit wide");
         return p;
@@ -33,13 +35,14 @@ PlbBus::Params plb_params(const Config& c, const std::string& bus) {
 
 DdrMemory::Params memory_params(const Config& c) {
     DdrMemory::Params p = DdrMemory::parameter_table().make(c);
-    p.series_bin = c.duration("run.series_bin");
-    p.populate_ahead = c.choice("run.parallel") == "on";
+    const RunSettings run = run_settings(c);
+    p.series_bin = run.series_bin;
+    p.populate_ahead = run.parallel;
     return p;
 }
 MciLink::Params mci_params(const Config& c) { return MciLink::parameter_table().make(c); }
 
-bool cpu_memory_on_plb1(const Config& c) { return c.choice("cpu.memory_path") == "plb1"; }
+bool cpu_memory_on_plb1(const Config& c) { return run_settings(c).cpu_memory_on_plb1; }
 
 Intc::Params intc_params(const Config& c) { return on_plb1(Intc::parameter_table().make(c), c); }
 
@@ -61,14 +64,15 @@ Iig::Params iig_params(const Config& c) {
 Fhg::Params fhg_params(const Config& c) {
     Fhg::Params p = on_plb1(Fhg::parameter_table().make(c), c);
     p.bus_width_bits = c.bits("plb2.width");
-    p.parallel = c.choice("run.parallel") == "on";
-    p.series_bin = c.duration("run.series_bin");
+    const RunSettings run = run_settings(c);
+    p.parallel = run.parallel;
+    p.series_bin = run.series_bin;
     p.dma_transaction_bytes = dma_transaction_bytes(c, p.burst_beats);
     return p;
 }
 
 FillTiming uncontended_fills(const Config& c) {
-    const uint64_t line = c.bytes("cpu.cache_line").n;
+    const uint64_t line = Ppc440::parameter_table().make(c).line_bytes;  // cpu_params adds these fills
     const DdrMemory::Params memory = memory_params(c);
     const sc_core::sc_time ddr = DdrMemory::read_time(memory, line);
     FillTiming t;

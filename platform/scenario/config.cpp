@@ -72,6 +72,12 @@ Config Config::with(const std::vector<std::pair<std::string, std::string>>& sets
     return c;
 }
 
+std::vector<std::pair<std::string, std::string>> Config::sets_of(const std::vector<std::string>& keys) const {
+    std::vector<std::pair<std::string, std::string>> sets;
+    for (const std::string& key : keys) sets.emplace_back(key, value(key));
+    return sets;
+}
+
 void Config::set_effect(const std::string& key, const std::string& what) {
     for (Entry& e : entries_)
         if (e.spec->key == key) e.effect = what;

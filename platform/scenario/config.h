@@ -35,6 +35,9 @@ public:
     void set(const std::string& key, const std::string& value, const std::string& origin);
     // A copy with each (key, value) set from `origin` (a re-simulation's point).
     Config with(const std::vector<std::pair<std::string, std::string>>& sets, const std::string& origin) const;
+    // The other way: these keys with their values as written, as points that `with` takes back
+    // (a re-simulation at the scenario's own values).
+    std::vector<std::pair<std::string, std::string>> sets_of(const std::vector<std::string>& keys) const;
 
     Frequency frequency(const std::string& key) const override;
     Duration duration(const std::string& key) const override;
@@ -44,9 +47,9 @@ public:
     unsigned beats(const std::string& key) const override;
     uint64_t count(const std::string& key) const override;
     double real(const std::string& key) const override;
-    uint32_t address(const std::string& key) const;
+    uint32_t address(const std::string& key) const override;
     const std::string& choice(const std::string& key) const override;
-    const std::string& text(const std::string& key) const;
+    const std::string& text(const std::string& key) const override;
     // Any parameter: its value as written, and as a number in its kind's base unit (0 for
     // choices and texts).
     const std::string& value(const std::string& key) const;

@@ -1,6 +1,7 @@
 #pragma once
-// Every scenario parameter, declared once: a block's beside its Params (models/*/*_params.cpp,
-// models/common/parameter.h), the platform's here. Each has its key ("section.name"), the kind
+// Every scenario parameter, declared once beside the code that reads it: a block's beside its
+// Params (models/*/*_params.cpp, models/common/parameter.h), the platform's beside their
+// readers (platform/catalog.h lists where). Each has its key ("section.name"), the kind
 // of value (and so its units), its default, its range, a one-line description, and the source
 // of the default or the assumption behind it ([S] sourced, [D] derived, [A] assumed; see
 // docs/parameters.md, which `surfvp params` prints).
@@ -20,8 +21,8 @@ struct PlbDeclaration {
 };
 const std::vector<PlbDeclaration>& plb_declarations();
 
-// Every parameter: the blocks' own declarations (models/*/*_params.cpp) and the platform's
-// (run, workload, verdict, software settings), in the order docs/parameters.md lists them.
+// Every parameter, in the order docs/parameters.md lists them. Defined by the chip's catalog
+// (platform/catalog.cpp), which gathers the declarations.
 const std::vector<ParamSpec>& parameter_table();
 const ParamSpec* find_parameter(std::string_view key);
 

@@ -8,6 +8,7 @@
 
 #include "models/host/atomic_file.h"
 #include "platform/workload/keypoint_sink.h"
+#include "platform/workload/surf_settings.h"
 #include "platform/workload/workload.h"
 #include "sw/eval/distinguishability.h"
 #include "sw/eval/homography.h"
@@ -52,13 +53,14 @@ Column cpu_column(const Config& c, const Variant& v, const fs::path& dir) {
     col.name = v.name, col.label = v.label;
     const auto start = Clock::now();
     surf::Params p = v.params;
-    p.upright = c.choice("surf.upright") == "on";
-    const auto target = int(c.count("surf.target_keypoints"));
-    p.threshold = float(c.real("surf.threshold"));
+    const SurfWorkloadSettings s = surf_settings(c);
+    p.upright = s.upright;
+    const auto target = int(s.target_keypoints);
+    p.threshold = float(s.threshold);
     col.threshold_rule = threshold_rule_text(c, "of this column");
     // surf.threshold_control = track: libSSA2's keypoint-count control, the same step and delay.
-    const bool track = c.choice("surf.threshold_control") == "track";
-    const size_t delay = c.count("surf.tasks_in_flight");
+    const bool track = s.track;
+    const size_t delay = s.tasks_in_flight;
     std::vector<double> used;
     std::vector<size_t> counts;
     if (!dir.empty()) fs::create_directories(dir / "keypoints");
@@ -129,7 +131,7 @@ Column fpga_column(const Config& c, const fs::path& dir, const std::vector<cv::S
     const Json report = Json::parse(std::ifstream(dir / "report.json"));
     col.threshold = report.value("threshold", 0.0);
     col.threshold_rule = report.value("threshold_rule", "");
-    for (size_t i = 0; i < c.count("surf.frames"); ++i) {
+    for (size_t i = 0; i < surf_settings(c).frames; ++i) {
         const fs::path file = keypoint_file(dir, i);
         if (!fs::exists(file)) {  // a failed frame writes none
             col.failed.push_back(i);
@@ -214,8 +216,9 @@ Json quality_line(const Column& col, const Geometry& g) { return quality_line(co
 
 Geometry read_geometry(const Config& c) {
     Geometry g;  // check_scenario has read and checked both files
-    if (!c.text("eval.poses").empty()) g.poses = eval::list_posed_frames(c.text("eval.poses"));
-    if (!c.text("eval.homography").empty()) g.homography = eval::read_homography_file(c.text("eval.homography"));
+    const EvalSettings e = eval_settings(c);
+    if (!e.poses.empty()) g.poses = eval::list_posed_frames(e.poses);
+    if (!e.homography.empty()) g.homography = eval::read_homography_file(e.homography);
     return g;
 }
 

@@ -18,6 +18,8 @@
 #include "platform/sweep/sweep_plan.h"
 #include "platform/table2/columns.h"
 #include "platform/table2/precision_axis.h"
+#include "platform/scenario/block_params.h"
+#include "platform/workload/surf_settings.h"
 #include "platform/workload/workload.h"
 
 namespace surfvp {
@@ -71,16 +73,14 @@ std::vector<std::string> point_sets(const Config& base,
         else
             it->second = value;
     };
-    Config c = config();
+    auto widths = [&] { return fhg_params(config()).precision; };
+    fhg::Precision w = widths();
     if (asked("fhg.response_bits"))
-        follow("fhg.response_frac_bits",
-               std::min(int(c.bits("fhg.response_frac_bits")), int(c.bits("fhg.response_bits")) - 9));
-    c = config();
-    if (asked("fhg.det_bits"))
-        follow("fhg.det_frac_bits", std::min(int(c.bits("fhg.det_frac_bits")), int(c.bits("fhg.det_bits")) - 16));
-    c = config();
-    if (c.bits("fhg.det_frac_bits") > 2 * c.bits("fhg.response_frac_bits"))
-        follow("fhg.det_frac_bits", 2 * int(c.bits("fhg.response_frac_bits")));
+        follow("fhg.response_frac_bits", std::min(int(w.response_frac_bits), int(w.response_bits) - 9));
+    w = widths();
+    if (asked("fhg.det_bits")) follow("fhg.det_frac_bits", std::min(int(w.det_frac_bits), int(w.det_bits) - 16));
+    w = widths();
+    if (w.det_frac_bits > 2 * w.response_frac_bits) follow("fhg.det_frac_bits", 2 * int(w.response_frac_bits));
     std::vector<std::string> sets;
     for (const auto& [key, value] : chosen) sets.push_back(set_of(key, value));
     return sets;
@@ -108,7 +108,8 @@ Json measure(const Config& seq, const std::optional<Config>& pair, const std::ve
     const Json report = Json::parse(std::ifstream(scratch / "sequence" / "report.json"));
     const double blocks =
         double((report["image"]["width"].get<int>() + 1) / 2) * ((report["image"]["height"].get<int>() + 1) / 2);
-    j["det_bytes_per_frame"] = blocks * fhg_regs::record_bytes(fhg_regs::det_bytes_for(seq.bits("fhg.det_bits")));
+    j["det_bytes_per_frame"] =
+        blocks * fhg_regs::record_bytes(fhg_regs::det_bytes_for(fhg_params(seq).precision.det_bits));
     fs::remove_all(scratch);
     return j;
 }
@@ -379,7 +380,7 @@ std::vector<PrecisionPoint> plan_points(const Study& s, const std::vector<Axis>&
 
 // Full precision under each Haar mode the points use: what each point is compared with.
 Json references(const Study& s, const std::vector<PrecisionPoint>& points) {
-    std::vector<std::string> haars{s.seq.choice("surf.haar")};
+    std::vector<std::string> haars{surf::haar_name(surf_settings(s.seq).haar)};
     for (const PrecisionPoint& p : points)
         if (p.key == "surf.haar" && std::find(haars.begin(), haars.end(), p.value) == haars.end())
             haars.push_back(p.value);
@@ -412,7 +413,7 @@ std::vector<std::pair<std::string, std::string>> run_points(const Study& s, cons
     engine.run([&](size_t done, size_t all) {
         progress.update([&](double) { return fmt::format("{} of {} points", done, all); });
     });
-    const std::string haar = s.seq.choice("surf.haar");
+    const std::string haar = surf::haar_name(surf_settings(s.seq).haar);
     for (PrecisionPoint& p : points) compare(p.result, reference[p.key == "surf.haar" ? p.value : haar]);
     const auto fewest = fewest_bits(axes, points, s.seq);
     if (!fewest.empty()) {  // all of them at once
@@ -431,9 +432,9 @@ Json study_report(const Study& s, const std::vector<Axis>& axes, const std::vect
     report["scenario"] = seq.name;
     report["pair"] = s.pair ? Json(s.pair->name) : Json(nullptr);
     report["tolerance"] = kPrecisionTolerance;
-    report["threshold_control"] = seq.choice("surf.threshold_control");
+    report["threshold_control"] = surf_settings(seq).track ? "track" : "hold";
     {  // how far apart two points must be to differ: the rows' standard error over the pairs
-        const Json& full = reference[seq.choice("surf.haar")];
+        const Json& full = reference[surf::haar_name(surf_settings(seq).haar)];
         double spread = 0;
         for (const Json& v : full["ransac_spread"]) spread = std::max(spread, v.get<double>());
         report["standard_error"] =

@@ -9,8 +9,10 @@
 
 #include "models/host/atomic_file.h"
 #include "platform/run/output_folder.h"
+#include "platform/scenario/run_settings.h"
 #include "platform/scenario/scenario.h"
 #include "platform/table2/columns.h"
+#include "platform/workload/surf_settings.h"
 
 namespace surfvp {
 namespace {
@@ -51,18 +53,19 @@ Json column_summary(const Column& col) {
 // Every way the two columns differ, by design. Each can be switched off alone (surfvp surf's
 // options, the chip's parameters); docs/table2.md says how.
 Json differences(const Config& c) {
+    const SurfWorkloadSettings s = surf_settings(c);
     return Json::array(
         {{{"what", "octaves"}, {"cpu", "4"}, {"fpga", "2 (the FHG's 2 octaves x 4 intervals)"}},
          {{"what", "filter sizes per octave"}, {"cpu", "5 (OpenCV's)"}, {"fpga", "4 (the paper's, in the FHG)"}},
          {{"what", "interpolation: the largest fitted offset kept"},
           {"cpu", "1 sample (OpenCV's)"},
-          {"fpga", fmt::format("{} (surf.max_offset; the paper: 0.5)", c.real("surf.max_offset"))}},
+          {"fpga", fmt::format("{} (surf.max_offset; the paper: 0.5)", s.max_offset)}},
          {{"what", "descriptor"},
           {"cpu", "M-SURF (OpenSURF's: overlapping sub-regions, two Gaussians)"},
           {"fpga", "SURF (Bay's: 4 x 4 sub-regions of 5 x 5 samples, one Gaussian)"}},
          {{"what", "Haar wavelets of orientation and descriptor"},
           {"cpu", "exact (sub-pixel sample positions)"},
-          {"fpga", fmt::format("{} (surf.haar)", c.choice("surf.haar"))}},
+          {"fpga", fmt::format("{} (surf.haar)", surf::haar_name(s.haar))}},
          {{"what", "determinants"},
           {"cpu", "float"},
           {"fpga", "integer, at the FHG's fixed-point widths (fhg.* precision parameters)"}},
@@ -198,10 +201,11 @@ void print_summary(const Json& r, const fs::path& dir) {
 
 int table2_command(const Table2Options& o) {
     const Config config = load_scenario(resolve_scenario(o.scenario), o.sets);
-    if (config.choice("run.workload") != "surf")
+    const SurfWorkloadSettings s = surf_settings(config);
+    if (run_settings(config).workload != "surf")
         throw ConfigError(
             fmt::format("{}: table2 needs a SURF scenario (run.workload: surf)", config.where("run.workload")));
-    if (config.count("surf.frames") < 2)
+    if (s.frames < 2)
         throw ConfigError(fmt::format("{}: table2 compares frame pairs: surf.frames must be at least 2",
                                       config.where("surf.frames")));
     if (!config.faults.empty())
@@ -221,15 +225,14 @@ int table2_command(const Table2Options& o) {
         const Json fpga_report = Json::parse(std::ifstream(staging / "fpga" / "report.json"));
         r["surfvp_version"] = SURFVP_VERSION;
         r["scenario"] = {{"name", config.name}, {"file", config.file}, {"description", config.description}};
-        r["source"] = config.text("surf.source");
-        r["frames"] = config.count("surf.frames");
+        r["source"] = s.source;
+        r["frames"] = s.frames;
         r["image"] = fpga_report["image"];
         r["chip_run_passed"] = fpga_report["passed"];
         r["columns"] = Json::object();
         for (const Column& col : columns) r["columns"][col.name] = column_summary(col);
         std::vector<size_t> gaps{1};
-        if (config.count("eval.gap") > 1 && config.count("eval.gap") < config.count("surf.frames"))
-            gaps.push_back(config.count("eval.gap"));
+        if (const uint64_t gap = eval_settings(config).gap; gap > 1 && gap < s.frames) gaps.push_back(gap);
         const std::vector<Measures> measures{measure(columns[0], gaps, geometry), measure(columns[1], gaps, geometry)};
         r["gaps"] = Json::array();
         for (size_t gap : gaps) r["gaps"].push_back(gap_table(columns, measures, gap));

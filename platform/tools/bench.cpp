@@ -14,7 +14,9 @@
 #include <vector>
 
 #include "platform/scenario/config.h"
+#include "platform/scenario/run_settings.h"
 #include "platform/scenario/scenario.h"
+#include "platform/workload/surf_settings.h"
 #include "platform/workload/workload.h"
 #include "sw/surf/surf.h"
 
@@ -153,7 +155,7 @@ Json reference_time(const std::string& scenario) {
     });
     surf::Params p;
     p.threads = 1;
-    const int target = int(c.count("surf.target_keypoints"));
+    const int target = int(surf_settings(c).target_keypoints);
     if (target > 0) p.threshold = surf::threshold_for_count(frame, target, p);
     std::vector<double> ms;
     size_t keypoints = 0;
@@ -173,7 +175,7 @@ int bench_command(const BenchOptions& o) {
     const Config config = load_scenario(resolve_scenario(o.scenario), {});  // bad input is reported before any run
     const fs::path out = fs::temp_directory_path() / fmt::format("surfvp_bench_{}", ::getpid());
     Json result = {{"scenario", o.scenario}, {"frames", o.frames}};
-    const bool surf = config.choice("run.workload") == "surf";  // direct mode runs SURF only
+    const bool surf = run_settings(config).workload == "surf";  // direct mode runs SURF only
     std::vector<Series> compared{{"none", o.frames}, {"all", o.frames}};
     if (surf) compared.emplace_back("direct", o.frames);
     measure_together(o, compared, out);

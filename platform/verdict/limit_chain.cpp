@@ -10,6 +10,7 @@
 #include "models/fhg/sequence_cache.h"
 #include "platform/scenario/parameters.h"
 #include "platform/scenario/block_params.h"
+#include "platform/workload/surf_settings.h"
 
 namespace surfvp {
 
@@ -44,7 +45,7 @@ std::vector<Axis> break_even_axes(const std::string& resource, const std::string
             std::vector<Axis> axes{{"cpu.clock", +1, true}};
             if (point.value("cpu_fill_stall_ms", 0.0) >= kStalledShare * point.value("cpu_ms_per_frame", 0.0)) {
                 axes.push_back({"memory.latency", -1, false});
-                axes.push_back({config.choice("cpu.memory_path") == "mci" ? "mci.clock" : "plb1.clock", +1, false});
+                axes.push_back({cpu_memory_on_plb1(config) ? "plb1.clock" : "mci.clock", +1, false});
             }
             return axes;
         }
@@ -300,7 +301,7 @@ void LimitChain::check(size_t k, size_t i, double value) {
             if (!met && !r.contains("error"))
                 if (const auto further = step.searches[i]->nudge()) return check(k, i, *further);
             step.checks[i] = r.contains("error") ? r
-                                                 : Json{{"frames", config_.count("surf.frames")},
+                                                 : Json{{"frames", surf_settings(config_).frames},
                                                         {"fps", r["fps"]},
                                                         {"met", met},
                                                         {"budget_met", r["fps"].get<double>() >= budget_},

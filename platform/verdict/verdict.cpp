@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 #include <unistd.h>
 
+#include "platform/catalog.h"
 #include "platform/run/progress_line.h"
 #include "platform/report/report.h"
 #include "platform/run/resimulation.h"
@@ -14,6 +15,10 @@
 #include "platform/verdict/doubt.h"
 #include "platform/verdict/limit_chain.h"
 #include "platform/verdict/tornado.h"
+#include "platform/scenario/block_params.h"
+#include "platform/scenario/run_settings.h"
+#include "platform/workload/describer.h"
+#include "platform/workload/surf_settings.h"
 
 namespace surfvp {
 namespace {
@@ -35,8 +40,8 @@ bool takes_effect(const ParamSpec& p, const Config& c) {
     if (p.key.rfind("fhg.", 0) == 0 && p.key.find("_bits") != std::string::npos && p.key != "fhg.det_bits")
         return false;
     if (p.key == "fhg.recip_shift") return false;
-    if (p.key == "surf.threshold") return c.count("surf.target_keypoints") == 0;
-    if (p.key == "plb1.arbitration") return c.choice("cpu.memory_path") == "plb1";  // PLB1's only master otherwise
+    if (p.key == "surf.threshold") return surf_settings(c).target_keypoints == 0;
+    if (p.key == "plb1.arbitration") return cpu_memory_on_plb1(c);  // PLB1's only master otherwise
     return true;
 }
 
@@ -108,11 +113,12 @@ Json band_json(const std::vector<BandAxis>& axes, const Json& reference, double 
 // and the FPU's precision.
 std::vector<std::pair<std::string, std::string>> software_settings(const Config& c) {
     std::vector<std::pair<std::string, std::string>> points;
-    points.emplace_back("fpu.precision", c.choice("fpu.precision") == "double" ? "single" : "double");
-    points.emplace_back("surf.haar", c.choice("surf.haar") == "exact" ? "rounded" : "exact");
-    points.emplace_back("surf.upright", c.choice("surf.upright") == "on" ? "off" : "on");
-    const int64_t target = c.count("surf.target_keypoints");
-    for (const int64_t k : {50, 100, 150, 200})
+    const SurfWorkloadSettings s = surf_settings(c);
+    points.emplace_back("fpu.precision", pipeline_params(c).double_precision != 0 ? "single" : "double");
+    points.emplace_back("surf.haar", s.haar == surf::HaarMode::exact ? "rounded" : "exact");
+    points.emplace_back("surf.upright", s.upright ? "off" : "on");
+    const uint64_t target = s.target_keypoints;
+    for (const uint64_t k : {50, 100, 150, 200})
         if (target > 0 && k != target) points.emplace_back("surf.target_keypoints", std::to_string(k));
     return points;
 }
@@ -166,9 +172,8 @@ std::string statement(double fps, double budget, const Json& band, const Json& d
 }  // namespace
 
 bool verdict_requested(const Config& config) {
-    return config.choice("run.workload") == "surf" &&
-           (config.choice("verdict.band") == "on" || config.choice("verdict.break_even") == "on" ||
-            config.choice("verdict.software") == "on");
+    const VerdictSettings v = verdict_settings(config);
+    return run_settings(config).workload == "surf" && (v.band || v.break_even || v.software);
 }
 
 namespace {
@@ -190,13 +195,12 @@ struct VerdictWork {
 
 VerdictWork plan_verdict(const Config& config) {
     VerdictWork w;
-    w.budget = config.real("budget.fps");
-    // Enough frames for every pair to reach its steady state (throughput needs pairs + 1).
-    w.frames = unsigned(std::min(std::max(config.count("verdict.frames"), config.count("soc.accelerators") + 1),
-                                 config.count("surf.frames")));
-    w.band = config.choice("verdict.band") == "on";
-    w.break_even = config.choice("verdict.break_even") == "on" && w.budget > 0;
-    w.software = config.choice("verdict.software") == "on";
+    const VerdictSettings v = verdict_settings(config);
+    w.budget = surf_settings(config).budget_fps;
+    w.frames = resimulation_frames(config);
+    w.band = v.band;
+    w.break_even = v.break_even && w.budget > 0;
+    w.software = v.software;
     std::vector<const ParamSpec*> effective;
     if (w.band)
         for (const ParamSpec* p : band_parameters())
@@ -206,7 +210,7 @@ VerdictWork plan_verdict(const Config& config) {
                     .push_back({p, config.value(p->key), {p->band.low, {}}, {p->band.high, {}}});
             }
     w.unknowns = unknowns_of(effective, config);
-    w.joint = joint_design(w.unknowns, w.band ? size_t(config.count("verdict.samples")) : 0, kJointSeed);
+    w.joint = joint_design(w.unknowns, w.band ? size_t(v.samples) : 0, kJointSeed);
     w.joint_results.resize(w.joint.sets.size());
     if (w.software) w.settings = software_settings(config);
     w.software_results.resize(w.settings.size());
@@ -272,7 +276,7 @@ int run_with_verdict(const Config& config, const std::string& out, const std::st
     // Prepare once what every child needs: the frames, the calibration, the FHG's sequences.
     Resimulation::prepare(config);
     Resimulation::prepare(reference);
-    Resimulation pool(unsigned(config.count("verdict.jobs")), fs::path(out) / fmt::format(".verdict.{}", ::getpid()));
+    Resimulation pool(verdict_settings(config).jobs, fs::path(out) / fmt::format(".verdict.{}", ::getpid()));
     LimitChain chain(config, reference, w.budget, pool, w.break_even ? kChainDepth : 0);
     // The reference first: it names the limit the chain starts from, while the whole run and
     // the band's points go on.

@@ -14,6 +14,7 @@
 #include "models/fhg/fhg_regs.h"
 #include "models/fhg/local_max_finder.h"
 #include "platform/scenario/block_params.h"
+#include "platform/workload/cpu_cost_params.h"
 #include "platform/workload/workload.h"
 #include "models/common/byte_order.h"
 #include "models/host/worker.h"
@@ -23,16 +24,25 @@
 
 namespace surfvp {
 
+namespace {
+
+double knob_value(const Config& c, const sw::PipelineKnob& k) {
+    const std::string unit = k.unit;
+    return unit == "switch"      ? (c.choice(k.key) == "on" ? 1.0 : 0.0)
+           : unit == "precision" ? (c.choice(k.key) == "double" ? 1.0 : 0.0)
+           : unit == "count"     ? double(c.count(k.key))
+                                 : double(c.cycles(k.key));
+}
+
+}  // namespace
+
 sw::PipelineParams pipeline_params(const Config& c) {
-    sw::PipelineParams p = sw::PipelineParams::for_precision(c.choice("fpu.precision") == "double");
-    for (const sw::PipelineKnob& k : sw::pipeline_knobs()) {
-        const std::string unit = k.unit;
-        if (unit == "fpu_cycles" && c.origin(k.key) == "default") continue;  // the precision's column
-        p.*k.field = unit == "switch"      ? (c.choice(k.key) == "on" ? 1.0 : 0.0)
-                     : unit == "precision" ? (c.choice(k.key) == "double" ? 1.0 : 0.0)
-                     : unit == "count"     ? double(c.count(k.key))
-                                           : double(c.cycles(k.key));
-    }
+    sw::PipelineParams set;  // every knob as the configuration has it
+    for (const sw::PipelineKnob& k : sw::pipeline_knobs()) set.*k.field = knob_value(c, k);
+    sw::PipelineParams p = sw::PipelineParams::for_precision(set.double_precision != 0);
+    for (const sw::PipelineKnob& k : sw::pipeline_knobs())
+        if (std::string(k.unit) != "fpu_cycles" || c.origin(k.key) != "default")  // else the precision's column
+            p.*k.field = set.*k.field;
     return p;
 }
 
@@ -42,11 +52,8 @@ sw::CostParams cost_params(const Config& c, surf::HaarMode haar) {
     sw::CostParams p = sw::calibrated_cost_params(haar, pipeline_params(c));
     p.miss_cycles = 0;  // the platform times each fill on the memory path (Hal::compute)
     p.reads_per_burst = haar == surf::HaarMode::rounded ? 8 : 4;  // sw/surf/haar.h (CostParams)
-    p.cache.size_bytes = uint32_t(c.bytes("cpu.dcache_size").n);
-    p.cache.line_bytes = uint32_t(c.bytes("cpu.cache_line").n);
-    p.cache.ways = uint32_t(c.count("cpu.dcache_ways"));
-    p.cache.replacement =
-        c.choice("cpu.dcache_replacement") == "lru" ? sw::Replacement::lru : sw::Replacement::round_robin;
+    p.cache = cache_parameter_table().make(c);
+    p.cache.line_bytes = cpu_params(c).line_bytes;
     return p;
 }
 
@@ -416,8 +423,8 @@ std::unique_ptr<sw::ssa2::Describer> make_describer(const Config& config, float 
     params.threshold = threshold;
     params.max_offset = chip.max_offset;
     try {
-        auto describer = std::make_unique<StageDescriber>(params, cost_params(config, params.haar),
-                                                          unsigned(config.bytes("cpu.cache_line").n));
+        auto describer =
+            std::make_unique<StageDescriber>(params, cost_params(config, params.haar), cpu_params(config).line_bytes);
         const sw::PipelineParams pipeline = pipeline_params(config);
         describer->double_precision = pipeline.double_precision > 0.5;
         describer->other_precision_prices = sw::unit_prices(

@@ -6,6 +6,9 @@
 #include <utility>
 #include <vector>
 
+#include "platform/scenario/block_params.h"
+#include "platform/workload/surf_settings.h"
+
 namespace surfvp {
 namespace {
 using Json = nlohmann::ordered_json;
@@ -152,7 +155,7 @@ Json limit(const std::vector<Account>& accounts, const Json& r, const Config& c)
                  fmt::format("line-FIFO starvation: the FHG waits {:.2f} ms per frame for lines while the IIG is held "
                              "{:.2f} ms by PixelBus back-pressure; {} lines (fhg.fifo_lines) cannot take the next "
                              "block row's lines while one computes",
-                             ms(starved), ms(held), c.count("fhg.fifo_lines"))}};
+                             ms(starved), ms(held), fhg_params(c).sequence.fifo_lines)}};
     if (tasks)
         return {
             {"resource", "task slots"},
@@ -161,7 +164,7 @@ Json limit(const std::vector<Account>& accounts, const Json& r, const Config& c)
              fmt::format("the task limit: an accelerator pair waits {:.2f} ms a frame for a free buffer set ({:.1f} "
                          "% of its steady-state period); all {} tasks in flight (surf.tasks_in_flight) are held by "
                          "the hardware or by the CPU's descriptors",
-                         ms(slot), 100 * pair->share(slot), c.count("surf.tasks_in_flight"))}};
+                         ms(slot), 100 * pair->share(slot), surf_settings(c).tasks_in_flight)}};
     // 3. The largest wait.
     const Account* waiting = nullptr;
     std::string cause;

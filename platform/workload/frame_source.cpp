@@ -1,12 +1,15 @@
 #include "platform/workload/frame_source.h"
 
+#include <array>
 #include <algorithm>
 #include <fmt/format.h>
 #include <map>
 #include <opencv2/imgcodecs.hpp>  // cv::IMREAD_GRAYSCALE
 #include <opencv2/imgproc.hpp>
 
+#include "platform/scenario/block_params.h"
 #include "platform/scenario/config.h"
+#include "platform/workload/surf_settings.h"
 #include "platform/workload/workload.h"
 #include "sw/media/media.h"
 #include "sw/surf/image_io.h"
@@ -18,8 +21,8 @@ namespace {
 
 // A frame's size as the chip takes it: surf.width x surf.height when both are set.
 cv::Size chip_size(const Config& c, cv::Size frame) {
-    const int w = int(c.count("surf.width")), h = int(c.count("surf.height"));
-    return w && h ? cv::Size(w, h) : frame;
+    const SurfWorkloadSettings s = surf_settings(c);
+    return s.width && s.height ? cv::Size(int(s.width), int(s.height)) : frame;
 }
 
 cv::Mat as_the_chip_takes(const Config& c, const cv::Mat& frame) {
@@ -28,6 +31,21 @@ cv::Mat as_the_chip_takes(const Config& c, const cv::Mat& frame) {
     cv::Mat resized;
     cv::resize(frame, resized, size, 0, 0, cv::INTER_AREA);
     return resized;
+}
+
+// The largest frame the IIG and the FHG take, by key, beside a frame's size.
+struct ChipLimit {
+    const char* key;
+    unsigned limit, pixels;
+};
+std::array<ChipLimit, 4> chip_limits(const Config& c, cv::Size size) {
+    const Iig::Params iig = iig_params(c);
+    const Fhg::Params fhg = fhg_params(c);
+    const auto w = unsigned(size.width), h = unsigned(size.height);
+    return {{{"iig.max_width", iig.max_width, w},
+             {"iig.max_height", iig.max_height, h},
+             {"fhg.max_width", fhg.max_width, w},
+             {"fhg.max_height", fhg.max_height, h}}};
 }
 
 // Frames the chip can take: at least the filters' minimum (the float reference that
@@ -47,23 +65,22 @@ void check_frame_size(const Config& c, const SourceFrames& f) {
         if (size.width < side || size.height < side)
             throw ConfigError(fmt::format("{}: {} too small: the first octave's largest filter needs at least {}x{}",
                                           where, what, side, side));
-        for (const char* block : {"iig", "fhg"})
-            for (const auto& [key, pixels] : {std::pair{fmt::format("{}.max_width", block), size.width},
-                                              std::pair{fmt::format("{}.max_height", block), size.height}})
-                if (uint64_t(pixels) > c.count(key))
-                    throw ConfigError(fmt::format("{}: {} larger than the chip takes: {} is {} (from {})", where, what,
-                                                  key, c.count(key), c.source_of(key)));
+        for (const auto& [key, limit, pixels] : chip_limits(c, size))
+            if (pixels > limit)
+                throw ConfigError(fmt::format("{}: {} larger than the chip takes: {} is {} (from {})", where, what, key,
+                                              limit, c.source_of(key)));
     }
 }
 
 // A sequence's frames (a folder, a list or a video), decoded in order.
 eval::SequenceReader open_frames(const Config& c) {
-    return eval::SequenceReader(eval::open_sequence(c.text("surf.source"), c.count("surf.frames")));
+    const SurfWorkloadSettings s = surf_settings(c);
+    return eval::SequenceReader(eval::open_sequence(s.source, s.frames));
 }
 
 // Every frame of a sequence decoded once: its file, and its size against frame 0's.
 void read_sequence(const Config& c, SourceFrames& out) {
-    const std::string source = c.text("surf.source");
+    const std::string source = surf_settings(c).source;
     auto too_few = [&](size_t has) {
         return ConfigError(fmt::format("{}: surf.frames is {} (from {}), but {} has only {}", c.where("surf.source"),
                                        out.count, c.source_of("surf.frames"), source, has));
@@ -84,7 +101,7 @@ void read_sequence(const Config& c, SourceFrames& out) {
 }
 
 SourceFrames read_frames(const Config& c) {
-    const std::string source = c.text("surf.source");
+    const std::string source = surf_settings(c).source;
     const std::string where = c.where("surf.source");
     std::error_code ec;
     const fs::file_status status = fs::status(source, ec);
@@ -93,7 +110,7 @@ SourceFrames read_frames(const Config& c) {
     if (!fs::is_regular_file(status) && !fs::is_directory(status))
         throw ConfigError(fmt::format("{}: {}: not a regular file or a folder", where, source));
     SourceFrames out;
-    out.count = c.count("surf.frames");
+    out.count = surf_settings(c).frames;
     try {
         surf::QuietDecoding quiet;
         if (fs::is_regular_file(status) &&
@@ -131,18 +148,20 @@ const cv::Mat& FrameStream::frame(size_t i) {
     cv::Mat decoded;
     while (reader_->position() <= i)
         if (!reader_->next(decoded))
-            throw std::runtime_error(fmt::format("{}: frame {} can no longer be read", config_.text("surf.source"), i));
+            throw std::runtime_error(
+                fmt::format("{}: frame {} can no longer be read", surf_settings(config_).source, i));
     current_ = as_the_chip_takes(config_, decoded);
     return current_;
 }
 
 std::string source_key(const Config& c) {
-    return fmt::format("{}|{}x{}", c.text("surf.source"), c.count("surf.width"), c.count("surf.height"));
+    const SurfWorkloadSettings s = surf_settings(c);
+    return fmt::format("{}|{}x{}", s.source, s.width, s.height);
 }
 
 const SourceFrames& load_source(const Config& c) {
     static std::map<std::string, SourceFrames> cache;
-    const std::string key = fmt::format("{}|{}", source_key(c), c.count("surf.frames"));
+    const std::string key = fmt::format("{}|{}", source_key(c), surf_settings(c).frames);
     auto it = cache.find(key);
     if (it == cache.end()) it = cache.emplace(key, read_frames(c)).first;
     return it->second;

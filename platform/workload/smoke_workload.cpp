@@ -2,6 +2,9 @@
 #include <fmt/format.h>
 
 #include "platform/address_map.h"
+#include "platform/scenario/block_params.h"
+#include "platform/scenario/run_settings.h"
+#include "platform/workload/smoke_params.h"
 #include "sw/smoke/smoke_software.h"
 #include "platform/workload/workload.h"
 
@@ -14,17 +17,12 @@ public:
         config_.intc_base = map::intc.base;
         config_.dma_base = map::dma.base;
         config_.dma_irq = map::irq::dma;
-        config_.src = config.address("smoke.src");
-        config_.dst = config.address("smoke.dst");
-        config_.bytes = static_cast<uint32_t>(config.bytes("smoke.buffer").n);
-        config_.copies = static_cast<unsigned>(config.count("smoke.copies"));
-        config_.polls = static_cast<unsigned>(config.count("smoke.polls"));
-        config_.poll_interval = config.cycles("smoke.poll_interval");
-        const uint64_t memory = config.bytes("memory.size").n;
-        for (const char* key : {"smoke.src", "smoke.dst"})
-            if (config.address(key) + uint64_t(config_.bytes) > memory)
-                throw ConfigError(fmt::format("{} {:#x} + smoke.buffer {} B runs past memory.size {}", key,
-                                              config.address(key), config_.bytes, format_bytes(Bytes{memory})));
+        config_ = smoke_parameter_table().make(config, config_);
+        const Bytes memory = memory_params(config).size;
+        for (const auto& [key, address] : {std::pair{"smoke.src", config_.src}, std::pair{"smoke.dst", config_.dst}})
+            if (address + uint64_t(config_.bytes) > memory.n)
+                throw ConfigError(fmt::format("{} {:#x} + smoke.buffer {} B runs past memory.size {}", key, address,
+                                              config_.bytes, format_bytes(memory)));
         if (config_.src < config_.dst + config_.bytes && config_.dst < config_.src + config_.bytes)
             throw ConfigError("smoke.src and smoke.dst buffers overlap");
     }
@@ -63,7 +61,7 @@ private:
 }  // namespace
 
 std::unique_ptr<Workload> make_workload(const Config& config) {
-    const std::string& name = config.choice("run.workload");
+    const std::string name = run_settings(config).workload;
     if (name == "smoke") return std::make_unique<SmokeWorkload>(config);
     if (name == "surf") return make_surf_workload(config);
     throw ConfigError("run.workload: no workload named " + name);

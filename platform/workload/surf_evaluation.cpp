@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 
 #include "platform/scenario/config.h"
+#include "platform/workload/surf_settings.h"
 #include "sw/eval/distinguishability.h"
 #include "sw/eval/homography.h"
 #include "sw/eval/pose_geometry.h"
@@ -16,7 +17,7 @@ namespace {
 // Pairs (i, i + gap) the evaluation measures: consecutive frames and eval.gap.
 std::vector<size_t> evaluated_gaps(const Config& c) {
     std::vector<size_t> gaps{1};
-    if (c.count("eval.gap") > 1) gaps.push_back(c.count("eval.gap"));
+    if (const uint64_t gap = eval_settings(c).gap; gap > 1) gaps.push_back(gap);
     return gaps;
 }
 
@@ -26,7 +27,8 @@ std::vector<size_t> evaluated_gaps(const Config& c) {
 // frame 1 at the frames' own size, and camera poses that belong to the very frames the source
 // gives, one each.
 void check_eval_inputs(const Config& c, const SourceFrames& frames) {
-    const std::string homography = c.text("eval.homography");
+    const EvalSettings settings = eval_settings(c);
+    const std::string& homography = settings.homography;
     if (!homography.empty()) {
         try {
             eval::read_homography_file(homography);
@@ -40,7 +42,7 @@ void check_eval_inputs(const Config& c, const SourceFrames& frames) {
                             c.where("eval.homography"), frames.original.width, frames.original.height,
                             c.source_of("surf.width"), frames.first.cols, frames.first.rows));
     }
-    const std::string poses = c.text("eval.poses");
+    const std::string& poses = settings.poses;
     if (poses.empty()) return;
     std::vector<eval::PosedFrame> posed;
     try {
@@ -51,7 +53,7 @@ void check_eval_inputs(const Config& c, const SourceFrames& frames) {
     if (frames.files.size() != frames.count)
         throw ConfigError(
             fmt::format("{}: poses belong to image files, but surf.source {} (from {}) is one image or a video",
-                        c.where("eval.poses"), c.text("surf.source"), c.source_of("surf.source")));
+                        c.where("eval.poses"), surf_settings(c).source, c.source_of("surf.source")));
     if (posed.size() < frames.count)
         throw ConfigError(fmt::format("{}: {} poses for {} frames (surf.frames from {})", c.where("eval.poses"),
                                       posed.size(), frames.count, c.source_of("surf.frames")));
@@ -76,13 +78,15 @@ void check_eval_inputs(const Config& c, const SourceFrames& frames) {
 }
 
 bool evaluation_needs(const Config& config, size_t frame) {
-    return (frame <= 1 && !config.text("eval.homography").empty()) || !config.text("eval.poses").empty();
+    const EvalSettings s = eval_settings(config);
+    return (frame <= 1 && !s.homography.empty()) || !s.poses.empty();
 }
 
 nlohmann::ordered_json evaluate(const Config& config, const SourceFrames& source,
                                 const std::vector<const surf::Keypoints*>& keypoints) {
     nlohmann::ordered_json out = nlohmann::ordered_json::object();
-    const std::string homography = config.text("eval.homography");
+    const EvalSettings settings = eval_settings(config);
+    const std::string& homography = settings.homography;
     if (!homography.empty() && keypoints.size() >= 2) {
         const Eigen::Matrix3d h = eval::read_homography_file(homography);
         const cv::Size size = source.sizes[0], size_b = source.sizes[1];
@@ -93,7 +97,7 @@ nlohmann::ordered_json evaluate(const Config& config, const SourceFrames& source
                              {"precision", prec.precision},
                              {"candidates", prec.candidates}};
     }
-    const std::string poses = config.text("eval.poses");
+    const std::string& poses = settings.poses;
     if (!poses.empty() && keypoints.size() >= 2) {
         std::vector<surf::Keypoints> all;
         for (const surf::Keypoints* k : keypoints) all.push_back(*k);

@@ -16,10 +16,12 @@
 #include "models/host/worker.h"
 #include "platform/address_map.h"
 #include "platform/scenario/block_params.h"
+#include "platform/scenario/run_settings.h"
 #include "platform/workload/describer.h"
 #include "platform/workload/frame_source.h"
 #include "platform/workload/keypoint_sink.h"
 #include "platform/workload/surf_evaluation.h"
+#include "platform/workload/surf_settings.h"
 #include "platform/workload/workload.h"
 #include "sw/libssa2/libssa2.h"
 #include "sw/media/media.h"
@@ -45,19 +47,20 @@ Layout layout_for(const Config& c, int width, int height) {
     Layout l{};
     l.image_bytes = round_up(uint64_t(width) * height);
     l.integral_bytes = round_up(uint64_t(width) * height * 4);
-    const uint32_t det = fhg_regs::det_bytes_for(c.bits("fhg.det_bits"));
+    const uint32_t det = fhg_regs::det_bytes_for(fhg_params(c).precision.det_bits);
     l.det_bytes = round_up(fhg_regs::buffer_bytes(uint32_t(width), uint32_t(height), det));
     l.slot_bytes = l.image_bytes + l.integral_bytes + l.det_bytes +
                    round_up(uint64_t(sw::ssa2::kRecordRing) * sw::ssa2::kRecordSlot);
     l.slots_base = 0x0010'0000;
-    const uint64_t sets = c.count("surf.tasks_in_flight");
+    const uint64_t sets = surf_settings(c).tasks_in_flight;
     const uint64_t end = l.slots_base + sets * l.slot_bytes;
-    if (end > c.bytes("memory.size").n)
+    const Bytes memory = memory_params(c).size;
+    if (end > memory.n)
         throw ConfigError(
             fmt::format("{}: {} buffer sets (surf.tasks_in_flight, from {}) for frames of {}x{} need {} of "
                         "memory, memory.size is {}",
                         c.where("memory.size"), sets, c.source_of("surf.tasks_in_flight"), width, height,
-                        format_bytes(Bytes{end}), format_bytes(c.bytes("memory.size"))));
+                        format_bytes(Bytes{end}), format_bytes(memory)));
     return l;
 }
 
@@ -69,13 +72,14 @@ struct Calibration {
 };
 
 Calibration calibrate(const Config& c, const cv::Mat& frame) {
-    if (c.count("surf.target_keypoints") == 0) return {float(c.real("surf.threshold")), 0};
+    const SurfWorkloadSettings s = surf_settings(c);
+    if (s.target_keypoints == 0) return {float(s.threshold), 0};
     static std::map<std::string, std::vector<float>> ranked;
     const surf::Params p = chip_surf_params(c);
     const std::string key = fmt::format("{}|{}|{}", source_key(c), p.upright, p.max_offset);
     auto it = ranked.find(key);
     if (it == ranked.end()) it = ranked.emplace(key, surf::stored_ranked_responses(frame, p)).first;
-    return {surf::threshold_for_rank(it->second, int(c.count("surf.target_keypoints"))), it->second.size()};
+    return {surf::threshold_for_rank(it->second, int(s.target_keypoints)), it->second.size()};
 }
 
 // What is kept of a frame once it is reported: its task (times, outcome, counts) and, for the
@@ -92,6 +96,8 @@ class SurfWorkload : public Workload {
 public:
     explicit SurfWorkload(const Config& c)
         : config_(c),
+          settings_(surf_settings(c)),
+          accelerators_(run_settings(c).accelerators),
           source_(load_source(c)),
           calibration_(calibrate(c, source_.first)),
           threshold_(calibration_.threshold),
@@ -103,29 +109,28 @@ public:
         layout_ = layout_for(c, largest.width, largest.height);
         const fhg::HessianCore core(fhg_params(c).precision);
         driver_.intc_base = map::intc.base;
-        for (unsigned k = 0; k < c.count("soc.accelerators"); ++k)
+        for (unsigned k = 0; k < accelerators_; ++k)
             driver_.accelerators.push_back({map::iig_base(k), map::fhg_base(k), map::irq::iig(k), map::irq::fhg(k)});
-        for (uint64_t set = 0, at = layout_.slots_base; set < c.count("surf.tasks_in_flight");
+        for (uint64_t set = 0, at = layout_.slots_base; set < settings_.tasks_in_flight;
              ++set, at += layout_.slot_bytes)
             driver_.buffers.push_back(
                 {uint32_t(at), uint32_t(at + layout_.image_bytes),
                  uint32_t(at + layout_.image_bytes + layout_.integral_bytes),
                  uint32_t(at + layout_.image_bytes + layout_.integral_bytes + layout_.det_bytes)});
-        driver_.fifo_irq_level = uint32_t(c.count("surf.fifo_irq_level"));
+        driver_.fifo_irq_level = settings_.fifo_irq_level;
         driver_.threshold = core.from_float(threshold_);
-        if (c.choice("surf.threshold_control") == "track")
-            driver_.keypoint_target = uint32_t(c.count("surf.target_keypoints"));
+        if (settings_.track) driver_.keypoint_target = uint32_t(settings_.target_keypoints);
         to_float_ = [core](int32_t t) { return core.to_float(t); };
-        driver_.watchdog_ps = c.duration("surf.watchdog").ps;
-        driver_.spurious_irq_limit = unsigned(c.count("surf.spurious_irq_limit"));
-        budget_fps_ = c.real("budget.fps");
+        driver_.watchdog_ps = settings_.watchdog.ps;
+        driver_.spurious_irq_limit = settings_.spurious_irq_limit;
+        budget_fps_ = settings_.budget_fps;
         // A frame rate needs one whole round of the pairs after the first frame.
-        if (budget_fps_ > 0 && source_.count <= c.count("soc.accelerators"))
+        if (budget_fps_ > 0 && source_.count <= accelerators_)
             throw ConfigError(
                 fmt::format("surf.frames: {} frames cannot give a frame rate with {} accelerator pair(s): "
                             "the steady-state rate needs {}; set more frames or budget.fps = 0",
-                            source_.count, c.count("soc.accelerators"), c.count("soc.accelerators") + 1));
-        cpu_hz_ = c.frequency("cpu.clock").hz;
+                            source_.count, accelerators_, accelerators_ + 1));
+        cpu_hz_ = cpu_params(c).clock.hz;
     }
 
     void attach_memory(const Backdoor& memory) override { memory_ = memory; }
@@ -177,7 +182,7 @@ public:
                           failures.empty() ? fmt::format("{} of {} frames{}", done, source_.count, lost)
                                            : fmt::format("{}", fmt::join(failures, "; "))});
         if (faults_) checks.push_back(fault_check());
-        if (const uint64_t target = config_.count("surf.target_keypoints"); target > 0)
+        if (const uint64_t target = settings_.target_keypoints; target > 0)
             checks.push_back(
                 {"keypoint target reachable", calibration_.maxima > target,
                  calibration_.maxima > target
@@ -243,6 +248,8 @@ private:
     std::function<double(int32_t)> to_float_;  // the FHG's determinant units -> the float reference's
 
     const Config& config_;
+    const SurfWorkloadSettings settings_;
+    const unsigned accelerators_;  // soc.accelerators
     const SourceFrames& source_;
     Calibration calibration_;
     float threshold_;
@@ -434,7 +441,7 @@ nlohmann::ordered_json SurfWorkload::report() const {
         if (!t.incidents.empty()) f["incidents"] = t.incidents;
         frames.push_back(f);
     }
-    return {{"source", config_.text("surf.source")},
+    return {{"source", settings_.source},
             {"evaluation", evaluation()},
             {"software_stage", describer_report(*describer_)},
             {"per_frame", frames}};
@@ -465,7 +472,7 @@ void SurfWorkload::reported(const sw::ssa2::Task& task, surf::Keypoints&& keypoi
 std::unique_ptr<Workload> make_surf_workload(const Config& config) { return std::make_unique<SurfWorkload>(config); }
 
 void check_surf_inputs(const Config& config) {
-    if (config.choice("run.workload") != "surf") return;
+    if (run_settings(config).workload != "surf") return;
     check_eval_inputs(config, load_source(config));
 }
 
@@ -502,19 +509,21 @@ surf::Params chip_surf_params(const Config& c) {
     surf::Params p = surf::paper_surf();
     p.octaves = 2;
     p.init_step = 1;
-    p.upright = c.choice("surf.upright") == "on";
-    p.haar = c.choice("surf.haar") == "exact" ? surf::HaarMode::exact : surf::HaarMode::rounded;
-    p.max_offset = float(c.real("surf.max_offset"));
+    const SurfWorkloadSettings s = surf_settings(c);
+    p.upright = s.upright;
+    p.haar = s.haar;
+    p.max_offset = s.max_offset;
     return p;
 }
 
 std::string threshold_rule_text(const Config& c, const std::string& whose) {
-    const int64_t target = c.count("surf.target_keypoints");
+    const SurfWorkloadSettings s = surf_settings(c);
+    const uint64_t target = s.target_keypoints;
     if (target == 0) return "surf.threshold";
     const std::string first =
         fmt::format("the {}th strongest response {} on frame 0 (surf.target_keypoints)", target, whose);
-    if (c.choice("surf.threshold_control") != "track") return first + ", held for every frame";
-    const int64_t delay = c.count("surf.tasks_in_flight");
+    if (!s.track) return first + ", held for every frame";
+    const unsigned delay = s.tasks_in_flight;
     return fmt::format(
         "{} for the first {} frames, then each from the keypoint count of the frame {} before it "
         "(surf.threshold_control = track)",

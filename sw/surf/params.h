@@ -10,6 +10,7 @@ namespace surfvp::surf {
 //            orientation), two integer boxes (8 distinct reads for dx and dy together),
 //            integer sums, one int->float conversion per response.
 enum class HaarMode { exact, rounded };
+inline const char* haar_name(HaarMode mode) { return mode == HaarMode::exact ? "exact" : "rounded"; }
 
 // The descriptor's sampling (descriptor.h): surf, Bay et al.'s 4 x 4 sub-regions of 5 x 5
 // samples under one Gaussian; msurf, Agrawal et al.'s modified SURF (OpenSURF's default):

@@ -1,5 +1,5 @@
 // The house's layers (docs/architecture.md, "Folder map"): every project include runs down or
-// sideways, never up. The chip (platform's scenario, workload, soc, direct) is built as its own
+// sideways, never up. The chip (platform's scenario, workload, soc, direct, cost, catalog) is built as its own
 // library and never includes the application around it (run loop, reports, verdict, sweep,
 // tools, CLI); the model contract (models/common) never includes a block; host tooling
 // (models/host) includes nothing of the models. A new include that runs up fails here with the
@@ -22,13 +22,14 @@ const fs::path kRoot = SURFVP_SOURCE_DIR;
 // its folder under platform/ (soc.* and address_map.h are units of their own), models/host,
 // models/common, another models block, or sw.
 const std::map<std::string, int> kRanks = {
-    {"models/host", 0},           {"models/common", 1},     {"models/block", 2},      {"sw", 3},
-    {"platform/address_map", 4},  {"platform/scenario", 5}, {"platform/workload", 6}, {"platform/soc", 7},
-    {"platform/direct", 8},       {"platform/cost", 10},    {"platform/report", 11},  {"platform/run", 12},
-    {"platform/sweep", 13},       {"platform/verdict", 14}, {"platform/compare", 15}, {"platform/table2", 16},
-    {"platform/correlation", 17}, {"platform/tools", 18},   {"platform/quality", 19}, {"platform/cli", 20},
+    {"models/host", 0},          {"models/common", 1},         {"models/block", 2},      {"sw", 3},
+    {"platform/address_map", 4}, {"platform/scenario", 5},     {"platform/workload", 6}, {"platform/soc", 7},
+    {"platform/direct", 8},      {"platform/cost", 9},         {"platform/catalog", 10}, {"platform/report", 11},
+    {"platform/run", 12},        {"platform/sweep", 13},       {"platform/verdict", 14}, {"platform/compare", 15},
+    {"platform/table2", 16},     {"platform/correlation", 17}, {"platform/tools", 18},   {"platform/quality", 19},
+    {"platform/cli", 20},
 };
-constexpr int kLastChipRank = 8;  // platform/direct: the chip library ends here
+constexpr int kLastChipRank = 10;  // platform/catalog: the chip library ends here
 
 // The unit of a path relative to the root ("platform/run/run.cpp" -> "platform/run").
 std::string unit_of(const fs::path& relative) {

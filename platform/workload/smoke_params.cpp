@@ -1,0 +1,65 @@
+#include "platform/workload/smoke_params.h"
+
+namespace surfvp {
+
+const ParamTable<sw::SmokeConfig>& smoke_parameter_table() {
+    using P = sw::SmokeConfig;
+    static const ParamTable<P> table(
+        {field<P>({"smoke.buffer",
+                   ParamKind::bytes,
+                   "64 KiB",
+                   1,
+                   16 * unit::MiB,
+                   {},
+                   "Bytes the test DMA copies per copy",
+                   "[-] test size: many bursts, well inside the L1-sized buffers of the chip's drivers"},
+                  &P::bytes),
+         field<P>({"smoke.copies",
+                   ParamKind::count,
+                   "4",
+                   1,
+                   1000000,
+                   {},
+                   "Copies the smoke software runs one after another",
+                   "[-] test size"},
+                  &P::copies),
+         field<P>({"smoke.polls",
+                   ParamKind::count,
+                   "3",
+                   0,
+                   1000000,
+                   {},
+                   "Status polls over PLB1 per copy before the CPU sleeps on the interrupt",
+                   "[-] test size"},
+                  &P::polls),
+         field<P>({"smoke.poll_interval",
+                   ParamKind::cycles,
+                   "200 cycles",
+                   0,
+                   1e9,
+                   {},
+                   "CPU cycles between status polls",
+                   "[-] test setting: a short delay loop"},
+                  &P::poll_interval),
+         field<P>({"smoke.src",
+                   ParamKind::address,
+                   "0x0010_0000",
+                   0,
+                   0xFFFFFFFF,
+                   {},
+                   "Source buffer address in DDR",
+                   "[-] placement"},
+                  &P::src),
+         field<P>({"smoke.dst",
+                   ParamKind::address,
+                   "0x0020_0000",
+                   0,
+                   0xFFFFFFFF,
+                   {},
+                   "Destination buffer address in DDR",
+                   "[-] placement"},
+                  &P::dst)});
+    return table;
+}
+
+}  // namespace surfvp
