@@ -11,6 +11,7 @@
 #include "models/host/atomic_file.h"
 #include "platform/compare/compare.h"
 #include "platform/cost/fpga_resources.h"
+#include "platform/report/run_summary.h"
 #include "platform/run/output_folder.h"
 #include "platform/run/run.h"
 #include "platform/scenario/consistency.h"
@@ -28,16 +29,15 @@ fs::path output_path(const RunOptions& options, const Config& config) {
 
 // The summary line, from the report as it was published.
 void print_summary(const Config& config, const fs::path& dir, bool direct) {
-    const auto r = nlohmann::json::parse(std::ifstream(dir / "report.json"));
-    const char* verdict = r["passed"].get<bool>() ? "passed" : "FAILED";
+    const RunSummary r = RunSummary::of(nlohmann::ordered_json::parse(std::ifstream(dir / "report.json")));
+    const char* verdict = r.passed ? "passed" : "FAILED";
     if (direct) {
         std::fprintf(stderr, "surfvp: %s (direct): %s; report in %s\n", config.name.c_str(), verdict,
                      (dir / "report.json").c_str());
         return;
     }
     std::fprintf(stderr, "surfvp: %s: %s in %.3f ms simulated (%.3f s wall); report in %s\n", config.name.c_str(),
-                 verdict, r["sim_time_s"].get<double>() * 1e3, r["wall_time_s"].get<double>(),
-                 (dir / "report.md").c_str());
+                 verdict, r.sim_time_s * 1e3, r.wall_time_s, (dir / "report.md").c_str());
 }
 
 void print_warnings(const Config& config) {

@@ -12,6 +12,7 @@
 #include "platform/compare/run_figures.h"
 #include "platform/run/run.h"
 #include "platform/report/json_input.h"
+#include "platform/report/run_summary.h"
 #include "platform/scenario/parameters.h"
 #include "platform/scenario/scenario.h"
 #include "platform/sweep/sweep_results.h"
@@ -79,7 +80,7 @@ Json load_side(const std::string& side) {
     return {{"name", side},
             {"kind", "run"},
             {"parameters", read_parameters(dir / "config.yaml")},
-            {"main", sweep_figures(report)},
+            {"main", RunSummary::of(report).figures()},
             {"all", all_figures(report)}};
 }
 

@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "platform/report/correlation.h"
+#include "platform/report/section_statistics.h"
 #include "platform/report/statistics_json.h"
 
 namespace surfvp {
@@ -21,48 +22,47 @@ std::string mib(double bytes) {
 }
 
 // Each path's traffic (in total, per frame, MB/s over the run) and each master that used the bus.
-void bus_section(std::string& md, const std::string& name, const nlohmann::ordered_json& bus, double seconds,
+void bus_section(std::string& md, const std::string& name, const nlohmann::ordered_json& node, double seconds,
                  double frames) {
-    md += fmt::format("\n### {} ({} bit at {} MHz)\n\n", name, bus["width_bits"].get<unsigned>(),
-                      bus["clock_hz"].get<double>() / 1e6);
+    const Shown bus(node, section_statistics("Buses"));
+    md += fmt::format("\n### {} ({} bit at {} MHz)\n\n", name, bus.count("width_bits"), bus.number("clock_hz") / 1e6);
     md += "| path | bursts | bytes | per frame | MB/s | busy | utilisation |\n|---|---:|---:|---:|---:|---:|---:|\n";
-    for (const char* path : {"read", "write"}) {
-        const auto& p = bus[path];
-        const double bytes = p["bytes"].get<double>();
-        md += fmt::format("| {} | {} | {} | {} | {:.1f} | {} | {} |\n", path, p["bursts"].get<uint64_t>(), mib(bytes),
-                          mib(bytes / frames), seconds > 0 ? bytes / seconds / 1e6 : 0.0, ms(p["busy_s"]),
-                          percent(p["utilisation"]));
+    for (const std::string path : {"read", "write"}) {
+        const double bytes = bus.number(path + ".bytes");
+        md += fmt::format("| {} | {} | {} | {} | {:.1f} | {} | {} |\n", path, bus.count(path + ".bursts"), mib(bytes),
+                          mib(bytes / frames), seconds > 0 ? bytes / seconds / 1e6 : 0.0,
+                          ms(bus.number(path + ".busy_s")), percent(bus.number(path + ".utilisation")));
     }
     md +=
         "\n| master | bursts | read | written | per frame (read + written) | busy | waited | mean wait | max wait | "
         "bursts by wait (bus cycles) | errors |\n|---|---:|---:|---:|---:|---:|---:|---:|---:|---|---:|\n";
-    for (const auto& [master, m] : bus["masters"].items()) {
-        if (m["bursts"].get<uint64_t>() == 0 && m["errors"].get<uint64_t>() == 0) continue;  // idle: no row
+    for (const auto& [master, m] : bus.each("masters")) {
+        if (m.count("bursts") == 0 && m.count("errors") == 0) continue;  // idle: no row
         std::string histogram;
         for (const auto& [bin, n] : m["bursts_by_wait_cycles"].items())
             if (n.get<uint64_t>())
                 histogram += fmt::format("{}{}: {}", histogram.empty() ? "" : ", ", bin, n.get<uint64_t>());
-        const double bursts = std::max(1.0, m["bursts"].get<double>());
-        const double read = m["bytes_read"].get<double>(), written = m["bytes_written"].get<double>();
+        const double bursts = std::max(1.0, m.number("bursts"));
+        const double read = m.number("bytes_read"), written = m.number("bytes_written");
         md += fmt::format("| {} | {} | {} | {} | {} | {} | {} | {:.1f} ns | {:.1f} ns | {} | {} |\n", master,
-                          m["bursts"].get<uint64_t>(), mib(read), mib(written), mib((read + written) / frames),
-                          ms(m["busy_s"]), ms(m["wait_s"]), m["wait_s"].get<double>() / bursts * 1e9,
-                          m["max_wait_s"].get<double>() * 1e9, histogram, m["errors"].get<uint64_t>());
+                          m.count("bursts"), mib(read), mib(written), mib((read + written) / frames),
+                          ms(m.number("busy_s")), ms(m.number("wait_s")), m.number("wait_s") / bursts * 1e9,
+                          m.number("max_wait_s") * 1e9, histogram, m.count("errors"));
     }
 }
 
 // The DDR: bytes over its ports in total and per frame, MB/s, busy; each port's wait.
-std::string memory_section(const nlohmann::ordered_json& mem, double seconds, double frames) {
-    const double read = mem["bytes_read"].get<double>(), written = mem["bytes_written"].get<double>();
+std::string memory_section(const nlohmann::ordered_json& node, double seconds, double frames) {
+    const Shown mem(node, section_statistics("DDR"));
+    const double read = mem.number("bytes_read"), written = mem.number("bytes_written");
     std::string md = fmt::format(
         "\n### DDR\n\n{} read, {} written ({} per frame, {:.1f} MB/s); DRAM busy {} ({}).\n\n"
         "| port | reads | writes | read | written | waited |\n|---|---:|---:|---:|---:|---:|\n",
         mib(read), mib(written), mib((read + written) / frames), seconds > 0 ? (read + written) / seconds / 1e6 : 0.0,
-        ms(mem["busy_s"]), percent(mem["utilisation"]));
-    for (const auto& [port, p] : mem["ports"].items())
-        md += fmt::format("| {} | {} | {} | {} | {} | {} |\n", port, p["reads"].get<uint64_t>(),
-                          p["writes"].get<uint64_t>(), mib(p["bytes_read"].get<double>()),
-                          mib(p["bytes_written"].get<double>()), ms(p["wait_s"]));
+        ms(mem.number("busy_s")), percent(mem.number("utilisation")));
+    for (const auto& [port, p] : mem.each("ports"))
+        md += fmt::format("| {} | {} | {} | {} | {} | {} |\n", port, p.count("reads"), p.count("writes"),
+                          mib(p.number("bytes_read")), mib(p.number("bytes_written")), ms(p.number("wait_s")));
     return md;
 }
 
@@ -328,8 +328,8 @@ std::string verdict_section(const nlohmann::ordered_json& v) {
 std::string accelerators_section(const nlohmann::ordered_json& r) {
     std::string md;
     if (r.contains("fhg") && r["fhg"].contains("schedules")) {
-        const auto& f = r["fhg"];
-        const auto& sc = f["schedules"];
+        const Shown f(r["fhg"], section_statistics("SSA FHG"));
+        const auto& sc = r["fhg"]["schedules"];
         const auto& basic = sc["basic"];
         md += fmt::format(
             "\n## SSA FHG\n\n**{} cycles per determinant block** (limited by the {}; schedule `{}`, line FIFO `{}`: "
@@ -341,24 +341,24 @@ std::string accelerators_section(const nlohmann::ordered_json& r) {
             "{}). Holding frames {}: computing (busy) {}, waiting for integral lines {}, for the determinant writer "
             "{}. "
             "Line FIFO high-water {} lines; maxima FIFO high-water {} words; {} candidates, {} dropped; {} errors.\n",
-            f["cycles_per_block"].get<unsigned>(), f["block_limit"].get<std::string>(),
-            sc["scheduler"].get<std::string>(), sc["machine"]["line_fifo"].get<std::string>(),
-            basic["cycles_per_block"].get<unsigned>(), sc["improved"]["cycles_per_block"].get<unsigned>(),
-            100 * basic["idle_bus_overhead"].get<double>(), basic["words"].get<int>(),
-            basic["busy_bus_cycles"].get<int>(), 100 * basic["overhead"].get<double>(),
+            f.count("cycles_per_block"), f.text("block_limit"), sc["scheduler"].get<std::string>(),
+            sc["machine"]["line_fifo"].get<std::string>(), basic["cycles_per_block"].get<unsigned>(),
+            sc["improved"]["cycles_per_block"].get<unsigned>(), 100 * basic["idle_bus_overhead"].get<double>(),
+            basic["words"].get<int>(), basic["busy_bus_cycles"].get<int>(), 100 * basic["overhead"].get<double>(),
             sc["optimal"]["cycles_per_block"].get<unsigned>(), sc["optimal"]["limit"].get<std::string>(),
-            ms(f["busy_s"]), ms(f["computing_s"]), ms(f["waiting_for_lines_s"]), ms(f["waiting_for_writer_s"]),
-            f["line_fifo_high_water"].get<uint64_t>(), f["maxima_fifo_high_water"].get<uint64_t>(),
-            f["candidates"].get<uint64_t>(), f["candidates_dropped"].get<uint64_t>(), f["errors"].get<uint64_t>());
+            ms(f.number("busy_s")), ms(f.number("computing_s")), ms(f.number("waiting_for_lines_s")),
+            ms(f.number("waiting_for_writer_s")), f.count("line_fifo_high_water"), f.count("maxima_fifo_high_water"),
+            f.count("candidates"), f.count("candidates_dropped"), f.count("errors"));
     }
     if (r.contains("iig") && r["iig"].contains("computing_s")) {
-        const auto& i = r["iig"];
+        const Shown i(r["iig"], section_statistics("SSA IIG"));
         md += fmt::format(
             "\n## SSA IIG\n\nHolding frames {}: computing (busy) {}, waiting for the image {}, blocked by its integral "
             "write {}, by PixelBus "
             "back-pressure {} (its sender stalled {}); {} errors.\n",
-            ms(i["busy_s"]), ms(i["computing_s"]), ms(i["waiting_for_image_s"]), ms(i["blocked_by_write_s"]),
-            ms(i["blocked_by_pixelbus_s"]), ms(i["send_stalled_s"]), i["errors"].get<uint64_t>());
+            ms(i.number("busy_s")), ms(i.number("computing_s")), ms(i.number("waiting_for_image_s")),
+            ms(i.number("blocked_by_write_s")), ms(i.number("blocked_by_pixelbus_s")), ms(i.number("send_stalled_s")),
+            i.count("errors"));
     }
     return md;
 }
@@ -480,18 +480,16 @@ std::string headline(const nlohmann::ordered_json& r) {
 // The CPU: what it did over PLB1 and on its memory path; its software stage (by step, by
 // unit of work, its instructions, its L1).
 std::string cpu_section(const nlohmann::ordered_json& r) {
-    const auto& cpu = r["cpu"];
-    const auto& cpu_mem = cpu["memory"];
+    const Shown cpu(r["cpu"], section_statistics("CPU (PPC440)"));
     std::string md = fmt::format(
         "\n## CPU (PPC440)\n\n{} register reads and {} register writes over PLB1; {} cycles of computation; "
         "{} interrupt waits ({} asleep).\n\nMemory over {}: {} read ({} line fills), {} written ({} write-backs); the "
         "CPU stalled {} for its fills, of which {} waiting for the DRAM behind other traffic.\n",
-        cpu["mmio_reads"].get<uint64_t>(), cpu["mmio_writes"].get<uint64_t>(), cpu["cycles_consumed"].get<uint64_t>(),
-        cpu["irq_waits"].get<uint64_t>(), ms(cpu["irq_wait_s"]),
-        cpu_mem["path"].get<std::string>() == "mci" ? "the memory controller interface (MCI)" : "PLB1",
-        mib(cpu_mem["bytes_read"].get<double>()), cpu_mem["line_fills"].get<uint64_t>(),
-        mib(cpu_mem["bytes_written"].get<double>()), cpu_mem["write_backs"].get<uint64_t>(),
-        ms(cpu_mem["fill_stall_s"]), ms(cpu_mem["ddr_wait_s"]));
+        cpu.count("mmio_reads"), cpu.count("mmio_writes"), cpu.count("cycles_consumed"), cpu.count("irq_waits"),
+        ms(cpu.number("irq_wait_s")),
+        cpu.text("memory.path") == "mci" ? "the memory controller interface (MCI)" : "PLB1",
+        mib(cpu.number("memory.bytes_read")), cpu.count("memory.line_fills"), mib(cpu.number("memory.bytes_written")),
+        cpu.count("memory.write_backs"), ms(cpu.number("memory.fill_stall_s")), ms(cpu.number("memory.ddr_wait_s")));
     if (r.contains("workload") && r["workload"].contains("software_stage") &&
         !r["workload"]["software_stage"].is_null())
         md += software_stage_section(r["workload"]["software_stage"]);

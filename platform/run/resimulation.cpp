@@ -1,5 +1,7 @@
 #include "platform/run/resimulation.h"
 
+#include "platform/report/run_summary.h"
+
 #include <cerrno>
 #include <cstdlib>
 #include <cstring>
@@ -42,27 +44,7 @@ void Resimulation::prepare(const Config& config) {
     schedule_figures(fhg_params(config));
 }
 
-Json Resimulation::point_summary(const Json& r) {
-    Json s = {{"fps", r.value("throughput_fps", 0.0)},
-              {"passed", r["passed"]},
-              {"limit", r.contains("limit") ? r["limit"]["resource"] : Json()},
-              {"limit_cause", r.contains("limit") ? r["limit"]["cause"] : Json()},
-              {"keypoints_per_frame", r.value("keypoints_per_frame", 0.0)}};
-    if (r.contains("time_per_frame") && r["time_per_frame"].contains("cpu")) {
-        s["cpu_ms_per_frame"] = r["time_per_frame"]["cpu"]["busy_ms"];
-        s["cpu_alone_fps"] = r["time_per_frame"]["cpu"]["alone_fps"];
-        s["cpu_fill_stall_ms"] =
-            r["cpu"]["memory"]["fill_stall_s"].get<double>() / r["frames_done"].get<double>() * 1e3;
-    }
-    if (r.contains("time_per_frame")) {  // what each resource alone would allow (the verdict's chain and doubt)
-        Json alone = Json::object();
-        for (const auto& [name, row] : r["time_per_frame"].items())
-            if (!row["alone_fps"].is_null()) alone[name] = row["alone_fps"];
-        s["alone_fps"] = alone;
-    }
-    if (r.contains("failure")) s["failure"] = r["failure"];
-    return s;
-}
+Json Resimulation::point_summary(const Json& r) { return RunSummary::of(r).point(); }
 
 void Resimulation::submit(Config config, Done done, Summarise summarise, std::string out, std::string trace,
                           bool urgent) {

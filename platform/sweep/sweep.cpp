@@ -1,6 +1,7 @@
 #include "platform/sweep/sweep.h"
 
 #include <algorithm>
+#include <cmath>
 #include <map>
 #include <set>
 #include <filesystem>
@@ -10,6 +11,7 @@
 #include <unistd.h>
 
 #include "models/host/atomic_file.h"
+#include "platform/report/run_summary.h"
 #include "platform/run/progress_line.h"
 #include "platform/run/run.h"
 #include "platform/scenario/scenario.h"
@@ -104,7 +106,7 @@ void prepare_folder(const fs::path& dir, const fs::path& mine, const SweepPlan& 
 }
 
 std::string clock(double seconds) {
-    const auto s = long(seconds + 0.5);
+    const long s = std::lround(seconds);
     return s >= 3600 ? fmt::format("{}:{:02}:{:02}", s / 3600, s / 60 % 60, s % 60)
                      : fmt::format("{}:{:02}", s / 60, s % 60);
 }
@@ -121,10 +123,9 @@ std::string progress_text(size_t done, size_t total, size_t errors, double wall)
 
 // What a point's child hands back: its row's figures, not its whole report.
 Json sweep_summary(const Json& report) {
-    Json s = {{"figures", sweep_figures(report)},
-              {"passed", report.value("passed", false)},
-              {"wall_time_s", report.value("wall_time_s", 0.0)}};
-    if (report.contains("failure")) s["failure"] = report["failure"];
+    const RunSummary run = RunSummary::of(report);
+    Json s = {{"figures", run.figures()}, {"passed", run.passed}, {"wall_time_s", run.wall_time_s}};
+    if (!run.failure.empty()) s["failure"] = run.failure;
     return s;
 }
 

@@ -45,39 +45,6 @@ const char* status_of(const SweepRow& r) { return !point_ran(r.exit) ? "error" :
 
 }  // namespace
 
-// Checked lookups throughout: the report may be another version's or a damaged one (compare
-// reads run folders it did not write).
-Json sweep_figures(const Json& r) {
-    Json f;
-    f["fps"] = number_at(r, "/throughput_fps");
-    f["budget_fps"] = number_at(r, "/budget/fps");
-    f["budget_met"] = value_at(r, "/budget/met").is_boolean() ? value_at(r, "/budget/met") : Json();
-    f["latency_ms"] = number_at(r, "/latency_ms");
-    f["bottleneck"] = text_at(r, "/limit/resource");
-    f["bottleneck_cause"] = text_at(r, "/limit/cause");
-    if (value_at(r, "/time_per_frame").is_object())
-        for (const auto& [resource, t] : r["time_per_frame"].items())
-            f["busy." + resource] = number_at(t, "/busy_share");
-    auto copy = [&](const char* name, std::string_view pointer) {
-        if (!value_at(r, pointer).is_null()) f[name] = value_at(r, pointer);
-    };
-    copy("bram36", "/fpga_resources/total/ramb36");
-    copy("dsp48e", "/fpga_resources/total/dsp48e");
-    copy("luts", "/fpga_resources/total/luts");
-    copy("fits", "/fpga_resources/fits");
-    copy("watts", "/power/watts");
-    copy("joules_per_frame", "/power/joules_per_frame");
-    copy("within_power_budget", "/power/within_budget");
-    // Feature quality, when the scenario's eval.* asks for it (a homography or camera poses).
-    copy("repeatability", "/workload/evaluation/homography/repeatability");
-    copy("precision", "/workload/evaluation/homography/precision");
-    copy("distinguishability", "/workload/evaluation/distinguishability_gap1/ransac");
-    f["keypoints_per_frame"] = number_at(r, "/keypoints_per_frame");
-    f["sim_time_s"] = number_at(r, "/sim_time_s");
-    f["passed"] = flag_at(r, "/passed");
-    return f;
-}
-
 std::vector<Objective> pareto_objectives(const std::vector<SweepRow>& rows) {
     std::vector<Objective> out{{"fps", true}};
     // Feature quality, when measured: higher is better.

@@ -9,10 +9,6 @@
 
 namespace surfvp {
 
-// A point's row figures from its report.json: frames/s, budget, latency, the bottleneck and
-// its cause, each resource's busy share, keypoints per frame, simulated time.
-nlohmann::ordered_json sweep_figures(const nlohmann::ordered_json& report);
-
 // The objectives the front is taken on: frames/s and feature quality when measured (higher is
 // better), block RAM, DSP slices and watts when the rows carry them (lower is better).
 struct Objective {

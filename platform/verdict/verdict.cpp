@@ -8,6 +8,7 @@
 #include <unistd.h>
 
 #include "platform/catalog.h"
+#include "platform/report/run_summary.h"
 #include "platform/run/progress_line.h"
 #include "platform/report/report.h"
 #include "platform/run/resimulation.h"
@@ -237,7 +238,7 @@ void submit_variants(VerdictWork& w, Resimulation& pool, const Config& reference
 // tornado (written into `out`), the doubt, the software's what-ifs and the statement.
 Json verdict_json(VerdictWork& w, const LimitChain& chain, const std::string& out) {
     Json verdict;
-    const double fps = w.base.value("throughput_fps", 0.0), budget = w.budget;
+    const double fps = RunSummary::of(w.base).fps, budget = w.budget;
     if (budget > 0) {
         verdict["budget_fps"] = budget;
         verdict["fps"] = fps;
