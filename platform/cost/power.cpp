@@ -14,6 +14,13 @@ namespace {
 
 using Json = nlohmann::ordered_json;
 
+// A block's figure as its first (or only) instance reports it: every pair runs at one clock.
+double first(const Json& r, const char* block, const char* figure) {
+    if (!r.contains(block)) return 0;
+    const Json& b = r[block];
+    return (b.is_array() ? (b.empty() ? Json() : b[0]) : b).value(figure, 0.0);
+}
+
 // A block's figure summed over its accelerator pairs (an array when there are several).
 double summed(const Json& r, const char* block, const char* figure) {
     if (!r.contains(block)) return 0;
@@ -50,8 +57,9 @@ Json power_estimate(const Config& c, const Json& r, const FpgaResources& res) {
     add("ddr background", ddr_w * seconds, "power.ddr_background_w");
     add("infrastructure", infra_w * seconds, "power.infrastructure_w: MPMC, PLBs, INTC, clocks");
     // The CPU and its FPU while they compute (the PPC440 waits for interrupts clock-gated).
-    const double cpu_hz = cpu_params(c).clock.hz;
-    const double cpu_s = r.contains("cpu") ? double(r["cpu"].value("cycles_consumed", uint64_t(0))) / cpu_hz : 0.0;
+    // The clocks as the run's statistics report them (cpu.clock_hz, fhg.clock_hz, iig.clock_hz).
+    const double cpu_hz = first(r, "cpu", "clock_hz");
+    const double cpu_s = cpu_hz > 0 ? first(r, "cpu", "cycles_consumed") / cpu_hz : 0.0;
     add("ppc440", price.ppc440_mw_per_mhz * 1e-3 * cpu_hz * 1e-6 * cpu_s,
         fmt::format("{:.3f} s computing at {:g} MHz x power.ppc440_mw_per_mhz", cpu_s, cpu_hz * 1e-6));
     const double fpu_hz = cpu_hz / pipeline_params(c).fpu_ratio;
@@ -61,7 +69,7 @@ Json power_estimate(const Config& c, const Json& r, const FpgaResources& res) {
     // reads (a quad word reads two lines, other words one) and writes, its three products per
     // determinant.
     const Fhg::Params fhg = fhg_params(c);
-    const double fhg_hz = fhg.clock.hz, iig_hz = iig_params(c).clock.hz;
+    const double fhg_hz = first(r, "fhg", "clock_hz"), iig_hz = first(r, "iig", "clock_hz");
     const double fhg_s = summed(r, "fhg", "computing_s"), iig_s = summed(r, "iig", "computing_s");
     const double pairs = run_settings(c).accelerators;
     const double fhg_cycles = fhg_s * fhg_hz;

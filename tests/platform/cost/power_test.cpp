@@ -15,13 +15,13 @@ TEST(Power, EachBlockIsItsActivityTimesItsPrice) {
     const Config c = load_scenario(test::kBudget, {});
     const FpgaResources res = fpga_resources(c);
     // One second: the CPU computes half of it, the FHG a quarter, 1 GB each way on PLB2 in
-    // 1000 bursts, 2 Gbit to and from DDR.
+    // 1000 bursts, 2 Gbit to and from DDR; the clocks as the statistics report them.
     const Json r = {
         {"sim_time_s", 1.0},
         {"frames_done", 4},
-        {"cpu", {{"cycles_consumed", 200'000'000}}},
-        {"fhg", {{"computing_s", 0.25}}},
-        {"iig", {{"computing_s", 0.0}}},
+        {"cpu", {{"cycles_consumed", 200'000'000}, {"clock_hz", 400e6}}},
+        {"fhg", {{"computing_s", 0.25}, {"clock_hz", 100e6}}},
+        {"iig", {{"computing_s", 0.0}, {"clock_hz", 100e6}}},
         {"buses",
          {{"plb2", {{"read", {{"bytes", 0}, {"bursts", 0}}}, {"write", {{"bytes", 125'000'000}, {"bursts", 1000}}}}}}},
         {"memory", {{"bytes_read", 125'000'000}, {"bytes_written", 125'000'000}}}};
