@@ -41,6 +41,16 @@ private:
     uint64_t errors_ = 0;
 };
 
+// A frame that fails keeps its first cause: true when this call is that cause (`Frame` has
+// `failed` and `error`).
+template <class Frame>
+bool first_failure(Frame& frame, uint32_t code) {
+    if (frame.failed) return false;
+    frame.failed = true;
+    frame.error = code;
+    return true;
+}
+
 // What a block's registers call in the block: START, CTRL.ABORT and CTRL.RESET accepted, and
 // a change the interrupt line may follow. `Frame` is what START programmed.
 template <class Frame>

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdint>
 #include <tlm>
+#include <type_traits>
 
 #include "byte_order.h"
 #include "clock.h"
@@ -41,7 +42,16 @@ ParamField<Params> register_latency(const std::string& block, const std::string&
 }
 
 // `access(offset, value, is_write)` reads into or writes from `value`; it returns false for
-// an offset that holds no register.
+// an offset that holds no register. `access` is that function, or a register bank that has it
+// as a member (a block's FhgRegisters, say).
+template <typename Access>
+bool access_register(Access& access, uint32_t offset, uint32_t& value, bool write) {
+    if constexpr (std::is_invocable_v<Access&, uint32_t, uint32_t&, bool>)
+        return access(offset, value, write);
+    else
+        return access.access(offset, value, write);
+}
+
 template <typename Access>
 void answer_register_access(tlm::tlm_generic_payload& tx, Access&& access) {
     const bool whole_word = tx.get_data_length() == 4 && tx.get_streaming_width() == 4 && tx.get_address() % 4 == 0;
@@ -58,9 +68,9 @@ void answer_register_access(tlm::tlm_generic_payload& tx, Access&& access) {
     bool ok = false;
     if (tx.is_write()) {
         value = load_be32(tx.get_data_ptr());
-        ok = access(offset, value, true);
+        ok = access_register(access, offset, value, true);
     } else if (tx.is_read()) {
-        ok = access(offset, value, false);
+        ok = access_register(access, offset, value, false);
         if (ok) store_be32(tx.get_data_ptr(), value);
     } else {
         ok = true;  // TLM_IGNORE_COMMAND

@@ -80,17 +80,13 @@ void Fhg::changed() {
 }
 
 void Fhg::b_transport(tlm::tlm_generic_payload& tx, sc_time& delay) {
-    answer_register_access(
-        tx, delay, params_.registers.latency(),
-        [this](uint32_t offset, uint32_t& value, bool write) { return registers_.access(offset, value, write); });
+    answer_register_access(tx, delay, params_.registers.latency(), registers_);
 }
 
 // Stops the frame: waiting units wake up and run out without doing more work; ERROR shows
 // when the frame thread has finished (FrameStatus).
 void Fhg::fail(uint32_t code) {
-    if (frame_.failed) return;  // the first cause stands
-    frame_.failed = true;
-    frame_.error = code;
+    if (!first_failure(frame_, code)) return;
     line_arrived_.notify(sc_core::SC_ZERO_TIME);
     room_.notify(sc_core::SC_ZERO_TIME);
 }

@@ -1,5 +1,6 @@
 #include "iig.h"
 
+#include <cmath>
 #include <fmt/format.h>
 
 #include "models/common/byte_order.h"
@@ -43,17 +44,11 @@ Iig::Iig(const sc_core::sc_module_name& name, const Params& params, Tracer& trac
 }
 
 void Iig::b_transport(tlm::tlm_generic_payload& tx, sc_time& delay) {
-    answer_register_access(
-        tx, delay, params_.registers.latency(),
-        [this](uint32_t offset, uint32_t& value, bool write) { return registers_.access(offset, value, write); });
+    answer_register_access(tx, delay, params_.registers.latency(), registers_);
 }
 
 // Stops the frame in progress; its ERROR shows when the units have run out (FrameStatus).
-void Iig::fail(uint32_t code) {
-    if (frame_.failed) return;  // the first cause stands
-    frame_.failed = true;
-    frame_.error = code;
-}
+void Iig::fail(uint32_t code) { first_failure(frame_, code); }
 
 // START accepted (IigRegisters checked it): the units take the frame.
 void Iig::start(const IigRegisters::Frame& f) {
@@ -158,7 +153,8 @@ void Iig::finish_row() {
     if (strikes(FaultKind::never_finishes)) {
         faults_.hung = true;  // the units are idle, STATUS stays BUSY
     } else {
-        registers_.end(frame_.failed, frame_.error, uint32_t(stall_total_.to_seconds() * params_.clock.hz + 0.5));
+        registers_.end(frame_.failed, frame_.error,
+                       uint32_t(std::lround(stall_total_.to_seconds() * params_.clock.hz)));
         busy_.write(false);
     }
     faults_.irq_lost = strikes(FaultKind::lost_interrupt);

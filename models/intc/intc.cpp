@@ -42,15 +42,12 @@ void Intc::update() {
 }
 
 void Intc::b_transport(tlm::tlm_generic_payload& tx, sc_core::sc_time& delay) {
-    answer_register_access(
-        tx, delay, params_.registers.latency(),
-        [this](uint32_t offset, uint32_t& value, bool write) { return registers_.access(offset, value, write); });
+    answer_register_access(tx, delay, params_.registers.latency(), registers_);
 }
 
 unsigned Intc::transport_dbg(tlm::tlm_generic_payload& tx) {
     if (tx.is_write()) return 0;  // debug reads only: a debug write must not acknowledge
-    answer_register_access(
-        tx, [this](uint32_t offset, uint32_t& value, bool write) { return registers_.access(offset, value, write); });
+    answer_register_access(tx, registers_);
     return tx.is_response_ok() ? 4 : 0;
 }
 
