@@ -53,6 +53,7 @@ void populate_until(const std::atomic<bool>& stop, uint8_t* begin, uint8_t* end)
 #ifdef MADV_POPULATE_WRITE
     constexpr size_t kStretch = size_t(64) << 10;  // ~16 faults: the flag is looked at every ~25 us
     const uintptr_t page = uintptr_t(sysconf(_SC_PAGESIZE));
+    // NOLINTNEXTLINE(performance-no-int-to-ptr): madvise wants the page the range begins in
     uint8_t* at = reinterpret_cast<uint8_t*>(reinterpret_cast<uintptr_t>(begin) & ~(page - 1));
     for (; at < end && !stop.load(std::memory_order_acquire); at += kStretch)
         madvise(at, std::min<size_t>(kStretch, size_t(end - at)),

@@ -124,7 +124,7 @@ std::string resource_bars(const Json& table) {
     const char* const wait_colours[] = {"#f28e2b", "#e15759", "#edc948", "#b07aa1"};
     size_t i = 0;
     for (const auto& item : table.items()) {
-        const std::string name = item.key();  // a local the lambda below may capture (a binding may not)
+        const std::string& name = item.key();  // a local the lambda below may capture (a binding may not)
         const Json& row = item.value();
         const double y = top + i++ * row_h;
         svg += fmt::format("<text x=\"0\" y=\"{:.1f}\">{} ({:.1f} % busy)</text>", y + 15, xml_escape(name),

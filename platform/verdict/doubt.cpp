@@ -140,7 +140,7 @@ std::vector<Unknown> unknowns_of(const std::vector<const ParamSpec*>& banded, co
     std::vector<Unknown> out;
     for (const ParamSpec* p : banded) {
         if (p->role != ParamRole::unknown) continue;
-        const std::string now = config.value(p->key);
+        const std::string& now = config.value(p->key);
         if (same(*p, p->band.low, now) && same(*p, p->band.high, now)) continue;  // nothing to vary
         Unknown u{p, {}, 0, 0};
         if (discrete(*p)) {

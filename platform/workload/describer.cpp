@@ -166,7 +166,7 @@ public:
         if (r.error) std::rethrow_exception(r.error);
         work = std::move(r.work);
         if (r.keypoint) write_back_record(frame, work);
-        return std::move(r.keypoint);
+        return r.keypoint;
     }
 
     const sw::SoftwareStage& stage() const { return stage_; }

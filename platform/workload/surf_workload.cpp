@@ -29,7 +29,6 @@
 
 namespace surfvp {
 namespace {
-namespace fs = std::filesystem;
 
 constexpr uint64_t kPage = 4096;
 constexpr uint32_t kOutsideMemory = 0xF000'0000;  // a dma_outside_memory fault's buffer: no DDR there

@@ -99,7 +99,7 @@ TEST(Environment, TwoRunsOnOneFolderDoNotCorruptEachOther) {
     for (const auto& f : fs::directory_iterator(out))
         EXPECT_EQ(f.path().string().find("partial"), std::string::npos) << f.path();
     const std::string vcd = slurp(out + "/trace.vcd");
-    EXPECT_EQ(vcd.rfind("#") != std::string::npos && vcd.back() == '\n', true);
+    EXPECT_EQ(vcd.rfind('#') != std::string::npos && vcd.back() == '\n', true);
 }
 
 // A folder used again holds only the last run's files: keypoints of frames it did not have

@@ -373,7 +373,7 @@ TEST(QualityCli, DrawMarksEachKeypointInItsSignsColour) {
     std::size_t grey = 0;
     for (int y = 0; y < 20; ++y)
         for (int x = 0; x < 20; ++x) {
-            const cv::Vec3b p = canvas.at<cv::Vec3b>(y, x);
+            const cv::Vec3b& p = canvas.at<cv::Vec3b>(y, x);
             grey += p[0] == p[1] && p[1] == p[2];
         }
     EXPECT_EQ(grey, 400u);

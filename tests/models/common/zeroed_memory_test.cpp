@@ -22,7 +22,7 @@ bool resident(const uint8_t* p) {
     const size_t page = size_t(sysconf(_SC_PAGESIZE));
     unsigned char state = 0;
     const auto start = reinterpret_cast<uintptr_t>(p) & ~(page - 1);
-    EXPECT_EQ(mincore(reinterpret_cast<void*>(start), page, &state), 0);
+    EXPECT_EQ(mincore(reinterpret_cast<void*>(start), page, &state), 0);  // NOLINT(performance-no-int-to-ptr)
     return state & 1;
 }
 

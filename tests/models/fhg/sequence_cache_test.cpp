@@ -68,7 +68,7 @@ TEST(SequenceCache, TextReadsBackAsTheSameSequence) {
 TEST(SequenceCache, KeyNamesEveryParameterAndTheGenerator) {
     SequenceParams p;
     const std::string key = sequence_key(p);
-    for (auto change : std::vector<std::function<void(SequenceParams&)>>{
+    for (const auto& change : std::vector<std::function<void(SequenceParams&)>>{
              [](SequenceParams& q) { q.read_buses = 6; }, [](SequenceParams& q) { q.triple_macs = 17; },
              [](SequenceParams& q) { q.fifo_lines = 40; }, [](SequenceParams& q) { q.x3_cycles = 1; },
              [](SequenceParams& q) { q.bus_word = BusWord::pair; }, [](SequenceParams& q) { q.reuse = false; },

@@ -83,7 +83,7 @@ TEST(PlbBus, LongTransactionIsSplitIntoMaxBursts) {
 }
 
 // Each of two masters streams four 16-beat writes from t = 0. One burst takes D = 20 cycles.
-struct Contention {
+struct Contention {  // NOLINT(bugprone-reserved-identifier): clang names the array member's implicit copy loop __i0
     std::vector<sc_core::sc_time> ends[2];
 };
 

@@ -74,7 +74,7 @@ StageRun run_stage(const HardwareFrame& frame, float threshold, bool upright,
 double percentile(std::vector<double> v, double p) {
     if (v.empty()) return 0;
     std::sort(v.begin(), v.end());
-    return v[std::min(v.size() - 1, static_cast<size_t>(p * double(v.size() - 1) + 0.5))];
+    return v[std::min(v.size() - 1, static_cast<size_t>(std::lround(p * double(v.size() - 1))))];
 }
 
 // Each reference keypoint's nearest stage keypoint within 1.5 px whose scale is within 10 %.
