@@ -32,8 +32,7 @@ Run run_budget(const std::vector<std::string>& extra) {
     const std::string out = fmt::format("/tmp/surfvp_simbench_{}", ::getpid());
     std::vector<std::string> args{SURFVP_BINARY,
                                   "run",
-                                  SURFVP_SOURCE_DIR
-                                  "/scenarios/budget_1024x768.yaml",  // NOLINT(bugprone-suspicious-missing-comma)
+                                  std::string(SURFVP_SOURCE_DIR) + "/scenarios/budget_1024x768.yaml",
                                   "--quiet",
                                   "--out",
                                   out,
