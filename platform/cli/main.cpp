@@ -69,6 +69,11 @@ Command add_run(CLI::App& app) {
     run->add_option(
         "--compare-to", o->compare_to,
         "Also write compare.md and compare.json: this run against a run folder or a sweep point (SWEEP_DIR@N)");
+    run->add_flag("--quick", o->quick,
+                  "One run, without the verdict's re-simulations (verdict.break_even, verdict.band and "
+                  "verdict.software off): the frame rate, the limit and where the time goes in seconds, but no "
+                  "break-even, no band of doubt and no software what-ifs (the default scenario: about 1 s, against "
+                  "20-30 s for its verdict's ~310 re-simulations on 2 cores)");
     run->add_flag("--direct", o->direct,
                   "Run the driver and software on the cores without SystemC (no time): keypoints only");
     return {run, [o] { return run_scenario(*o); }};

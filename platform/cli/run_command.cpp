@@ -10,6 +10,7 @@
 
 #include "models/host/atomic_file.h"
 #include "platform/compare/compare.h"
+#include "platform/catalog.h"
 #include "platform/cost/fpga_resources.h"
 #include "platform/report/run_summary.h"
 #include "platform/run/output_folder.h"
@@ -40,6 +41,23 @@ void print_summary(const Config& config, const fs::path& dir, bool direct) {
                  verdict, r.sim_time_s * 1e3, r.wall_time_s, (dir / "report.md").c_str());
 }
 
+// --quick: the scenario as one run, without the verdict's re-simulations. config.yaml says
+// "--quick" beside each setting it turned off; a --set that turns one on contradicts it.
+void make_quick(Config& config) {
+    const VerdictSettings asked = verdict_settings(config);
+    for (const auto& [key, on] :
+         {std::pair{"verdict.break_even", asked.break_even}, std::pair{"verdict.band", asked.band},
+          std::pair{"verdict.software", asked.software}}) {
+        if (on && config.origin(key) == "--set")
+            throw ConfigError(
+                fmt::format("--quick runs the scenario without the verdict's re-simulations, but --set "
+                            "{}=on asks for one: give one or the other",
+                            key));
+        config.set(key, "off", "--quick");
+    }
+    for (const Ineffective& i : ineffective_parameters(config)) config.note(i.key, i.reason);
+}
+
 void print_warnings(const Config& config) {
     for (const std::string& w : scenario_warnings(config)) std::fprintf(stderr, "surfvp: warning: %s\n", w.c_str());
     const FpgaResources fpga = fpga_resources(config);
@@ -54,7 +72,8 @@ int run_scenario(const RunOptions& options) {
     // The run's threads are its own (run.parallel): OpenCV's pool, which its first resize would
     // start (~1 ms), would only compete with them.
     cv::setNumThreads(0);
-    const Config config = load_scenario(resolve_scenario(options.scenario), options.sets);
+    Config config = load_scenario(resolve_scenario(options.scenario), options.sets);
+    if (options.quick) make_quick(config);
     trace_options(options.trace, "");  // a bad --trace is bad input before anything is written
     if (options.direct && !config.faults.empty())
         throw ConfigError(

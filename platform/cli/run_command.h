@@ -13,6 +13,7 @@ struct RunOptions {
     std::string trace = "all";  // none | vcd | perfetto | all
     bool quiet = false;
     bool direct = false;     // no SystemC: the driver and software on the untimed DirectChip
+    bool quick = false;      // without the verdict's re-simulations (verdict.break_even, band, software off)
     std::string compare_to;  // a run folder or SWEEP_DIR@N: compare.md and compare.json against it
 };
 

@@ -329,3 +329,31 @@ TEST(Cli, ARunsReportTimesItsFramesOnTheWallClock) {
 
 }  // namespace
 }  // namespace surfvp
+
+namespace surfvp::test {
+namespace {
+
+// --quick: the default scenario as one run. Its report has the frame rate and the limit but no
+// verdict (none of its re-simulations ran); config.yaml says which settings --quick turned off.
+// A --set that asks for one of them contradicts it: bad input, nothing written.
+TEST(Cli, QuickRunsTheScenarioWithoutTheVerdictsResimulations) {
+    const std::string out = fresh_dir("quick");
+    const auto r = surfvp("run budget_1024x768 --quick --trace none --set surf.frames=3 --out " + out);
+    EXPECT_EQ(r.exit_code, 1) << r.err;  // 3 frames of the default scenario miss its 10 frames/s
+    const auto j = nlohmann::json::parse(slurp(out + "/report.json"));
+    EXPECT_FALSE(j.contains("verdict"));
+    EXPECT_GT(j["throughput_fps"].get<double>(), 5.0);
+    EXPECT_EQ(j["limit"]["resource"].get<std::string>(), "fhg");
+    const std::string yaml = slurp(out + "/config.yaml");
+    for (const char* key : {"break_even", "band", "software"})
+        EXPECT_NE(yaml.find(std::string(key) + ": off  # --quick"), std::string::npos) << key;
+
+    const std::string refused = fresh_path("quick_refused");
+    const auto both = surfvp("run budget_1024x768 --quick --set verdict.band=on --out " + refused);
+    EXPECT_EQ(both.exit_code, 2);
+    EXPECT_NE(both.err.find("--set verdict.band=on"), std::string::npos) << both.err;
+    EXPECT_FALSE(std::filesystem::exists(refused));
+}
+
+}  // namespace
+}  // namespace surfvp::test
