@@ -1,5 +1,6 @@
 #include "platform/cli/run_command.h"
 
+#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <fmt/format.h>
@@ -12,6 +13,7 @@
 #include "platform/compare/compare.h"
 #include "platform/catalog.h"
 #include "platform/cost/fpga_resources.h"
+#include "platform/report/report.h"
 #include "platform/report/run_summary.h"
 #include "platform/run/output_folder.h"
 #include "platform/run/run.h"
@@ -28,17 +30,22 @@ fs::path output_path(const RunOptions& options, const Config& config) {
     return options.out.empty() ? fs::path("traces") / config.name : fs::path(options.out);
 }
 
-// The summary line, from the report as it was published.
-void print_summary(const Config& config, const fs::path& dir, bool direct) {
-    const RunSummary r = RunSummary::of(nlohmann::ordered_json::parse(std::ifstream(dir / "report.json")));
+// The last line, from the report as it was published: passed or FAILED, the answer as
+// report.md's first line gives it (the verdict, or the frame rate against the budget and the
+// limit), and the whole wall time, the verdict's re-simulations included.
+void print_summary(const Config& config, const fs::path& dir, bool direct, double wall_s) {
+    const auto report = nlohmann::ordered_json::parse(std::ifstream(dir / "report.json"));
+    const RunSummary r = RunSummary::of(report);
     const char* verdict = r.passed ? "passed" : "FAILED";
     if (direct) {
-        std::fprintf(stderr, "surfvp: %s (direct): %s; report in %s\n", config.name.c_str(), verdict,
-                     (dir / "report.json").c_str());
+        std::fprintf(stderr, "surfvp: %s (direct): %s in %.1f s wall; report in %s\n", config.name.c_str(), verdict,
+                     wall_s, (dir / "report.json").c_str());
         return;
     }
-    std::fprintf(stderr, "surfvp: %s: %s in %.3f ms simulated (%.3f s wall); report in %s\n", config.name.c_str(),
-                 verdict, r.sim_time_s * 1e3, r.wall_time_s, (dir / "report.md").c_str());
+    const std::string answer = answer_line(report);
+    std::fprintf(stderr, "surfvp: %s: %s%s; %.3f ms simulated, %.1f s wall in all; report in %s\n", config.name.c_str(),
+                 verdict, answer.empty() ? "" : (": " + answer).c_str(), r.sim_time_s * 1e3, wall_s,
+                 (dir / "report.md").c_str());
 }
 
 // --quick: the scenario as one run, without the verdict's re-simulations. config.yaml says
@@ -69,6 +76,7 @@ void print_warnings(const Config& config) {
 }  // namespace
 
 int run_scenario(const RunOptions& options) {
+    const auto began = std::chrono::steady_clock::now();
     // The run's threads are its own (run.parallel): OpenCV's pool, which its first resize would
     // start (~1 ms), would only compete with them.
     cv::setNumThreads(0);
@@ -105,7 +113,9 @@ int run_scenario(const RunOptions& options) {
         throw EnvironmentError(fmt::format("{}; what was in {} before this run is as it was",
                                            out.as_published(e.what()), out.folder().string()));
     }
-    if (!options.quiet) print_summary(config, out.folder(), options.direct);
+    if (!options.quiet)
+        print_summary(config, out.folder(), options.direct,
+                      std::chrono::duration<double>(std::chrono::steady_clock::now() - began).count());
     return code;
 }
 

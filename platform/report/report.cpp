@@ -466,15 +466,8 @@ namespace {
 
 // One line at the top: the rate against the budget and what limits it.
 std::string headline(const nlohmann::ordered_json& r) {
-    if (r.contains("verdict") && r["verdict"].contains("statement"))
-        return fmt::format("**Verdict: {}.**\n\n", r["verdict"]["statement"].get<std::string>());
-    if (!r.contains("throughput_fps")) return "";
-    std::string line = fmt::format("**{:.2f} frames/s", r["throughput_fps"].get<double>());
-    if (!r["budget"].is_null())
-        line += fmt::format(" against a budget of {:.2f}: {}", r["budget"]["fps"].get<double>(),
-                            r["budget"]["met"].get<bool>() ? "met" : "MISSED");
-    if (r.contains("limit")) line += fmt::format("; limited by {}", r["limit"]["resource"].get<std::string>());
-    return line + ".**\n\n";
+    const std::string answer = answer_line(r);
+    return answer.empty() ? "" : "**" + answer + ".**\n\n";
 }
 
 // The CPU: what it did over PLB1 and on its memory path; its software stage (by step, by
@@ -586,6 +579,18 @@ std::string power_section(const nlohmann::ordered_json& p) {
         for (size_t i = 0; i < spread.size() && i < 5; ++i) md += "- " + spread[i].second + "\n";
     }
     return md;
+}
+
+std::string answer_line(const nlohmann::ordered_json& r) {
+    if (r.contains("verdict") && r["verdict"].contains("statement"))
+        return "Verdict: " + r["verdict"]["statement"].get<std::string>();
+    if (!r.contains("throughput_fps")) return "";
+    std::string line = fmt::format("{:.2f} frames/s", r["throughput_fps"].get<double>());
+    if (!r["budget"].is_null())
+        line += fmt::format(" against a budget of {:.2f}: {}", r["budget"]["fps"].get<double>(),
+                            r["budget"]["met"].get<bool>() ? "met" : "MISSED");
+    if (r.contains("limit")) line += fmt::format("; limited by {}", r["limit"]["resource"].get<std::string>());
+    return line;
 }
 
 std::string report_markdown(const nlohmann::ordered_json& r) {

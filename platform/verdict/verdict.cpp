@@ -8,6 +8,7 @@
 #include <unistd.h>
 
 #include "platform/catalog.h"
+#include "platform/report/json_input.h"
 #include "platform/report/run_summary.h"
 #include "platform/run/progress_line.h"
 #include "platform/report/report.h"
@@ -149,12 +150,27 @@ Json software_json(const std::vector<std::pair<std::string, std::string>>& setti
     return rows;
 }
 
-std::string statement(double fps, double budget, const Json& band, const Json& doubt) {
+// The limit and its cause, and the break-even of each axis the search found ("fhg.clock =
+// 104.661 MHz or fhg.cycles_per_block = 50 cycles"), as the statement's middle.
+std::string limit_text(const Json& limit, const Json& break_even) {
+    std::string s;
+    if (!text_at(limit, "/resource").empty())
+        s = fmt::format("; limited by {} ({})", text_at(limit, "/resource"), text_at(limit, "/cause"));
+    std::vector<std::string> found;
+    if (break_even.is_array())
+        for (const Json& b : break_even)
+            if (text_at(b, "/bound").empty() && !text_at(b, "/value").empty())
+                found.push_back(text_at(b, "/parameter") + " = " + text_at(b, "/value"));
+    if (!found.empty()) s += "; break-even " + fmt::format("{}", fmt::join(found, " or "));
+    return s;
+}
+
+std::string statement(double fps, double budget, const Json& limit, const Json& break_even, const Json& band,
+                      const Json& doubt) {
     const double margin = 100 * (fps / budget - 1);
     const bool met = fps >= budget;
-    std::string s =
-        met ? fmt::format("met at defaults ({:.2f} frames/s, {:+.1f} % against {:g})", fps, margin, budget)
-            : fmt::format("missed at defaults ({:.2f} frames/s, {:+.1f} % against {:g})", fps, margin, budget);
+    std::string s = fmt::format("{} at defaults ({:.2f} frames/s, {:+.1f} % against {:g}){}", met ? "met" : "missed",
+                                fps, margin, budget, limit_text(limit, break_even));
     if (!doubt.is_null() && doubt.contains("fps"))
         s += fmt::format(
             "; over the unknowns jointly {:.2f} to {:.2f} frames/s (5th to 95th percentile), met with "
@@ -263,7 +279,9 @@ Json verdict_json(VerdictWork& w, const LimitChain& chain, const std::string& ou
         w.base["outputs"].push_back("tornado.svg");
     }
     if (w.software) verdict["software"] = software_json(w.settings, w.software_results, w.reference_point, fps, budget);
-    if (budget > 0) verdict["statement"] = statement(fps, budget, band_result, doubt);
+    if (budget > 0)
+        verdict["statement"] = statement(fps, budget, verdict.value("limit", Json()),
+                                         verdict.value("break_even", Json()), band_result, doubt);
     return verdict;
 }
 

@@ -107,7 +107,7 @@ TEST(Cli, LongRunsShowProgressOnStderr) {
     EXPECT_NE(r.err.find("surfvp: smoke: "), std::string::npos) << r.err;
     EXPECT_NE(r.err.find("/6000 copies"), std::string::npos) << r.err;
     EXPECT_NE(r.err.find("x real time"), std::string::npos) << r.err;
-    EXPECT_NE(r.err.find("passed in"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("surfvp: smoke: passed; "), std::string::npos) << r.err;
 }
 
 TEST(Cli, SameScenarioGivesTheSameBytes) {
@@ -353,6 +353,34 @@ TEST(Cli, QuickRunsTheScenarioWithoutTheVerdictsResimulations) {
     EXPECT_EQ(both.exit_code, 2);
     EXPECT_NE(both.err.find("--set verdict.band=on"), std::string::npos) << both.err;
     EXPECT_FALSE(std::filesystem::exists(refused));
+}
+
+// The terminal's last line gives the answer as report.md's first line does: passed or FAILED,
+// the verdict's statement (frames/s, margin, the limit and its cause, the break-even), and the
+// whole wall time, the verdict's re-simulations included.
+TEST(Cli, TheLastLineGivesTheAnswerAndTheWholeWallTime) {
+    const std::string out = fresh_dir("last_line");
+    const auto r = surfvp(
+        "run budget_1024x768 --trace none --set surf.frames=4 --set verdict.band=off "
+        "--set verdict.software=off --out " +
+        out);
+    EXPECT_EQ(r.exit_code, 1) << r.err;
+    const std::string err = r.err.substr(0, r.err.size() - 1);
+    const std::string last = err.substr(err.rfind('\n') + 1);
+    const auto j = nlohmann::json::parse(slurp(out + "/report.json"));
+    const std::string statement = j["verdict"]["statement"].get<std::string>();
+    EXPECT_EQ(last.rfind("surfvp: budget_1024x768: FAILED: Verdict: " + statement + "; ", 0), 0u) << last;
+    EXPECT_NE(statement.find("missed at defaults ("), std::string::npos) << statement;
+    EXPECT_NE(statement.find("% against 10); limited by fhg (busy); break-even fhg.clock = "), std::string::npos)
+        << statement;
+    EXPECT_NE(slurp(out + "/report.md").find("**Verdict: " + statement + ".**"), std::string::npos);
+    const std::smatch wall = [&] {
+        std::smatch m;
+        std::regex_search(last, m, std::regex(R"(; ([0-9.]+) ms simulated, ([0-9.]+) s wall in all; report in )"));
+        return m;
+    }();
+    ASSERT_EQ(wall.size(), 3u) << last;
+    EXPECT_GT(std::stod(wall[2].str()), j["wall_time_s"].get<double>() - 0.05);  // the whole, not the one run
 }
 
 }  // namespace
