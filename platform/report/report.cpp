@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "platform/report/correlation.h"
+#include "platform/report/run_summary.h"
 #include "platform/report/section_statistics.h"
 #include "platform/report/statistics_json.h"
 
@@ -585,11 +586,11 @@ std::string answer_line(const nlohmann::ordered_json& r) {
     if (r.contains("verdict") && r["verdict"].contains("statement"))
         return "Verdict: " + r["verdict"]["statement"].get<std::string>();
     if (!r.contains("throughput_fps")) return "";
-    std::string line = fmt::format("{:.2f} frames/s", r["throughput_fps"].get<double>());
-    if (!r["budget"].is_null())
-        line += fmt::format(" against a budget of {:.2f}: {}", r["budget"]["fps"].get<double>(),
-                            r["budget"]["met"].get<bool>() ? "met" : "MISSED");
-    if (r.contains("limit")) line += fmt::format("; limited by {}", r["limit"]["resource"].get<std::string>());
+    const RunSummary run = RunSummary::of(r);
+    std::string line = fmt::format("{:.2f} frames/s", run.fps);
+    if (run.budget_met)
+        line += fmt::format(" against a budget of {:.2f}: {}", run.budget_fps, *run.budget_met ? "met" : "MISSED");
+    if (!run.limit.empty()) line += fmt::format("; limited by {}", run.limit);
     return line;
 }
 
