@@ -30,19 +30,19 @@ fs::path output_path(const RunOptions& options, const Config& config) {
     return options.out.empty() ? fs::path("traces") / config.name : fs::path(options.out);
 }
 
-// The last line, from the report as it was published: passed or FAILED, the answer as
+// The last line, from the report as it was published: passed, FAILED or BROKEN, the answer as
 // report.md's first line gives it (the verdict, or the frame rate against the budget and the
 // limit), and the whole wall time, the verdict's re-simulations included.
 void print_summary(const Config& config, const fs::path& dir, bool direct, double wall_s) {
     const auto report = nlohmann::ordered_json::parse(std::ifstream(dir / "report.json"));
     const RunSummary r = RunSummary::of(report);
-    const char* verdict = r.passed ? "passed" : "FAILED";
+    const char* verdict = r.result();
+    const std::string answer = answer_line(report);
     if (direct) {
-        std::fprintf(stderr, "surfvp: %s (direct): %s in %.1f s wall; report in %s\n", config.name.c_str(), verdict,
-                     wall_s, (dir / "report.json").c_str());
+        std::fprintf(stderr, "surfvp: %s (direct): %s%s in %.1f s wall; report in %s\n", config.name.c_str(), verdict,
+                     r.broken ? (": " + answer + ";").c_str() : "", wall_s, (dir / "report.json").c_str());
         return;
     }
-    const std::string answer = answer_line(report);
     std::fprintf(stderr, "surfvp: %s: %s%s; %.3f ms simulated, %.1f s wall in all; report in %s\n", config.name.c_str(),
                  verdict, answer.empty() ? "" : (": " + answer).c_str(), r.sim_time_s * 1e3, wall_s,
                  (dir / "report.md").c_str());

@@ -465,10 +465,11 @@ std::string frames_csv(const nlohmann::ordered_json& per_frame) {
 
 namespace {
 
-// One line at the top: the rate against the budget and what limits it.
+// One line at the top: the rate against the budget and what limits it, or why the run broke.
 std::string headline(const nlohmann::ordered_json& r) {
     const std::string answer = answer_line(r);
-    return answer.empty() ? "" : "**" + answer + ".**\n\n";
+    if (answer.empty()) return "";
+    return fmt::format("**{}{}.**\n\n", r.value("broken", false) ? "The run broke: " : "", answer);
 }
 
 // The CPU: what it did over PLB1 and on its memory path; its software stage (by step, by
@@ -582,7 +583,26 @@ std::string power_section(const nlohmann::ordered_json& p) {
     return md;
 }
 
+namespace {
+
+// Why a run broke: the software's failure, else the first check of the run itself that did
+// not hold, with its first cause.
+std::string why_broken(const nlohmann::ordered_json& r) {
+    if (r.contains("failure")) return r["failure"].get<std::string>();
+    for (const auto& c : r["checks"]) {
+        if (c["passed"].get<bool>() || c.value("kind", "run") == "goal") continue;
+        const std::string detail = c["detail"].get<std::string>();
+        const size_t more = detail.find("; ");
+        return fmt::format("{} failed: {}{}", c["name"].get<std::string>(), detail.substr(0, more),
+                           more == std::string::npos ? "" : " (and more)");
+    }
+    return "";
+}
+
+}  // namespace
+
 std::string answer_line(const nlohmann::ordered_json& r) {
+    if (r.value("broken", false)) return why_broken(r);
     if (r.contains("verdict") && r["verdict"].contains("statement"))
         return "Verdict: " + r["verdict"]["statement"].get<std::string>();
     if (!r.contains("throughput_fps")) return "";
@@ -598,7 +618,7 @@ std::string report_markdown(const nlohmann::ordered_json& r) {
     std::string md = fmt::format("# surfvp run: {}\n\n{}\n\n", r["scenario"]["name"].get<std::string>(),
                                  r["scenario"]["description"].get<std::string>());
     md += headline(r);
-    md += fmt::format("**Result: {}**", r["passed"].get<bool>() ? "passed" : "FAILED");
+    md += fmt::format("**Result: {}**", RunSummary::of(r).result());
     if (r.contains("failure")) md += fmt::format(": {}", r["failure"].get<std::string>());
     md += "\n\n| check | result | detail |\n|---|---|---|\n";
     for (const auto& c : r["checks"])

@@ -13,7 +13,8 @@ std::string report_markdown(const nlohmann::ordered_json& report);
 
 // The answer in one line, as report.md's first line gives it (without its Markdown): the
 // verdict's statement when the run has one, else the frame rate against the budget and the
-// limit; "" for a run without a frame rate (the smoke test). The terminal's last line says it.
+// limit; why the run broke when it did; "" for a run without a frame rate (the smoke test). The
+// terminal's last line says it.
 std::string answer_line(const nlohmann::ordered_json& report);
 
 // A workload's per-frame list (report.json's workload.per_frame) as CSV: a header of its keys,

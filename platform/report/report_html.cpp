@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "platform/report/correlation.h"
+#include "platform/report/run_summary.h"
 
 namespace surfvp {
 
@@ -274,7 +275,7 @@ std::string summary(const Json& r) {
 
 std::string report_html(const Json& r, const std::string& first_frame_svg) {
     const std::string name = r["scenario"]["name"];
-    std::string verdict = r["passed"].get<bool>() ? "passed" : "FAILED";
+    std::string verdict = RunSummary::of(r).result();
     if (r.contains("verdict") && r["verdict"].contains("statement"))
         verdict = r["verdict"]["statement"].get<std::string>();
     std::string body =

@@ -27,6 +27,7 @@ const std::pair<const char*, const char*> kExtras[] = {
 RunSummary RunSummary::of(const Json& r) {
     RunSummary s;
     s.passed = flag_at(r, "/passed");
+    s.broken = flag_at(r, "/broken");
     s.failure = text_at(r, "/failure");
     s.fps = number_at(r, "/throughput_fps");
     s.budget_fps = number_at(r, "/budget/fps");

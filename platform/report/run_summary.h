@@ -17,6 +17,7 @@ namespace surfvp {
 
 struct RunSummary {
     bool passed = false;
+    bool broken = false;  // the software stalled or failed, a frame was lost, a fault not recovered
     std::string failure;  // why the software did not finish, or ""
     double fps = 0;       // steady-state frames/s (0: none, as in direct mode)
     double budget_fps = 0;
@@ -44,6 +45,10 @@ struct RunSummary {
     std::vector<std::pair<std::string, nlohmann::ordered_json>> extras;
 
     static RunSummary of(const nlohmann::ordered_json& report);
+
+    // The result in one word, as the exit code tells it: "passed" (0), "FAILED" (1: a goal
+    // missed), "BROKEN" (6: the run itself broke).
+    const char* result() const { return broken ? "BROKEN" : passed ? "passed" : "FAILED"; }
 
     // A re-simulated point as the verdict takes it (fps, passed, limit, keypoints, the CPU's
     // time, what each resource alone allows).

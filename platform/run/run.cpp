@@ -3,6 +3,7 @@
 #include "platform/cost/power.h"
 #include "platform/report/correlation.h"
 
+#include <algorithm>
 #include <cctype>
 #include <chrono>
 #include <unistd.h>
@@ -66,6 +67,23 @@ Tracer::Options trace_options(const std::string& mode, const std::string& dir) {
 
 namespace {
 
+// The run's checks, and whether it passed (every check held, the software ran to its end) or
+// broke (the software failed, or a check of the run itself, not of a goal, did not hold).
+void record_checks(nlohmann::ordered_json& r, const std::vector<Check>& checks, const std::string& failure) {
+    nlohmann::ordered_json list = nlohmann::ordered_json::array();
+    bool passed = failure.empty(), broken = !failure.empty();
+    for (const Check& c : checks) {
+        list.push_back(
+            {{"name", c.name}, {"passed", c.passed}, {"kind", c.goal ? "goal" : "run"}, {"detail", c.detail}});
+        passed = passed && c.passed;
+        broken = broken || (!c.passed && !c.goal);
+    }
+    r["passed"] = passed;
+    r["broken"] = broken;
+    if (!failure.empty()) r["failure"] = failure;
+    r["checks"] = list;
+}
+
 struct Outcome {
     sc_core::sc_time sim_time;
     std::string failure;  // empty when the software ran to its end
@@ -105,20 +123,12 @@ Outcome simulate(Soc& soc, const Config& config, ProgressLine& progress) {
 
 nlohmann::ordered_json build_report(const Config& config, Soc& soc, const Outcome& outcome, double startup_s,
                                     double wall_s, const std::vector<std::string>& outputs) {
-    nlohmann::ordered_json checks = nlohmann::ordered_json::array();
-    bool passed = outcome.failure.empty();
-    for (const Check& c : soc.workload().checks()) {
-        checks.push_back({{"name", c.name}, {"passed", c.passed}, {"detail", c.detail}});
-        passed = passed && c.passed;
-    }
     const double sim_s = outcome.sim_time.to_seconds();
     const uint64_t transactions = soc.bus_transactions();
     nlohmann::ordered_json r;
     r["surfvp_version"] = SURFVP_VERSION;
     r["scenario"] = {{"name", config.name}, {"file", config.file}, {"description", config.description}};
-    r["passed"] = passed;
-    if (!outcome.failure.empty()) r["failure"] = outcome.failure;
-    r["checks"] = checks;
+    record_checks(r, soc.workload().checks(), outcome.failure);
     r["budget"] = nullptr;  // unless the workload's summary sets one
     r["sim_time_s"] = sim_s;
     r["startup_s"] = startup_s;  // from the process's start to the simulation's
@@ -204,22 +214,17 @@ int run_direct(const Config& config, const fs::path& dir) {
         failure = std::string("software error: ") + e.what();
     }
     const double wall_s = since(start);
-    nlohmann::ordered_json checks = nlohmann::ordered_json::array();
-    bool passed = failure.empty();
-    for (const Check& c : workload->checks()) {
-        if (c.name == "frame-rate budget") continue;  // no time here
-        checks.push_back({{"name", c.name}, {"passed", c.passed}, {"detail", c.detail}});
-        passed = passed && c.passed;
-    }
+    std::vector<Check> checks = workload->checks();
+    checks.erase(std::remove_if(checks.begin(), checks.end(),
+                                [](const Check& c) { return c.name == "frame-rate budget"; }),  // no time here
+                 checks.end());
     std::vector<std::string> outputs{"report.json", "config.yaml"};
     for (const std::string& f : workload->files_written()) outputs.push_back(f);
     nlohmann::ordered_json r;
     r["surfvp_version"] = SURFVP_VERSION;
     r["mode"] = "direct";
     r["scenario"] = {{"name", config.name}, {"file", config.file}, {"description", config.description}};
-    r["passed"] = passed;
-    if (!failure.empty()) r["failure"] = failure;
-    r["checks"] = checks;
+    record_checks(r, checks, failure);
     const nlohmann::ordered_json summary = workload->summary();  // what has a meaning without time
     for (const char* key : {"image", "frames", "frames_done", "keypoints_per_frame", "keypoints_per_frame_range",
                             "threshold", "threshold_rule", "frame_wall_s"})
@@ -232,7 +237,7 @@ int run_direct(const Config& config, const fs::path& dir) {
     r["outputs"] = outputs;
     write_file_atomically((dir / "config.yaml").string(), config_as_run(config, r).to_yaml());
     write_file_atomically((dir / "report.json").string(), r.dump(2) + "\n");
-    return passed ? kExitOk : kExitFailed;
+    return exit_code_of(r);
 }
 
 nlohmann::ordered_json simulate_scenario(const Config& config, const std::string& out, const std::string& trace,
@@ -277,7 +282,12 @@ int write_run(const Config& config, const std::string& out, const nlohmann::orde
     write_file_atomically((dir / "report.html").string(), report_html(report, picture));
     write_file_atomically((dir / "report.md").string(), report_markdown(report));
     write_file_atomically((dir / "report.json").string(), report.dump(2) + "\n");
-    return report["passed"].get<bool>() ? kExitOk : kExitFailed;
+    return exit_code_of(report);
+}
+
+int exit_code_of(const nlohmann::ordered_json& report) {
+    if (report.value("broken", false)) return kExitBroken;
+    return report.at("passed").get<bool>() ? kExitOk : kExitFailed;
 }
 
 void check_scenario(const Config& config) {

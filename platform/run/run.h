@@ -19,8 +19,13 @@ enum ExitCode {
     kExitBadInput = 2,
     kExitInternal = 3,
     kExitEnvironment = 4,
-    kExitOutOfMemory = 5
+    kExitOutOfMemory = 5,
+    kExitBroken = 6  // the run broke: the software stalled or failed, a frame was lost, a fault not recovered
 };
+
+// A finished run's exit code from its report: kExitOk when it passed, kExitBroken when it
+// broke ("broken"), kExitFailed when it only missed a goal (the budget, a keypoint target).
+int exit_code_of(const nlohmann::ordered_json& report);
 
 // Everything about a loaded scenario that needs no simulation and no SystemC: the parameters'
 // consistency, the files it names, the workload's layout. run and validate call it before

@@ -124,7 +124,7 @@ std::string progress_text(size_t done, size_t total, size_t errors, double wall)
 // What a point's child hands back: its row's figures, not its whole report.
 Json sweep_summary(const Json& report) {
     const RunSummary run = RunSummary::of(report);
-    Json s = {{"figures", run.figures()}, {"passed", run.passed}, {"wall_time_s", run.wall_time_s}};
+    Json s = {{"figures", run.figures()}, {"exit", exit_code_of(report)}, {"wall_time_s", run.wall_time_s}};
     if (!run.failure.empty()) s["failure"] = run.failure;
     return s;
 }
@@ -361,7 +361,7 @@ int sweep_command(const SweepOptions& options) {
             row.error = result["error"].get<std::string>();
         } else {
             row.figures = result["figures"];
-            row.exit = result["passed"].get<bool>() ? 0 : 1;
+            row.exit = result["exit"].get<int>();
             row.wall_s = result["wall_time_s"].get<double>();
             if (result.contains("failure")) row.error = result["failure"].get<std::string>();
         }

@@ -40,8 +40,20 @@ std::string as_text(const Json& v) {
     return v.dump();
 }
 
-// A point that failed a check ran: its row is a result. "error" is a point that could not run.
-const char* status_of(const SweepRow& r) { return !point_ran(r.exit) ? "error" : r.exit == 0 ? "passed" : "failed"; }
+// A point that missed its budget or broke ran: its row is a result. "error" is a point that
+// could not run.
+const char* status_of(const SweepRow& r) {
+    switch (r.exit) {
+        case kExitOk:
+            return "passed";
+        case kExitFailed:
+            return "missed";
+        case kExitBroken:
+            return "broken";
+        default:
+            return "error";
+    }
+}
 
 }  // namespace
 

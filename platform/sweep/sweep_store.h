@@ -14,6 +14,8 @@
 #include <vector>
 #include <nlohmann/json.hpp>
 
+#include "platform/run/run.h"
+
 struct sqlite3;
 
 namespace surfvp {
@@ -22,17 +24,18 @@ struct SweepRow {
     size_t index = 0;
     std::string id;                 // the point's values as text
     nlohmann::ordered_json params;  // {key: value}
-    int exit = 0;       // the point's exit code as `surfvp run` gives it (0 passed, 1 failed a check, 2, 3, 4)
-    std::string error;  // why it did not run, or ""
+    int exit = 0;                   // the point's exit code as `surfvp run` gives it (0 passed, 1 missed, 6 broke, 2-5)
+    std::string error;              // why it did not run, or ""
     nlohmann::ordered_json figures;  // frames/s, latency, bottleneck... (sweep.cpp)
     double wall_s = 0;
 };
 
-// Whether a point ran: it exited 0 (passed) or 1 (failed a check, missed its budget, or its
-// software did not finish), as `surfvp run` would; its row is a result. Any other exit (2 bad
-// input, 3 a crash or a killed point, 4 a refused write) is a point that could not run, which
-// a resumed sweep runs again.
-inline bool point_ran(int exit) { return exit == 0 || exit == 1; }
+// Whether a point ran: it exited 0 (passed), 1 (missed its budget or a goal) or 6 (broke: its
+// software stalled, failed or ran past `run.max_time`, a frame was lost), as `surfvp run`
+// would; its row is a result. Any other exit (2 bad input, 3 a crash or a killed point, 4 a
+// refused write, 5 out of memory) is a point that could not run, which a resumed sweep runs
+// again.
+inline bool point_ran(int exit) { return exit == kExitOk || exit == kExitFailed || exit == kExitBroken; }
 
 // A row's columns as a database holds them, decoded and checked: params a JSON object of
 // texts, figures a JSON object of numbers, texts, booleans or nulls (those the results read

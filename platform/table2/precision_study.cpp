@@ -97,7 +97,7 @@ Json measure(const Config& seq, const std::optional<Config>& pair, const std::ve
              const fs::path& scratch) {
     const Column chip = fpga_column(seq, scratch / "sequence", {});
     Json j = quality_line(chip, read_geometry(seq));
-    j["chip_run_passed"] = chip.exit_code == kExitOk;
+    j["chip_run_exit"] = chip.exit_code;
     if (pair) {
         const Column on_pair = fpga_column(*pair, scratch / "pair", pair_sizes);
         const Json q = quality_line(on_pair, read_geometry(*pair));
@@ -470,6 +470,18 @@ void write_study(OutputFolder& out, const Json& report) {
     }
 }
 
+// The study's exit code: 6 when a point could not run or its chip run broke (its row is not a
+// measurement of the widths), else 1 when a chip run missed a goal (a keypoint target), else 0.
+int study_exit(const std::vector<PrecisionPoint>& points) {
+    int code = kExitOk;
+    for (const PrecisionPoint& p : points) {
+        const int exit = p.result.contains("error") ? kExitBroken : p.result.value("chip_run_exit", int(kExitOk));
+        if (exit == kExitBroken) return kExitBroken;
+        if (exit != kExitOk) code = kExitFailed;
+    }
+    return code;
+}
+
 }  // namespace
 
 int precision_command(const PrecisionOptions& o) {
@@ -484,9 +496,7 @@ int precision_command(const PrecisionOptions& o) {
     if (!o.quiet)
         std::fprintf(stderr, "surfvp: precision: %zu points; report in %s\n", points.size(),
                      (out.folder() / "report.md").c_str());
-    const bool all_ran =
-        std::none_of(points.begin(), points.end(), [](const PrecisionPoint& p) { return p.result.contains("error"); });
-    return all_ran ? kExitOk : kExitFailed;
+    return study_exit(points);
 }
 
 }  // namespace surfvp

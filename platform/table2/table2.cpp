@@ -229,6 +229,7 @@ int table2_command(const Table2Options& o) {
         r["frames"] = s.frames;
         r["image"] = fpga_report["image"];
         r["chip_run_passed"] = fpga_report["passed"];
+        r["chip_run_broken"] = fpga_report["broken"];
         r["columns"] = Json::object();
         for (const Column& col : columns) r["columns"][col.name] = column_summary(col);
         std::vector<size_t> gaps{1};

@@ -188,11 +188,12 @@ public:
                      ? fmt::format("frame 0 has {} maxima for surf.target_keypoints = {}", calibration_.maxima, target)
                      : fmt::format("frame 0 has only {} maxima, not more than surf.target_keypoints = {}: the "
                                    "threshold is 0 and every maximum is kept; lower the target",
-                                   calibration_.maxima, target)});
+                                   calibration_.maxima, target),
+                 true});
         if (budget_fps_ > 0) {
             const double fps = throughput();
             checks.push_back({"frame-rate budget", fps >= budget_fps_,
-                              fmt::format("{:.2f} frames/s against {:.2f}", fps, budget_fps_)});
+                              fmt::format("{:.2f} frames/s against {:.2f}", fps, budget_fps_), true});
         }
         return checks;
     }

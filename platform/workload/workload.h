@@ -27,6 +27,10 @@ struct Check {
     std::string name;
     bool passed;
     std::string detail;
+    // A goal the design may miss (the frame-rate budget, a keypoint target): a miss is the
+    // design's answer (exit 1). Otherwise the check holds the run itself (every frame
+    // processed, every fault recovered): a miss means the run broke (exit 6).
+    bool goal = false;
 };
 
 struct Progress {

@@ -383,5 +383,33 @@ TEST(Cli, TheLastLineGivesTheAnswerAndTheWholeWallTime) {
     EXPECT_GT(std::stod(wall[2].str()), j["wall_time_s"].get<double>() - 0.05);  // the whole, not the one run
 }
 
+// A missed budget and a run that broke end differently: 1 is the design's answer, 6 says the
+// run itself failed (here the maxima FIFO, four deep, overflows and both frames are lost).
+TEST(Cli, AMissedBudgetAndABrokenRunHaveTheirOwnExitCodes) {
+    REQUIRE_OPENCV_DATA("graf1.png");
+    const std::string missed = fresh_dir("exit_missed"), broken = fresh_dir("exit_broken");
+    const auto slow = surfvp("run graf --quick --trace none --set budget.fps=1000 --out " + missed);
+    EXPECT_EQ(slow.exit_code, 1) << slow.err;
+    const auto m = nlohmann::json::parse(slurp(missed + "/report.json"));
+    EXPECT_FALSE(m["passed"].get<bool>());
+    EXPECT_FALSE(m["broken"].get<bool>());
+    EXPECT_NE(slow.err.find("surfvp: graf: FAILED: "), std::string::npos) << slow.err;
+
+    for (const std::string mode : {"--direct", "--quick --trace none"}) {
+        const auto r = surfvp("run graf " + mode + " --set fhg.maxima_fifo_depth=4 --out " + broken);
+        EXPECT_EQ(r.exit_code, 6) << mode << r.err;
+        const auto b = nlohmann::json::parse(slurp(broken + "/report.json"));
+        EXPECT_TRUE(b["broken"].get<bool>()) << mode;
+        EXPECT_EQ(b["checks"][0]["kind"], "run");
+        EXPECT_FALSE(b["checks"][0]["passed"].get<bool>());
+        EXPECT_NE(r.err.find("BROKEN"), std::string::npos) << mode << r.err;
+        EXPECT_NE(r.err.find("the maxima FIFO overflowed"), std::string::npos) << mode << r.err;
+    }
+    EXPECT_NE(slurp(broken + "/report.md")
+                  .find("**The run broke: every frame processed failed: frame 0: the maxima "
+                        "FIFO overflowed: "),
+              std::string::npos);
+}
+
 }  // namespace
 }  // namespace surfvp::test

@@ -55,8 +55,8 @@ TEST(SurfRun, VpAndDirectModeReportTheSameOverflowOnATinyFifo) {
     const std::string sets =
         " --set surf.frames=1 --set surf.width=512 --set surf.height=384 --set budget.fps=0"
         " --set fhg.maxima_fifo_depth=8 --set surf.fifo_irq_level=1024";
-    EXPECT_EQ(surfvp("run " + kBudget + " --trace none --quiet --out " + vp + kOneRun + sets).exit_code, 1);
-    EXPECT_EQ(surfvp("run " + kBudget + " --direct --quiet --out " + direct + sets).exit_code, 1);
+    EXPECT_EQ(surfvp("run " + kBudget + " --trace none --quiet --out " + vp + kOneRun + sets).exit_code, 6);
+    EXPECT_EQ(surfvp("run " + kBudget + " --direct --quiet --out " + direct + sets).exit_code, 6);
     const auto in_vp = nlohmann::json::parse(slurp(vp + "/report.json"));
     const auto in_direct = nlohmann::json::parse(slurp(direct + "/report.json"));
     const std::string why = in_vp["checks"][0]["detail"];

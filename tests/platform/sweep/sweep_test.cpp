@@ -246,6 +246,23 @@ TEST(Sweep, ShardsMergeIntoTheResultsOfOneRun) {
     EXPECT_EQ(whole, sharded);
 }
 
+// A point that misses its budget or breaks ran: its row says which (missed, broken) with the
+// exit code `surfvp run` gives it, and the sweep ends well.
+TEST(Sweep, APointThatMissesItsBudgetOrBreaksSaysWhichInItsRow) {
+    const std::string dir = fresh_dir("missed_broken");
+    const auto r = surfvp("sweep " + small_sweep(dir, "  fhg.maxima_fifo_depth: [4, 1024]\n  budget.fps: [10, 400]\n") +
+                          " --quiet --out " + dir + "/out");
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    const Json j = results(dir + "/out");
+    ASSERT_EQ(j["points"].size(), 4u);
+    const std::vector<std::pair<std::string, int>> expected{{"broken", 6}, {"broken", 6}, {"passed", 0}, {"missed", 1}};
+    for (size_t i = 0; i < expected.size(); ++i) {
+        EXPECT_EQ(j["points"][i]["status"], expected[i].first) << j["points"][i];
+        EXPECT_EQ(j["points"][i]["exit"], expected[i].second) << j["points"][i];
+    }
+    EXPECT_NE(slurp(dir + "/out/results.csv").find(",missed,1,"), std::string::npos);
+}
+
 TEST(Sweep, APointThatCannotRunIsRecordedAndTheOthersGoOn) {
     const std::string dir = fresh_dir("failing");
     // 8 MiB holds two buffer sets of 256x192 frames, 1 MiB does not.
@@ -406,7 +423,7 @@ TEST(Sweep, PointsThatCouldNotRunAreRunAgainOnResume) {
               std::string::npos)
         << first.err;
     Json j = results(dir + "/out");
-    EXPECT_EQ(j["points"][0]["status"], "failed");
+    EXPECT_EQ(j["points"][0]["status"], "missed");
     EXPECT_EQ(j["points"][0]["exit"], 1);
     EXPECT_EQ(j["points"][1]["status"], "error");
     const auto wall0 = j["points"][0]["wall_s"];
@@ -430,7 +447,7 @@ TEST(Sweep, PointsThatCouldNotRunAreRunAgainOnResume) {
     EXPECT_NE(again.err.find("1 points run (0 not run)"), std::string::npos) << again.err;
     j = results(dir + "/out");
     EXPECT_EQ(j["points"][0]["wall_s"], wall0);  // the failed check was not run again
-    EXPECT_EQ(j["points"][1]["status"], "failed");
+    EXPECT_EQ(j["points"][1]["status"], "missed");
     EXPECT_EQ(j["points"][1]["figures"]["fps"], j["points"][0]["figures"]["fps"]);
 }
 

@@ -49,6 +49,20 @@ TEST(PrecisionStudy, TooFewBitsDropTheRowsAndTheReportNamesTheFewest) {
     EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 5);  // a header and the four points
 }
 
+// A chip run that broke makes a point's row no measurement: exit 6; one that missed a goal: 1.
+TEST(PrecisionStudy, AChipRunThatMissesAGoalOrBreaksHasItsExitCode) {
+    REQUIRE_CASTLE();
+    const std::string out = fresh_dir("precision_exit");
+    const std::string study =
+        "precision castle_sequence --quiet --set surf.frames=3 --axis 'fhg.accumulator_bits=22 bit' ";
+    const auto missed = surfvp(study + "--set surf.target_keypoints=100000 --out " + out);
+    EXPECT_EQ(missed.exit_code, 1) << missed.err;
+    const auto broken = surfvp(study + "--set fhg.maxima_fifo_depth=4 --out " + out);
+    EXPECT_EQ(broken.exit_code, 6) << broken.err;
+    const json report = json::parse(slurp(out + "/report.json"));
+    EXPECT_EQ(report["points"][0]["result"]["chip_run_exit"], 6);
+}
+
 TEST(PrecisionStudy, BadAxesAndPairsAreRefusedBeforeAnyPointRuns) {
     REQUIRE_CASTLE();
     const std::string out = test::fresh_path("precision_bad");

@@ -96,6 +96,21 @@ TEST(Table2, TheChipColumnIsTheVirtualPlatformsKeypoints) {
     }
 }
 
+// The chip's run decides table2's exit code as `surfvp run --direct` does: 1 for a missed goal
+// (a keypoint target frame 0 cannot reach), 6 when it broke (its frames lost to an overflow).
+TEST(Table2, AChipRunThatMissesAGoalOrBreaksHasItsExitCode) {
+    REQUIRE_CASTLE();
+    const std::string out = fresh_dir("t2exit");
+    const auto missed =
+        surfvp("table2 castle_sequence --quiet --set surf.frames=3 --set surf.target_keypoints=100000 --out " + out);
+    EXPECT_EQ(missed.exit_code, 1) << missed.err;
+    const auto broken =
+        surfvp("table2 castle_sequence --quiet --set surf.frames=3 --set fhg.maxima_fifo_depth=4 --out " + out);
+    EXPECT_EQ(broken.exit_code, 6) << broken.err;
+    const json report = json::parse(slurp(out + "/report.json"));
+    EXPECT_TRUE(report["chip_run_broken"].get<bool>());
+}
+
 TEST(Table2, AStaticCameraScoresNearlyOneWithoutGroundTruth) {
     REQUIRE_OPENCV_DATA("vtest.avi");
     const json r = table2("vtest_sequence", fresh_dir("t2vtest"), " --set surf.frames=6");
