@@ -19,6 +19,7 @@
 #include "platform/scenario/parameters.h"
 #include "platform/quality/quality_commands.h"
 #include "platform/cli/run_command.h"
+#include "platform/run/progress_line.h"
 #include "platform/run/run.h"
 #include "platform/scenario/scenario.h"
 #include "platform/compare/compare.h"
@@ -304,7 +305,15 @@ int dispatch(int argc, char** argv) {
         add_precision(app),
         add_correlate(app)};
     QualityCommands quality(app);
+    // A long command's progress line is for a terminal; --progress asks for it in a log too.
+    bool progress_in_logs = false;
+    for (const Command& c : commands)
+        if (c.app->get_option_no_throw("--quiet"))
+            c.app->add_flag("--progress", progress_in_logs,
+                            "Progress lines also when stderr is not a terminal (a log): one line of its own every "
+                            "few seconds, with the count, the time gone and the time to go");
     if (const auto code = parse(app, argc, argv)) return *code;
+    ProgressLine::show_in_logs(progress_in_logs);
     return with_exit_codes(argv[1], [&]() -> int {
         if (const auto code = quality.run()) return *code;
         for (const Command& c : commands)

@@ -292,11 +292,7 @@ int correlate_command(const CorrelateOptions& o) {
         }
         pool.submit(reference, [&](const Json& r) { default_point = r; });
         ProgressLine progress(o.quiet, "correlate", 0.0, 0.5, 5.0);
-        pool.run([&](size_t done, size_t total) {
-            progress.update([&](double wall) {
-                return fmt::format("correlate: {}/{} re-simulations, {:.1f} s", done, total, wall);
-            });
-        });
+        pool.run([&](size_t done, size_t total) { progress.steps(done, total, "re-simulations"); });
     }
 
     // The region: per schedule and CPU-side values, the FHG clocks that reproduce the rate.

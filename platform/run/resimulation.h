@@ -43,6 +43,7 @@ public:
     // Runs until every submitted re-simulation, and every one their callbacks submit, is done;
     // `progress(done, submitted)` after each.
     void run(const std::function<void(size_t, size_t)>& progress);
+    size_t submitted() const { return submitted_; }
 
     // Prepares in this process what a child of `config` would otherwise compute itself: its
     // frames and threshold calibration, and every FHG sequence its report names (the one it

@@ -112,10 +112,7 @@ Outcome simulate(Soc& soc, const Config& config, ProgressLine& progress) {
         back_on_main_stack();
         const Progress p = soc.workload().progress();
         const double sim_s = sc_core::sc_time_stamp().to_seconds();
-        progress.update([&](double wall_s) {
-            return fmt::format("{}/{} {}, {:.3f} ms simulated, {:.1f} s wall, {:.3g}x real time", p.done, p.total,
-                               p.unit, sim_s * 1e3, wall_s, sim_s / wall_s);
-        });
+        progress.steps(p.done, p.total, p.unit, false, fmt::format(", {:.1f} ms simulated", sim_s * 1e3));
     }
     if (!soc.cpu().error().empty()) return {soc.cpu().finish_time(), "software error: " + soc.cpu().error()};
     return {soc.cpu().finish_time(), ""};

@@ -105,20 +105,20 @@ void prepare_folder(const fs::path& dir, const fs::path& mine, const SweepPlan& 
     if (fresh && (whole || discarded_sweep_db)) remove_results(dir);
 }
 
-std::string clock(double seconds) {
-    const long s = std::lround(seconds);
-    return s >= 3600 ? fmt::format("{}:{:02}:{:02}", s / 3600, s / 60 % 60, s % 60)
-                     : fmt::format("{}:{:02}", s / 60, s % 60);
-}
-
-// "[#######.............] 12/40 points, 1 not run, 0:35 gone, 1:10 to go"
-std::string progress_text(size_t done, size_t total, size_t errors, double wall) {
-    constexpr size_t width = 24;
-    const size_t filled = total ? done * width / total : width;
-    const std::string bar = std::string(filled, '#') + std::string(width - filled, '.');
-    const std::string eta = done ? clock(wall / double(done) * double(total - done)) : "?";
-    return fmt::format("[{}] {}/{} points{}, {} gone, {} to go", bar, done, total,
-                       errors ? fmt::format(", {} not run", errors) : "", clock(wall), eta);
+// ", 3 of 8 meet the budget of 10 frames/s" over the rows with a budget ("" when none has one).
+std::string budget_count(const std::vector<SweepRow>& rows) {
+    size_t with = 0, met = 0;
+    double budget = 0;  // -1: the points' budgets differ
+    for (const SweepRow& r : rows) {
+        const Json& f = r.figures;
+        if (!f.contains("budget_met") || !f["budget_met"].is_boolean()) continue;
+        met += f["budget_met"].get<bool>();
+        const double own = f.value("budget_fps", 0.0);
+        budget = with++ == 0 || own == budget ? own : -1;
+    }
+    return with ? fmt::format(", {} of {} meet the budget{}", met, with,
+                              budget > 0 ? fmt::format(" of {:g} frames/s", budget) : "")
+                : "";
 }
 
 // What a point's child hands back: its row's figures, not its whole report.
@@ -353,7 +353,9 @@ int sweep_command(const SweepOptions& options) {
     Resimulation pool(options.jobs, dir / fmt::format(".scratch-{}", getpid()));
     size_t done = 0, errors = 0;
     ProgressLine progress(options.quiet, plan.name, 0.0, 0.2, 10.0);
-    auto show = [&] { progress.update([&](double wall) { return progress_text(done, todo.size(), errors, wall); }); };
+    auto show = [&] {
+        progress.steps(done, todo.size(), "points", false, errors ? fmt::format(", {} not run", errors) : "");
+    };
     auto record = [&](const SweepPoint& p, const Json& result) {
         SweepRow row{p.index, p.id, params_of(p), 0, "", Json::object(), 0};
         if (result.contains("error")) {
@@ -395,9 +397,11 @@ int sweep_command(const SweepOptions& options) {
     };
     for (unsigned i = 0; i <= pool.jobs(); ++i) submit_next();
     pool.run([&](size_t, size_t) {});
+    progress.end();
     if (shard.n == 1) write_results(dir, store);
     if (!options.quiet)
-        std::fprintf(stderr, "surfvp: %s: %zu points run (%zu not run); %s in %s\n", plan.name.c_str(), done, errors,
+        std::fprintf(stderr, "surfvp: %s: %zu points run (%zu not run)%s; %s in %s\n", plan.name.c_str(), done, errors,
+                     budget_count(store.rows()).c_str(),
                      shard.n == 1 ? "results.csv, results.json and plots" : "shard database", dir.c_str());
     return exit_code(plan, shard, store);
 }

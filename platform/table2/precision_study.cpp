@@ -410,16 +410,16 @@ std::vector<std::pair<std::string, std::string>> run_points(const Study& s, cons
             [p, pair_sizes, scratch](const Config& config) { return measure(config, p, pair_sizes, scratch); });
     };
     for (size_t i = 0; i < points.size(); ++i) submit(i);
-    engine.run([&](size_t done, size_t all) {
-        progress.update([&](double) { return fmt::format("{} of {} points", done, all); });
-    });
+    const size_t total = points.size() + (axes.empty() ? 0 : 1);  // and the fewest bits together
+    auto show = [&](size_t done, size_t) { progress.steps(done, total, "points"); };
+    engine.run(show);
     const std::string haar = surf::haar_name(surf_settings(s.seq).haar);
     for (PrecisionPoint& p : points) compare(p.result, reference[p.key == "surf.haar" ? p.value : haar]);
     const auto fewest = fewest_bits(axes, points, s.seq);
     if (!fewest.empty()) {  // all of them at once
         points.push_back({"all", "the fewest bits together", point_sets(s.seq, fewest), {}});
         submit(points.size() - 1);
-        engine.run({});
+        engine.run(show);
         compare(points.back().result, reference[haar]);
     }
     return fewest;

@@ -9,6 +9,7 @@
 
 #include "models/host/atomic_file.h"
 #include "platform/run/output_folder.h"
+#include "platform/run/progress_line.h"
 #include "platform/scenario/run_settings.h"
 #include "platform/scenario/scenario.h"
 #include "platform/table2/columns.h"
@@ -219,8 +220,16 @@ int table2_command(const Table2Options& o) {
     Json r;
     try {
         const std::vector<Variant> float_variants = variants(config);
+        // Steps: the float reference, the chip, the measures, each other float variant.
+        ProgressLine progress(o.quiet, config.name, 0.0, 0.5, 5.0);
+        size_t step = 0;
+        const size_t steps = float_variants.size() + 2;
+        auto next = [&](const std::string& what) { progress.steps(step++, steps, "steps", false, ": " + what); };
+        next("the float reference");
         Column cpu = cpu_column(config, float_variants[0], staging / "cpu");
+        next("the chip (direct mode)");
         Column fpga = fpga_column(config, staging / "fpga", cpu.sizes);
+        next("distinguishability of both columns");
         const std::vector<Column> columns{std::move(cpu), std::move(fpga)};
         const Json fpga_report = Json::parse(std::ifstream(staging / "fpga" / "report.json"));
         r["surfvp_version"] = SURFVP_VERSION;
@@ -241,8 +250,11 @@ int table2_command(const Table2Options& o) {
             r["homography"][columns[c].name] = *measures[c].homography;
         r["differences"] = differences(config);
         r["contributions"] = Json::array({quality_line(columns[0], measures[0])});
-        for (size_t i = 1; i < float_variants.size(); ++i)
+        for (size_t i = 1; i < float_variants.size(); ++i) {
+            next(float_variants[i].name);
             r["contributions"].push_back(quality_line(cpu_column(config, float_variants[i]), geometry));
+        }
+        progress.end();
         r["contributions"].push_back(quality_line(columns[1], measures[1]));
         write_file_atomically(staging / "report.json", r.dump(2) + "\n");
         write_file_atomically(staging / "report.md", table2_markdown(r));

@@ -1,5 +1,6 @@
 #include "platform/tools/calibrate.h"
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
@@ -9,6 +10,7 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 #include <fstream>
+#include <functional>
 #include <istream>
 #include <nlohmann/json.hpp>
 #include <opencv2/core/utility.hpp>
@@ -16,6 +18,7 @@
 
 #include "platform/workload/describer.h"
 #include "models/host/atomic_file.h"
+#include "platform/run/progress_line.h"
 #include "platform/run/resimulation.h"
 #include "platform/run/run.h"
 #include "platform/scenario/scenario.h"
@@ -239,13 +242,15 @@ void check_options(const CalibrateOptions& o) {
             fmt::format("--out {}: cannot be written ({})", o.out, ec ? ec.message() : std::strerror(errno)));
 }
 
+// `stage(text)` says what it is doing, for the progress line.
 RunResult calibration_run(const CalibrateOptions& o, const std::string& scenario, const std::string& haar,
-                          const std::vector<sw::PipelineParams>& sets, bool sample = false) {
+                          const std::vector<sw::PipelineParams>& sets, const std::function<void(std::string)>& stage,
+                          bool sample = false) {
     const fs::path dir = fs::path(o.out) / fmt::format("{}_{}", fs::path(scenario).stem().string(), haar);
     fs::create_directories(dir);
     for (const char* f : {"inputs.bin", "vp_results.bin", "iss_results.bin"}) fs::remove(dir / f);
     const Config config = calibration_scenario(o, scenario, haar);
-    if (!o.quiet) std::fprintf(stderr, "calibrate: %s, %s Haar: VP run\n", scenario.c_str(), haar.c_str());
+    stage(fmt::format("{}, {} Haar: VP run", scenario, haar));
     // The VP run in a child (SystemC elaborates once per process), recording what its stage saw.
     record_stage_inputs((dir / "inputs.bin").string(), (dir / "vp_results.bin").string());
     Json vp;
@@ -260,9 +265,8 @@ RunResult calibration_run(const CalibrateOptions& o, const std::string& scenario
     const std::vector<Frame> frames = read_inputs(dir / "inputs.bin");
     RunResult run;
     run.units = native_units(frames);
-    if (!o.quiet)
-        std::fprintf(stderr, "calibrate: %s, %s Haar: %zu candidates under qemu-ppc, %zu parameter sets\n",
-                     scenario.c_str(), haar.c_str(), run.units.size(), sets.size());
+    stage(fmt::format("{}, {} Haar: {} candidates under qemu-ppc, {} parameter sets", scenario, haar, run.units.size(),
+                      sets.size()));
     const sw::TraceReplay replay = run_firmware(o, dir, sets, sample ? sample_keypoints(haar) : 0);
     const Json results = compare_results(read_results(dir / "vp_results.bin"), read_results(dir / "iss_results.bin"));
     if (!results["agree"].get<bool>())
@@ -469,10 +473,14 @@ int calibrate_command(const CalibrateOptions& options) {
     Json runs = Json::array();
     std::vector<std::pair<RunResult, int>> done;
     const char* modes[2] = {"exact", "rounded"};
+    const size_t total = 2 * (o.fit.size() + size_t(std::count_if(o.check.begin(), o.check.end(),
+                                                                  [](const std::string& c) { return c != "none"; })));
+    ProgressLine progress(o.quiet, "calibrate", 0, 0, 0);  // a line per stage: each takes seconds to minutes
+    auto stage = [&](const std::string& text) { progress.steps(done.size(), total, "runs", false, ": " + text); };
     for (int h = 0; h < 2; ++h) {
         RunResult pooled;
         for (const std::string& scenario : o.fit) {
-            RunResult fit = calibration_run(o, scenario, modes[h], sets, scenario == o.fit.front());
+            RunResult fit = calibration_run(o, scenario, modes[h], sets, stage, scenario == o.fit.front());
             if (scenario == o.fit.front()) table.sample[size_t(h)] = fit.sample;
             pooled.stream.insert(pooled.stream.end(), fit.stream.begin(), fit.stream.end());
             pooled.units.insert(pooled.units.end(), fit.units.begin(), fit.units.end());
@@ -487,7 +495,7 @@ int calibrate_command(const CalibrateOptions& options) {
             table.precision[p].haar[size_t(h)] = fitted;
         }
         for (const std::string& check : o.check)
-            if (check != "none") done.emplace_back(calibration_run(o, check, modes[h], sets), h);
+            if (check != "none") done.emplace_back(calibration_run(o, check, modes[h], sets, stage), h);
     }
     table.provenance = {
         {"toolchain", first_line("powerpc-linux-gnu-g++ --version")},

@@ -307,11 +307,11 @@ int run_with_verdict(const Config& config, const std::string& out, const std::st
         config, [&](const Json& r) { w.base = r; }, Resimulation::whole, out, trace);
     submit_variants(w, pool, reference);
     {
+        // The break-even searches end when they find their value: their share of the total is
+        // an estimate, fixed here.
+        const size_t about = pool.submitted() + LimitChain::expected_runs(w.break_even ? kChainDepth : 0);
         ProgressLine progress(quiet, config.name, 0.0, 0.5, 5.0);
-        pool.run([&](size_t done, size_t total) {
-            progress.update(
-                [&](double wall) { return fmt::format("verdict: {}/{} re-simulations, {:.1f} s", done, total, wall); });
-        });
+        pool.run([&](size_t done, size_t) { progress.steps(done, about, "verdict re-simulations", w.break_even); });
     }
     if (w.base.contains("error")) {
         if (w.base["exit"] == 2) throw ConfigError(w.base["error"].get<std::string>());

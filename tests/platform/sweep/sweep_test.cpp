@@ -2,6 +2,7 @@
 // and is recorded in SQLite as it ends; a sweep run again resumes, shards merge into the
 // results of one whole run, a point that cannot run is recorded and the others go on.
 #include <filesystem>
+#include <cstdlib>
 #include <functional>
 #include <map>
 #include <optional>
@@ -261,6 +262,16 @@ TEST(Sweep, APointThatMissesItsBudgetOrBreaksSaysWhichInItsRow) {
         EXPECT_EQ(j["points"][i]["exit"], expected[i].second) << j["points"][i];
     }
     EXPECT_NE(slurp(dir + "/out/results.csv").find(",missed,1,"), std::string::npos);
+    // On a terminal (script(1) gives it one) the summary is a line of its own after the bar.
+    const std::string tty = dir + "/tty.txt";
+    ASSERT_EQ(std::system(("script -qec '" + std::string(SURFVP_BINARY) + " sweep " + dir +
+                           "/sweep.yaml --fresh --out " + dir + "/out' " + tty + " > /dev/null")
+                              .c_str()),
+              0);
+    const std::string shown = slurp(tty);
+    EXPECT_NE(shown.find("\r\nsurfvp: small: 4 points run (0 not run), 1 of 4 meet the budget; "), std::string::npos)
+        << shown;
+    EXPECT_NE(shown.find("\rsurfvp: small: ["), std::string::npos) << shown;
 }
 
 TEST(Sweep, APointThatCannotRunIsRecordedAndTheOthersGoOn) {
