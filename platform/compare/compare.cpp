@@ -11,6 +11,7 @@
 #include "models/host/atomic_file.h"
 #include "platform/compare/run_figures.h"
 #include "platform/run/run.h"
+#include "platform/report/figure_format.h"
 #include "platform/report/json_input.h"
 #include "platform/report/run_summary.h"
 #include "platform/scenario/parameters.h"
@@ -49,6 +50,69 @@ Json read_parameters(const fs::path& file) {
 
 Json object_or_empty(const Json& j) { return j.is_object() ? j : Json::object(); }
 
+// The unit of a report.json figure: the statistics legend's, else what its name says
+// ("phases_ms.determinants": ms, "mci.utilisation": a share).
+std::string unit_of_path(const Json& legend, const std::string& path) {
+    if (legend.contains(path)) {
+        const Json& unit = value_at(legend[path], "/unit");
+        if (unit.is_string() && !unit.get<std::string>().empty()) return unit.get<std::string>();
+    }
+    auto ends = [&](const std::string& tail) {
+        return path.size() >= tail.size() && path.compare(path.size() - tail.size(), tail.size(), tail) == 0;
+    };
+    if (ends("_ms") || path.find("_ms.") != std::string::npos) return "ms";
+    if (ends("_s")) return "s";
+    if (ends("_us")) return "us";
+    if (ends("cycles") || ends("cycles_per_keypoint")) return "cycles";
+    if (ends("_hz")) return "Hz";
+    if (ends("fps")) return "frames/s";
+    if (ends("bytes")) return "B";
+    if (ends("share") || ends("utilisation")) return "share";
+    return "";
+}
+
+// What a parameter's 0 stands for ("the sequence's" for fhg.cycles_per_block), from its
+// description's "(0: ...)" or "; 0: ..."; "" when 0 is a value like any other.
+std::string sentinel_meaning(const std::string& key) {
+    const ParamSpec* spec = find_parameter(key);
+    if (!spec) return "";
+    const std::string& d = spec->description;
+    for (const char* mark : {"(0: ", "; 0: "}) {
+        const size_t at = d.find(mark);
+        if (at == std::string::npos) continue;
+        const size_t from = at + std::string(mark).size(), end = d.find_first_of(");", from);
+        return d.substr(from, end == std::string::npos ? std::string::npos : end - from);
+    }
+    return "";
+}
+
+// What a run did where its parameter said "0: ...": the figure its report gives instead.
+Json effective_values(const Json& report) {
+    Json e = Json::object();
+    if (const Json& c = value_at(report, "/fhg/cycles_per_block"); c.is_number())
+        e["fhg.cycles_per_block"] = fmt::format("{} cycles", c.get<double>());
+    if (const Json& w = value_at(report, "/image/width"); w.is_number()) e["surf.width"] = w.dump();
+    if (const Json& h = value_at(report, "/image/height"); h.is_number()) e["surf.height"] = h.dump();
+    return e;
+}
+
+// A parameter's value as a side has it; a 0 that stands for something says what, and what the
+// run made of it ("0 cycles (the sequence's: 53 cycles)").
+Json shown_parameter(const std::string& key, const Json& value, const Json& effective) {
+    if (!value.is_string()) return value;
+    const std::string meaning = sentinel_meaning(key);
+    const ParamSpec* spec = find_parameter(key);
+    if (meaning.empty() || !spec) return value;
+    try {
+        if (parse_value(*spec, value.get<std::string>()) != 0) return value;
+    } catch (const std::exception&) {
+        return value;
+    }
+    const Json& actual = effective.contains(key) ? effective[key] : Json();
+    return fmt::format("{} ({}{})", value.get<std::string>(), meaning,
+                       actual.is_string() ? ": " + actual.get<std::string>() : "");
+}
+
 // SWEEP_DIR@POINT: the point's row of the sweep's results.json.
 Json load_point(const std::string& side, const fs::path& dir, const std::string& number) {
     if (number.size() > 9) throw ConfigError(fmt::format("{}: no sweep has point {}", side, number));
@@ -62,8 +126,10 @@ Json load_point(const std::string& side, const fs::path& dir, const std::string&
             return {{"name", side},
                     {"kind", "sweep point"},
                     {"parameters", object_or_empty(value_at(p, "/params"))},
+                    {"effective", Json::object()},
                     {"main", object_or_empty(value_at(p, "/figures"))},
-                    {"all", Json::object()}};
+                    {"all", Json::object()},
+                    {"legend", Json::object()}};
     throw ConfigError(fmt::format("{}: the sweep in {} has no point {}", side, dir.string(), point));
 }
 
@@ -80,8 +146,10 @@ Json load_side(const std::string& side) {
     return {{"name", side},
             {"kind", "run"},
             {"parameters", read_parameters(dir / "config.yaml")},
+            {"effective", effective_values(report)},
             {"main", RunSummary::of(report).figures()},
-            {"all", all_figures(report)}};
+            {"all", all_figures(report)},
+            {"legend", object_or_empty(value_at(report, "/statistics"))}};
 }
 
 // "125MHz" and "125 MHz" are one value: compared as the parameter reads them.
@@ -102,6 +170,18 @@ Json delta(const Json& ref, const Json& value) {
     Json d = {{"value", value}, {"delta", b - a}};
     d["percent"] = a != 0 ? Json(100 * (b - a) / std::abs(a)) : Json();
     return d;
+}
+
+// The unit of each figure of `table` ("main": RunSummary's, "all": the reports' legends).
+Json units_of(const Json& table, const std::vector<Json>& sides, const char* kind) {
+    Json units = Json::object();
+    for (const auto& [key, row] : table.items()) {
+        std::string unit = RunSummary::unit_of(key);
+        for (const Json& s : sides)
+            if (unit.empty() && std::string(kind) == "all") unit = unit_of_path(s["legend"], key);
+        units[key] = unit;
+    }
+    return units;
 }
 
 // Figures of `kind` ("main" or "all") on every side; for "all" only those that differ.
@@ -125,24 +205,26 @@ Json figure_table(const std::vector<Json>& sides, const char* kind, bool only_di
     return table;
 }
 
-std::string cell(const Json& v) {
+std::string cell(const Json& v, const std::string& unit = "") {
     if (v.is_null()) return "-";
-    if (v.is_number_float()) return fmt::format("{:.6g}", v.get<double>());
+    if (v.is_number() || v.is_boolean()) return format_figure(v, unit);
     if (v.is_string()) return v.get<std::string>();
     return v.dump(-1, ' ', false, Json::error_handler_t::replace);
 }
 
-std::string rows_markdown(const Json& table, size_t sides) {
+std::string rows_markdown(const Json& table, const Json& units, size_t sides) {
     std::string md;
     for (const auto& [key, row] : table.items()) {
+        const std::string unit = units.value(key, "");
         md += "| " + key;
         for (size_t i = 0; i < sides; ++i) {
             const Json& c = row[i];
-            md += " | " + cell(c["value"]);
+            md += " | " + cell(c["value"], unit);
             if (i > 0 && c.contains("delta") && c["delta"].get<double>() != 0)
-                md += c["percent"].is_null()
-                          ? fmt::format(" ({:+.4g})", c["delta"].get<double>())
-                          : fmt::format(" ({:+.4g}, {:+.2f} %)", c["delta"].get<double>(), c["percent"].get<double>());
+                md += c["percent"].is_null() || unit == "share"
+                          ? fmt::format(" ({})", format_change(c["delta"].get<double>(), unit))
+                          : fmt::format(" ({}, {:+.2f} %)", format_change(c["delta"].get<double>(), unit),
+                                        c["percent"].get<double>());
         }
         md += " |\n";
     }
@@ -182,6 +264,7 @@ Json compare_runs(const std::vector<std::string>& names) {
         }
         for (const std::string& v : known)
             if (!same_parameter(k, v, known.front())) {
+                for (size_t i = 0; i < sides.size(); ++i) row[i] = shown_parameter(k, row[i], sides[i]["effective"]);
                 parameters[k] = row;
                 break;
             }
@@ -195,11 +278,14 @@ Json compare_runs(const std::vector<std::string>& names) {
     }
     Json side_list = Json::array();
     for (const Json& s : sides) side_list.push_back({{"name", s["name"]}, {"kind", s["kind"]}});
+    const Json figures = figure_table(sides, "main", false), others = figure_table(sides, "all", true);
     return {{"reference", names[0]},
             {"sides", side_list},
             {"parameters", parameters},
-            {"figures", figure_table(sides, "main", false)},
-            {"other_figures", figure_table(sides, "all", true)},
+            {"figures", figures},
+            {"figure_units", units_of(figures, sides, "main")},
+            {"other_figures", others},
+            {"other_figure_units", units_of(others, sides, "all")},
             {"budgets", budgets}};
 }
 
@@ -225,12 +311,12 @@ std::string compare_markdown(const Json& c) {
             md += " |\n";
         }
     }
-    md += "\n## Figures\n\n" + header(c) + rows_markdown(c["figures"], n);
+    md += "\n## Figures\n\n" + header(c) + rows_markdown(c["figures"], c["figure_units"], n);
     if (!c["other_figures"].empty())
         md += fmt::format(
             "\n## Every other figure that differs ({})\n\n<details><summary>report.json "
             "paths</summary>\n\n{}{}\n</details>\n",
-            c["other_figures"].size(), header(c), rows_markdown(c["other_figures"], n));
+            c["other_figures"].size(), header(c), rows_markdown(c["other_figures"], c["other_figure_units"], n));
     return md;
 }
 

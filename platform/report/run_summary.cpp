@@ -76,6 +76,18 @@ Json RunSummary::point() const {
     return p;
 }
 
+std::string RunSummary::unit_of(const std::string& figure) {
+    static const std::map<std::string, std::string> units = {
+        {"fps", "frames/s"},  {"budget_fps", "frames/s"},
+        {"latency_ms", "ms"}, {"bram36", "RAMB36"},
+        {"dsp48e", "DSP48E"}, {"luts", "LUTs"},
+        {"watts", "W"},       {"joules_per_frame", "J"},
+        {"sim_time_s", "s"},  {"keypoints_per_frame", "keypoints"}};
+    if (figure.rfind("busy.", 0) == 0) return "share";
+    const auto it = units.find(figure);
+    return it == units.end() ? "" : it->second;
+}
+
 Json RunSummary::figures() const {
     Json f;
     f["fps"] = fps;

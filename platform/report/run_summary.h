@@ -55,6 +55,9 @@ struct RunSummary {
     nlohmann::ordered_json point() const;
     // A sweep's row and compare's main figures (sweep.md's columns).
     nlohmann::ordered_json figures() const;
+    // The unit of one of figures() for format_figure ("frames/s", "ms", "share", "W"; "" for a
+    // ratio, a count without a unit, text or a flag).
+    static std::string unit_of(const std::string& figure);
 };
 
 }  // namespace surfvp

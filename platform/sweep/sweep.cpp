@@ -65,7 +65,7 @@ void remove_database(const fs::path& db) {
     }
 }
 
-// What a whole sweep writes besides sweep.db: results.csv, results.json, pareto.svg and
+// What a whole sweep writes besides sweep.db: results.csv, results.json, results.md, pareto.svg and
 // plot_<parameter>.svg. Nothing else in the folder is touched.
 void remove_results(const fs::path& dir) {
     std::error_code ec;
@@ -74,7 +74,7 @@ void remove_results(const fs::path& dir) {
         const std::string name = entry.path().filename().string();
         const bool plot = name.size() > 9 && name.rfind("plot_", 0) == 0 && name.substr(name.size() - 4) == ".svg" &&
                           find_parameter(name.substr(5, name.size() - 9));
-        if (plot || name == "results.csv" || name == "results.json" || name == "pareto.svg")
+        if (plot || name == "results.csv" || name == "results.json" || name == "results.md" || name == "pareto.svg")
             files.push_back(entry.path());
     }
     for (const fs::path& f : files)
@@ -402,7 +402,7 @@ int sweep_command(const SweepOptions& options) {
     if (!options.quiet)
         std::fprintf(stderr, "surfvp: %s: %zu points run (%zu not run)%s; %s in %s\n", plan.name.c_str(), done, errors,
                      budget_count(store.rows()).c_str(),
-                     shard.n == 1 ? "results.csv, results.json and plots" : "shard database", dir.c_str());
+                     shard.n == 1 ? "results.md, results.csv, results.json and plots" : "shard database", dir.c_str());
     return exit_code(plan, shard, store);
 }
 

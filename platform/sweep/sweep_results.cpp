@@ -4,11 +4,14 @@
 #include <cmath>
 #include <filesystem>
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <map>
 #include <set>
 
 #include "models/host/atomic_file.h"
+#include "platform/report/figure_format.h"
 #include "platform/report/json_input.h"
+#include "platform/report/run_summary.h"
 #include "platform/sweep/sweep_plots.h"
 
 namespace surfvp {
@@ -55,6 +58,44 @@ const char* status_of(const SweepRow& r) {
     }
 }
 
+// results.md: the points as a person reads them, each figure through its unit.
+std::string results_markdown(const std::string& name, const std::vector<std::string>& axes,
+                             const std::vector<SweepRow>& rows, const std::vector<bool>& front,
+                             const std::vector<Objective>& objectives) {
+    std::vector<std::string> shown;
+    for (const char* c : {"fps", "bottleneck", "latency_ms", "bram36", "dsp48e", "luts", "watts", "repeatability",
+                          "precision", "distinguishability"})
+        if (std::any_of(rows.begin(), rows.end(), [&](const SweepRow& r) { return r.figures.contains(c); }))
+            shown.emplace_back(c);
+    std::vector<std::string> weighed;
+    for (const Objective& o : objectives) weighed.push_back(o.figure);
+    const size_t on_front = size_t(std::count(front.begin(), front.end(), true));
+    std::string md = fmt::format(
+        "# Sweep {}\n\n{} points; {} on the Pareto front of {} (only points that ran whole and fit the device "
+        "are weighed). Status: passed, missed (a budget or goal), broken (the run broke), error (could not "
+        "run).\n\n| point |",
+        name, rows.size(), on_front, fmt::join(weighed, ", "));
+    std::string rule = "|---:|";
+    for (const std::string& a : axes) md += " " + a + " |", rule += "---|";
+    md += " status |", rule += "---|";
+    for (const std::string& c : shown) {
+        const std::string unit = RunSummary::unit_of(c);
+        md += " " + (c == "bottleneck" ? std::string("limit") : c) + " |";
+        rule += unit.empty() ? "---|" : "---:|";
+    }
+    md += " front |\n" + rule + "---|\n";
+    for (size_t i = 0; i < rows.size(); ++i) {
+        const SweepRow& r = rows[i];
+        md += fmt::format("| {} |", r.index);
+        for (const std::string& a : axes) md += " " + r.params.value(a, "") + " |";
+        md += fmt::format(" {} |", status_of(r));
+        for (const std::string& c : shown)
+            md += " " + (r.figures.contains(c) ? format_figure(r.figures[c], RunSummary::unit_of(c)) : "-") + " |";
+        md += front[i] ? " yes |\n" : " |\n";
+    }
+    return md;
+}
+
 }  // namespace
 
 std::vector<Objective> pareto_objectives(const std::vector<SweepRow>& rows) {
@@ -76,12 +117,17 @@ std::vector<bool> pareto_front(const std::vector<SweepRow>& rows, const std::vec
         const double v = r.figures.value(o.figure, 0.0);
         return o.higher_is_better ? v : -v;
     };
+    // Only points that ran whole and fit the device trade off: one that does not fit is no
+    // design, whatever its figures.
+    auto candidate = [](const SweepRow& r) {
+        return r.error.empty() && r.exit != kExitBroken && !(r.figures.contains("fits") && r.figures["fits"] == false);
+    };
     std::vector<bool> front(rows.size(), false);
     for (size_t i = 0; i < rows.size(); ++i) {
-        if (!rows[i].error.empty()) continue;
+        if (!candidate(rows[i])) continue;
         bool beaten = false;
         for (size_t j = 0; j < rows.size() && !beaten; ++j) {
-            if (j == i || !rows[j].error.empty()) continue;
+            if (j == i || !candidate(rows[j])) continue;
             // Figures within kTie of each other count as equal: a point 0.01 % faster at two
             // more block RAMs is not a trade-off a review weighs.
             bool all = true, one = false;
@@ -131,7 +177,9 @@ std::vector<std::string> write_sweep_results(const std::string& dir, const std::
     for (const auto& [key, value] : notes.items()) results[key] = value;
     results["pareto_objectives"] = objectives_json;
     results["points"] = points;
-    std::vector<std::string> written{"results.csv", "results.json"};
+    std::vector<std::string> written{"results.md", "results.csv", "results.json"};
+    write_file_atomically((fs::path(dir) / "results.md").string(),
+                          results_markdown(name, axes, rows, front, objectives));
     write_file_atomically((fs::path(dir) / "results.csv").string(), csv);
     write_file_atomically((fs::path(dir) / "results.json").string(), results.dump(2) + "\n");
     for (const std::string& axis : axes) {

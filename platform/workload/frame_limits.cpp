@@ -200,7 +200,8 @@ void add_limits(Json& r, const Config& config) {
                     {"busy_ms", ms(a.busy)},
                     {"waits_ms", waits},
                     {"idle_ms", ms(idle)},
-                    {"busy_share", a.period > 0 ? a.busy / a.period : 0.0},
+                    // a share: the busy total may pass the steady period by the models' rounding
+                    {"busy_share", a.period > 0 ? std::min(1.0, a.busy / a.period) : 0.0},
                     {"load", load},
                     {"alone_fps", load > 0 ? Json(fps / load) : Json()}};
         if (budget > 0 && load > 0) row["slack"] = fps / load / budget - 1;

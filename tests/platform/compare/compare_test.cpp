@@ -3,6 +3,7 @@
 // points alike; a side that is neither is bad input.
 #include <cmath>
 #include <filesystem>
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -39,6 +40,30 @@ TEST(Compare, ARunAgainstAnEarlierOneGivesEachFigureItsChange) {
     const std::string md = slurp(b + "/compare.md");
     EXPECT_NE(md.find("| fhg.clock | 25MHz | 50 MHz |"), std::string::npos) << md.substr(0, 800);
     EXPECT_NE(md.find("| frame_rate | **missed** | met |"), std::string::npos) << md.substr(0, 800);
+    // Figures through their units: frames/s, shares in percent with changes in points, times in ms.
+    EXPECT_EQ(c["figure_units"]["fps"], "frames/s");
+    EXPECT_EQ(c["figure_units"]["busy.fhg"], "share");
+    EXPECT_NE(md.find(fmt::format("| fps | {:.4g} frames/s | {:.4g} frames/s (+", before, after)), std::string::npos)
+        << md;
+    EXPECT_NE(md.find(fmt::format("| busy.fhg | {:.1f} % |", 100 * c["figures"]["busy.fhg"][0]["value"].get<double>())),
+              std::string::npos)
+        << md;
+    EXPECT_NE(md.find(" points) |"), std::string::npos) << md;
+    EXPECT_EQ(md.find("| busy.fhg | 0."), std::string::npos) << md;
+}
+
+// A parameter whose 0 stands for something says what, and what the run made of it.
+TEST(Compare, AParameterAtItsSentinelShowsItsEffectiveValue) {
+    const std::string a = fresh_dir("cmp_sentinel_a"), b = fresh_dir("cmp_sentinel_b");
+    ASSERT_LE(surfvp("run " + kBudget + kSmall + " --out " + a).exit_code, 1);
+    ASSERT_LE(surfvp("run " + kBudget + kSmall + " --set 'fhg.cycles_per_block=40 cycles' --out " + b).exit_code, 1);
+    const Json report = Json::parse(slurp(a + "/report.json"));
+    const auto r = surfvp("compare " + a + " " + b);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.out.find(fmt::format("| fhg.cycles_per_block | 0 cycles (the sequence's: {} cycles) | 40 cycles |",
+                                     report["fhg"]["cycles_per_block"].get<int>())),
+              std::string::npos)
+        << r.out;
 }
 
 TEST(Compare, SweepPointsSideBySide) {

@@ -14,6 +14,7 @@
 #include <sqlite3.h>
 
 #include "cli.h"
+#include "platform/report/chart_ticks.h"
 #include "platform/scenario/config.h"
 #include "platform/sweep/sweep_plan.h"
 #include "platform/sweep/sweep_results.h"
@@ -171,6 +172,25 @@ TEST(SweepResults, TheParetoFrontIsThePointsNoOtherBeats) {
     const auto objectives = pareto_objectives(rows);
     ASSERT_EQ(objectives.size(), 2u);
     EXPECT_EQ(pareto_front(rows, objectives), (std::vector<bool>{false, true, true, false, true, false, false}));
+    // A point that does not fit the device, or broke, trades off nothing: the fastest and
+    // cheapest is left off the front, and beats no other.
+    rows.push_back(SweepRow{7, "7", Json::object(), 0, "", {{"fps", 20}, {"bram36", 30}, {"fits", false}}, 0});
+    rows.push_back(SweepRow{8, "8", Json::object(), 6, "", {{"fps", 20}, {"bram36", 30}, {"fits", true}}, 0});
+    EXPECT_EQ(pareto_front(rows, pareto_objectives(rows)),
+              (std::vector<bool>{false, true, true, false, true, false, false, false, false}));
+}
+
+// Plot ticks are round numbers: 1, 2 or 5 times a power of ten, covering the data.
+TEST(SweepResults, PlotTicksAreRoundNumbers) {
+    const Ticks t = round_ticks(0, 9.43);
+    EXPECT_EQ(t.at, (std::vector<double>{0, 2, 4, 6, 8, 10}));
+    EXPECT_EQ(tick_label(t.at[1], t.step), "2");
+    const Ticks w = round_ticks(2.376, 2.597, 4);
+    EXPECT_DOUBLE_EQ(w.step, 0.1);
+    EXPECT_NEAR(w.lo(), 2.3, 1e-12);
+    EXPECT_NEAR(w.hi(), 2.6, 1e-12);
+    EXPECT_EQ(tick_label(w.at[1], w.step), "2.4");
+    EXPECT_EQ(round_ticks(83, 84).step, 0.2);
 }
 
 Json results(const std::string& dir) { return Json::parse(slurp(dir + "/results.json")); }
