@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "models/common/byte_order.h"
@@ -75,6 +76,12 @@ public:
     // (direct mode: every fill costs an uncontended one), software may count its fills instead
     // of listing them, and so not stamp each with its cycle.
     virtual bool times_fills() const { return true; }
+
+    // For the trace only: the next compute()'s cycles by the software's steps, in the order
+    // they ran ({"check", 1200}, {"interpolation", 800}, ...: the names of the CPU's phase
+    // signal). A platform that traces the CPU's phase spreads them over the time compute()
+    // takes; no figure depends on it.
+    virtual void split_next_compute(const std::vector<std::pair<const char*, uint64_t>>& steps) { (void)steps; }
 
     // Marks a span of software work on the CPU's timeline (spans may nest).
     virtual void begin(const char* what) = 0;

@@ -87,7 +87,7 @@ void Dma::copy_thread() {
         ++copies_;
         busy_.write(false);
         if (tracer_.perfetto_on())
-            tracer_.slice(track_, fmt::format("copy {} B", len), began, sc_core::sc_time_stamp());
+            tracer_.slice(track_, "copy", began, sc_core::sc_time_stamp(), TraceArgs().number("bytes", double(len)));
         irq_changed_.notify(sc_core::SC_ZERO_TIME);
     }
 }

@@ -226,7 +226,8 @@ void Fhg::frame_thread() {
             finish_block_row(int(by), block_row_results(by));  // the results exist once the row's cycles are spent
             stats_.computing += sc_core::sc_time_stamp() - began;
             if (tracer_.perfetto_on())
-                tracer_.slice(row_track_, fmt::format("block row {}", by), began, sc_core::sc_time_stamp());
+                tracer_.slice(row_track_, "block row", began, sc_core::sc_time_stamp(),
+                              TraceArgs().number("row", double(by)).number("blocks", double(frame_.blocks_x)));
             frame_.oldest = std::max(frame_.oldest, int(2 * (by + 1)) - fhg::kReachBefore);
             trace_levels();
             room_.notify(sc_core::SC_ZERO_TIME);
@@ -252,8 +253,8 @@ void Fhg::frame_thread() {
         faults_.irq_lost = strikes(FaultKind::lost_interrupt);
         room_.notify(sc_core::SC_ZERO_TIME);  // a sender still waiting gives up
         if (tracer_.perfetto_on())
-            tracer_.slice(frame_track_, fmt::format("determinants {}x{}", frame_.width, frame_.height), frame_.began,
-                          sc_core::sc_time_stamp());
+            tracer_.slice(frame_track_, "determinants", frame_.began, sc_core::sc_time_stamp(),
+                          TraceArgs().number("width", frame_.width).number("height", frame_.height));
         irq_changed_.notify(sc_core::SC_ZERO_TIME);
     }
 }

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <fmt/format.h>
 #include <map>
 
@@ -22,9 +23,14 @@ constexpr const char* kNoTask = "4294967295";
 
 std::string group_of(const std::string& name) { return name.substr(0, name.find('.')); }
 
-std::string trace_line(const VcdSignal& s, const GtkwaveSave& save) {
+std::string trace_line(const VcdSignal& s, const GtkwaveSave& save, int& filters) {
     const std::string path = "SystemC." + s.name + (s.bits > 1 ? fmt::format("[{}:0]", s.bits - 1) : "");
     if (s.bits == 1) return fmt::format("@{:x}\n{}\n", kRjustify | kBinary, path);
+    if (!s.value_names.empty()) {  // an enum: its names through a filter of its own, beside the tasks' (1)
+        const std::string file =
+            (std::filesystem::path(save.filter_path).parent_path() / gtkwave_value_filter_file(s)).string();
+        return fmt::format("^{} {}\n@{:x}\n{}\n", ++filters, file, kRjustify | kDecimal | kTranslated, path);
+    }
     const bool task = s.name.size() > 5 && s.name.compare(s.name.size() - 5, 5, "_task") == 0;
     if (task) return fmt::format("^1 {}\n@{:x}\n{}\n", save.filter_path, kRjustify | kDecimal | kTranslated, path);
     if (s.name.find("level") != std::string::npos)  // a FIFO level: a step curve four rows high
@@ -38,6 +44,14 @@ double gtkwave_zoom(uint64_t end_ps) { return -std::log2(200.0 * double(std::max
 
 std::string gtkwave_task_filter() { return fmt::format("{} none\n", kNoTask); }
 
+std::string gtkwave_value_filter(const VcdSignal& signal) {
+    std::string text;
+    for (size_t v = 0; v < signal.value_names.size(); ++v) text += fmt::format("{} {}\n", v, signal.value_names[v]);
+    return text;
+}
+
+std::string gtkwave_value_filter_file(const VcdSignal& signal) { return "trace." + signal.name + ".txt"; }
+
 std::string gtkwave_save(const std::vector<VcdSignal>& signals, const GtkwaveSave& save) {
     std::vector<std::string> order;
     std::map<std::string, std::string> title;
@@ -48,12 +62,14 @@ std::string gtkwave_save(const std::vector<VcdSignal>& signals, const GtkwaveSav
         "[*] surfvp: open with `gtkwave {}`\n[dumpfile] \"{}\"\n[savefile] \"{}\"\n[timestart] 0\n[size] {} {}\n"
         "[pos] 0 0\n*{:.6f} -1",
         save.save_path, save.vcd_path, save.save_path, kWindowWidth, kWindowHeight, gtkwave_zoom(save.end_ps));
-    for (int i = 0; i < 26; ++i) out += " -1";
+    for (size_t i = 0; i < 26; ++i)  // the named markers A to Z
+        out += i < save.markers.size() ? fmt::format(" {}", save.markers[i]) : std::string(" -1");
     out += fmt::format("\n[sst_width] {0}\n[signals_width] {0}\n[sst_expanded] 1\n", kPaneWidth);
+    int filters = 1;  // 1: the tasks' filter
     for (const std::string& group : order) {
         std::string traces;
         for (const VcdSignal& s : signals)
-            if (group_of(s.name) == group) traces += trace_line(s, save);
+            if (group_of(s.name) == group) traces += trace_line(s, save, filters);
         if (traces.empty()) continue;
         const std::string name = title.count(group) ? title[group] : group;
         out += fmt::format("@{:x}\n-{}\n{}@{:x}\n-{}\n", kGroupBegin | kBlank, name, traces, kGroupEnd | kBlank, name);

@@ -10,8 +10,9 @@
 namespace surfvp {
 
 struct VcdSignal {
-    std::string name;  // dotted, as traced ("fhg.maxima_fifo_level")
-    unsigned bits;     // 1 for a bool
+    std::string name;                           // dotted, as traced ("fhg.maxima_fifo_level")
+    unsigned bits;                              // 1 for a bool
+    std::vector<std::string> value_names = {};  // value v's name (an enum: "cpu.phase"), or none
 };
 
 struct GtkwaveSave {
@@ -19,7 +20,13 @@ struct GtkwaveSave {
     uint64_t end_ps = 0;                           // the run's simulated time
     // Group titles in display order ("iig" -> "SSA IIG"); other groups follow as traced.
     std::vector<std::pair<std::string, std::string>> titles;
+    std::vector<uint64_t> markers;  // GTKWave's named markers A, B, ... (at most 26) at these times
 };
+
+// An enum signal's translate filter (each value's name), and the file it goes in beside the
+// save file (trace.<signal>.txt).
+std::string gtkwave_value_filter(const VcdSignal& signal);
+std::string gtkwave_value_filter_file(const VcdSignal& signal);
 
 // The save file's text; `filter_text()` is the value-to-name file it refers to.
 std::string gtkwave_save(const std::vector<VcdSignal>& signals, const GtkwaveSave& save);

@@ -159,8 +159,8 @@ void Iig::finish_row() {
     }
     faults_.irq_lost = strikes(FaultKind::lost_interrupt);
     if (tracer_.perfetto_on())
-        tracer_.slice(track_, fmt::format("integral {}x{}", frame_.width, frame_.height), frame_.began,
-                      sc_core::sc_time_stamp());
+        tracer_.slice(track_, "integral image", frame_.began, sc_core::sc_time_stamp(),
+                      TraceArgs().number("width", frame_.width).number("height", frame_.height));
     irq_changed_.notify(sc_core::SC_ZERO_TIME);
 }
 

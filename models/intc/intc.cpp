@@ -23,6 +23,7 @@ Intc::Intc(const sc_core::sc_module_name& name, const Params& params, Tracer& tr
     for (auto& in : irq_in) sensitive << in;
     sensitive << changed_;
     track_ = tracer_.track("intc", "pending");
+    line_track_ = tracer_.track("intc", "interrupt to the CPU");
 }
 
 uint32_t Intc::levels() const {
@@ -36,9 +37,26 @@ void Intc::update() {
     registers_.latch();
     const bool level = registers_.output();
     if (level && !irq.read()) ++raised_;
+    if (tracer_.perfetto_on()) trace_line(level);
     irq.write(level);
     if (tracer_.perfetto_on())
         tracer_.counter(track_, "intc pending", sc_core::sc_time_stamp(), __builtin_popcount(registers_.pending()));
+}
+
+// The line to the CPU as a slice from its rise to its fall, with a flow from the rise to the
+// CPU's handling (the CPU takes it from the "cpu irq" channel when it wakes).
+void Intc::trace_line(bool level) {
+    const sc_core::sc_time now = sc_core::sc_time_stamp();
+    if (level && !irq.read()) {
+        raised_at_ = now;
+        raised_lines_ = registers_.pending();
+        flow_ = tracer_.flow_id();
+        tracer_.flow(line_track_, now, flow_, Tracer::Flow::begin, "interrupt");
+        tracer_.post_flow("cpu irq", flow_);
+    } else if (!level && irq.read()) {
+        tracer_.slice(line_track_, "interrupt", raised_at_, now,
+                      TraceArgs().address("lines", raised_lines_).number("flow", double(flow_)));
+    }
 }
 
 void Intc::b_transport(tlm::tlm_generic_payload& tx, sc_core::sc_time& delay) {

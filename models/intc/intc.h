@@ -38,6 +38,7 @@ public:
 
 private:
     void b_transport(tlm::tlm_generic_payload& tx, sc_core::sc_time& delay);
+    void trace_line(bool level);
     unsigned transport_dbg(tlm::tlm_generic_payload& tx);
     uint32_t levels() const;
     void update();  // the only writer of `irq`
@@ -48,6 +49,10 @@ private:
     uint64_t raised_ = 0;
     sc_core::sc_event changed_;
     int track_ = -1;
+    int line_track_ = -1;         // the line to the CPU: a slice while it is high
+    sc_core::sc_time raised_at_;  // when it last went high
+    uint32_t raised_lines_ = 0;   // the lines pending then
+    uint64_t flow_ = 0;           // the flow from its rise to the CPU's handling
 };
 
 }  // namespace surfvp

@@ -45,7 +45,8 @@ void PlbBus::connect_master(tlm::tlm_base_initiator_socket<>& socket, const std:
     master_burst_.push_back(burst_beats ? std::min(burst_beats, params_.max_burst_beats) : params_.max_burst_beats);
     master_stats_.emplace_back();
     master_stats_.back().name = name;
-    master_tracks_.push_back(tracer_.track(basename(), name));
+    // A master's reads and writes are in flight at once: a track each.
+    master_tracks_.push_back({tracer_.track(basename(), name + " read"), tracer_.track(basename(), name + " write")});
     read_.granted.emplace_back();
     write_.granted.emplace_back();
 }
@@ -238,17 +239,21 @@ void PlbBus::b_transport(int master, tlm::tlm_generic_payload& tx, sc_time& dela
     (tx.is_write() ? stats.bytes_written : stats.bytes_read) += bytes;
     if (tx.get_response_status() != tlm::TLM_OK_RESPONSE) ++stats.errors;
     path.stats.bytes += bytes;
-    if (tracer_.perfetto_on()) trace_transaction(master, tx.is_write(), bytes, requested, first_grant, end);
+    if (tracer_.perfetto_on()) trace_transaction(master, tx.is_write(), address, bytes, requested, first_grant, end);
 }
 
-void PlbBus::trace_transaction(int master, bool write, uint64_t bytes, const sc_time& requested, const sc_time& granted,
-                               const sc_time& end) {
-    const int track = master_tracks_[master];
-    if (granted > requested) tracer_.slice(track, "wait", requested, granted);
-    const std::string name = fmt::format(FMT_COMPILE("{} {} B"), write ? "write" : "read", bytes);  // per transaction
-    tracer_.slice(track, name, granted, end);
-    tracer_.slice((write ? write_ : read_).track, fmt::format(FMT_COMPILE("{} {}"), master_stats_[master].name, name),
-                  granted, end);
+// The transaction on its master's track (its wait for the bus first) and on the data path's;
+// its figures are arguments, so that slices of one kind aggregate.
+void PlbBus::trace_transaction(int master, bool write, uint64_t address, uint64_t bytes, const sc_time& requested,
+                               const sc_time& granted, const sc_time& end) {
+    const int track = write ? master_tracks_[master].second : master_tracks_[master].first;
+    const std::string& who = master_stats_[master].name;
+    TraceArgs args;
+    args.text("master", who).number("bytes", double(bytes)).address("address", address);
+    if (granted > requested) tracer_.slice(track, "wait for the bus", requested, granted, args);
+    const char* name = write ? "write" : "read";
+    tracer_.slice(track, name, granted, end, args);
+    tracer_.slice((write ? write_ : read_).track, fmt::format(FMT_COMPILE("{} {}"), who, name), granted, end, args);
 }
 
 bool PlbBus::get_direct_mem_ptr(int, tlm::tlm_generic_payload& tx, tlm::tlm_dmi& dmi) {

@@ -148,7 +148,7 @@ private:
     sc_core::sc_time acquire(Path& path, int master);
     bool keeps_path(const Path& path, const sc_core::sc_time& at) const;
     const Route* decode(uint64_t address, uint64_t length) const;
-    void trace_transaction(int master, bool write, uint64_t bytes, const sc_core::sc_time& requested,
+    void trace_transaction(int master, bool write, uint64_t address, uint64_t bytes, const sc_core::sc_time& requested,
                            const sc_core::sc_time& granted, const sc_core::sc_time& end);
     void start_of_simulation() override;
 
@@ -156,8 +156,8 @@ private:
     Tracer& tracer_;
     std::vector<Route> routes_;
     std::vector<MasterStats> master_stats_;
-    std::vector<int> master_tracks_;
-    std::vector<unsigned> master_burst_;  // beats per burst, per master
+    std::vector<std::pair<int, int>> master_tracks_;  // each master's read and write tracks
+    std::vector<unsigned> master_burst_;              // beats per burst, per master
     FaultPlan* faults_ = nullptr;
     Path read_{Path("read")};
     Path write_{Path("write")};

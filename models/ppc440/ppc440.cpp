@@ -9,6 +9,25 @@
 #include "models/common/clock.h"
 
 namespace surfvp {
+
+namespace {
+
+// The phase signal's values: idle, waiting for an interrupt, the driver's own work, and the
+// software stage's steps (sw/cpu_cost's names).
+enum Phase : unsigned { kIdle, kWaiting, kDriver, kFirstStep };
+const std::vector<std::string>& phase_names() {
+    static const std::vector<std::string> names = {"idle",          "waiting_irq", "driver",      "check",
+                                                   "interpolation", "laplacian",   "orientation", "descriptor"};
+    return names;
+}
+unsigned phase_named(const char* name) {
+    const auto& names = phase_names();
+    const auto it = std::find(names.begin() + kFirstStep, names.end(), name);
+    return it == names.end() ? kDriver : unsigned(it - names.begin());
+}
+
+}  // namespace
+
 using sc_core::sc_time;
 
 Ppc440::Ppc440(const sc_core::sc_module_name& name, const Params& params, Software software, Tracer& tracer)
@@ -25,6 +44,7 @@ Ppc440::Ppc440(const sc_core::sc_module_name& name, const Params& params, Softwa
     SC_HAS_PROCESS(Ppc440);
     SC_THREAD(run);
     tracer_.signal(waiting_, fmt::format("{}.waiting_irq", basename()));
+    phase_signal_ = tracer_.timed_signal(fmt::format("{}.phase", basename()), 8, 0, phase_names());
     track_ = tracer_.track("cpu", basename());
     markers_.init(params.markers.size());
     for (size_t i = 0; i < params.markers.size(); ++i) {
@@ -32,6 +52,33 @@ Ppc440::Ppc440(const sc_core::sc_module_name& name, const Params& params, Softwa
         tracer_.signal(markers_[i], "sw." + params.markers[i]);
         marker_tracks_.push_back(tracer_.track("sw", params.markers[i]));
     }
+}
+
+void Ppc440::set_phase(const sc_time& at, unsigned phase) {
+    if (phase_signal_ < 0 || phase == phase_) return;
+    phase_ = phase;
+    tracer_.timed_change(phase_signal_, phase, at.value());
+}
+
+// The software's "idle" span (waiting for work) is idle; any other is the driver's work.
+unsigned Ppc440::phase_of_spans() const { return !spans_.empty() && spans_.back().name == "idle" ? kIdle : kDriver; }
+
+void Ppc440::split_next_compute(const std::vector<std::pair<const char*, uint64_t>>& steps) {
+    if (phase_signal_ >= 0) next_split_ = steps;
+}
+
+// The steps of the split given for this compute() across its time, by their cycles (the
+// stalls spread with them).
+void Ppc440::trace_compute(const sc_time& start, const sc_time& end) {
+    uint64_t total = 0;
+    for (const auto& s : next_split_) total += s.second;
+    uint64_t done = 0;
+    for (const auto& [name, c] : next_split_) {
+        set_phase(start + (end - start) * (double(done) / double(total)), phase_named(name));
+        done += c;
+    }
+    set_phase(end, phase_of_spans());
+    next_split_.clear();
 }
 
 sc_time Ppc440::now() const { return sc_core::sc_time_stamp() + keeper_.get_local_time(); }
@@ -47,6 +94,7 @@ void Ppc440::run() {
     }
     while (!spans_.empty()) end();
     keeper_.sync();
+    set_phase(sc_core::sc_time_stamp(), kIdle);
     finished_ = true;
     finish_time_ = sc_core::sc_time_stamp();
     done_.notify();
@@ -187,6 +235,7 @@ uint64_t Ppc440::compute(uint64_t count, const std::vector<sw::LineTransfer>& li
     if (untimed_fills) throw std::logic_error("cpu: every line fill is timed here: give it as a line");
     keeper_.sync();
     const sc_time start = sc_core::sc_time_stamp();
+    if (!next_split_.empty()) set_phase(start, phase_named(next_split_.front().first));
     sc_time at = start;  // where the step has got to
     uint64_t done = 0;   // cycles of work so far
     for (size_t i = 0; i < lines.size();) {
@@ -210,12 +259,14 @@ uint64_t Ppc440::compute(uint64_t count, const std::vector<sw::LineTransfer>& li
     at = std::max(at, sc_core::sc_time_stamp()) + cycles(params_.clock, double(count - done));
     stats_.cycles_consumed += count;
     keeper_.set(at - sc_core::sc_time_stamp());
+    if (!next_split_.empty()) trace_compute(start, at);
     if (keeper_.need_sync()) keeper_.sync();
     return uint64_t(std::llround((at - start).to_seconds() * params_.clock.hz));
 }
 
 bool Ppc440::irq_pending() {
     keeper_.sync();  // the input's level at the software's own time
+    if (irq.read()) take_irq_flows();
     return irq.read();
 }
 
@@ -224,16 +275,22 @@ uint64_t Ppc440::time_ps() { return now().value(); }
 bool Ppc440::wait_for_irq(uint64_t timeout_ps) {
     keeper_.sync();
     ++stats_.irq_waits;
-    if (irq.read()) return true;
+    if (irq.read()) {
+        take_irq_flows();
+        return true;
+    }
     const sc_time began = sc_core::sc_time_stamp();
     waiting_.write(true);
+    set_phase(began, kWaiting);
     if (timeout_ps == kNoTimeout)
         sc_core::wait(irq.posedge_event());
     else
         sc_core::wait(sc_time(double(timeout_ps), sc_core::SC_PS), irq.posedge_event());
     waiting_.write(false);
     stats_.irq_wait_time += sc_core::sc_time_stamp() - began;
+    set_phase(sc_core::sc_time_stamp(), phase_of_spans());
     if (tracer_.perfetto_on()) tracer_.slice(track_, "wait for irq", began, sc_core::sc_time_stamp());
+    if (irq.read()) take_irq_flows();
     return irq.read();
 }
 
@@ -251,12 +308,24 @@ void Ppc440::mark(unsigned index, int value) {
         tracer_.counter(marker_tracks_[index], params_.markers[index], sc_core::sc_time_stamp(), value);
 }
 
-void Ppc440::begin(const char* what) { spans_.push_back({what, now()}); }
+// The interrupts' flows (the INTC posts one at each rise) end at the next span: the handling.
+void Ppc440::take_irq_flows() {
+    while (const uint64_t id = tracer_.take_flow("cpu irq")) irq_flows_.push_back(id);
+}
+
+void Ppc440::begin(const char* what) {
+    spans_.push_back({what, now()});
+    set_phase(spans_.back().start, phase_of_spans());
+    for (const uint64_t id : irq_flows_) tracer_.flow(track_, spans_.back().start, id, Tracer::Flow::end, "interrupt");
+    irq_flows_.clear();
+}
 
 void Ppc440::end() {
     if (spans_.empty()) return;
-    if (tracer_.perfetto_on()) tracer_.slice(track_, spans_.back().name, spans_.back().start, now());
+    const sc_time at = now();
+    if (tracer_.perfetto_on()) tracer_.slice(track_, spans_.back().name, spans_.back().start, at);
     spans_.pop_back();
+    set_phase(at, phase_of_spans());
 }
 
 void Ppc440::register_statistics(const Statistics::Scope& s) const {

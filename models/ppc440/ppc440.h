@@ -83,9 +83,16 @@ private:
     void consume(uint64_t cycles) override;
     // Every fill is timed: `untimed_fills` must be 0 (std::logic_error otherwise).
     uint64_t compute(uint64_t cycles, const std::vector<sw::LineTransfer>& lines, uint64_t untimed_fills) override;
+    void split_next_compute(const std::vector<std::pair<const char*, uint64_t>>& steps) override;
     void begin(const char* what) override;
     void end() override;
     void mark(unsigned index, int value) override;
+    // The phase signal (VCD): what the CPU does, from the spans, the waits and the split of a
+    // compute(); changes are given at the CPU's own time.
+    void set_phase(const sc_core::sc_time& at, unsigned phase);
+    unsigned phase_of_spans() const;
+    void take_irq_flows();
+    void trace_compute(const sc_core::sc_time& start, const sc_core::sc_time& end);
 
     void mmio(tlm::tlm_command command, uint32_t address, uint8_t* data);
     void memory(tlm::tlm_command command, uint32_t address, uint8_t* data, size_t bytes);
@@ -117,6 +124,10 @@ private:
     };
     std::vector<OpenSpan> spans_;
     int track_ = -1;
+    int phase_signal_ = -1;
+    unsigned phase_ = 0;
+    std::vector<std::pair<const char*, uint64_t>> next_split_;
+    std::vector<uint64_t> irq_flows_;  // flows from the interrupts that woke it, to its next span
     sc_core::sc_vector<sc_core::sc_signal<int>> markers_{"marker"};
     std::vector<int> marker_tracks_;
 };

@@ -1,5 +1,6 @@
 #include "platform/workload/describer.h"
 
+#include <array>
 #include <atomic>
 #include <cmath>
 #include <exception>
@@ -232,6 +233,7 @@ private:
     Result run_stage(uint32_t word, const sw::FrameBuffers& buffers) {
         Result r;
         const double start = stage_.cost().exact_cycles();
+        const std::array<double, sw::kSteps> steps_before = stage_.cost().step_cycles();
         const uint64_t misses = stage_.cost().cache().misses();
         const uint64_t inconsistent = stage_.stats().inconsistent;
         try {
@@ -247,6 +249,9 @@ private:
                 c.x, c.y, fhg::kSizes[size_t(c.size_index)]);
         }
         r.work.cycles = stage_.cost().take_cycles();
+        for (size_t s = 0; s < sw::kSteps; ++s)
+            if (const double c = stage_.cost().step_cycles()[s] - steps_before[s]; c > 0.5)
+                r.work.steps.emplace_back(sw::step_name(sw::Step(s)), uint64_t(std::llround(c)));
         if (!stage_.cost().logs_misses()) r.work.untimed_fills = stage_.cost().cache().misses() - misses;
         r.work.lines.reserve(stage_.cost().misses().size());
         for (const sw::CostCounter::Miss& m : stage_.cost().misses()) {

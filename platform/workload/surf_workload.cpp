@@ -203,21 +203,31 @@ public:
     std::string first_frame_svg() const override;
 
     // Each frame's hardware phases on its accelerator's track and its descriptors on the
-    // CPU's: frames overlapping across the chip.
+    // CPU's: frames overlapping across the chip; a flow from the CPU's handling of the FHG's
+    // interrupt to the descriptors it starts. In the VCD, a marker at each frame's start.
     void trace(Tracer& tracer) const override {
+        for (const FrameResult& r : results_)
+            if (r.reported && r.task.t_start > 0) tracer.marker(r.task.t_start, fmt::format("frame {}", r.task.id));
         if (!tracer.perfetto_on()) return;
         std::vector<int> hardware;
         for (size_t k = 0; k < driver_.accelerators.size(); ++k)
             hardware.push_back(tracer.track("frames", fmt::format("accelerator {} (integral + determinants)", k)));
         const int descriptors = tracer.track("frames", "cpu (descriptors)");
+        const int cpu = tracer.track_of("cpu", "cpu");
         auto at = [](uint64_t ps) { return sc_core::sc_time(double(ps), sc_core::SC_PS); };
         for (const FrameResult& r : results_) {
             const auto& t = r.task;
             if (!r.reported || t.t_determinants == 0) continue;
-            const std::string name =
-                fmt::format("frame {}{}", t.id, t.phase == sw::ssa2::Phase::failed ? " (failed)" : "");
-            tracer.slice(hardware[size_t(t.id) % hardware.size()], name, at(t.t_start), at(t.t_determinants));
-            if (t.phase == sw::ssa2::Phase::done) tracer.slice(descriptors, name, at(t.t_determinants), at(t.t_done));
+            TraceArgs args;
+            args.number("frame", t.id).number("keypoints", double(r.keypoints.size()));
+            if (t.phase == sw::ssa2::Phase::failed) args.text("failed", t.error);
+            tracer.slice(hardware[size_t(t.id) % hardware.size()], "integral + determinants", at(t.t_start),
+                         at(t.t_determinants), args);
+            if (t.phase != sw::ssa2::Phase::done) continue;
+            tracer.slice(descriptors, "descriptors", at(t.t_determinants), at(t.t_done), args);
+            const uint64_t flow = tracer.flow_id();
+            tracer.flow(cpu, at(t.t_determinants), flow, Tracer::Flow::begin, "continues the frame");
+            tracer.flow(descriptors, at(t.t_determinants), flow, Tracer::Flow::end, "continues the frame");
         }
     }
 

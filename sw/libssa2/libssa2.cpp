@@ -358,6 +358,7 @@ void Driver::describe_one(Task& task, const Callback& callback) {
         Span span(hal_, "describe");
         Work work;
         auto keypoint = describer_.describe(hal_, task.candidates[task.described++], frame, work);
+        hal_.split_next_compute(work.steps);
         task.descriptor_cycles += hal_.compute(work.cycles, work.lines, work.untimed_fills);
         if (keypoint) keypoints_[size_t(task.id)].push_back(*keypoint);
         if (!work.inconsistency.empty()) {  // the hardware's results cannot be trusted: no keypoints from them

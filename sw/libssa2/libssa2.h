@@ -86,6 +86,7 @@ struct Work {
     std::vector<LineTransfer> lines;
     uint64_t untimed_fills = 0;  // fills not in `lines`, for a platform that does not time them (Hal::times_fills)
     std::string inconsistency;   // the software's check of the hardware's results failed: why
+    std::vector<std::pair<const char*, uint64_t>> steps;  // cycles by step, for the CPU's phase in the trace
 };
 
 // The CPU's part of phase 4 (sw/stage): one candidate word -> a keypoint or none. It reads

@@ -88,12 +88,13 @@ TEST(Cli, SmokePerfettoTraceIsValidJsonWithTracksAndSlices) {
     for (const auto& e : trace["traceEvents"]) {
         if (e["ph"] == "M" && e["name"] == "process_name") processes[e["pid"]] = e["args"]["name"];
         if (e["ph"] == "M" && e["name"] == "thread_name") tracks.insert(e["args"]["name"].get<std::string>());
-        if (e["ph"] == "X" && e["name"] == "write 256 B") ++dma_bursts;      // the master's track
-        if (e["ph"] == "X" && e["name"] == "dma write 256 B") ++bus_bursts;  // the bus's write-data track
+        const bool burst = e["ph"] == "X" && e.contains("args") && e["args"].value("bytes", 0.0) == 256;
+        if (burst && e["name"] == "write") ++dma_bursts;      // the master's track
+        if (burst && e["name"] == "dma write") ++bus_bursts;  // the bus's write-data track
         if (e["ph"] == "X" && processes[e["pid"]] == "cpu") ++cpu_spans;
         if (e["ph"] == "C") ++counters;
     }
-    for (const char* t : {"cpu", "dma", "read data", "write data"}) EXPECT_TRUE(tracks.count(t)) << t;
+    for (const char* t : {"cpu", "dma read", "dma write", "read data", "write data"}) EXPECT_TRUE(tracks.count(t)) << t;
     EXPECT_EQ(dma_bursts, 4u * 256);  // 256 bursts per 64 KiB copy
     EXPECT_EQ(bus_bursts, 4u * 256);
     EXPECT_GT(cpu_spans, 4u * 4);
