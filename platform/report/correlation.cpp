@@ -171,7 +171,7 @@ std::string correlation_html(const Json& correlation) {
                         xml_escape(range_text(row)), xml_escape(figure_text(row, row["vp"])), within,
                         xml_escape(row["note"].get<std::string>()));
     }
-    return "<h2>Correlation with the published chip</h2><table id=\"correlation\"><tr><th>figure</th><th>paper</th>"
+    return "<table id=\"correlation\"><tr><th>figure</th><th>paper</th>"
            "<th>within its precision</th><th>VP</th><th>reproduced</th><th>note</th></tr>" +
            rows + "</table>";
 }

@@ -271,12 +271,12 @@ int write_run(const Config& config, const std::string& out, const nlohmann::orde
         write_file_atomically((dir / "frames.csv").string(), frames_csv(report["workload"]["per_frame"]));
         report["outputs"].push_back("frames.csv");
     }
-    // The workload's picture goes into report.html, not into report.json.
-    const std::string picture = report.contains("figures") ? report["figures"].value("first_frame_svg", "") : "";
+    // The pictures go into report.html, not into report.json.
+    const nlohmann::ordered_json figures = report.value("figures", nlohmann::ordered_json::object());
     report.erase("figures");
     report["outputs"].push_back("report.html");
     write_file_atomically((dir / "config.yaml").string(), config_as_run(config, report).to_yaml());
-    write_file_atomically((dir / "report.html").string(), report_html(report, picture));
+    write_file_atomically((dir / "report.html").string(), report_html(report, figures));
     write_file_atomically((dir / "report.md").string(), report_markdown(report));
     write_file_atomically((dir / "report.json").string(), report.dump(2) + "\n");
     return exit_code_of(report);

@@ -275,7 +275,9 @@ Json verdict_json(VerdictWork& w, const LimitChain& chain, const std::string& ou
             doubt = doubt_json(w.unknowns, w.joint, w.joint_results, fps, fps_of(w.reference_point), budget, w.frames);
             verdict["doubt"] = doubt;
         }
-        write_file_atomically((fs::path(out) / "tornado.svg").string(), tornado_svg(band_result, budget));
+        const std::string tornado = tornado_svg(band_result, budget);
+        write_file_atomically((fs::path(out) / "tornado.svg").string(), tornado);
+        w.base["figures"]["tornado_svg"] = tornado;  // for report.html
         w.base["outputs"].push_back("tornado.svg");
     }
     if (w.software) verdict["software"] = software_json(w.settings, w.software_results, w.reference_point, fps, budget);

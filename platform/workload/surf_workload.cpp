@@ -487,7 +487,7 @@ void check_surf_inputs(const Config& config) {
 }
 
 // Frame 0 at most 640 pixels wide, PNG inline, each keypoint a circle of 2.5 scales with a
-// stroke to its orientation (green: dark blob, Laplacian +1; red: bright blob).
+// stroke to its orientation (red: dark blob, Laplacian +1; blue: bright blob: surfvp draw's).
 std::string SurfWorkload::first_frame_svg() const {
     if (results_.empty() || !results_[0].reported) return "";
     const cv::Mat& frame = source_.first;
@@ -498,12 +498,12 @@ std::string SurfWorkload::first_frame_svg() const {
     media::encode_image(".png", shown, png);
     std::string svg = fmt::format(
         "<svg xmlns=\"http://www.w3.org/2000/svg\" id=\"keypoints\" width=\"{0}\" height=\"{1}\" viewBox=\"0 0 {0} "
-        "{1}\">"
+        "{1}\" style=\"max-width:100%;height:auto\">"
         "<image width=\"{0}\" height=\"{1}\" href=\"data:image/png;base64,{2}\"/>",
         shown.cols, shown.rows, YAML::EncodeBase64(png.data(), png.size()));
     for (const surf::Keypoint& k : results_[0].keypoints) {
         const double x = (k.x + 0.5) * f, y = (k.y + 0.5) * f, r = std::max(2.0, 2.5 * k.scale * f);
-        const char* c = k.laplacian > 0 ? "#00e000" : "#ff3030";
+        const char* c = k.laplacian > 0 ? "#ff0000" : "#0080ff";  // surfvp draw's colours
         svg += fmt::format(
             "<circle class=\"keypoint\" cx=\"{:.1f}\" cy=\"{:.1f}\" r=\"{:.1f}\" fill=\"none\" stroke=\"{}\"/>"
             "<line x1=\"{:.1f}\" y1=\"{:.1f}\" x2=\"{:.1f}\" y2=\"{:.1f}\" stroke=\"{}\"/>",

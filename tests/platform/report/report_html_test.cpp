@@ -6,7 +6,10 @@
 #include <libxml/xpathInternals.h>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cmath>
+#include <filesystem>
+#include <set>
 #include <memory>
 #include <string>
 #include <vector>
@@ -55,8 +58,15 @@ TEST(ReportHtml, SelfContainedChartsCarryTheRunsFigures) {
     const Page page(slurp(out + "/report.html"));
     ASSERT_TRUE(page.ok()) << "report.html is not well-formed XML";
     EXPECT_TRUE(page.all("//h:script").empty());
-    for (xmlNodePtr n : page.all("//*[@href or @src]"))  // nothing from outside the file
-        EXPECT_EQ((Page::attr(n, "href") + Page::attr(n, "src")).rfind("data:", 0), 0u);
+    // Nothing from outside the file: pictures inline, links only to the page's own sections and
+    // to the run's own files beside it.
+    for (xmlNodePtr n : page.all("//*[@src]")) EXPECT_EQ(Page::attr(n, "src").rfind("data:", 0), 0u);
+    for (xmlNodePtr n : page.all("//*[@href]")) {
+        const std::string href = Page::attr(n, "href");
+        if (href.rfind("data:", 0) == 0 || href.rfind("#", 0) == 0) continue;
+        EXPECT_TRUE(std::filesystem::exists(out + "/" + href)) << href;
+        EXPECT_EQ(href.find(".."), std::string::npos) << href;
+    }
 
     // The Gantt: IIG, FHG and descriptors of each of the 3 frames, at the per-frame times.
     const auto tasks = page.all("//s:svg[@id='gantt']/s:rect[@class='task']");
@@ -90,6 +100,96 @@ TEST(ReportHtml, SelfContainedChartsCarryTheRunsFigures) {
     EXPECT_EQ(page.all("//s:svg[@id='keypoints']/s:circle[@class='keypoint']").size(),
               r["workload"]["per_frame"][0]["keypoints"].get<size_t>());
     EXPECT_EQ(page.all("//s:svg[@id='keypoints']/s:image").size(), 1u);
+}
+
+// The review: sections in the order a review reads them, each with the run's own figures;
+// charts that follow the window with round ticks and a legend for every colour they draw.
+TEST(ReportHtml, TheReviewPageCarriesTheVerdictItsDoubtAndWhatCanChange) {
+    const std::string out = fresh_dir("html_review");
+    const auto run = surfvp("run " + kBudget +
+                            " --trace none --quiet --set surf.frames=4 --set surf.width=512 --set surf.height=384 "
+                            "--set verdict.samples=20 --set budget.fps=12 --out " +
+                            out);
+    ASSERT_LE(run.exit_code, 1) << run.err;
+    const auto r = nlohmann::json::parse(slurp(out + "/report.json"));
+    const auto& v = r["verdict"];
+    const Page page(slurp(out + "/report.html"));
+    ASSERT_TRUE(page.ok());
+
+    std::vector<std::string> order;
+    for (xmlNodePtr s : page.all("//h:section")) order.push_back(Page::attr(s, "id"));
+    EXPECT_EQ(order, (std::vector<std::string>{"verdict", "doubt", "changes", "correlation", "costs", "timeline",
+                                               "resources", "buses", "fifos", "keypoints", "outputs"}));
+    auto text = [&](const std::string& xpath) {
+        const auto nodes = page.all(xpath);
+        if (nodes.empty()) return std::string();
+        xmlChar* t = xmlNodeGetContent(nodes[0]);
+        std::string s = reinterpret_cast<const char*>(t);
+        xmlFree(t);
+        return s;
+    };
+    // The verdict: the statement, and each break-even with its value.
+    EXPECT_NE(text("//h:section[@id='verdict']/h:p[1]").find(v["statement"].get<std::string>()), std::string::npos);
+    ASSERT_FALSE(v["break_even"].empty());
+    EXPECT_EQ(page.all("//h:table[@id='break_even']/h:tr").size(), v["break_even"].size() + 1);
+    EXPECT_NE(text("//h:table[@id='break_even']").find(v["break_even"][0]["value"].get<std::string>()),
+              std::string::npos);
+    EXPECT_EQ(page.all("//h:table[@id='chain']/h:tr").size(), v["chain"].size() + 1);
+    // How sure: the band, the tornado, the joint distribution.
+    const auto band = page.all("//h:p[@id='band']");
+    ASSERT_EQ(band.size(), 1u);
+    EXPECT_NEAR(std::stod(Page::attr(band[0], "data-low")), v["band"]["low_fps"].get<double>(), 1e-4);
+    EXPECT_FALSE(page.all("//h:section[@id='doubt']//s:svg").empty());
+    const auto joint = page.all("//s:svg[@id='distribution']/s:rect[@class='band']");
+    ASSERT_EQ(joint.size(), 1u);
+    EXPECT_NEAR(std::stod(Page::attr(joint[0], "data-p95")), v["doubt"]["fps"]["p95"].get<double>(), 1e-4);
+    // What you can change: every design choice and software setting the verdict tried.
+    EXPECT_EQ(page.all("//h:table[@id='design_choices']/h:tr").size(), v["changes"]["axes"].size() + 1);
+    EXPECT_EQ(page.all("//h:table[@id='software']/h:tr").size(), v["software"].size() + 1);
+    // Resources and power: the device's shares and the watts against the budget.
+    const auto bram = page.all("//s:svg[@id='costs']/s:rect[@data-name='ramb36']");
+    ASSERT_EQ(bram.size(), 1u);
+    EXPECT_NEAR(std::stod(Page::attr(bram[0], "data-share")), r["fpga_resources"]["share"]["ramb36"].get<double>(),
+                1e-4);
+    const auto power = page.all("//s:svg[@id='costs']/s:rect[@data-name='power']");
+    ASSERT_EQ(power.size(), 1u);
+    EXPECT_NEAR(std::stod(Page::attr(power[0], "data-share")),
+                r["power"]["watts"].get<double>() / r["power"]["budget_w"].get<double>(), 1e-4);
+    // Every other output linked (the keypoint files as one).
+    for (const auto& o : r["outputs"]) {
+        const std::string f = o;
+        if (f == "report.html" || (f.rfind("keypoints/", 0) == 0 && f != "keypoints/frame_0000.surf")) continue;
+        EXPECT_EQ(page.all("//h:section[@id='outputs']//h:a[@href='" + f + "']").size(), 1u) << f;
+    }
+
+    for (xmlNodePtr svg : page.all("//s:svg[@class='chart']")) {
+        const std::string id = Page::attr(svg, "id");
+        EXPECT_EQ(Page::attr(svg, "width"), "100%") << id;  // follows the window
+        EXPECT_FALSE(Page::attr(svg, "viewBox").empty()) << id;
+        // Ticks at round numbers: equally spaced by 1, 2 or 5 times a power of ten.
+        std::vector<double> ticks;
+        for (xmlNodePtr t : page.all("//s:svg[@id='" + id + "']/s:text[@class='tick']")) {
+            xmlChar* c = xmlNodeGetContent(t);
+            ticks.push_back(std::stod(reinterpret_cast<const char*>(c)));
+            xmlFree(c);
+        }
+        std::sort(ticks.begin(), ticks.end());
+        ticks.erase(std::unique(ticks.begin(), ticks.end()), ticks.end());
+        ASSERT_GE(ticks.size(), 2u) << id;
+        const double step = ticks[1] - ticks[0], mantissa = step / std::pow(10.0, std::floor(std::log10(step)));
+        EXPECT_TRUE(std::abs(mantissa - 1) < 1e-6 || std::abs(mantissa - 2) < 1e-6 || std::abs(mantissa - 5) < 1e-6)
+            << id << ": step " << step;
+        // Every colour a bar or line is drawn in is named in the legend.
+        std::set<std::string> legend;
+        for (xmlNodePtr k : page.all("//s:svg[@id='" + id + "']/s:g[@class='legend']/s:rect"))
+            legend.insert(Page::attr(k, "fill"));
+        for (xmlNodePtr d : page.all("//s:svg[@id='" + id + "']/s:rect[@class]")) {
+            const std::string fill = Page::attr(d, "fill");
+            EXPECT_TRUE(legend.count(fill)) << id << ": " << fill << " has no legend";
+        }
+        for (xmlNodePtr d : page.all("//s:svg[@id='" + id + "']/s:polyline"))
+            EXPECT_TRUE(legend.count(Page::attr(d, "stroke"))) << id;
+    }
 }
 
 }  // namespace
