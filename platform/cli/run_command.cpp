@@ -94,9 +94,9 @@ int run_scenario(const RunOptions& options) {
     // The names a run writes at the folder's top: a folder of the user's under one is refused
     // before anything is simulated.
     static const std::set<std::string> outputs = {
-        "keypoints",       "report.json",  "report.md", "report.html", "config.yaml",
-        "frames.csv",      "tornado.svg",  "trace.vcd", "trace.gtkw",  "trace.perfetto.json",
-        "trace.tasks.txt", "compare.json", "compare.md"};
+        "keypoints",       "report.json",         "report.md",    "report.html", "config.yaml",
+        "frames.csv",      "tornado.svg",         "trace.vcd",    "trace.gtkw",  "trace.perfetto.json",
+        "trace.tasks.txt", "trace.cpu.phase.txt", "compare.json", "compare.md"};
     OutputFolder out(output_path(options, config), outputs);
     const std::string staging = out.staging().string();
     int code = kExitOk;
