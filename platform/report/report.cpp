@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <fstream>
 #include <stdexcept>
 
@@ -412,6 +413,22 @@ std::string software_stage_section(const nlohmann::ordered_json& st) {
 }
 
 // A workload's scalars as they are; its per-frame list in frames.csv; its stage below.
+// A value as words for a table cell: an object as "key value, ...", nested in parentheses,
+// numbers to four digits; never JSON.
+std::string plain_text(const nlohmann::ordered_json& v) {
+    if (v.is_string()) return v.get<std::string>();
+    if (v.is_number_integer() || v.is_number_unsigned()) return v.dump();
+    if (v.is_number()) return fmt::format("{:.4g}", v.get<double>());
+    if (v.is_boolean()) return v.get<bool>() ? "yes" : "no";
+    if (v.is_null()) return "-";
+    std::vector<std::string> parts;
+    for (const auto& [key, item] : v.items()) {
+        const std::string text = item.is_structured() ? "(" + plain_text(item) + ")" : plain_text(item);
+        parts.push_back(v.is_object() ? key + " " + text : text);
+    }
+    return fmt::format("{}", fmt::join(parts, ", "));
+}
+
 std::string workload_section(const nlohmann::ordered_json& w) {
     std::string md = "\n## Workload\n\n| | |\n|---|---|\n";
     for (const auto& [key, value] : w.items()) {
@@ -424,7 +441,7 @@ std::string workload_section(const nlohmann::ordered_json& w) {
                     kp.size(), kp.front(), kp[kp.size() / 2], kp.back(), threshold_range(value));
             continue;
         }
-        md += fmt::format("| {} | {} |\n", key, value.is_string() ? value.get<std::string>() : value.dump());
+        md += fmt::format("| {} | {} |\n", key, plain_text(value));
     }
     return md;
 }

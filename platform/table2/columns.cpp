@@ -194,16 +194,18 @@ Measures measure(const Column& col, const std::vector<size_t>& gaps, const Geome
 }
 
 Json quality_line(const Column& col, const Measures& m) {
-    Json means = Json::array(), spreads = Json::array(), truth = Json::array();
+    Json means = Json::array(), spreads = Json::array(), truth = Json::array(), measured = Json::array();
     size_t pairs = 0;
     for (const Json& row : m.rows(1)) {
         means.push_back(row["ransac"]["mean"]);
+        measured.push_back(row["ransac"]["measured_pairs"].get<size_t>() > 0);
         spreads.push_back(row["ransac"]["spread"]);
         pairs = row["ransac"]["pairs"].get<size_t>();
         if (row.contains("ground_truth")) truth.push_back(row["ground_truth"]["mean"]);
     }
     Json j = {{"name", col.name}, {"label", col.label},       {"keypoints_per_frame", mean_keypoints(col)},
               {"ransac", means},  {"ransac_spread", spreads}, {"pairs", pairs}};
+    j["ransac_measured"] = measured;  // false: no pair of the cell gave a ratio (its mean 0 is no measurement)
     if (!truth.empty()) j["ground_truth"] = truth;
     if (m.homography) {
         j["precision"] = (*m.homography)["precision"];

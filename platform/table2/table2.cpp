@@ -82,7 +82,12 @@ Json differences(const Config& c) {
            "units"}}});
 }
 
+// A cell none of whose pairs gave a ratio (each had fewer candidates than the measure needs)
+// measured nothing: it is no 0.
+bool measured(const Json& cell) { return cell.value("measured_pairs", size_t(1)) > 0; }
+
 std::string figure(const Json& cell) {
+    if (!measured(cell)) return fmt::format("not measured (0 of {} pairs)", cell["pairs"].get<size_t>());
     return fmt::format("{:.3f} ± {:.3f} ({})", cell["mean"].get<double>(), cell["spread"].get<double>(),
                        cell["pairs"].get<size_t>());
 }
@@ -101,8 +106,9 @@ void markdown_gap(std::string& md, const Json& gap, const char* measure, const c
     for (const Json& row : gap["rows"]) {
         const Json &cpu = row["cpu"][measure], &fpga = row["fpga"][measure];
         const double change = std::round((fpga["mean"].get<double>() - cpu["mean"].get<double>()) * 1000) / 1000;
-        md += fmt::format("| {} | {} | {} | {:+.3f} |", row_label(row), figure(cpu), figure(fpga),
-                          change + 0.0);  // no -0.000
+        md += fmt::format("| {} | {} | {} | {} |", row_label(row), figure(cpu), figure(fpga),
+                          measured(cpu) && measured(fpga) ? fmt::format("{:+.3f}", change + 0.0)  // no -0.000
+                                                          : std::string("-"));
         if (paper)
             md += fmt::format(" {:.2f} | {:.2f} |", row["paper"]["cpu"].get<double>(),
                               row["paper"]["fpga"].get<double>());
@@ -127,7 +133,8 @@ void markdown_contributions(std::string& md, const Json& lines) {
         md +=
             fmt::format("| {} | {:.1f} |", line["label"].get<std::string>(), line["keypoints_per_frame"].get<double>());
         for (size_t i = 0; i < 4; ++i) {
-            md += fmt::format(" {:.3f}", line["ransac"][i].get<double>());
+            const bool unmeasured = line.contains("ransac_measured") && !line["ransac_measured"][i].get<bool>();
+            md += unmeasured ? std::string(" not measured") : fmt::format(" {:.3f}", line["ransac"][i].get<double>());
             if (truth) md += fmt::format(" ({:.3f})", line["ground_truth"][i].get<double>());
             md += " |";
         }
@@ -137,14 +144,17 @@ void markdown_contributions(std::string& md, const Json& lines) {
 }
 
 std::string table2_markdown(const Json& r) {
-    std::string md = fmt::format("# Table II: {}\n\n{}\n\n", r["scenario"]["name"].get<std::string>(),
+    std::string md = fmt::format("# Table II: {}\n\n{}\n\n", r["title"].get<std::string>(),
                                  r["scenario"]["description"].get<std::string>());
     md += fmt::format(
         "{} frames of {}x{} from `{}`. Each cell: mean ± standard deviation over the pairs (pairs); a pair "
-        "without a measured ratio counts 0, as in the paper. Limited search: {:g} px.\n\n",
+        "without a measured ratio counts 0, as in the paper; a cell none of whose pairs gave a ratio says "
+        "\"not measured\" and has no difference. Limited search: {:g} px.\n\n",
         r["frames"].get<size_t>(), r["image"]["width"].get<int>(), r["image"]["height"].get<int>(),
         r["source"].get<std::string>(), kLimitedSearchPx);
-    md += "| column | keypoints per frame | threshold | rule | failed frames | time |\n|---|---|---|---|---|---|\n";
+    md +=
+        "| column | keypoints per frame | threshold | rule | failed frames | host seconds |\n"
+        "|---|---|---|---|---|---|\n";
     for (const char* name : {"cpu", "fpga"}) {
         const Json& c = r["columns"][name];
         md +=
@@ -156,8 +166,8 @@ std::string table2_markdown(const Json& r) {
     md +=
         "\nThe FPGA column is a run of the chip in direct mode (the same driver, cores and software without "
         "SystemC): its keypoints are the VP's byte for byte. Its run folder is `fpga/`; the CPU's keypoint files are "
-        "in "
-        "`cpu/keypoints/`.\n";
+        "in `cpu/keypoints/`. \"host seconds\" is this machine's time to compute each column, not the chip's: the "
+        "chip's frame time is `surfvp run`'s (direct mode simulates no time).\n";
     for (const Json& gap : r["gaps"]) {
         markdown_gap(md, gap, "ransac", "F from RANSAC (the paper's measure)");
         if (gap["rows"][0]["cpu"].contains("ground_truth"))
@@ -190,11 +200,14 @@ std::string table2_markdown(const Json& r) {
 
 void print_summary(const Json& r, const fs::path& dir) {
     const Json& gap = r["gaps"][0];
+    auto mean = [](const Json& cell) {
+        return measured(cell) ? fmt::format("{:.3f}", cell["mean"].get<double>()) : std::string("not measured");
+    };
     for (const Json& row : gap["rows"])
-        std::fprintf(stderr, "surfvp: table2: limited %s  Laplacian %s  CPU %.3f  FPGA %.3f\n",
+        std::fprintf(stderr, "surfvp: table2: limited %s  Laplacian %s  CPU %s  FPGA %s\n",
                      row["limited_search"].get<bool>() ? "Y" : "N", row["laplacian"].get<bool>() ? "Y" : "N",
-                     row["cpu"]["ransac"]["mean"].get<double>(), row["fpga"]["ransac"]["mean"].get<double>());
-    std::fprintf(stderr, "surfvp: table2: %s: report in %s\n", r["scenario"]["name"].get<std::string>().c_str(),
+                     mean(row["cpu"]["ransac"]).c_str(), mean(row["fpga"]["ransac"]).c_str());
+    std::fprintf(stderr, "surfvp: table2: %s: report in %s\n", r["title"].get<std::string>().c_str(),
                  (dir / "report.md").string().c_str());
 }
 
@@ -235,6 +248,15 @@ int table2_command(const Table2Options& o) {
         r["surfvp_version"] = SURFVP_VERSION;
         r["scenario"] = {{"name", config.name}, {"file", config.file}, {"description", config.description}};
         r["source"] = s.source;
+        // A source given on the command line is what the table measures: it titles the table,
+        // and the scenario's description (of its own source) is said to be the settings'.
+        const bool own_source = config.source_of("surf.source") == "--set";
+        const fs::path source(s.source);
+        const std::string shown = (source.parent_path().filename() / source.filename()).string();
+        r["title"] = own_source ? fmt::format("{} (with {}'s settings)", shown, config.name) : config.name;
+        if (own_source)
+            r["scenario"]["description"] =
+                fmt::format("`{}` through the chip, with the settings of scenario {}.", s.source, config.name);
         r["frames"] = s.frames;
         r["image"] = fpga_report["image"];
         r["chip_run_passed"] = fpga_report["passed"];

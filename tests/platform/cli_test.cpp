@@ -403,6 +403,10 @@ TEST(Cli, AMissedBudgetAndABrokenRunHaveTheirOwnExitCodes) {
     EXPECT_FALSE(m["passed"].get<bool>());
     EXPECT_FALSE(m["broken"].get<bool>());
     EXPECT_NE(slow.err.find("surfvp: graf: FAILED: "), std::string::npos) << slow.err;
+    // The evaluation's figures in words, no JSON in a table cell.
+    const std::string md = slurp(missed + "/report.md");
+    EXPECT_EQ(md.find("{\""), std::string::npos);
+    EXPECT_NE(md.find("| evaluation | homography (repeatability 0."), std::string::npos);
 
     for (const std::string mode : {"--direct", "--quick --trace none"}) {
         const auto r = surfvp("run graf " + mode + " --set fhg.maxima_fifo_depth=4 --out " + broken);

@@ -111,6 +111,25 @@ TEST(Table2, AChipRunThatMissesAGoalOrBreaksHasItsExitCode) {
     EXPECT_TRUE(report["chip_run_broken"].get<bool>());
 }
 
+// Honest cells: with 10 keypoints a frame no pair has the candidates a ratio needs, so every
+// cell says "not measured" (not 0.000) and has no difference; a source given on the command
+// line titles the table; the time column is the host's.
+TEST(Table2, AnUnmeasuredCellSaysSoAndAGivenSourceTitlesTheTable) {
+    REQUIRE_CASTLE();
+    const std::string out = fresh_dir("t2honest");
+    const json r =
+        table2("castle_sequence", out,
+               " --set surf.frames=3 --set surf.target_keypoints=10 --set surf.source=" + test::kCastle + "/Images");
+    EXPECT_EQ(r["gaps"][0]["rows"][0]["fpga"]["ransac"]["measured_pairs"], 0);
+    const std::string md = slurp(out + "/report.md");
+    EXPECT_EQ(md.rfind("# Table II: Castle-simu/Images (with castle_sequence's settings)\n", 0), 0u)
+        << md.substr(0, 200);
+    EXPECT_NE(md.find("| Y | Y | not measured (0 of 2 pairs) | not measured (0 of 2 pairs) | - |"), std::string::npos);
+    EXPECT_EQ(md.find("| 0.000 ±"), std::string::npos);
+    EXPECT_NE(md.find("| 12.7 | not measured (1.000) |"), std::string::npos);  // the contributions, with ground truth
+    EXPECT_NE(md.find("| host seconds |"), std::string::npos);
+}
+
 TEST(Table2, AStaticCameraScoresNearlyOneWithoutGroundTruth) {
     REQUIRE_OPENCV_DATA("vtest.avi");
     const json r = table2("vtest_sequence", fresh_dir("t2vtest"), " --set surf.frames=6");
