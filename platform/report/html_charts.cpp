@@ -65,8 +65,7 @@ std::string legend(const std::vector<Key>& keys, double y, double& bottom) {
     return svg + "</g>";
 }
 
-// A chart's frame of `rows` (their labels on the left) over a time axis; returns the svg so
-// far and where the axis goes.
+// The top of row i of a chart of rows (a bar 20 high, 26 apart).
 double row_y(size_t i) { return 30 + double(i) * 26; }
 
 }  // namespace
@@ -205,7 +204,7 @@ std::string line_chart(const std::string& id, const std::string& title, const st
     for (const Line& l : lines)
         for (const auto& v : (*l.series)["values"]) peak = std::max(peak, v.get<double>());
     const double scale = percent ? 100 : 1;
-    const Ticks y = round_ticks(0, std::max(peak * scale, percent ? 1.0 : 1.0), 4);
+    const Ticks y = round_ticks(0, std::max(peak * scale, 1.0), 4);
     const Ticks x = round_ticks(0, end_ms, 8);
     const double top = 30, plot_h = 160;
     auto py = [&](double v) { return top + plot_h * (1 - std::min(1.0, v * scale / y.hi())); };
