@@ -25,6 +25,7 @@
 #include "platform/compare/compare.h"
 #include "platform/correlation/correlate.h"
 #include "platform/table2/precision_study.h"
+#include "platform/table2/quality_budget.h"
 #include "platform/table2/table2.h"
 #include "platform/sweep/sweep.h"
 #include "platform/tools/seqgen.h"
@@ -223,6 +224,32 @@ Command add_precision(CLI::App& app) {
     return {precision, [o] { return precision_command(*o); }};
 }
 
+Command add_quality_budget(CLI::App& app) {
+    auto o = options_for<QualityBudgetOptions>();
+    CLI::App* qb = app.add_subcommand("quality-budget",
+                                      "The best feature quality the chip affords at its frame budget: each software "
+                                      "setting priced in CPU time and scored on Table II, the front of quality "
+                                      "against frames/s (docs/quality_budget.md)");
+    qb->add_option("budget", o->budget, "The budget scenario (a timed run per setting)")->capture_default_str();
+    qb->add_option("--sequence", o->sequences,
+                   "A Table II sequence the best setting is chosen on (repeatable; default: castle_sequence, "
+                   "vtest_sequence)");
+    qb->add_option("--held-out", o->held_out,
+                   "A sequence scored but never chosen on (repeatable; default: castel_sequence)");
+    qb->add_option("--pair", o->pair, "A pair under a homography: repeatability and precision ('none': no pair)")
+        ->capture_default_str();
+    qb->add_option("--axis", o->axes,
+                   "A setting and its values, combined with the other axes: --axis 'surf.max_offset=0.5,1' "
+                   "(repeatable; default: the built-in software settings)")
+        ->type_name("KEY=V1,V2,...");
+    qb->add_option("--set", o->sets, "Override a parameter of every scenario of the study (repeatable)")
+        ->type_name("KEY=VALUE");
+    qb->add_option("--out", o->out, "Output folder (default: traces/quality_budget)");
+    qb->add_option("--jobs", o->jobs, "Runs at once (default: one per core)")->check(CLI::Range(0u, 256u));
+    qb->add_flag("--quiet,-q", o->quiet, "No progress or summary lines on stderr");
+    return {qb, [o] { return quality_budget_command(*o); }};
+}
+
 Command add_correlate(CLI::App& app) {
     auto o = options_for<CorrelateOptions>();
     CLI::App* correlate = app.add_subcommand("correlate",
@@ -303,6 +330,7 @@ int dispatch(int argc, char** argv) {
         add_compare(app),
         add_table2(app),
         add_precision(app),
+        add_quality_budget(app),
         add_correlate(app)};
     QualityCommands quality(app);
     // A long command's progress line is for a terminal; --progress asks for it in a log too.

@@ -14,7 +14,7 @@ PrecisionAxis parse_precision_axis(const std::string& text) {
     PrecisionAxis a{text.substr(0, eq), {}};
     if (!find_parameter(a.key))
         throw ConfigError(
-            fmt::format("--axis {}: '{}' is not a parameter; the study narrows one (fhg.det_bits, surf.haar, ...; "
+            fmt::format("--axis {}: '{}' is not a parameter; a study varies one (fhg.det_bits, surf.haar, ...; "
                         "`surfvp params` lists them)",
                         text, a.key));
     for (size_t from = eq + 1;;) {
@@ -26,6 +26,18 @@ PrecisionAxis parse_precision_axis(const std::string& text) {
         from = comma + 1;
     }
     return a;
+}
+
+std::vector<PrecisionAxis> parse_axes(const std::vector<std::string>& given, std::vector<PrecisionAxis> defaults) {
+    std::vector<PrecisionAxis> axes;
+    for (const std::string& a : given) {
+        axes.push_back(parse_precision_axis(a));
+        for (size_t i = 0; i + 1 < axes.size(); ++i)
+            if (axes[i].key == axes.back().key)
+                throw ConfigError(fmt::format("--axis {}: '{}' has an --axis already ({}); give its values in one", a,
+                                              axes.back().key, given[i]));
+    }
+    return axes.empty() ? defaults : axes;
 }
 
 }  // namespace surfvp

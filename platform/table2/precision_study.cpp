@@ -346,19 +346,6 @@ Study load_study(const PrecisionOptions& o) {
     return s;
 }
 
-// The --axis options (one each key), or the built-in widths.
-std::vector<Axis> study_axes(const std::vector<std::string>& given) {
-    std::vector<Axis> axes;
-    for (const std::string& a : given) {
-        axes.push_back(parse_precision_axis(a));
-        for (size_t i = 0; i + 1 < axes.size(); ++i)
-            if (axes[i].key == axes.back().key)
-                throw ConfigError(fmt::format("--axis {}: '{}' has an --axis already ({}); give its values in one", a,
-                                              axes.back().key, given[i]));
-    }
-    return axes.empty() ? default_axes() : axes;
-}
-
 // The scenario as it is, then each value of each axis alone. Each point's scenario, and the
 // pair under its widths, is checked as `validate` would (a width the model refuses): refused
 // now, not after the reference ran.
@@ -486,7 +473,7 @@ int study_exit(const std::vector<PrecisionPoint>& points) {
 
 int precision_command(const PrecisionOptions& o) {
     const Study study = load_study(o);
-    const std::vector<Axis> axes = study_axes(o.axes);
+    const std::vector<Axis> axes = parse_axes(o.axes, default_axes());
     std::vector<PrecisionPoint> points = plan_points(study, axes);
     OutputFolder out(o.out.empty() ? fs::path("traces") / ("precision_" + study.seq.name) : fs::path(o.out),
                      {"report.json", "report.md", "results.csv", "precision.svg"});
