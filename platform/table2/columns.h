@@ -36,6 +36,12 @@ constexpr std::array<PaperRow, 4> kPaper{{{true, true, 0.62, 0.53, std::nullopt}
                                           {false, true, 0.43, 0.27, std::nullopt},
                                           {false, false, 0.43, 0.26, 0.27}}};
 
+// The chip's best affordable software: the most distinguishable setting of the CPU stage that
+// still lets the CPU alone hold 10 frames/s on budget_1024x768, as `surfvp quality-budget`
+// measured it (docs/quality_budget.md; scenarios/budget_best_software.yaml runs it, and a test
+// holds the two equal). table2 runs the chip with it beside the paper's software.
+inline const std::vector<std::string> kBestAffordableSoftware{"surf.max_offset=1", "surf.upright=on"};
+
 // One platform's keypoints of every frame, and how it got them.
 struct Column {
     std::string name, label;
