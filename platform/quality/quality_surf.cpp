@@ -33,8 +33,12 @@ Detection detect(const cv::Mat& gray, const SurfSettings& settings, const std::s
         surf::check_image(gray, params, name);
     });
     const auto start = std::chrono::steady_clock::now();
-    if (settings.target_count) params.threshold = surf::threshold_for_count(gray, *settings.target_count, params);
     Detection detection;
+    if (settings.target_count) {
+        const std::vector<float> ranked = surf::ranked_responses(gray, params);
+        params.threshold = surf::threshold_for_rank(ranked, *settings.target_count);
+        detection.blobs = ranked.size();
+    }
     detection.keypoints = surf::detect_and_describe(gray, params);
     detection.threshold = params.threshold;
     detection.milliseconds =
@@ -51,12 +55,22 @@ int run_surf(const SurfCommand& command) {
     if (command.quiet) return kExitOk;
     std::fprintf(stderr, "%zu keypoints, threshold %.9g, %.1f ms\n", detection.keypoints.size(),
                  static_cast<double>(detection.threshold), detection.milliseconds);
-    // threshold_for_count gives all maxima (threshold 0) when there are too few: say so
-    // rather than let the count look like a bug.
+    // Fewer keypoints than asked: say why rather than let the count look like a bug. An image
+    // with fewer blobs gives them all (threshold 0); blobs whose responses tie at the target's
+    // rank are kept or dropped together.
     const auto target = command.surf.target_count;
-    if (target && detection.keypoints.size() < static_cast<std::size_t>(*target))
-        std::fprintf(stderr, "surfvp: note: %s has only %zu keypoints with a positive response (--target-count %d)\n",
-                     command.image.c_str(), detection.keypoints.size(), *target);
+    if (target && detection.keypoints.size() < static_cast<std::size_t>(*target)) {
+        if (detection.blobs < static_cast<std::size_t>(*target))
+            std::fprintf(stderr,
+                         "surfvp: note: %s has only %zu blobs with a positive response, one keypoint each "
+                         "(--target-count %d)\n",
+                         command.image.c_str(), detection.blobs, *target);
+        else
+            std::fprintf(stderr,
+                         "surfvp: note: %s: %zu keypoints, not %d: blobs tie in response at rank %d, and a threshold "
+                         "keeps all or none of them\n",
+                         command.image.c_str(), detection.keypoints.size(), *target, *target);
+    }
     return kExitOk;
 }
 

@@ -38,6 +38,7 @@ struct SurfSettings {
 struct Detection {
     surf::Keypoints keypoints;
     float threshold = 0;      // the one used
+    size_t blobs = 0;         // with a target count: the image's blobs with a positive response
     double milliseconds = 0;  // threshold search + detect + describe
 };
 

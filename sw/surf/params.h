@@ -36,6 +36,9 @@ struct Params {
     // The interpolation drops a maximum whose fitted |offset| exceeds this, in samples (x, y)
     // or intervals: 0.5 is the paper's rule, 1 OpenCV's.
     float max_offset = 1.0f;
+    // One keypoint per blob (twins.h): of two maxima that interpolate to the same blob, keep the
+    // stronger. Off only for the chip's software in float, which keeps what the chip keeps.
+    bool one_per_blob = true;
     int threads = 0;  // 0: all hardware threads
 };
 

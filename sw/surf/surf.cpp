@@ -18,11 +18,13 @@
 #include "sw/surf/local_maxima.h"
 #include "sw/surf/orientation.h"
 #include "sw/surf/parallel.h"
+#include "sw/surf/twins.h"
 
 namespace surfvp::surf {
 namespace {
 
-// Steps 1-2 on an integral image: refined maxima above `threshold`, with Laplacian sign.
+// Steps 1-2 on an integral image: refined maxima above `threshold`, with Laplacian sign, one
+// per blob (twins.h) unless told otherwise.
 Keypoints refined_maxima(const IntegralView& ii, const Params& params, float threshold, ResponseStack& stack) {
     const int threads = resolve_threads(params.threads);
     compute_responses(ii, params, threads, stack);
@@ -36,6 +38,7 @@ Keypoints refined_maxima(const IntegralView& ii, const Params& params, float thr
                 .laplacian;
         keypoints.push_back(*kp);
     }
+    if (params.one_per_blob) drop_twins(keypoints);
     return keypoints;
 }
 
@@ -121,9 +124,9 @@ std::vector<float> ranked_responses(const cv::Mat& gray8, Params params) {
 }
 
 std::vector<float> stored_ranked_responses(const cv::Mat& gray8, const Params& p) {
-    const std::string key =
-        fmt::format("ranked v1 {} {} octaves {} intervals {} init_step {} max_offset {:a}", SURFVP_SURF_FINGERPRINT,
-                    media::content_key(gray8), p.octaves, p.intervals, p.init_step, double(p.max_offset));
+    const std::string key = fmt::format(
+        "ranked v2 {} {} octaves {} intervals {} init_step {} max_offset {:a} one_per_blob {}", SURFVP_SURF_FINGERPRINT,
+        media::content_key(gray8), p.octaves, p.intervals, p.init_step, double(p.max_offset), p.one_per_blob);
     if (const auto text = read_cached("ranked", key); text && text->size() % sizeof(float) == 0) {
         std::vector<float> responses(text->size() / sizeof(float));
         std::memcpy(responses.data(), text->data(), text->size());

@@ -29,7 +29,8 @@ struct Workspace {
 void validate(const Params& params);
 
 // Interest points (steps 1-2): position, scale, response and Laplacian sign; orientation 0 and
-// descriptor all zero. Order: octave, interval, row, column of the maximum.
+// descriptor all zero; one per blob (twins.h: of two maxima within half a pixel and a scale
+// ratio of 1.3 the stronger) unless params.one_per_blob is off. Order: octave, interval, row, column of the maximum.
 // The cv::Mat form checks the image (ImageError) and builds the integral image.
 Keypoints detect(const cv::Mat& gray8, const Params& params);
 Keypoints detect(const cv::Mat& gray8, const Params& params, Workspace& workspace);
@@ -44,8 +45,8 @@ void describe(const cv::Mat& gray8, Keypoints& keypoints, const Params& params);
 Keypoints detect_and_describe(const cv::Mat& gray8, const Params& params);
 Keypoints detect_and_describe(const cv::Mat& gray8, const Params& params, Workspace& workspace);
 
-// The threshold for which detect(gray8, params) returns `target` keypoints (fewer only if the
-// image has fewer maxima with a positive determinant; then 0). Responses, maxima and the
+// The threshold for which detect(gray8, params) returns `target` keypoints, distinct blobs
+// (fewer only if the image has fewer blobs with a positive determinant; then 0). Responses, maxima and the
 // interpolation do not depend on the threshold, so they are computed once with threshold 0 and
 // the threshold is placed halfway between the target-th and the next largest response:
 // the count is exact unless responses tie there. params.threshold is ignored.
