@@ -52,6 +52,7 @@ struct Column {
     std::string threshold_rule;
     double seconds = 0;
     int exit_code = kExitOk;
+    nlohmann::ordered_json simulated;  // a chip column's timed run: sim_time_s, throughput_fps, exit
 };
 
 // The float reference beside the chip: at its defaults (surf::Params, the best CPU SURF) or

@@ -7,10 +7,13 @@
 #include <fstream>
 #include <optional>
 #include <nlohmann/json.hpp>
+#include <opencv2/core/utility.hpp>
 
 #include "models/host/atomic_file.h"
 #include "platform/run/output_folder.h"
 #include "platform/run/progress_line.h"
+#include "platform/run/resimulation.h"
+#include "platform/run/run.h"
 #include "platform/scenario/run_settings.h"
 #include "platform/scenario/scenario.h"
 #include "platform/table2/columns.h"
@@ -43,13 +46,15 @@ Json column_summary(const Column& col) {
     size_t total = 0, least = SIZE_MAX, most = 0;
     for (const auto& k : col.frames)
         total += k.size(), least = std::min(least, k.size()), most = std::max(most, k.size());
-    return {
+    Json j = {
         {"label", col.label},
         {"threshold", col.threshold},
         {"threshold_rule", col.threshold_rule},
         {"keypoints_per_frame", {{"mean", double(total) / double(col.frames.size())}, {"min", least}, {"max", most}}},
         {"failed_frames", col.failed},
         {"seconds", col.seconds}};
+    if (!col.simulated.is_null()) j["simulated"] = col.simulated;
+    return j;
 }
 
 // Every way the two columns differ, by design. Each can be switched off alone (surfvp surf's
@@ -151,6 +156,15 @@ void markdown_contributions(std::string& md, const Json& lines) {
     }
 }
 
+// A chip column's simulated time: its timed run's, or why there is none.
+std::string simulated_time(const Json& c) {
+    if (!c.contains("simulated")) return "-";
+    const Json& t = c["simulated"];
+    if (t.contains("error")) return "no timed run: " + t["error"].get<std::string>();
+    return fmt::format("{:.1f} ms ({:.2f} frames/s{})", t["sim_time_s"].get<double>() * 1e3,
+                       t["throughput_fps"].get<double>(), t["exit"] == kExitBroken ? ", broken" : "");
+}
+
 std::string table2_markdown(const Json& r) {
     std::string md = fmt::format("# Table II: {}\n\n{}\n\n", r["title"].get<std::string>(),
                                  r["scenario"]["description"].get<std::string>());
@@ -161,20 +175,21 @@ std::string table2_markdown(const Json& r) {
         r["frames"].get<size_t>(), r["image"]["width"].get<int>(), r["image"]["height"].get<int>(),
         r["source"].get<std::string>(), kLimitedSearchPx);
     md +=
-        "| column | keypoints per frame | threshold | rule | failed frames | host seconds |\n"
-        "|---|---|---|---|---|---|\n";
+        "| column | keypoints per frame | threshold | rule | failed frames | host seconds | the chip's simulated time "
+        "|\n|---|---|---|---|---|---|---|\n";
     for (const auto& [name, c] : r["columns"].items()) {
-        md +=
-            fmt::format("| {} | {:.1f} ({}..{}) | {:.6g} | {} | {} | {:.1f} s |\n", c["label"].get<std::string>(),
-                        c["keypoints_per_frame"]["mean"].get<double>(), c["keypoints_per_frame"]["min"].get<size_t>(),
-                        c["keypoints_per_frame"]["max"].get<size_t>(), c["threshold"].get<double>(),
-                        c["threshold_rule"].get<std::string>(), c["failed_frames"].size(), c["seconds"].get<double>());
+        md += fmt::format("| {} | {:.1f} ({}..{}) | {:.6g} | {} | {} | {:.1f} s | {} |\n",
+                          c["label"].get<std::string>(), c["keypoints_per_frame"]["mean"].get<double>(),
+                          c["keypoints_per_frame"]["min"].get<size_t>(), c["keypoints_per_frame"]["max"].get<size_t>(),
+                          c["threshold"].get<double>(), c["threshold_rule"].get<std::string>(),
+                          c["failed_frames"].size(), c["seconds"].get<double>(), simulated_time(c));
     }
     md +=
         "\nThe FPGA column is a run of the chip in direct mode (the same driver, cores and software without "
         "SystemC): its keypoints are the VP's byte for byte. Its run folder is `fpga/`; the CPU's keypoint files are "
-        "in `cpu/keypoints/`. \"host seconds\" is this machine's time to compute each column, not the chip's: the "
-        "chip's frame time is `surfvp run`'s (direct mode simulates no time).\n";
+        "in `cpu/keypoints/`. \"host seconds\" is this machine's time to compute each column, not the chip's; the "
+        "chip's simulated time is a timed run of the same frames (`surfvp run`, the verdict's analyses off), since "
+        "direct mode simulates none.\n";
     if (r["columns"].contains("fpga_best"))
         md += fmt::format(
             "\nThe chip with its best affordable software (`{}`, `fpga_best/`): the same chip and driver, with the CPU "
@@ -208,6 +223,31 @@ std::string table2_markdown(const Json& r) {
         md += fmt::format("| {} | {} | {} |\n", d["what"].get<std::string>(), d["cpu"].get<std::string>(),
                           d["fpga"].get<std::string>());
     return md;
+}
+
+// Timed runs of the chip columns' scenarios (forked: the SystemC kernel elaborates once per
+// process), each giving its simulated time and frame rate.
+std::vector<Json> timed_runs(const std::vector<Config>& configs, const fs::path& scratch) {
+    std::vector<Json> out(configs.size());
+    {
+        for (const Config& c : configs) Resimulation::prepare(c);
+        Resimulation engine(0, scratch);
+        for (size_t i = 0; i < configs.size(); ++i) {
+            Config c = configs[i];
+            apply_overrides(c, {"verdict.band=off", "verdict.break_even=off", "verdict.software=off"});
+            engine.submit(
+                c, [&out, i](const Json& r) { out[i] = r; },
+                [](const Json& r) -> Json {
+                    return {{"sim_time_s", r.value("sim_time_s", 0.0)},
+                            {"throughput_fps", r.value("throughput_fps", 0.0)},
+                            {"exit", exit_code_of(r)}};
+                });
+        }
+        engine.run([](size_t, size_t) {});
+    }
+    fs::remove_all(scratch);
+    cv::setNumThreads(-1);  // prepare stopped OpenCV's threads for the children; the measures want them
+    return out;
 }
 
 // The scenario with the chip's best affordable software, unless it runs that already.
@@ -261,7 +301,7 @@ int table2_command(const Table2Options& o) {
         // Steps: the float reference, the chip, the measures, each other float variant.
         ProgressLine progress(o.quiet, config.name, 0.0, 0.5, 5.0);
         size_t step = 0;
-        const size_t steps = float_variants.size() + 3;
+        const size_t steps = float_variants.size() + 4;
         auto next = [&](const std::string& what) { progress.steps(step++, steps, "steps", false, ": " + what); };
         next("the float reference");
         Column cpu = cpu_column(config, float_variants[0], staging / "cpu");
@@ -272,6 +312,13 @@ int table2_command(const Table2Options& o) {
             next("the chip with its best affordable software");
             columns.push_back(fpga_column(*best, staging / "fpga_best", columns[0].sizes));
             columns.back().name = "fpga_best", columns.back().label = "FPGA, best affordable software";
+        }
+        next("the chip's simulated time (timed runs)");
+        {
+            std::vector<Config> timed{config};
+            if (columns.size() > 2) timed.push_back(*with_best_software(config));
+            const std::vector<Json> times = timed_runs(timed, staging / ".timed");
+            for (size_t i = 0; i < times.size(); ++i) columns[i + 1].simulated = times[i];
         }
         next("distinguishability of the columns");
         const Json fpga_report = Json::parse(std::ifstream(staging / "fpga" / "report.json"));
