@@ -307,6 +307,16 @@ OutputFolder::~OutputFolder() {
     ::close(lock_);                                              // releases the lock
 }
 
+void OutputFolder::publish_files(const std::vector<std::pair<std::string, std::string>>& files) {
+    try {
+        for (const auto& [name, text] : files) write_file_atomically(staging_ / name, text);
+        publish();
+    } catch (const EnvironmentError& e) {
+        throw EnvironmentError(
+            fmt::format("{}; what was in {} before is as it was", as_published(e.what()), folder_.string()));
+    }
+}
+
 void OutputFolder::publish() {
     remove_hidden(staging_);
     std::set<std::string> names;

@@ -18,6 +18,8 @@
 #include <filesystem>
 #include <set>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace surfvp {
 
@@ -42,6 +44,9 @@ public:
     // the links of the previous run's outputs that are not among them. Throws
     // EnvironmentError.
     void publish();
+    // Writes each (name, text) into staging() and publishes them; an EnvironmentError says that
+    // what the folder held before is as it was. For the studies that write a few pages at once.
+    void publish_files(const std::vector<std::pair<std::string, std::string>>& files);
 
     // `message` with staging paths shown as the files they were to become.
     std::string as_published(std::string message) const;

@@ -8,7 +8,6 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 
-#include "models/host/atomic_file.h"
 #include "models/fhg/fhg_regs.h"
 #include "platform/run/progress_line.h"
 #include "platform/cost/fpga_resources.h"
@@ -442,21 +441,6 @@ Json study_report(const Study& s, const std::vector<Axis>& axes, const std::vect
     return report;
 }
 
-void write_study(OutputFolder& out, const Json& report) {
-    const fs::path staging = out.staging();
-    try {
-        fs::remove_all(staging / ".points");
-        write_file_atomically(staging / "report.json", report.dump(2) + "\n");
-        write_file_atomically(staging / "report.md", precision_markdown(report));
-        write_file_atomically(staging / "results.csv", csv(report));
-        write_file_atomically(staging / "precision.svg", plot(report));
-        out.publish();
-    } catch (const EnvironmentError& e) {
-        throw EnvironmentError(
-            fmt::format("{}; what was in {} before is as it was", out.as_published(e.what()), out.folder().string()));
-    }
-}
-
 // The study's exit code: 6 when a point could not run or its chip run broke (its row is not a
 // measurement of the widths), else 1 when a chip run missed a goal (a keypoint target), else 0.
 int study_exit(const std::vector<PrecisionPoint>& points) {
@@ -479,7 +463,11 @@ int precision_command(const PrecisionOptions& o) {
                      {"report.json", "report.md", "results.csv", "precision.svg"});
     Json reference = references(study, points);
     const auto fewest = run_points(study, axes, points, reference, o, out.staging());
-    write_study(out, study_report(study, axes, points, reference, fewest));
+    const Json report = study_report(study, axes, points, reference, fewest);
+    out.publish_files({{"report.json", report.dump(2) + "\n"},
+                       {"report.md", precision_markdown(report)},
+                       {"results.csv", csv(report)},
+                       {"precision.svg", plot(report)}});
     if (!o.quiet)
         std::fprintf(stderr, "surfvp: precision: %zu points; report in %s\n", points.size(),
                      (out.folder() / "report.md").c_str());

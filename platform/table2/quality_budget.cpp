@@ -8,7 +8,6 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 
-#include "models/host/atomic_file.h"
 #include "platform/run/output_folder.h"
 #include "platform/run/progress_line.h"
 #include "platform/run/resimulation.h"
@@ -247,21 +246,6 @@ int budget_exit(const Json& report) {
     return kExitOk;
 }
 
-void write_budget_study(OutputFolder& out, const Json& report) {
-    const fs::path staging = out.staging();
-    try {
-        fs::remove_all(staging / ".points");
-        write_file_atomically(staging / "report.json", report.dump(2) + "\n");
-        write_file_atomically(staging / "report.md", quality_budget_markdown(report));
-        write_file_atomically(staging / "results.csv", quality_budget_csv(report));
-        write_file_atomically(staging / "frontier.svg", quality_budget_svg(report));
-        out.publish();
-    } catch (const EnvironmentError& e) {
-        throw EnvironmentError(
-            fmt::format("{}; what was in {} before is as it was", out.as_published(e.what()), out.folder().string()));
-    }
-}
-
 }  // namespace
 
 int quality_budget_command(const QualityBudgetOptions& o) {
@@ -275,7 +259,10 @@ int quality_budget_command(const QualityBudgetOptions& o) {
     run_settings_points(study, points, pair_sizes, o, out.staging());
     Json report = study_json(study, axes, points, reference);
     analyse_quality_budget(report);
-    write_budget_study(out, report);
+    out.publish_files({{"report.json", report.dump(2) + "\n"},
+                       {"report.md", quality_budget_markdown(report)},
+                       {"results.csv", quality_budget_csv(report)},
+                       {"frontier.svg", quality_budget_svg(report)}});
     if (!o.quiet) std::fprintf(stderr, "%s\n", quality_budget_summary(report, out.folder() / "report.md").c_str());
     return budget_exit(report);
 }
