@@ -12,10 +12,16 @@
 #include <nlohmann/json.hpp>
 #include <string>
 #include <sys/types.h>
+#include <vector>
 
 #include "platform/scenario/config.h"
 
 namespace surfvp {
+
+// The sets that make a run only the run: none of the verdict's analyses, which re-simulate the
+// scenario many times. For studies that need a timed run's own figures (frames/s, CPU time).
+inline const std::vector<std::string> kWithoutVerdictAnalyses{"verdict.band=off", "verdict.break_even=off",
+                                                              "verdict.software=off"};
 
 class Resimulation {
 public:

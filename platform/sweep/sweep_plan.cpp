@@ -362,4 +362,8 @@ SweepPlan load_sweep(const std::string& path) {
     return plan;
 }
 
+std::vector<SweepPoint> combine_axes(const std::vector<SweepAxis>& axes, bool zip, const std::string& where) {
+    return combine(axes, zip, point_count(axes, zip, where));
+}
+
 }  // namespace surfvp

@@ -68,6 +68,11 @@ std::vector<std::string> sweep_changes(const std::string& before, const std::str
 // "(base)" for a sweep without axes.
 std::string point_id(const std::vector<std::pair<std::string, std::string>>& values);
 
+// The points `axes` make, crossed (the last axis varies fastest) or zipped, each with its id.
+// Throws ConfigError (with `where`) for zipped axes of different lengths or more than
+// kMaxSweepPoints points, before any point is made.
+std::vector<SweepPoint> combine_axes(const std::vector<SweepAxis>& axes, bool zip, const std::string& where);
+
 // A number and its unit: "25 MHz" -> {25, "MHz"}, "4" -> {4, ""}; nothing for a word, nor
 // for a number beyond a double's range ("1e400 MHz") unless `any_magnitude`.
 std::optional<std::pair<double, std::string>> split_quantity(const std::string& text, bool any_magnitude = false);

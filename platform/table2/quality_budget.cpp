@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 #include <optional>
+#include <set>
 
 #include "platform/run/output_folder.h"
 #include "platform/run/progress_line.h"
@@ -60,7 +61,7 @@ BudgetStudy load_budget_study(const QualityBudgetOptions& o) {
                         "against a frame budget",
                         s.budget.where("budget.fps"), o.budget));
     // The budget runs only give the frame rate and the CPU's time: no verdict analyses.
-    apply_overrides(s.budget, {"verdict.band=off", "verdict.break_even=off", "verdict.software=off"});
+    apply_overrides(s.budget, kWithoutVerdictAnalyses);
     const std::vector<std::string> tuned =
         o.sequences.empty() ? std::vector<std::string>{"castle_sequence", "vtest_sequence"} : o.sequences;
     const std::vector<std::string> held = o.held_out.empty() ? std::vector<std::string>{"castel_sequence"} : o.held_out;
@@ -116,40 +117,31 @@ std::vector<const Config*> study_scenarios(const BudgetStudy& s) {
 }
 
 // The scenarios as they are (the paper's software), then every combination of the axes that
-// differs from it; each checked on every scenario now, not after the first points ran.
+// differs from it; each value checked once, each combination on every scenario, now, not after
+// the first points ran.
 std::vector<Setting> plan_settings(const BudgetStudy& s, const std::vector<PrecisionAxis>& axes) {
-    std::vector<Setting> points{{"as the scenarios are", {}, {}, {}}};
-    std::vector<size_t> at(axes.size(), 0);
-    for (bool more = !axes.empty(); more;) {
-        Setting p;
-        bool differs = false;
-        for (size_t a = 0; a < axes.size(); ++a) {
-            p.values.push_back({axes[a].key, axes[a].values[at[a]]});
-            try {
+    std::set<std::pair<std::string, std::string>> changes;  // the values that change the budget scenario
+    std::vector<SweepAxis> crossed;
+    for (const PrecisionAxis& a : axes) {
+        for (const std::string& v : a.values) try {
                 Config probe = s.budget;
-                apply_overrides(probe, {axes[a].key + "=" + axes[a].values[at[a]]});
-                differs = differs || probe.value(axes[a].key) != s.budget.value(axes[a].key);
+                apply_overrides(probe, {a.key + "=" + v});
+                if (probe.value(a.key) != s.budget.value(a.key)) changes.insert({a.key, v});
             } catch (const ConfigError& e) {
-                throw ConfigError(fmt::format("--axis {}={}: {}", axes[a].key, axes[a].values[at[a]], e.what()));
+                throw ConfigError(fmt::format("--axis {}={}: {}", a.key, v, e.what()));
             }
-        }
-        p.id = point_id(p.values);
-        if (differs) {
-            for (const Config* c : study_scenarios(s)) try {
-                    check_scenario(at_point(*c, p, s.budget));
-                } catch (const ConfigError& e) {
-                    throw ConfigError(fmt::format("{}: {}: {}", p.id, c->name, e.what()));
-                }
-            points.push_back(std::move(p));
-        }
-        more = false;  // the next combination, the last axis fastest
-        for (size_t a = axes.size(); a-- > 0;) {
-            if (++at[a] < axes[a].values.size()) {
-                more = true;
-                break;
+        crossed.push_back({a.key, a.values, "--axis"});
+    }
+    std::vector<Setting> points{{"as the scenarios are", {}, {}, {}}};
+    for (SweepPoint& point : combine_axes(crossed, false, "--axis")) {
+        Setting p{point.id, std::move(point.values), {}, {}};
+        if (std::none_of(p.values.begin(), p.values.end(), [&](const auto& kv) { return changes.count(kv); })) continue;
+        for (const Config* c : study_scenarios(s)) try {
+                check_scenario(at_point(*c, p, s.budget));
+            } catch (const ConfigError& e) {
+                throw ConfigError(fmt::format("{}: {}: {}", p.id, c->name, e.what()));
             }
-            at[a] = 0;
-        }
+        points.push_back(std::move(p));
     }
     return points;
 }
@@ -240,10 +232,8 @@ Json study_json(const BudgetStudy& s, const std::vector<PrecisionAxis>& axes, co
 }
 
 int budget_exit(const Json& report) {
-    for (const Json& p : report["points"])
-        for (const char* part : {"timing", "quality"})
-            if (p[part].contains("error") || p[part].value("exit", int(kExitOk)) == kExitBroken) return kExitBroken;
-    return kExitOk;
+    const Json& points = report["points"];
+    return std::all_of(points.begin(), points.end(), setting_ran) ? kExitOk : kExitBroken;
 }
 
 }  // namespace

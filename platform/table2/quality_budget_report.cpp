@@ -15,13 +15,6 @@ using Json = nlohmann::ordered_json;
 
 constexpr const char* kRows[4] = {"Y Y", "Y N", "N Y", "N N"};
 
-bool ran(const Json& p) {
-    for (const char* part : {"timing", "quality"})
-        if (!p[part].is_object() || p[part].contains("error") || p[part].value("exit", int(kExitOk)) == kExitBroken)
-            return false;
-    return true;
-}
-
 // The mean of a quality line's four rows, when every cell was measured.
 std::optional<double> row_mean(const Json& line) {
     if (!line.contains("ransac")) return std::nullopt;
@@ -121,7 +114,7 @@ std::string settings_table(const Json& r) {
         const Json& p = r["points"][i];
         const Json& t = p["timing"];
         const Json& q = p["quality"];
-        if (!ran(p)) {
+        if (!setting_ran(p)) {
             const std::string why = t.value("error", q.value("error", std::string("the chip run broke")));
             md += fmt::format("| {} | could not run: {} |\n", setting_name(r, i), why);
             continue;
@@ -195,10 +188,17 @@ std::optional<size_t> best_of(const Json& points, Take take) {
 
 }  // namespace
 
+bool setting_ran(const Json& p) {
+    for (const char* part : {"timing", "quality"})
+        if (!p[part].is_object() || p[part].contains("error") || p[part].value("exit", int(kExitOk)) == kExitBroken)
+            return false;
+    return true;
+}
+
 void analyse_quality_budget(Json& r) {
     const double budget = r["budget_fps"].get<double>();
     for (Json& p : r["points"]) {
-        const bool ok = ran(p);
+        const bool ok = setting_ran(p);
         p["distinguishability"] = ok ? distinguishability(r, p["quality"]["sequences"]) : Json(nullptr);
         p["precision"] = ok ? pair_precision(p["quality"]) : Json(nullptr);
         p["affordable"] = ok && p["timing"]["cpu_fps"].get<double>() >= budget;
@@ -224,7 +224,7 @@ void analyse_quality_budget(Json& r) {
                               : std::nullopt;
     r["best_affordable_oriented"] = oriented ? Json(*oriented) : Json(nullptr);
     r["gaps"] = Json::object();
-    if (!ran(r["points"][0])) return;
+    if (!setting_ran(r["points"][0])) return;
     r["gaps"]["paper_software"] = gaps(r, r["points"][0]);
     if (best) r["gaps"]["best_affordable"] = gaps(r, r["points"][*best]);
     if (oriented) r["gaps"]["best_affordable_oriented"] = gaps(r, r["points"][*oriented]);

@@ -12,6 +12,9 @@ namespace surfvp {
 // run's rate by a few thousandths when the software's work changes, the FHG's period not at all.
 constexpr double kFrontFpsResolution = 0.01;
 
+// Whether a point's budget run and chip runs all ran and none broke: its row is a measurement.
+bool setting_ran(const nlohmann::ordered_json& point);
+
 // Adds to each point its distinguishability (mean of the four rows on consecutive frames, RANSAC
 // F, over the sequences chosen on), pair precision, "affordable" (the CPU alone sustains the
 // budget), "meets_budget" and its place on the two fronts; then "best_affordable" (an index
