@@ -132,6 +132,10 @@ Command add_calibrate(CLI::App& app) {
     calibrate->add_option("--fit", o->fit, "Scenarios the table is fitted on (repeatable)")->capture_default_str();
     calibrate->add_option("--check", o->check, "Scenarios the table is checked on (repeatable; none: no check)")
         ->capture_default_str();
+    calibrate
+        ->add_option("--msurf", o->msurf,
+                     "Scenario run again with M-SURF descriptors to price them (none: M-SURF not priced)")
+        ->capture_default_str();
     calibrate->add_option("--set", o->sets, "Override a parameter in every run (repeatable)")->type_name("KEY=VALUE");
     calibrate->add_option("--frames", o->frames, "Frames per scenario")->capture_default_str();
     calibrate->add_option("--out", o->out, "Output folder")->capture_default_str();

@@ -104,19 +104,19 @@ std::vector<Variant> variants(const Config& c) {
         v.push_back({"cpu_max_offset",
                      fmt::format("CPU with the chip's offset limit {} (surf.max_offset)", chip.max_offset),
                      with([&](surf::Params& p) { p.max_offset = chip.max_offset; })});
-    v.push_back({"cpu_surf_descriptor", "CPU with the chip's descriptor (Bay's SURF)",
-                 with([](surf::Params& p) { p.descriptor = surf::DescriptorKind::surf; })});
+    if (chip.descriptor != surf::Params{}.descriptor)
+        v.push_back({"cpu_surf_descriptor", "CPU with the chip's descriptor (Bay's SURF; surf.descriptor)",
+                     with([](surf::Params& p) { p.descriptor = surf::DescriptorKind::surf; })});
     if (chip.haar != surf::Params{}.haar)
         v.push_back({"cpu_rounded_haar", "CPU with rounded Haar wavelets (surf.haar)",
                      with([&](surf::Params& p) { p.haar = chip.haar; })});
     v.push_back({"cpu_paper", "CPU as the paper's SURF (4 octaves of 4 intervals, offsets to 0.5, SURF, exact Haar)",
                  surf::paper_surf()});
-    v.push_back(
-        {"cpu_chip_settings",
-         fmt::format("CPU with all the chip's software settings (2 octaves of 4 intervals, offsets to {}, SURF, "
-                     "surf.haar)",
-                     chip.max_offset),
-         chip});
+    v.push_back({"cpu_chip_settings",
+                 fmt::format("CPU with all the chip's software settings (2 octaves of 4 intervals, offsets to {}, {}, "
+                             "surf.haar)",
+                             chip.max_offset, chip.descriptor == surf::DescriptorKind::msurf ? "M-SURF" : "SURF"),
+                 chip});
     return v;
 }
 

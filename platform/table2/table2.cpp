@@ -69,7 +69,9 @@ Json differences(const Config& c) {
           {"fpga", fmt::format("{} (surf.max_offset; the paper: 0.5)", s.max_offset)}},
          {{"what", "descriptor"},
           {"cpu", "M-SURF (OpenSURF's: overlapping sub-regions, two Gaussians)"},
-          {"fpga", "SURF (Bay's: 4 x 4 sub-regions of 5 x 5 samples, one Gaussian)"}},
+          {"fpga", s.descriptor == surf::DescriptorKind::msurf
+                       ? "M-SURF (surf.descriptor; the paper: Bay's SURF)"
+                       : "SURF (Bay's: 4 x 4 sub-regions of 5 x 5 samples, one Gaussian; surf.descriptor)"}},
          {{"what", "Haar wavelets of orientation and descriptor"},
           {"cpu", "exact (sub-pixel sample positions)"},
           {"fpga", fmt::format("{} (surf.haar)", surf::haar_name(s.haar))}},
@@ -234,7 +236,7 @@ std::vector<Json> timed_runs(const std::vector<Config>& configs, const fs::path&
         Resimulation engine(0, scratch);
         for (size_t i = 0; i < configs.size(); ++i) {
             Config c = configs[i];
-            apply_overrides(c, {"verdict.band=off", "verdict.break_even=off", "verdict.software=off"});
+            apply_overrides(c, kWithoutVerdictAnalyses);
             engine.submit(
                 c, [&out, i](const Json& r) { out[i] = r; },
                 [](const Json& r) -> Json {
@@ -308,15 +310,15 @@ int table2_command(const Table2Options& o) {
         next("the chip (direct mode)");
         Column fpga = fpga_column(config, staging / "fpga", cpu.sizes);
         std::vector<Column> columns{std::move(cpu), std::move(fpga)};
+        std::vector<Config> timed{config};  // the chip columns' scenarios
         if (const std::optional<Config> best = with_best_software(config)) {
             next("the chip with its best affordable software");
             columns.push_back(fpga_column(*best, staging / "fpga_best", columns[0].sizes));
             columns.back().name = "fpga_best", columns.back().label = "FPGA, best affordable software";
+            timed.push_back(*best);
         }
         next("the chip's simulated time (timed runs)");
         {
-            std::vector<Config> timed{config};
-            if (columns.size() > 2) timed.push_back(*with_best_software(config));
             const std::vector<Json> times = timed_runs(timed, staging / ".timed");
             for (size_t i = 0; i < times.size(); ++i) columns[i + 1].simulated = times[i];
         }

@@ -201,13 +201,19 @@ struct RunResult {
     Json record;
 };
 
-// A scenario as the calibration runs it.
-Config calibration_scenario(const CalibrateOptions& o, const std::string& scenario, const std::string& haar) {
+// The M-SURF run's frames: its unit's instruction stream hardly depends on the image (576
+// samples, 16 sub-regions of 81 weighted samples), so one frame's ~100 keypoints price it.
+constexpr int kMsurfFrames = 1;
+
+// A scenario as the calibration runs it; with `msurf`, its M-SURF run.
+Config calibration_scenario(const CalibrateOptions& o, const std::string& scenario, const std::string& haar,
+                            bool msurf = false) {
     // The paper's budget of ~100 keypoints per frame unless the caller sets another.
     std::vector<std::string> sets_text{"surf.target_keypoints=100"};
     sets_text.insert(sets_text.end(), o.sets.begin(), o.sets.end());
-    sets_text.push_back(fmt::format("surf.frames={}", o.frames));
+    sets_text.push_back(fmt::format("surf.frames={}", msurf ? kMsurfFrames : o.frames));
     sets_text.push_back("surf.haar=" + haar);
+    if (msurf) sets_text.push_back("surf.descriptor=msurf");
     sets_text.push_back("budget.fps=0");  // a frame rate needs frames the calibration need not run
     return load_scenario(resolve_scenario(scenario), sets_text);
 }
@@ -225,6 +231,11 @@ void check_options(const CalibrateOptions& o) {
             } catch (const ConfigError& e) {
                 throw ConfigError(fmt::format("{} {}: {}", option, scenario, e.what()));
             }
+    if (o.msurf != "none") try {
+            for (const char* haar : {"exact", "rounded"}) check_scenario(calibration_scenario(o, o.msurf, haar, true));
+        } catch (const ConfigError& e) {
+            throw ConfigError(fmt::format("--msurf {}: {}", o.msurf, e.what()));
+        }
     std::error_code ec;
     if (!o.table.empty()) {
         const fs::path folder = fs::path(o.table).has_parent_path() ? fs::path(o.table).parent_path() : fs::path(".");
@@ -242,15 +253,18 @@ void check_options(const CalibrateOptions& o) {
             fmt::format("--out {}: cannot be written ({})", o.out, ec ? ec.message() : std::strerror(errno)));
 }
 
-// `stage(text)` says what it is doing, for the progress line.
+// `stage(text)` says what it is doing, for the progress line. With `msurf`, the scenario's
+// M-SURF run (named "<scenario> with M-SURF" in the report).
 RunResult calibration_run(const CalibrateOptions& o, const std::string& scenario, const std::string& haar,
                           const std::vector<sw::PipelineParams>& sets, const std::function<void(std::string)>& stage,
-                          bool sample = false) {
-    const fs::path dir = fs::path(o.out) / fmt::format("{}_{}", fs::path(scenario).stem().string(), haar);
+                          bool sample = false, bool msurf = false) {
+    const fs::path dir =
+        fs::path(o.out) / fmt::format("{}_{}{}", fs::path(scenario).stem().string(), haar, msurf ? "_msurf" : "");
     fs::create_directories(dir);
     for (const char* f : {"inputs.bin", "vp_results.bin", "iss_results.bin"}) fs::remove(dir / f);
-    const Config config = calibration_scenario(o, scenario, haar);
-    stage(fmt::format("{}, {} Haar: VP run", scenario, haar));
+    const Config config = calibration_scenario(o, scenario, haar, msurf);
+    const std::string name = msurf ? scenario + " with M-SURF" : scenario;
+    stage(fmt::format("{}, {} Haar: VP run", name, haar));
     // The VP run in a child (SystemC elaborates once per process), recording what its stage saw.
     record_stage_inputs((dir / "inputs.bin").string(), (dir / "vp_results.bin").string());
     Json vp;
@@ -265,7 +279,7 @@ RunResult calibration_run(const CalibrateOptions& o, const std::string& scenario
     const std::vector<Frame> frames = read_inputs(dir / "inputs.bin");
     RunResult run;
     run.units = native_units(frames);
-    stage(fmt::format("{}, {} Haar: {} candidates under qemu-ppc, {} parameter sets", scenario, haar, run.units.size(),
+    stage(fmt::format("{}, {} Haar: {} candidates under qemu-ppc, {} parameter sets", name, haar, run.units.size(),
                       sets.size()));
     const sw::TraceReplay replay = run_firmware(o, dir, sets, sample ? sample_keypoints(haar) : 0);
     const Json results = compare_results(read_results(dir / "vp_results.bin"), read_results(dir / "iss_results.bin"));
@@ -276,7 +290,7 @@ RunResult calibration_run(const CalibrateOptions& o, const std::string& scenario
     fs::remove_all(dir);  // tens of MB of buffers, reproducible from the scenario
     Json unknown = Json::object();
     for (const auto& [m, n] : replay.unknown_mnemonics()) unknown[m] = n;
-    run.record = {{"scenario", scenario},
+    run.record = {{"scenario", name},
                   {"haar", haar},
                   {"frames", frames.size()},
                   {"results", results},
@@ -441,6 +455,7 @@ int calibrate_command(const CalibrateOptions& options) {
         throw ConfigError("calibrate: no link map " + o.firmware + ".map beside the firmware");
     if (std::system((std::string("command -v ") + kQemu + " > /dev/null").c_str()) != 0)
         throw ConfigError(std::string("calibrate: no ") + kQemu + ": install qemu-user (./scripts/bootstrap.sh does)");
+    calibrating_stage(true);  // the M-SURF run measures the price it has not got yet
     check_options(o);
     cv::setNumThreads(0);
 
@@ -473,8 +488,9 @@ int calibrate_command(const CalibrateOptions& options) {
     Json runs = Json::array();
     std::vector<std::pair<RunResult, int>> done;
     const char* modes[2] = {"exact", "rounded"};
-    const size_t total = 2 * (o.fit.size() + size_t(std::count_if(o.check.begin(), o.check.end(),
-                                                                  [](const std::string& c) { return c != "none"; })));
+    const size_t total =
+        2 * (o.fit.size() + size_t(o.msurf != "none") +
+             size_t(std::count_if(o.check.begin(), o.check.end(), [](const std::string& c) { return c != "none"; })));
     ProgressLine progress(o.quiet, "calibrate", 0, 0, 0);  // a line per stage: each takes seconds to minutes
     auto stage = [&](const std::string& text) { progress.steps(done.size(), total, "runs", false, ": " + text); };
     for (int h = 0; h < 2; ++h) {
@@ -482,6 +498,13 @@ int calibrate_command(const CalibrateOptions& options) {
         for (const std::string& scenario : o.fit) {
             RunResult fit = calibration_run(o, scenario, modes[h], sets, stage, scenario == o.fit.front());
             if (scenario == o.fit.front()) table.sample[size_t(h)] = fit.sample;
+            pooled.stream.insert(pooled.stream.end(), fit.stream.begin(), fit.stream.end());
+            pooled.units.insert(pooled.units.end(), fit.units.begin(), fit.units.end());
+            fit.record["fitted"] = true;
+            done.emplace_back(std::move(fit), h);
+        }
+        if (o.msurf != "none") {  // the msurf unit's price: fitted with the rest, in its own run
+            RunResult fit = calibration_run(o, o.msurf, modes[h], sets, stage, false, true);
             pooled.stream.insert(pooled.stream.end(), fit.stream.begin(), fit.stream.end());
             pooled.units.insert(pooled.units.end(), fit.units.begin(), fit.units.end());
             fit.record["fitted"] = true;
@@ -501,11 +524,14 @@ int calibrate_command(const CalibrateOptions& options) {
         {"toolchain", first_line("powerpc-linux-gnu-g++ --version")},
         {"flags", SURFVP_FIRMWARE_FLAGS},
         {"iss", fmt::format("{} -cpu {}", kQemu, kQemuCpu)},
-        {"fitted_on", fmt::format("{}, {} frames each per Haar mode", fmt::join(o.fit, " + "), o.frames)},
+        {"fitted_on", fmt::format("{}, {} frames each per Haar mode{}", fmt::join(o.fit, " + "), o.frames,
+                                  o.msurf == "none" ? std::string(" (M-SURF not priced)")
+                                                    : fmt::format(", + {} with M-SURF descriptors, {} frame", o.msurf,
+                                                                  kMsurfFrames))},
         {"set", o.sets}};
     for (auto& [run, h] : done) {
         uint64_t keypoints = 0;
-        for (const auto& n : run.units) keypoints += n[size_t(sw::Unit::descriptor)];
+        for (const auto& n : run.units) keypoints += sw::described_keypoints(n);
         const surf::HaarMode haar = h ? surf::HaarMode::rounded : surf::HaarMode::exact;
         for (size_t p = 0; p < 2; ++p) {
             const Json a =

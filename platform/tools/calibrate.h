@@ -16,6 +16,9 @@ struct CalibrateOptions {
     // patch skips an angle, a textured one does not), then checked on each scenario.
     std::vector<std::string> fit{"budget_1024x768", "castle_sequence"};
     std::vector<std::string> check{"graf"};
+    // A scenario run once more with M-SURF descriptors (surf.descriptor=msurf) and fitted with
+    // the rest, for the msurf unit's price; "none": not priced (its price is then 0).
+    std::string msurf = "budget_1024x768";
     std::vector<std::string> sets;  // for every run
     int frames = 2;                 // per scenario
     std::string out = "traces/calibration";

@@ -60,6 +60,7 @@ sw::CostParams cost_params(const Config& c, surf::HaarMode haar) {
 
 // `surfvp calibrate`: where the describers made from now on record what the stage saw.
 std::string g_record_inputs, g_record_expected;
+bool g_calibrating = false;  // calibrating_stage(): units without a price are what it measures
 
 // Each frame's buffers as the CPU saw them and its FIFO words in the driver's order, and what
 // the native stage made of each word, in the firmware's formats (calibration_dump.h).
@@ -82,7 +83,9 @@ public:
                    b.det_bytes,
                    p.haar == surf::HaarMode::rounded,
                    p.upright,
+                   p.descriptor == surf::DescriptorKind::msurf,
                    p.threshold,
+                   p.max_offset,
                    b.integral_address,
                    b.determinants_address,
                    uint32_t(b.integral_stride * b.height),
@@ -342,6 +345,8 @@ private:
 
 }  // namespace
 
+void calibrating_stage(bool on) { g_calibrating = on; }
+
 void record_stage_inputs(const std::string& inputs, const std::string& expected) {
     g_record_inputs = inputs;
     g_record_expected = expected;
@@ -427,9 +432,17 @@ std::unique_ptr<sw::ssa2::Describer> make_describer(const Config& config, float 
     params.haar = chip.haar;
     params.threshold = threshold;
     params.max_offset = chip.max_offset;
+    params.descriptor = chip.descriptor;
+    const sw::CostParams cost = cost_params(config, params.haar);
+    // The calibration's own runs measure the price, so they run without it.
+    if (g_record_inputs.empty() && !g_calibrating && params.descriptor == surf::DescriptorKind::msurf &&
+        !(cost.unit_cycles[size_t(sw::Unit::msurf)] > 0))
+        throw ConfigError(
+            fmt::format("{}: msurf, but the calibration table has no price for M-SURF descriptors "
+                        "(recalibrate with surfvp calibrate --msurf SCENARIO)",
+                        config.where("surf.descriptor")));
     try {
-        auto describer =
-            std::make_unique<StageDescriber>(params, cost_params(config, params.haar), cpu_params(config).line_bytes);
+        auto describer = std::make_unique<StageDescriber>(params, cost, cpu_params(config).line_bytes);
         const sw::PipelineParams pipeline = pipeline_params(config);
         describer->double_precision = pipeline.double_precision > 0.5;
         describer->other_precision_prices = sw::unit_prices(

@@ -26,6 +26,9 @@ void share_worker(sw::ssa2::Describer& describer, Worker* worker);
 // FIFO words to `inputs`, and the native stage's result for each word to `expected`
 // (sw/cpu_cost/calibration_dump.h). Empty paths stop the recording.
 void record_stage_inputs(const std::string& inputs, const std::string& expected);
+// `surfvp calibrate`: the describers made from now on may do units the table has no price for
+// yet (M-SURF before its first calibration); elsewhere such a setting is refused.
+void calibrating_stage(bool on);
 
 // Where the software stage's cycles went (per step and per kind of work), its candidates
 // and rejections, and the L1 hit rate, for the report.

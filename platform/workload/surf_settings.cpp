@@ -99,6 +99,18 @@ const ParamTable<SurfWorkloadSettings>& SurfWorkloadSettings::parameter_table() 
               "or scale (1 keeps the maxima that lie between two samples)",
               "[S] paper §II: 0.5; OpenCV's SURF keeps up to 1, which the float reference uses (docs/quality.md)"},
              &P::max_offset),
+         choice<P, surf::DescriptorKind>(
+             {"surf.descriptor",
+              ParamKind::choice,
+              "surf",
+              0,
+              0,
+              {},
+              "The CPU's descriptor: surf, Bay's 4 x 4 sub-regions of 5 x 5 samples under one Gaussian; msurf, "
+              "M-SURF's overlapping 9 x 9-sample sub-regions, each under its own Gaussian and weighted by a second",
+              "[S] paper §II: Bay et al.'s descriptor; M-SURF (Agrawal et al., ECCV 2008) is OpenSURF's default, "
+              "priced by the calibration as its own unit of work (sw/cpu_cost/calibration.md)"},
+             &P::descriptor, {{"surf", surf::DescriptorKind::surf}, {"msurf", surf::DescriptorKind::msurf}}),
          field<P>({"surf.tasks_in_flight",
                    ParamKind::count,
                    "2",

@@ -1,7 +1,7 @@
 #pragma once
 // The SURF workload's settings: the frames (source, count, size), the software the CPU runs
 // on them (libSSA2's threshold, tasks in flight and interrupt level; SURF's orientation, Haar
-// wavelets and interpolation limit), the frame budget, and what the evaluation compares the
+// wavelets, interpolation limit and descriptor), the frame budget, and what the evaluation compares the
 // keypoints with. The workload, the verdict and Table II read them through these structs.
 #include <cstdint>
 #include <string>
@@ -21,11 +21,12 @@ struct SurfWorkloadSettings {
     bool upright = false;                           // surf.upright
     surf::HaarMode haar = surf::HaarMode::rounded;  // surf.haar
     float max_offset = 0.5f;                        // surf.max_offset
-    unsigned tasks_in_flight = 2;                   // surf.tasks_in_flight
-    uint32_t fifo_irq_level = 0;                    // surf.fifo_irq_level
-    Duration watchdog;                              // surf.watchdog (0: off)
-    unsigned spurious_irq_limit = 0;                // surf.spurious_irq_limit
-    double budget_fps = 0;                          // budget.fps (0: no budget)
+    surf::DescriptorKind descriptor = surf::DescriptorKind::surf;  // surf.descriptor
+    unsigned tasks_in_flight = 2;                                  // surf.tasks_in_flight
+    uint32_t fifo_irq_level = 0;                                   // surf.fifo_irq_level
+    Duration watchdog;                                             // surf.watchdog (0: off)
+    unsigned spurious_irq_limit = 0;                               // surf.spurious_irq_limit
+    double budget_fps = 0;                                         // budget.fps (0: no budget)
 
     static const ParamTable<SurfWorkloadSettings>& parameter_table();
 };

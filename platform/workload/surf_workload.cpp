@@ -523,6 +523,7 @@ surf::Params chip_surf_params(const Config& c) {
     p.upright = s.upright;
     p.haar = s.haar;
     p.max_offset = s.max_offset;
+    p.descriptor = s.descriptor;
     // The chip's software keeps every maximum the FHG marks and it confirms (twins are 0.1 % of
     // its keypoints): its float twin, which calibrates its threshold, keeps them too.
     p.one_per_blob = false;

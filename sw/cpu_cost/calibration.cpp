@@ -133,8 +133,14 @@ Calibration calibration_from_json(const nlohmann::ordered_json& j) {
                 t.high_at.push_back(in.at("probes").at(k.key).at(1).get<double>());
             }
             for (size_t h = 0; h < 2; ++h)
-                for (size_t u = 0; u < kUnits; ++u)
-                    t.haar[h][u] = unit_from_json(in.at("haar").at(kHaarNames[h]).at(unit_name(Unit(u))));
+                for (size_t u = 0; u < kUnits; ++u) {
+                    const nlohmann::ordered_json& units = in.at("haar").at(kHaarNames[h]);
+                    if (units.contains(unit_name(Unit(u)))) {
+                        t.haar[h][u] = unit_from_json(units.at(unit_name(Unit(u))));
+                    } else {  // a table from before the unit existed: no price (0), as for a unit never done
+                        t.haar[h][u].low = t.haar[h][u].high = std::vector<double>(knobs(), 0.0);
+                    }
+                }
         }
         return c;
     } catch (const nlohmann::json::exception& e) {

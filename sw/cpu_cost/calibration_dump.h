@@ -21,8 +21,8 @@ struct FrameHeader {
     uint32_t magic;
     uint32_t width, height;
     uint32_t det_frac_bits, det_bytes;
-    uint32_t rounded_haar, upright;
-    float threshold;
+    uint32_t rounded_haar, upright, msurf;
+    float threshold, max_offset;
     uint32_t integral_address, determinants_address;
     uint32_t integral_bytes, determinant_bytes, words;
 };
@@ -40,6 +40,8 @@ inline StageParams stage_params(const FrameHeader& h) {
     p.upright = h.upright != 0;
     p.haar = h.rounded_haar ? surf::HaarMode::rounded : surf::HaarMode::exact;
     p.threshold = h.threshold;
+    p.max_offset = h.max_offset;
+    p.descriptor = h.msurf ? surf::DescriptorKind::msurf : surf::DescriptorKind::surf;
     return p;
 }
 inline FrameBuffers frame_buffers(const FrameHeader& h, const uint8_t* integral, const uint8_t* determinants) {

@@ -11,8 +11,8 @@ const char* step_name(Step s) {
 }
 
 const char* unit_name(Unit u) {
-    constexpr const char* kNames[kUnits] = {"candidate", "scan",        "compare", "solve",     "keypoint",
-                                            "laplacian", "orientation", "angle",   "descriptor"};
+    constexpr const char* kNames[kUnits] = {"candidate", "scan",        "compare", "solve",      "keypoint",
+                                            "laplacian", "orientation", "angle",   "descriptor", "msurf"};
     return kNames[static_cast<size_t>(u)];
 }
 

@@ -23,9 +23,10 @@ enum class Unit : uint8_t {
     laplacian,    // the Laplacian sign (hessian_at)
     orientation,  // one keypoint's orientation (109 samples, 36 windows)
     angle,        // orientation: a sample whose angle is computed (atan2; not where both responses are 0)
-    descriptor,   // one keypoint's SURF-64 descriptor (400 samples, normalisation)
+    descriptor,   // one keypoint's SURF-64 descriptor, Bay's (400 samples, normalisation)
+    msurf,        // one keypoint's M-SURF descriptor instead (576 samples, 16 x 81 weights, normalisation)
 };
-constexpr size_t kUnits = 9;
+constexpr size_t kUnits = 10;
 
 enum class Read : uint8_t { integral, determinant };
 
@@ -44,6 +45,7 @@ constexpr Step step_of(Unit u) {
         case Unit::angle:
             return Step::orientation;
         case Unit::descriptor:
+        case Unit::msurf:
             return Step::descriptor;
     }
     return Step::check;
@@ -51,5 +53,11 @@ constexpr Step step_of(Unit u) {
 
 const char* step_name(Step s);
 const char* unit_name(Unit u);
+
+// The keypoints among counted units: each has one descriptor of one kind.
+template <class Counts>
+uint64_t described_keypoints(const Counts& units) {
+    return uint64_t(units[size_t(Unit::descriptor)]) + uint64_t(units[size_t(Unit::msurf)]);
+}
 
 }  // namespace surfvp::sw

@@ -42,6 +42,9 @@ struct StageParams {
     // The interpolation drops a maximum whose |offset| exceeds this (samples): 0.5 is the
     // paper's rule (§II), 1 OpenCV's (sw/surf/params.h).
     float max_offset = 0.5f;
+    // The descriptor's sampling (sw/surf/params.h): Bay's (the paper's) or M-SURF's; each its
+    // own unit of work (work_units.h), priced by the calibration.
+    surf::DescriptorKind descriptor = surf::DescriptorKind::surf;
 };
 
 // Meter: void enter(Step), void leave() (the candidate is done), void count(Unit, uint64_t),
@@ -49,7 +52,8 @@ struct StageParams {
 template <class Meter>
 class BasicSoftwareStage {
 public:
-    // Throws std::invalid_argument for a Haar mode other than exact or rounded.
+    // Throws std::invalid_argument for a Haar mode other than exact or rounded, or a descriptor
+    // kind other than surf or msurf.
     explicit BasicSoftwareStage(const StageParams& params, Meter meter = Meter());
 
     // One maxima-FIFO word -> a keypoint (position, scale, response = the candidate's own

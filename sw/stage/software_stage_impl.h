@@ -66,6 +66,8 @@ BasicSoftwareStage<Meter>::BasicSoftwareStage(const StageParams& params, Meter m
     : params_(params), meter_(std::move(meter)) {
     if (params.haar != surf::HaarMode::exact && params.haar != surf::HaarMode::rounded)
         throw std::invalid_argument("software stage: haar mode must be exact or rounded");
+    if (params.descriptor != surf::DescriptorKind::surf && params.descriptor != surf::DescriptorKind::msurf)
+        throw std::invalid_argument("software stage: descriptor must be surf or msurf");
     stack_.octaves.resize(2);
     for (int o = 0; o < 2; ++o) {
         surf::ResponseOctave& oct = stack_.octaves[static_cast<size_t>(o)];
@@ -213,8 +215,9 @@ void BasicSoftwareStage<Meter>::describe(const Scan& s, const FrameBuffers& f, s
     }
 
     meter_.enter(Step::descriptor);
-    meter_.count(Unit::descriptor, 1);
-    kp.descriptor = surf::descriptor(view, kp, params_.haar);
+    const bool msurf = params_.descriptor == surf::DescriptorKind::msurf;
+    meter_.count(msurf ? Unit::msurf : Unit::descriptor, 1);
+    kp.descriptor = surf::descriptor(view, kp, params_.haar, params_.descriptor);
 }
 
 }  // namespace surfvp::sw

@@ -24,7 +24,7 @@ TEST(Calibrate, RunsTheStageUnderTheIssAndFitsItsPrices) {
     ASSERT_EQ(r.exit_code, 0) << r.err;
     EXPECT_NE(r.out.find("| descriptor |"), std::string::npos) << r.out;
     const auto report = nlohmann::json::parse(slurp(dir + "/calibration_report.json"));
-    ASSERT_EQ(report["runs"].size(), 2u);  // exact and rounded Haar
+    ASSERT_EQ(report["runs"].size(), 4u);  // exact and rounded Haar, each also with M-SURF (--msurf)
     const auto recorded =
         nlohmann::json::parse(slurp(std::string(SURFVP_SOURCE_DIR) + "/sw/cpu_cost/calibration.json"));
     for (const auto& run : report["runs"]) {
@@ -51,6 +51,10 @@ TEST(Calibrate, RunsTheStageUnderTheIssAndFitsItsPrices) {
         const double fitted = report["calibration"]["single"]["haar"][haar]["descriptor"]["cycles"];
         EXPECT_NEAR(fitted / sw::unit_prices(mode, quick)[d], 1.0, 0.05) << haar;
         EXPECT_LT(fitted, 0.98 * recorded["single"]["haar"][haar]["descriptor"]["cycles"].get<double>()) << haar;
+        // M-SURF priced as its own unit: 576 samples to Bay's 400, and its weights.
+        const double msurf = report["calibration"]["single"]["haar"][haar]["msurf"]["cycles"];
+        EXPECT_GT(msurf, 1.2 * fitted) << haar;
+        EXPECT_LT(msurf, 2.5 * fitted) << haar;
     }
     EXPECT_TRUE(std::filesystem::exists(dir + "/calibration.md"));
     EXPECT_TRUE(std::filesystem::exists(dir + "/calibration.json"));

@@ -153,7 +153,7 @@ TEST(Calibration, PricesHoldWhereSeveralKnobsMove) {
             unit_prices(check["haar"] == "rounded" ? surf::HaarMode::rounded : surf::HaarMode::exact, p);
         double model = 0;
         for (size_t u = 0; u < kUnits; ++u)
-            model += check["units_per_keypoint"][unit_name(Unit(u))].get<double>() * prices[u];
+            model += check["units_per_keypoint"].value(unit_name(Unit(u)), 0.0) * prices[u];
         const double stream = check["stream_cycles_per_keypoint"];
         EXPECT_NEAR(model / stream, 1.0, 0.02)
             << check["scenario"] << " " << check["haar"] << " point " << check["point"];
@@ -176,7 +176,7 @@ TEST(Calibration, RecordedAgreementWithTheInstructionStream) {
             unit_prices(run["haar"] == "rounded" ? surf::HaarMode::rounded : surf::HaarMode::exact, defaults);
         std::array<double, kSteps> model{};
         for (size_t u = 0; u < kUnits; ++u)
-            model[size_t(step_of(Unit(u)))] += run["units_per_keypoint"][unit_name(Unit(u))].get<double>() * prices[u];
+            model[size_t(step_of(Unit(u)))] += run["units_per_keypoint"].value(unit_name(Unit(u)), 0.0) * prices[u];
         double stream_total = 0, model_total = 0;
         for (size_t s = 0; s < kSteps; ++s)
             stream_total += run["steps"][step_name(Step(s))]["stream_cycles_per_keypoint"].get<double>();

@@ -242,6 +242,39 @@ TEST(SoftwareStage, CountsTheWorkOfOneKeypoint) {
                 1e-6 * stage.cost().exact_cycles());
 }
 
+// surf.descriptor=msurf: the same keypoint, described as the float reference's M-SURF (576
+// samples of 32 reads each), counted as the msurf unit and not as Bay's descriptor.
+TEST(SoftwareStage, DescribesWithMsurfAsItsOwnUnit) {
+    const cv::Mat gray = graf1_1024x768();
+    ASSERT_FALSE(gray.empty());
+    const HardwareFrame frame = run_hardware(gray, 300);
+    sw::StageParams params;
+    params.threshold = 300;
+    SoftwareStage bay = make_stage(params);
+    params.descriptor = surf::DescriptorKind::msurf;
+    SoftwareStage msurf = make_stage(params);
+    const sw::FrameBuffers buffers = frame.buffers();
+    for (uint32_t word : frame.fifo) {
+        const fhg::Candidate c = fhg::unpack_candidate(word);
+        if (c.x < 200 || c.x > 800 || c.y < 200 || c.y > 560) continue;
+        const auto a = bay.process(word, buffers);
+        const uint64_t ii0 = msurf.cost().reads(sw::Read::integral);
+        const auto b = msurf.process(word, buffers);
+        ASSERT_EQ(a.has_value(), b.has_value());
+        if (!b) continue;
+        EXPECT_EQ(msurf.cost().reads(sw::Read::integral) - ii0, 32u + 109 * 32 + 576 * 32);
+        EXPECT_EQ(msurf.cost().counted(sw::Unit::msurf), 1u);
+        EXPECT_EQ(msurf.cost().counted(sw::Unit::descriptor), 0u);
+        EXPECT_EQ(b->orientation, a->orientation);
+        const surf::IntegralImage ii(gray);
+        const auto expected = surf::descriptor(ii.view(), *b, surf::HaarMode::exact, surf::DescriptorKind::msurf);
+        for (size_t i = 0; i < 64; ++i) EXPECT_NEAR(b->descriptor[i], expected[i], 1e-5f) << i;
+        EXPECT_NE(b->descriptor, a->descriptor);
+        return;
+    }
+    FAIL() << "no keypoint inside the frame";
+}
+
 TEST(SoftwareStage, RejectsCandidatesAtTheBorderAndNonMaxima) {
     const cv::Mat gray = graf1_1024x768();
     ASSERT_FALSE(gray.empty());
