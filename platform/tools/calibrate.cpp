@@ -495,21 +495,19 @@ int calibrate_command(const CalibrateOptions& options) {
     auto stage = [&](const std::string& text) { progress.steps(done.size(), total, "runs", false, ": " + text); };
     for (int h = 0; h < 2; ++h) {
         RunResult pooled;
+        auto fitted_run = [&](RunResult fit) {
+            pooled.stream.insert(pooled.stream.end(), fit.stream.begin(), fit.stream.end());
+            pooled.units.insert(pooled.units.end(), fit.units.begin(), fit.units.end());
+            fit.record["fitted"] = true;
+            done.emplace_back(std::move(fit), h);
+        };
         for (const std::string& scenario : o.fit) {
             RunResult fit = calibration_run(o, scenario, modes[h], sets, stage, scenario == o.fit.front());
             if (scenario == o.fit.front()) table.sample[size_t(h)] = fit.sample;
-            pooled.stream.insert(pooled.stream.end(), fit.stream.begin(), fit.stream.end());
-            pooled.units.insert(pooled.units.end(), fit.units.begin(), fit.units.end());
-            fit.record["fitted"] = true;
-            done.emplace_back(std::move(fit), h);
+            fitted_run(std::move(fit));
         }
-        if (o.msurf != "none") {  // the msurf unit's price: fitted with the rest, in its own run
-            RunResult fit = calibration_run(o, o.msurf, modes[h], sets, stage, false, true);
-            pooled.stream.insert(pooled.stream.end(), fit.stream.begin(), fit.stream.end());
-            pooled.units.insert(pooled.units.end(), fit.units.begin(), fit.units.end());
-            fit.record["fitted"] = true;
-            done.emplace_back(std::move(fit), h);
-        }
+        // The msurf unit's price: fitted with the rest, from its own run.
+        if (o.msurf != "none") fitted_run(calibration_run(o, o.msurf, modes[h], sets, stage, false, true));
         for (size_t p = 0; p < 2; ++p) {
             sw::UnitTable fitted = sw::fit_units(pooled.stream, pooled.units, first[p], o.probes);
             if (!o.probes)  // not probed: no sensitivity (the probes sit at the defaults)

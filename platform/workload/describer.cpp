@@ -435,7 +435,7 @@ std::unique_ptr<sw::ssa2::Describer> make_describer(const Config& config, float 
     params.descriptor = chip.descriptor;
     const sw::CostParams cost = cost_params(config, params.haar);
     // The calibration's own runs measure the price, so they run without it.
-    if (g_record_inputs.empty() && !g_calibrating && params.descriptor == surf::DescriptorKind::msurf &&
+    if (!g_calibrating && params.descriptor == surf::DescriptorKind::msurf &&
         !(cost.unit_cycles[size_t(sw::Unit::msurf)] > 0))
         throw ConfigError(
             fmt::format("{}: msurf, but the calibration table has no price for M-SURF descriptors "
