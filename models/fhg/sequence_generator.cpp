@@ -1,6 +1,7 @@
 #include "sequence_generator.h"
 
 #include <algorithm>
+#include <iterator>
 #include <map>
 #include <mutex>
 #include <random>
@@ -483,6 +484,31 @@ Sequence generate_sequence(const SequenceParams& params) {
     return s;
 }
 
+namespace {
+
+std::string describe(const std::tuple<int, int, int, int>& v) {
+    static const char* const kResponses[] = {"Dxx", "Dyy", "Dxy"};
+    const auto [x, y, coefficient, response] = v;
+    return "I(" + std::to_string(x) + ", " + std::to_string(y) + ") x " + (coefficient > 0 ? "+" : "") +
+           std::to_string(coefficient) + " into " + kResponses[response];
+}
+
+// The first value a TripleMAC lacks and the first it gets without needing it, in words.
+std::string read_difference(const std::multiset<std::tuple<int, int, int, int>>& wanted,
+                            const std::multiset<std::tuple<int, int, int, int>>& got) {
+    std::vector<std::tuple<int, int, int, int>> missing, extra;
+    std::set_difference(wanted.begin(), wanted.end(), got.begin(), got.end(), std::back_inserter(missing));
+    std::set_difference(got.begin(), got.end(), wanted.begin(), wanted.end(), std::back_inserter(extra));
+    std::string why;
+    if (!missing.empty()) why += ": it misses " + describe(missing.front());
+    if (!extra.empty()) why += std::string(missing.empty() ? ": it" : " and") + " gets " + describe(extra.front());
+    if (missing.size() + extra.size() > 2)
+        why += " (" + std::to_string(missing.size() + extra.size()) + " values differ)";
+    return why;
+}
+
+}  // namespace
+
 std::string check_sequence(const Sequence& sequence, const SequenceParams& params) {
     // What each TripleMAC must receive: (point, coefficient, response), as a multiset.
     using Value = std::tuple<int, int, int, int>;
@@ -536,7 +562,9 @@ std::string check_sequence(const Sequence& sequence, const SequenceParams& param
         }
     }
     for (unsigned t = 0; t < params.triple_macs; ++t) {
-        if (wanted[t] != got[t]) return "TripleMAC " + std::to_string(t) + " does not receive exactly its reads";
+        if (wanted[t] != got[t])
+            return "TripleMAC " + std::to_string(t) + " does not receive exactly its reads" +
+                   read_difference(wanted[t], got[t]);
         if (first[t] >= 0 && busy_until[t] > sequence.interval + first[t])
             return "TripleMAC " + std::to_string(t) + " is still adding when the next block hands it its first value";
     }

@@ -28,6 +28,7 @@
 #include "platform/table2/quality_budget.h"
 #include "platform/table2/table2.h"
 #include "platform/sweep/sweep.h"
+#include "platform/tools/export_sequence.h"
 #include "platform/tools/seqgen.h"
 #include "platform/soc.h"
 
@@ -106,6 +107,20 @@ Command add_seqgen(CLI::App& app) {
     seqgen->add_option("--width", o->width, "Image width for the implied frame rate")->capture_default_str();
     seqgen->add_option("--height", o->height, "Image height for the implied frame rate")->capture_default_str();
     return {seqgen, [o] { return seqgen_command(*o); }};
+}
+
+Command add_export_sequence(CLI::App& app) {
+    auto o = options_for<ExportSequenceOptions>();
+    CLI::App* cmd = app.add_subcommand(
+        "export-sequence", "Write the FHG's control sequence as its block RAM image (COE and $readmemh), or check one");
+    cmd->add_option("scenario", o->scenario, "Scenario to take the parameters from (default: the defaults)");
+    cmd->add_option("--set", o->sets, "Override a parameter: --set fhg.scheduler=improved (repeatable)")
+        ->type_name("KEY=VALUE");
+    cmd->add_option("--out", o->out, "Folder for fhg_sequence.coe, .mem and .json")->capture_default_str();
+    cmd->add_option("--check", o->check,
+                    "Read this image (.coe or .mem) under the configuration's layout and replay it instead")
+        ->type_name("FILE");
+    return {cmd, [o] { return export_sequence_command(*o); }};
 }
 
 Command add_bench(CLI::App& app) {
@@ -327,6 +342,7 @@ int dispatch(int argc, char** argv) {
                     "Print every block's registers with their access, reset value and fields (Markdown)",
                     [] { return registers_markdown(chip_registers()); }),
         add_seqgen(app),
+        add_export_sequence(app),
         add_bench(app),
         add_calibrate(app),
         add_sweep(app),

@@ -7,6 +7,7 @@
 #include "models/fhg/fhg.h"
 #include "models/fhg/fhg_regs.h"
 #include "models/fhg/sequence_cache.h"
+#include "models/fhg/sequence_memory.h"
 #include "platform/scenario/block_params.h"
 #include "platform/scenario/run_settings.h"
 #include "platform/workload/describer.h"
@@ -15,19 +16,11 @@ namespace surfvp {
 namespace {
 
 unsigned ceil_div(unsigned long a, unsigned long b) { return unsigned((a + b - 1) / b); }
-unsigned log2_ceil(unsigned n) {
-    unsigned b = 0;
-    while ((1u << b) < n) ++b;
-    return b;
-}
-
-// Values one read-bus word carries (scalar 1, pair 2, quad 4).
-unsigned lanes(fhg::BusWord word) { return word == fhg::BusWord::quad ? 4 : word == fhg::BusWord::pair ? 2 : 1; }
 
 // The FHG of one pair. Block RAM: each line-FIFO line holds max_width integral words, in the
 // organisation fhg.line_fifo names (one RAMB36, 1K x 32 or 512 x 72, or two column banks); the maxima FIFO 32-bit words; the MasterController's sequence one control
-// word per cycle of its interval (per bus: line, column, enable; per value: TripleMAC,
-// coefficient, response); each determinant row buffer a block row of records. DSP48E:
+// word per cycle of its interval, as `surfvp export-sequence` writes it (per bus: valid, line,
+// column; per TripleMAC: take, bus, lane, coefficient, response); each determinant row buffer a block row of records. DSP48E:
 // HessianCalc's three products per determinant (Dxx Dyy, w Dxy, (w Dxy)^2), pipelined at one
 // determinant a cycle; the TripleMACs only add (the paper: x3 is three additions).
 BlockResources fhg_block(const Config& c) {
@@ -42,8 +35,7 @@ BlockResources fhg_block(const Config& c) {
                                            : ramb36_for(ceil_div(p.max_width, shape.banks), integral_bits));
     const unsigned fifo = s.fifo_lines * line;
     const unsigned maxima = ramb36_for(p.maxima_fifo_depth, 32);
-    const unsigned control_bits = s.read_buses * (log2_ceil(s.fifo_lines) + 6 + 1) +
-                                  s.read_buses * lanes(s.bus_word) * (log2_ceil(s.triple_macs) + 2 + 2 + 1);
+    const unsigned control_bits = unsigned(fhg::sequence_layout(s).width);  // the exported image's word
     const unsigned sequence = ramb36_for(unsigned(std::max(seq.interval, 1)), control_bits);
     const unsigned record_bits = fhg_regs::record_bytes(fhg_regs::det_bytes_for(p.precision.det_bits)) * 8;
     const unsigned rows = p.det_row_buffers * ramb36_for(ceil_div(p.max_width, 2), record_bits);

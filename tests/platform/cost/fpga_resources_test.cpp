@@ -16,7 +16,7 @@ TEST(FpgaResources, BlockRamsInTheRamb36AspectRatios) {
     EXPECT_EQ(ramb36_for(2048, 18), 1u);
     EXPECT_EQ(ramb36_for(32768, 1), 1u);
     EXPECT_EQ(ramb36_for(512, 72), 1u);
-    EXPECT_EQ(ramb36_for(60, 212), 3u);  // three 72-bit columns
+    EXPECT_EQ(ramb36_for(60, 215), 3u);  // three 72-bit columns: the default sequence image
     EXPECT_EQ(ramb36_for(0, 32), 0u);
 }
 

@@ -1,0 +1,107 @@
+#include "platform/tools/export_sequence.h"
+
+#include <fmt/format.h>
+
+#include <cstdio>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "models/fhg/sequence_cache.h"
+#include "models/fhg/sequence_memory.h"
+#include "platform/cost/fpga_resources.h"
+#include "platform/run/output_folder.h"
+#include "platform/scenario/block_params.h"
+#include "platform/scenario/config.h"
+#include "platform/scenario/scenario.h"
+
+namespace surfvp {
+namespace {
+namespace fs = std::filesystem;
+using Json = nlohmann::ordered_json;
+
+constexpr std::uintmax_t kMaxImageBytes = 64u << 20;  // a 512-deep image of 1,000-bit words is 130 KiB
+
+fhg::SequenceParams sequence_params(const ExportSequenceOptions& o) {
+    Config config;
+    if (!o.scenario.empty()) {
+        config = load_scenario(resolve_scenario(o.scenario), o.sets);
+    } else {
+        apply_overrides(config, o.sets);
+    }
+    return fhg_params(config).sequence;
+}
+
+std::string machine(const fhg::SequenceParams& p) {
+    return fmt::format("{} scheduler, {} {} read buses, {} TripleMACs, line FIFO {}, reuse {}",
+                       fhg::scheduler_name(p.scheduler), p.read_buses, fhg::bus_word_name(p.bus_word), p.triple_macs,
+                       fhg::line_fifo_name(p.line_fifo), p.reuse ? "on" : "off");
+}
+
+Json summary(const fhg::SequenceImage& image, const fhg::Sequence& s, const fhg::SequenceParams& p) {
+    Json fields = Json::array();
+    for (const fhg::MemoryField& f : image.layout.fields)
+        fields.push_back({{"name", f.name}, {"lsb", f.lsb}, {"width", f.width}, {"meaning", f.meaning}});
+    return {{"machine", machine(p)},
+            {"depth", image.words.size()},
+            {"width_bits", image.layout.width},
+            {"ramb36", ramb36_for(image.words.size(), unsigned(image.layout.width))},
+            {"interval_cycles", s.interval},
+            {"words_delivered", s.words_delivered},
+            {"files", {"fhg_sequence.coe", "fhg_sequence.mem"}},
+            {"fields", fields}};
+}
+
+std::string read_image_text(const fs::path& file) {
+    std::error_code error;
+    const fs::file_status status = fs::status(file, error);
+    if (!fs::exists(status)) throw ConfigError(fmt::format("--check {}: no such file", file.string()));
+    if (!fs::is_regular_file(status)) throw ConfigError(fmt::format("--check {}: not a regular file", file.string()));
+    if (fs::file_size(file, error) > kMaxImageBytes)
+        throw ConfigError(
+            fmt::format("--check {}: larger than {} MiB, not a sequence image", file.string(), kMaxImageBytes >> 20));
+    std::ifstream in(file, std::ios::binary);
+    if (!in) throw ConfigError(fmt::format("--check {}: cannot be read", file.string()));
+    return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+
+// Decodes the image under the configuration's layout and replays it: the first broken limit
+// (or undecodable word) is bad input, named with the file.
+int check_image(const ExportSequenceOptions& o, const fhg::SequenceParams& p) {
+    const std::string text = read_image_text(o.check);
+    fhg::Sequence s;
+    try {
+        s = fhg::decode_sequence(fhg::parse_image(text, fhg::sequence_layout(p)), p);
+    } catch (const std::invalid_argument& e) {
+        throw ConfigError(fmt::format("--check {}: {}", o.check, e.what()));
+    }
+    const std::string broken = fhg::check_sequence(s, p);
+    if (!broken.empty()) throw ConfigError(fmt::format("--check {}: the replay fails: {}", o.check, broken));
+    std::printf("%s: %d words, %zu bus words; the replay checker accepts it for the %s\n", o.check.c_str(), s.interval,
+                s.steps.size(), machine(p).c_str());
+    return 0;
+}
+
+}  // namespace
+
+int export_sequence_command(const ExportSequenceOptions& o) {
+    const fhg::SequenceParams p = sequence_params(o);
+    if (!o.check.empty()) return check_image(o, p);
+    const fhg::Sequence* s = nullptr;
+    try {
+        s = &fhg::cached_sequence(p);
+    } catch (const std::invalid_argument& e) {
+        throw ConfigError(e.what());
+    }
+    const fhg::SequenceImage image = fhg::encode_sequence(*s, p);
+    const std::string title = "surfvp FHG sequence memory: " + machine(p);
+    const Json j = summary(image, *s, p);
+    OutputFolder folder(o.out, {"fhg_sequence.coe", "fhg_sequence.mem", "fhg_sequence.json"});
+    folder.publish_files({{"fhg_sequence.coe", fhg::to_coe(image, title)},
+                          {"fhg_sequence.mem", fhg::to_readmemh(image, title)},
+                          {"fhg_sequence.json", j.dump(2) + "\n"}});
+    std::printf("%s\n%zu words x %d bits in %u RAMB36: %s/fhg_sequence.{coe,mem,json}\n", title.c_str(),
+                image.words.size(), image.layout.width, j["ramb36"].get<unsigned>(), o.out.c_str());
+    return 0;
+}
+
+}  // namespace surfvp
