@@ -507,7 +507,11 @@ int calibrate_command(const CalibrateOptions& options) {
             fitted_run(std::move(fit));
         }
         // The msurf unit's price: fitted with the rest, from its own run.
-        if (o.msurf != "none") fitted_run(calibration_run(o, o.msurf, modes[h], sets, stage, false, true));
+        if (o.msurf != "none") {
+            RunResult fit = calibration_run(o, o.msurf, modes[h], sets, stage, true, true);
+            table.msurf_sample[size_t(h)] = fit.sample;
+            fitted_run(std::move(fit));
+        }
         for (size_t p = 0; p < 2; ++p) {
             sw::UnitTable fitted = sw::fit_units(pooled.stream, pooled.units, first[p], o.probes);
             if (!o.probes)  // not probed: no sensitivity (the probes sit at the defaults)

@@ -111,8 +111,13 @@ nlohmann::ordered_json calibration_to_json(const Calibration& c) {
     out["agreement"] = c.agreement;
     out["checks"] = c.checks;
     nlohmann::ordered_json samples = nlohmann::ordered_json::object();
-    for (size_t h = 0; h < 2; ++h) samples[kHaarNames[h]] = sample_to_json(c.sample[h]);
+    nlohmann::ordered_json msurf_samples = nlohmann::ordered_json::object();
+    for (size_t h = 0; h < 2; ++h) {
+        samples[kHaarNames[h]] = sample_to_json(c.sample[h]);
+        if (!c.msurf_sample[h].empty()) msurf_samples[kHaarNames[h]] = sample_to_json(c.msurf_sample[h]);
+    }
     out["sample"] = samples;
+    if (!msurf_samples.empty()) out["msurf_sample"] = msurf_samples;
     return out;
 }
 
@@ -124,6 +129,8 @@ Calibration calibration_from_json(const nlohmann::ordered_json& j) {
         c.checks = j.value("checks", nlohmann::ordered_json::array());
         if (j.contains("sample"))
             for (size_t h = 0; h < 2; ++h) c.sample[h] = sample_from_json(j.at("sample").at(kHaarNames[h]));
+        if (j.contains("msurf_sample"))
+            for (size_t h = 0; h < 2; ++h) c.msurf_sample[h] = sample_from_json(j.at("msurf_sample").at(kHaarNames[h]));
         for (size_t p = 0; p < 2; ++p) {
             const nlohmann::ordered_json& in = j.at(kPrecisionNames[p]);
             PrecisionTable& t = c.precision[p];
@@ -177,6 +184,12 @@ std::array<double, kUnits> unit_prices(surf::HaarMode haar, const PipelineParams
     for (size_t u = 0; u < kUnits; ++u) {
         const size_t st = size_t(step_of(Unit(u)));
         if (cycles[0][st] > 0) prices[u] *= cycles[1][st] / cycles[0][st];
+    }
+    if (!c.msurf_sample[h].empty()) {  // its own mix: the Bay sample's ratio is undone and its own applied
+        const size_t st = size_t(step_of(Unit::msurf));
+        const auto own = sample_cycles(c.msurf_sample[h], {defaults, params});
+        prices[size_t(Unit::msurf)] = t.haar[h][size_t(Unit::msurf)].cycles;
+        if (own[0][st] > 0) prices[size_t(Unit::msurf)] *= own[1][st] / own[0][st];
     }
     return prices;
 }

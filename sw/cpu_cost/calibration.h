@@ -47,6 +47,9 @@ struct Calibration {
     // Per Haar mode, a few whole candidates of the stream (the first keypoints of the first
     // fitting run): re-timed under the parameters a run asks for, they scale the prices.
     std::array<StreamSample, 2> sample;
+    // The same from the M-SURF run: they scale the msurf unit's price (its mix of loads,
+    // converts and FPU work is not Bay's descriptor's). Empty: M-SURF not priced.
+    std::array<StreamSample, 2> msurf_sample;
 };
 
 const Calibration& recorded_calibration();                           // calibration.json, embedded at build time
@@ -55,7 +58,8 @@ nlohmann::ordered_json calibration_to_json(const Calibration& c);
 
 // CPU cycles per unit for these pipeline parameters, from the table of their precision: the
 // recorded cycles at its defaults, scaled step by step by the sample re-timed (the sample's
-// cycles in that step under `params` over its cycles under the defaults). The knobs interact
+// cycles in that step under `params` over its cycles under the defaults); the msurf unit by
+// the M-SURF run's sample. The knobs interact
 // (an FPU latency counts times the clock ratio, an issue occupancy only where the stream
 // waits for it), so no sum over one-knob changes prices a point where several move.
 std::array<double, kUnits> unit_prices(surf::HaarMode haar, const PipelineParams& params,
