@@ -72,6 +72,8 @@ public:
         return x >= b && y >= b && x + b < width && y + b < height;
     }
     const Precision& precision() const { return precision_; }
+    int64_t reciprocal(int size) const { return reciprocal_[size_t(size)]; }  // K_L
+    int64_t weight() const { return weight_; }                                // W
 
     // One response along an image row: sum(x) = sum of tap_j x P(x + dx_j), where
     // P(x) = sum of weight_i x I(x, y + dy_i) (the row path's form of filter_reads).

@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "models/fhg/sequence_cache.h"
+#include "models/fhg/rtl_parameters.h"
 #include "models/fhg/sequence_memory.h"
 #include "platform/cost/fpga_resources.h"
 #include "platform/run/output_folder.h"
@@ -21,14 +22,14 @@ using Json = nlohmann::ordered_json;
 
 constexpr std::uintmax_t kMaxImageBytes = 64u << 20;  // a 512-deep image of 1,000-bit words is 130 KiB
 
-fhg::SequenceParams sequence_params(const ExportSequenceOptions& o) {
+Fhg::Params chip_fhg(const ExportSequenceOptions& o) {
     Config config;
     if (!o.scenario.empty()) {
         config = load_scenario(resolve_scenario(o.scenario), o.sets);
     } else {
         apply_overrides(config, o.sets);
     }
-    return fhg_params(config).sequence;
+    return fhg_params(config);
 }
 
 std::string machine(const fhg::SequenceParams& p) {
@@ -47,7 +48,7 @@ Json summary(const fhg::SequenceImage& image, const fhg::Sequence& s, const fhg:
             {"ramb36", ramb36_for(image.words.size(), unsigned(image.layout.width))},
             {"interval_cycles", s.interval},
             {"words_delivered", s.words_delivered},
-            {"files", {"fhg_sequence.coe", "fhg_sequence.mem"}},
+            {"files", {"fhg_sequence.coe", "fhg_sequence.mem", "fhg_params.vh"}},
             {"fields", fields}};
 }
 
@@ -84,22 +85,26 @@ int check_image(const ExportSequenceOptions& o, const fhg::SequenceParams& p) {
 }  // namespace
 
 int export_sequence_command(const ExportSequenceOptions& o) {
-    const fhg::SequenceParams p = sequence_params(o);
+    const Fhg::Params chip = chip_fhg(o);
+    const fhg::SequenceParams& p = chip.sequence;
     if (!o.check.empty()) return check_image(o, p);
     const fhg::Sequence* s = nullptr;
+    std::string rtl;
     try {
         s = &fhg::cached_sequence(p);
+        rtl = fhg::rtl_parameters(chip.precision, p);
     } catch (const std::invalid_argument& e) {
         throw ConfigError(e.what());
     }
     const fhg::SequenceImage image = fhg::encode_sequence(*s, p);
     const std::string title = "surfvp FHG sequence memory: " + machine(p);
     const Json j = summary(image, *s, p);
-    OutputFolder folder(o.out, {"fhg_sequence.coe", "fhg_sequence.mem", "fhg_sequence.json"});
+    OutputFolder folder(o.out, {"fhg_sequence.coe", "fhg_sequence.mem", "fhg_sequence.json", "fhg_params.vh"});
     folder.publish_files({{"fhg_sequence.coe", fhg::to_coe(image, title)},
                           {"fhg_sequence.mem", fhg::to_readmemh(image, title)},
-                          {"fhg_sequence.json", j.dump(2) + "\n"}});
-    std::printf("%s\n%zu words x %d bits in %u RAMB36: %s/fhg_sequence.{coe,mem,json}\n", title.c_str(),
+                          {"fhg_sequence.json", j.dump(2) + "\n"},
+                          {"fhg_params.vh", rtl}});
+    std::printf("%s\n%zu words x %d bits in %u RAMB36: %s/fhg_sequence.{coe,mem,json}, fhg_params.vh\n", title.c_str(),
                 image.words.size(), image.layout.width, j["ramb36"].get<unsigned>(), o.out.c_str());
     return 0;
 }

@@ -14,7 +14,8 @@ struct ExportSequenceOptions {
     std::string check;  // an image (.coe or .mem) to decode and replay instead of writing one
 };
 
-// Writes fhg_sequence.coe, fhg_sequence.mem and fhg_sequence.json into the folder and prints
+// Writes fhg_sequence.coe, fhg_sequence.mem, fhg_sequence.json and the RTL's fhg_params.vh
+// (models/fhg/rtl) for the configuration into the folder and prints
 // the summary; with --check prints what the replay found. Throws ConfigError for bad input
 // (an image the configuration's layout cannot read or whose sequence breaks a limit).
 int export_sequence_command(const ExportSequenceOptions& options);

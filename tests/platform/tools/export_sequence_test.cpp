@@ -8,6 +8,7 @@
 
 #include "cli.h"
 #include "models/fhg/sequence_cache.h"
+#include "models/fhg/rtl_parameters.h"
 #include "models/fhg/sequence_memory.h"
 
 namespace surfvp {
@@ -36,6 +37,26 @@ TEST(ExportSequence, WritesTheImageTheCheckAcceptsAndTheModelCounts) {
     const auto other = surfvp("export-sequence --set fhg.read_buses=6 --check " + out + "/fhg_sequence.mem");
     EXPECT_EQ(other.exit_code, 2);
     EXPECT_NE(other.err.find("is not a word of 259 bits (65 hex digits; it has 54)"), std::string::npos) << other.err;
+}
+
+// The RTL's parameters come from the configuration: the defaults are what the build verilates
+// (tests/CMakeLists.txt prints them from the model's own defaults); a changed width shows.
+TEST(ExportSequence, WritesTheRtlParametersOfTheConfiguration) {
+    const std::string out = fresh_dir("export_rtl");
+    ASSERT_EQ(surfvp("export-sequence --out " + out).exit_code, 0);
+    const std::string header = slurp(out + "/fhg_params.vh");
+    EXPECT_EQ(header, fhg::rtl_parameters(fhg::Precision{}, fhg::SequenceParams{}));
+    for (const char* line : {"localparam ACC_BITS = 24;", "localparam SEQ_WIDTH = 215;", "localparam WEIGHT = 3318;",
+                             "        5'd17: det_reciprocal = 32'd12901;"})
+        EXPECT_NE(header.find(line), std::string::npos) << line;
+    const auto r = surfvp("export-sequence --set 'fhg.accumulator_bits=20 bit' --set fhg.read_buses=6 --out " + out);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const std::string changed = slurp(out + "/fhg_params.vh");
+    EXPECT_NE(changed.find("localparam ACC_BITS = 20;"), std::string::npos);
+    EXPECT_NE(changed.find("localparam READ_BUSES = 6;"), std::string::npos);
+    const auto x3 = surfvp("export-sequence --set 'fhg.x3_cycles=2 cycles' --out " + out);
+    EXPECT_EQ(x3.exit_code, 2);
+    EXPECT_NE(x3.err.find("fhg.x3_cycles must be 1 or 3"), std::string::npos) << x3.err;
 }
 
 // One bit flipped in the image: the replay names the cycle and the TripleMAC.

@@ -1,0 +1,17 @@
+#pragma once
+// The Verilog reference's parameters (models/fhg/rtl), generated from the declarations the
+// model itself uses: HessianCore's Precision and its constants (K_L, W), the block record's
+// determinants (filter_geometry.h) and the sequence memory's layout (sequence_memory.h).
+// Nothing in the RTL is a copied number. Plain C++.
+#include <string>
+
+#include "hessian_core.h"
+#include "sequence_generator.h"
+
+namespace surfvp::fhg {
+
+// `fhg_params.vh`: localparams and constant functions to `include inside a module. Throws
+// std::invalid_argument for a machine the RTL does not build (x3_cycles other than 1 or 3).
+std::string rtl_parameters(const Precision& precision, const SequenceParams& sequence);
+
+}  // namespace surfvp::fhg
