@@ -6,6 +6,9 @@
 #include <opencv2/imgproc.hpp>
 #include <random>
 #include <string>
+#include <vector>
+
+#include "models/iig/integral_core.h"
 
 namespace surfvp::test {
 
@@ -22,6 +25,18 @@ inline cv::Mat graf_1024x768() {
     if (image.empty()) return image;
     cv::resize(image, out, cv::Size(1024, 768), 0, 0, cv::INTER_AREA);
     return out;
+}
+
+// An image's integral image as the IIG computes it (inclusive, 32-bit), with its view.
+struct Integral {
+    std::vector<uint32_t> values;
+    IntegralView view;
+};
+
+inline Integral integral_of(const cv::Mat& image) {
+    Integral ii{*IntegralCore(32).image(image.data, image.cols, image.rows, image.step), {}};
+    ii.view = {ii.values.data(), image.cols, image.rows, size_t(image.cols)};
+    return ii;
 }
 
 inline cv::Mat random_image(int width, int height, unsigned seed) {

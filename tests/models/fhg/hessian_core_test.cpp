@@ -10,16 +10,8 @@
 namespace surfvp::fhg {
 namespace {
 
-struct Integral {
-    std::vector<uint32_t> values;
-    IntegralView view;
-};
-
-Integral integral_of(const cv::Mat& image) {
-    Integral ii{*IntegralCore(32).image(image.data, image.cols, image.rows, image.step), {}};
-    ii.view = {ii.values.data(), image.cols, image.rows, size_t(image.cols)};
-    return ii;
-}
+using test::Integral;
+using test::integral_of;
 
 int64_t pixel_sum(const cv::Mat& image, int x0, int y0, int x1, int y1) {
     int64_t s = 0;

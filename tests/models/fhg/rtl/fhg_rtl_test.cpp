@@ -16,24 +16,16 @@
 #include "models/fhg/sequence_cache.h"
 #include "models/fhg/sequence_memory.h"
 #include "models/host/atomic_file.h"
-#include "models/iig/integral_core.h"
 #include "test_images.h"
 
 namespace surfvp::fhg {
 namespace {
 
-struct Crop {
-    std::vector<uint32_t> integral;
-    IntegralView view;
-};
+using Crop = test::Integral;
 
-// A 256 x 192 crop from the middle of an image, and its integral image.
+// The integral image of a 256 x 192 crop from the middle of an image.
 Crop crop_of(const cv::Mat& image) {
-    Crop c;
-    const cv::Mat crop = image(cv::Rect((image.cols - 256) / 2, (image.rows - 192) / 2, 256, 192)).clone();
-    c.integral = *IntegralCore(32).image(crop.data, crop.cols, crop.rows, crop.step);
-    c.view = {c.integral.data(), crop.cols, crop.rows, size_t(crop.cols)};
-    return c;
+    return test::integral_of(image(cv::Rect((image.cols - 256) / 2, (image.rows - 192) / 2, 256, 192)).clone());
 }
 
 cv::Mat castle_frame() {
