@@ -54,7 +54,7 @@ const ParamTable<VerdictSettings>& VerdictSettings::parameter_table() {
                    0,
                    {"on", "off"},
                    "Re-simulate with the software settings that move the CPU's time (surf.haar, surf.upright, "
-                   "surf.target_keypoints): the frames/s and CPU time under each",
+                   "surf.descriptor, surf.target_keypoints): the frames/s and CPU time under each",
                    "[-] analysis: what the verdict rests on"},
                   &P::software),
          field<P>(

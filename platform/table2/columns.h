@@ -40,7 +40,8 @@ constexpr std::array<PaperRow, 4> kPaper{{{true, true, 0.62, 0.53, std::nullopt}
 // still lets the CPU alone hold 10 frames/s on budget_1024x768, as `surfvp quality-budget`
 // measured it (docs/quality_budget.md; scenarios/budget_best_software.yaml runs it, and a test
 // holds the two equal). table2 runs the chip with it beside the paper's software.
-inline const std::vector<std::string> kBestAffordableSoftware{"surf.max_offset=1", "surf.upright=on"};
+inline const std::vector<std::string> kBestAffordableSoftware{"surf.max_offset=1", "surf.upright=on",
+                                                              "surf.descriptor=msurf"};
 
 // One platform's keypoints of every frame, and how it got them.
 struct Column {

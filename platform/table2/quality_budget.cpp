@@ -31,6 +31,7 @@ std::vector<PrecisionAxis> software_axes() {
     return {{"surf.max_offset", {"0.5", "0.75", "1"}},
             {"surf.haar", {"rounded", "exact"}},
             {"surf.upright", {"off", "on"}},
+            {"surf.descriptor", {"surf", "msurf"}},
             {"surf.target_keypoints", {"100", "150", "200"}}};
 }
 

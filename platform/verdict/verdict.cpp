@@ -119,6 +119,7 @@ std::vector<std::pair<std::string, std::string>> software_settings(const Config&
     points.emplace_back("fpu.precision", pipeline_params(c).double_precision != 0 ? "single" : "double");
     points.emplace_back("surf.haar", s.haar == surf::HaarMode::exact ? "rounded" : "exact");
     points.emplace_back("surf.upright", s.upright ? "off" : "on");
+    points.emplace_back("surf.descriptor", s.descriptor == surf::DescriptorKind::msurf ? "surf" : "msurf");
     const uint64_t target = s.target_keypoints;
     for (const uint64_t k : {50, 100, 150, 200})
         if (target > 0 && k != target) points.emplace_back("surf.target_keypoints", std::to_string(k));

@@ -201,7 +201,8 @@ TEST(Verdict, ACpuStalledOnFillsIsRelievedByTheMemory) {
 }
 
 // The software settings the CPU's time rests on, each re-simulated: exact wavelets cost more
-// CPU time than rounded ones, U-SURF less, and CPU time grows with the keypoints per frame.
+// CPU time than rounded ones, U-SURF less, M-SURF more, and CPU time grows with the keypoints
+// per frame.
 TEST(Verdict, SoftwareSettingsSayWhatTheCpuTimeRestsOn) {
     const auto r = verdict("software", "--set verdict.band=off --set verdict.break_even=off", 0);
     std::map<std::string, double> cpu_ms;
@@ -211,11 +212,12 @@ TEST(Verdict, SoftwareSettingsSayWhatTheCpuTimeRestsOn) {
         EXPECT_GT(row["fps"].get<double>(), 0.0) << row;
     }
     ASSERT_EQ(cpu_ms.size(),
-              8u);  // the scenario (20 keypoints), the double FPU, exact Haar, upright, 50 ... 200 keypoints
+              9u);  // the scenario (20 keypoints), the double FPU, exact Haar, upright, M-SURF, 50 ... 200 keypoints
     const double base = cpu_ms["as the scenario"];
     EXPECT_GT(cpu_ms["fpu.precision = double"], 1.2 * base);
     EXPECT_GT(cpu_ms["surf.haar = exact"], 2.5 * base);
     EXPECT_LT(cpu_ms["surf.upright = on"], 0.8 * base);
+    EXPECT_GT(cpu_ms["surf.descriptor = msurf"], 1.15 * base);  // 1.5 times Bay's descriptor, ~60 % of the work
     EXPECT_LT(cpu_ms["surf.target_keypoints = 50"], cpu_ms["surf.target_keypoints = 100"]);
     EXPECT_LT(cpu_ms["surf.target_keypoints = 100"], cpu_ms["surf.target_keypoints = 150"]);
     const std::string md = slurp(fresh_path("software") + "/report.md");
