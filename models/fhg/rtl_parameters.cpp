@@ -20,7 +20,7 @@ std::string record_function(const char* name, int bits, const char* what, Value 
 
 }  // namespace
 
-std::string rtl_parameters(const Precision& precision, const SequenceParams& sequence) {
+std::string rtl_parameters(const Precision& precision, const SequenceParams& sequence, unsigned line_words) {
     if (sequence.x3_cycles != 1 && sequence.x3_cycles != 3)
         throw std::invalid_argument("the RTL builds a x3 as one step or three additions: fhg.x3_cycles must be 1 or 3");
     const HessianCore core(precision);
@@ -48,7 +48,7 @@ std::string rtl_parameters(const Precision& precision, const SequenceParams& seq
         "localparam BUS_LSB = {};\nlocalparam BUS_STRIDE = {};\nlocalparam COORD_BITS = {};\n"
         "localparam MAC_LSB = {};\nlocalparam MAC_STRIDE = {};\nlocalparam MAC_BUS_BITS = {};\nlocalparam "
         "MAC_LANE_BITS = {};\n"
-        "localparam WINDOW_BEFORE = {};\n"
+        "localparam WINDOW_BEFORE = {};\nlocalparam FIFO_LINES = {};\nlocalparam LINE_WORDS = {};\n"
         "localparam BUS_LINE = {};\nlocalparam BUS_COLUMN = {};\n"
         "localparam MAC_BUS = {};\nlocalparam MAC_LANE = {};\nlocalparam MAC_COEFFICIENT = {};\nlocalparam "
         "MAC_RESPONSE = {};\n",
@@ -57,9 +57,9 @@ std::string rtl_parameters(const Precision& precision, const SequenceParams& seq
         2 * precision.response_frac_bits - precision.det_frac_bits, core.weight(), sequence.read_buses,
         word_shape(sequence.bus_word).size(), sequence.triple_macs, sequence.x3_cycles, layout.width,
         layout.field("last").lsb, bus0.lsb, bus_stride, layout.field("bus0_line").width, mac0.lsb, mac_stride,
-        layout.field("mac0_bus").width, layout.field("mac0_lane").width, kReachBefore, at("bus0_line", bus0),
-        at("bus0_column", bus0), at("mac0_bus", mac0), at("mac0_lane", mac0), at("mac0_coefficient", mac0),
-        at("mac0_response", mac0));
+        layout.field("mac0_bus").width, layout.field("mac0_lane").width, kReachBefore, sequence.fifo_lines, line_words,
+        at("bus0_line", bus0), at("bus0_column", bus0), at("mac0_bus", mac0), at("mac0_lane", mac0),
+        at("mac0_coefficient", mac0), at("mac0_response", mac0));
     s += record_function("det_size", 16, "filter size L of record position k",
                          [](int k) { return block_determinant(k).size; });
     s += record_function("det_px", 16, "pixel column in the block", [](int k) { return block_determinant(k).px; });

@@ -12,6 +12,7 @@ namespace surfvp::fhg {
 
 // `fhg_params.vh`: localparams and constant functions to `include inside a module. Throws
 // std::invalid_argument for a machine the RTL does not build (x3_cycles other than 1 or 3).
-std::string rtl_parameters(const Precision& precision, const SequenceParams& sequence);
+// `line_words` is the longest line the line FIFO holds (fhg.max_width).
+std::string rtl_parameters(const Precision& precision, const SequenceParams& sequence, unsigned line_words);
 
 }  // namespace surfvp::fhg

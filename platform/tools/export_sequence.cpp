@@ -92,7 +92,7 @@ int export_sequence_command(const ExportSequenceOptions& o) {
     std::string rtl;
     try {
         s = &fhg::cached_sequence(p);
-        rtl = fhg::rtl_parameters(chip.precision, p);
+        rtl = fhg::rtl_parameters(chip.precision, p, chip.max_width);
     } catch (const std::invalid_argument& e) {
         throw ConfigError(e.what());
     }

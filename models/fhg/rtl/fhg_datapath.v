@@ -1,19 +1,21 @@
-// The FHG's datapath (paper III-C, Fig. 6): the MasterController's sequence memory driving
-// the read buses and the TripleMACs, and HessianCalc after them. The line FIFO the buses read
-// is outside this module (for now the testbench's): each cycle the datapath names, per bus, a
-// word of the block's 52 x 52 window (line, column), and the FIFO answers with its values
-// within the cycle.
+// The FHG's datapath (paper III-C, Fig. 6): integral lines into the MasterController's line
+// FIFO, its sequence memory driving the read buses and the TripleMACs, HessianCalc after them.
 //
-// - "The MasterController ... runs a control and addressing sequence stored in block RAM": the
+// - The MasterController's control and addressing sequence, too large for logic, sits in block
+//   RAM and runs once per 2 x 2 block (paper III-C): the
 //   image `surfvp export-sequence` writes (docs/sequence-memory.md), read at the start from
 //   the file given by +sequence=FILE (default fhg_sequence.mem), one word per cycle, the
 //   sequence starting again after the word marked `last`, so blocks follow without a gap.
-// - "The TripleMACs snoop the read buses": each takes, in a cycle its word says so, one value
+// - A word names, per bus, a word of the block's window; the line FIFO (line_fifo.v) reads it
+//   at the next edge, so the word's TripleMAC fields wait one cycle for their values.
+// - The 18 TripleMACs are connected to the read buses and capture their data (III-C): each
+//   takes, in a cycle its word says so, one value
 //   of one bus word (bus, lane), with its coefficient and response.
 // - Blocks run row by row over the frame, ceil(width / 2) x ceil(height / 2) of them, from
-//   `start` until `done`. The block in flight is (block_x, block_y), its pixel (0, 0).
-module fhg_datapath (clk, rst, start, width, height, bus_valid, bus_line, bus_column, bus_data, block_x,
-                     block_y, det_valid, det_index, det_value, det_block_x, det_block_y, busy, done, overrun);
+//   `start` until `done`; a block row waits until the FIFO holds its whole window. The block
+//   in flight is (block_x, block_y), its pixel (0, 0).
+module fhg_datapath (clk, rst, start, width, height, in_valid, in_value, in_ready, block_x, block_y, det_valid,
+                     det_index, det_value, det_block_x, det_block_y, busy, done, overrun, stalled);
 `include "fhg_params.vh"
     localparam DEPTH_MAX = 512;  // one RAMB36 deep at its widest (512 x 72)
     input  wire                                clk;
@@ -21,10 +23,9 @@ module fhg_datapath (clk, rst, start, width, height, bus_valid, bus_line, bus_co
     input  wire                                start;  // a frame: the sequence runs from its first word
     input  wire [15:0]                         width;
     input  wire [15:0]                         height;
-    output wire [READ_BUSES-1:0]               bus_valid;
-    output wire [READ_BUSES*COORD_BITS-1:0]    bus_line;    // in the window: y + WINDOW_BEFORE
-    output wire [READ_BUSES*COORD_BITS-1:0]    bus_column;  // x + WINDOW_BEFORE
-    input  wire [READ_BUSES*LANES*32-1:0]      bus_data;    // bus b, lane l at bit 32 (LANES b + l)
+    input  wire                                in_valid;  // integral values, row by row (the PixelBus)
+    input  wire [31:0]                         in_value;
+    output wire                                in_ready;
     output reg  [15:0]                         block_x;
     output reg  [15:0]                         block_y;
     output wire                                det_valid;
@@ -35,6 +36,7 @@ module fhg_datapath (clk, rst, start, width, height, bus_valid, bus_line, bus_co
     output reg                                 busy;
     output reg                                 done;
     output reg                                 overrun;  // a TripleMAC latched before HessianCalc read the last block
+    output wire                                stalled;  // the sequence waits for lines
 
     reg [SEQ_WIDTH-1:0] memory [0:DEPTH_MAX-1];
     reg [1023:0] file;
@@ -47,19 +49,33 @@ module fhg_datapath (clk, rst, start, width, height, bus_valid, bus_line, bus_co
     // that follows the previous word (or the first, after `last`).
     reg  [SEQ_WIDTH-1:0] word;
     reg  [8:0] pc;  // the next word's address
-    wire last = busy && word[SEQ_LAST];
-    wire [8:0] address = (start || last) ? 9'd0 : pc;
+    wire [15:0] rows_written;
+    wire [16:0] window_end = {1'b0, block_y} + WINDOW_BEFORE;  // rows the block row needs
+    assign stalled = busy && {1'b0, rows_written} < (window_end < {1'b0, height} ? window_end : {1'b0, height});
+    wire issue = busy && !stalled;  // this cycle's word goes out
+    wire last = issue && word[SEQ_LAST];
+    wire [8:0] address = (start || last) ? 9'd0 : (issue ? pc : pc - 9'd1);
     always @(posedge clk) begin
         word <= memory[address];
         pc <= address + 9'd1;
     end
+    // The word's TripleMAC fields and `last`, a cycle later, with the values the FIFO read.
+    reg [SEQ_WIDTH-1:0] taking;
+    reg                 taking_valid;
+    always @(posedge clk) begin
+        taking <= word;
+        taking_valid <= rst ? 1'b0 : issue;
+    end
+    wire [READ_BUSES*LANES*32-1:0] bus_data;
+    wire [READ_BUSES-1:0] bus_valid;
+    wire [READ_BUSES*COORD_BITS-1:0] bus_line, bus_column;
     wire [15:0] last_x = 2 * (((width + 1) >> 1) - 1), last_y = 2 * (((height + 1) >> 1) - 1);
 
     genvar b, t;
     generate
         for (b = 0; b < READ_BUSES; b = b + 1) begin : buses
             localparam AT = BUS_LSB + b * BUS_STRIDE;
-            assign bus_valid[b] = busy && word[AT];
+            assign bus_valid[b] = issue && word[AT];
             assign bus_line[b * COORD_BITS +: COORD_BITS] = word[AT + BUS_LINE +: COORD_BITS];
             assign bus_column[b * COORD_BITS +: COORD_BITS] = word[AT + BUS_COLUMN +: COORD_BITS];
         end
@@ -70,8 +86,8 @@ module fhg_datapath (clk, rst, start, width, height, bus_valid, bus_line, bus_co
     generate
         for (t = 0; t < TRIPLE_MACS; t = t + 1) begin : macs
             localparam AT = MAC_LSB + t * MAC_STRIDE;
-            wire [MAC_BUS_BITS-1:0] bus = word[AT + MAC_BUS +: MAC_BUS_BITS];
-            wire [MAC_LANE_BITS-1:0] lane = word[AT + MAC_LANE +: MAC_LANE_BITS];
+            wire [MAC_BUS_BITS-1:0] bus = taking[AT + MAC_BUS +: MAC_BUS_BITS];
+            wire [MAC_LANE_BITS-1:0] lane = taking[AT + MAC_LANE +: MAC_LANE_BITS];
             // Bus b's lane l sits at bit 32 (LANES b + l); LANES is 1, 2 or 4.
             wire [ACC_BITS-1:0] value;
             if (LANES == 1) begin : scalar
@@ -80,9 +96,9 @@ module fhg_datapath (clk, rst, start, width, height, bus_valid, bus_line, bus_co
                 assign value = bus_data[{bus, lane[MAC_LANE_BITS-1:0], 5'd0} +: ACC_BITS];
             end
             triple_mac #(.ACC_BITS(ACC_BITS), .X3_CYCLES(X3_CYCLES)) mac (
-                .clk(clk), .rst(rst), .take(busy && word[AT]), .value(value),
-                .coefficient(word[AT + MAC_COEFFICIENT +: 2]), .response(word[AT + MAC_RESPONSE +: 2]),
-                .last(last), .out_xx(sums[(3 * t + 0) * ACC_BITS +: ACC_BITS]),
+                .clk(clk), .rst(rst), .take(taking_valid && taking[AT]), .value(value),
+                .coefficient(taking[AT + MAC_COEFFICIENT +: 2]), .response(taking[AT + MAC_RESPONSE +: 2]),
+                .last(taking_valid && taking[SEQ_LAST]), .out_xx(sums[(3 * t + 0) * ACC_BITS +: ACC_BITS]),
                 .out_yy(sums[(3 * t + 1) * ACC_BITS +: ACC_BITS]), .out_xy(sums[(3 * t + 2) * ACC_BITS +: ACC_BITS]),
                 .out_valid(latched[t]));
         end
@@ -96,6 +112,11 @@ module fhg_datapath (clk, rst, start, width, height, bus_valid, bus_line, bus_co
     reg [4:0]  read_count;
     wire [TRIPLE_MACS-1:0] have_next = have | latched;
     wire all_latched = &have_next;
+
+    line_fifo fifo (
+        .clk(clk), .rst(rst), .start(start), .width(width), .height(height), .in_valid(in_valid),
+        .in_value(in_value), .in_ready(in_ready), .rows_written(rows_written), .block_x(block_x), .block_y(block_y),
+        .bus_valid(bus_valid), .bus_line(bus_line), .bus_column(bus_column), .bus_data(bus_data));
 
     hessian_calc calc (
         .clk(clk), .rst(rst), .start(all_latched), .block_x(finished_x), .block_y(finished_y), .width(width),

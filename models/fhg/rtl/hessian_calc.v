@@ -1,5 +1,6 @@
-// HessianCalc (paper III-C): "reads the TripleMACs' output buffers over a common three-state
-// bus" and forms each determinant from its three sums, one TripleMAC a cycle, while the next
+// HessianCalc (paper III-C): the TripleMACs' output buffers share one three-state bus, over
+// which it reads them after the end of a block's sequence, and it forms each determinant from
+// its three sums, one TripleMAC a cycle, while the next
 // block accumulates. Inside an FPGA a three-state bus is a multiplexer; this is one.
 //
 // Per determinant of size L (HessianCore::finish, models/fhg/hessian_core.h), rounding half

@@ -2,12 +2,14 @@
 // block, each an integer sum of integral-image values times 1, -1, 3 or -3, in ACC_BITS
 // two's complement that wraps like HessianCore's accumulators (models/fhg/hessian_core.h).
 //
-// "the multiplication by 3 is done by three consecutive additions": with X3_CYCLES = 3 a x3
+// Paper III-C: to save resources a TripleMAC adds three times instead of multiplying by 3 or
+// -3, and it does not tell the MasterController it is busy. With X3_CYCLES = 3 a x3
 // value is added in this cycle and the next two, and the TripleMAC is busy meanwhile; it
 // reports no busy signal, so the sequence never hands it a value then (check_sequence holds
 // every generated sequence to that). With X3_CYCLES = 1 the x3 is one addition of 3v.
 //
-// "the end of the sequence" (`last`) makes it latch its three sums into its output buffer,
+// The end-of-sequence signal (`last`; III-C: it makes the TripleMACs load their results into
+// output buffers and reset their accumulators) makes it latch its three sums into its output buffer,
 // once its last addition is done, and start the next block from zero (the results go to
 // output buffers that HessianCalc reads while the next block accumulates).
 module triple_mac #(

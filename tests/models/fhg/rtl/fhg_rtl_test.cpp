@@ -1,7 +1,8 @@
 // The Verilog reference of the FHG's datapath (models/fhg/rtl), verilated, against the model:
-// real integral-image crops stream through the sequence memory's image, the TripleMACs and
+// real integral-image crops stream through the line FIFO, the sequence memory's image, the
+// TripleMACs and
 // HessianCalc; every determinant must be HessianCore's bit for bit and every block must take
-// the schedule's interval. The line FIFO the read buses read is this testbench's.
+// the schedule's interval. The testbench is the PixelBus: it streams the integral lines in.
 #include <gtest/gtest.h>
 
 #include <Vfhg_datapath.h>
@@ -51,27 +52,19 @@ CoSimulation co_simulate(const Crop& crop, const std::string& image_file, const 
     const char* argv[] = {"fhg_rtl_test", plusarg.c_str()};
     context->commandArgs(2, argv);
     Vfhg_datapath rtl(context.get());
-    const int lanes = int(word_shape(p.bus_word).size());
-    const auto& shape = word_shape(p.bus_word);
-    auto value_at = [&](int x, int y) -> uint32_t {  // I(-1, .) = I(., -1) = 0; beyond the crop: unused
-        return x < 0 || y < 0 || x >= crop.view.width || y >= crop.view.height ? 0 : crop.view.at(x, y);
-    };
-    // The line FIFO: each bus's word read within the cycle it is named.
-    auto serve_buses = [&] {
-        for (int b = 0; b < int(p.read_buses); ++b) {
-            const int line = int((rtl.bus_line >> (6 * b)) & 63) - kReachBefore;
-            const int column = int((rtl.bus_column >> (6 * b)) & 63) - kReachBefore;
-            for (int l = 0; l < lanes; ++l)
-                rtl.bus_data[size_t(lanes * b + l)] =
-                    value_at(rtl.block_x + column + shape[size_t(l)][1], rtl.block_y + line + shape[size_t(l)][0]);
-        }
-    };
-    auto tick = [&] {  // the outputs are this cycle's since the last edge: answer them, then clock
-        serve_buses();
+    // The PixelBus: the crop's integral values, row by row, one a cycle while the FIFO takes them.
+    size_t next = 0;
+    const size_t values = size_t(crop.view.width) * size_t(crop.view.height);
+    auto tick = [&] {
+        rtl.in_valid = next < values;
+        rtl.in_value =
+            next < values ? crop.view.at(int(next % size_t(crop.view.width)), int(next / size_t(crop.view.width))) : 0;
         rtl.clk = 0;
         rtl.eval();
+        const bool taken = rtl.in_valid && rtl.in_ready;  // at this edge
         rtl.clk = 1;
         rtl.eval();
+        next += taken;
     };
     rtl.rst = 1;
     tick();
