@@ -49,7 +49,7 @@ TEST(ExportSequence, WritesTheRtlParametersOfTheConfiguration) {
     const Fhg::Params defaults;  // what the build verilates
     EXPECT_EQ(header, fhg::rtl_parameters(defaults.precision, defaults.sequence, defaults.max_width));
     for (const char* line : {"localparam ACC_BITS = 24;", "localparam SEQ_WIDTH = 215;", "localparam WEIGHT = 3318;",
-                             "        5'd17: det_reciprocal = 32'd12901;"})
+                             "localparam K_BITS = 19;", "        5'd17: det_reciprocal = 19'd12901;"})
         EXPECT_NE(header.find(line), std::string::npos) << line;
     const auto r = surfvp("export-sequence --set 'fhg.accumulator_bits=20 bit' --set fhg.read_buses=6 --out " + out);
     ASSERT_EQ(r.exit_code, 0) << r.err;
