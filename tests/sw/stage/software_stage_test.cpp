@@ -415,9 +415,7 @@ TEST(SoftwareStage, CountsTheRoundedWorkOfOneKeypoint) {
     SoftwareStage stage = make_stage(params);
     const sw::FrameBuffers buffers = frame.buffers();
     bool found = false;
-    for (uint32_t word : frame.fifo) {
-        const fhg::Candidate c = fhg::unpack_candidate(word);
-        if (c.x < 200 || c.x > 800 || c.y < 200 || c.y > 560) continue;
+    for (uint32_t word : central_words(frame)) {
         const uint64_t ii0 = stage.cost().reads(sw::Read::integral);
         const auto kp = stage.process(word, buffers);
         if (!kp) continue;
