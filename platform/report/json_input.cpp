@@ -24,18 +24,21 @@ Json parse_json(const std::string& text, const std::string& where) {
     }
 }
 
-Json read_json_file(const fs::path& file, const std::string& what) {
+std::string read_input_file(const fs::path& file, const std::string& what, std::uintmax_t max_bytes) {
     std::error_code error;
     const fs::file_status status = fs::status(file, error);
     if (!fs::exists(status)) throw ConfigError(fmt::format("{}: no such file ({})", file.string(), what));
     if (!fs::is_regular_file(status))
         throw ConfigError(fmt::format("{}: is not a regular file ({})", file.string(), what));
-    if (fs::file_size(file, error) > kMaxJsonBytes)
-        throw ConfigError(fmt::format("{}: larger than {} MiB, not {}", file.string(), kMaxJsonBytes >> 20, what));
+    if (fs::file_size(file, error) > max_bytes)
+        throw ConfigError(fmt::format("{}: larger than {} MiB, not {}", file.string(), max_bytes >> 20, what));
     std::ifstream in(file, std::ios::binary);
     if (!in) throw ConfigError(fmt::format("{}: cannot be read ({})", file.string(), what));
-    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    return parse_json(text, file.string());
+    return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+
+Json read_json_file(const fs::path& file, const std::string& what) {
+    return parse_json(read_input_file(file, what, kMaxJsonBytes), file.string());
 }
 
 const Json& value_at(const Json& j, std::string_view pointer) {

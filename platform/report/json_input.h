@@ -13,6 +13,9 @@ namespace surfvp {
 constexpr int kMaxJsonDepth = 64;                   // surfvp's own reports nest 7 deep
 constexpr std::uintmax_t kMaxJsonBytes = 1u << 30;  // a report.json of 1,000 frames is ~50 MiB
 
+// A file surfvp reads back, whole; throws ConfigError naming it when it is missing, not a
+// regular file, larger than `max_bytes` or unreadable. `what` says what the file was for.
+std::string read_input_file(const std::filesystem::path& file, const std::string& what, std::uintmax_t max_bytes);
 // Throws ConfigError "WHERE: not valid JSON ..." / "nested deeper than ...".
 nlohmann::ordered_json parse_json(const std::string& text, const std::string& where);
 // The file as JSON; throws ConfigError naming it when it is missing, not a regular file, too

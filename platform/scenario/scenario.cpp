@@ -214,6 +214,13 @@ std::string resolve_scenario(const std::string& argument) {
     return fs::exists(shipped, error) ? shipped.string() : argument;
 }
 
+Config scenario_or_defaults(const std::string& argument, const std::vector<std::string>& overrides) {
+    if (!argument.empty()) return load_scenario(resolve_scenario(argument), overrides);
+    Config config;
+    apply_overrides(config, overrides);
+    return config;
+}
+
 std::vector<ShippedScenario> shipped_scenarios() {
     std::vector<ShippedScenario> out;
     std::error_code error;

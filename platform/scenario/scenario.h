@@ -41,6 +41,9 @@ std::vector<std::string> scenario_warnings(const Config& config);
 
 // A scenario argument is a file path, or the name of a scenario shipped in scenario_dir().
 std::string resolve_scenario(const std::string& argument);
+// The tools' optional scenario argument: that scenario, or every parameter at its default when
+// it is empty; `--set` overrides applied either way. Throws ConfigError.
+Config scenario_or_defaults(const std::string& argument, const std::vector<std::string>& overrides);
 
 // Where shipped scenarios live: $SURFVP_SCENARIOS, else the source tree's scenarios/.
 std::string scenario_dir();

@@ -3,13 +3,13 @@
 #include <fmt/format.h>
 
 #include <cstdio>
-#include <fstream>
 #include <nlohmann/json.hpp>
 
 #include "models/fhg/sequence_cache.h"
 #include "models/fhg/rtl_parameters.h"
 #include "models/fhg/sequence_memory.h"
 #include "platform/cost/fpga_resources.h"
+#include "platform/report/json_input.h"
 #include "platform/run/output_folder.h"
 #include "platform/scenario/block_params.h"
 #include "platform/scenario/config.h"
@@ -17,20 +17,9 @@
 
 namespace surfvp {
 namespace {
-namespace fs = std::filesystem;
 using Json = nlohmann::ordered_json;
 
 constexpr std::uintmax_t kMaxImageBytes = 64u << 20;  // a 512-deep image of 1,000-bit words is 130 KiB
-
-Fhg::Params chip_fhg(const ExportSequenceOptions& o) {
-    Config config;
-    if (!o.scenario.empty()) {
-        config = load_scenario(resolve_scenario(o.scenario), o.sets);
-    } else {
-        apply_overrides(config, o.sets);
-    }
-    return fhg_params(config);
-}
 
 std::string machine(const fhg::SequenceParams& p) {
     return fmt::format("{} scheduler, {} {} read buses, {} TripleMACs, line FIFO {}, reuse {}",
@@ -52,23 +41,10 @@ Json summary(const fhg::SequenceImage& image, const fhg::Sequence& s, const fhg:
             {"fields", fields}};
 }
 
-std::string read_image_text(const fs::path& file) {
-    std::error_code error;
-    const fs::file_status status = fs::status(file, error);
-    if (!fs::exists(status)) throw ConfigError(fmt::format("--check {}: no such file", file.string()));
-    if (!fs::is_regular_file(status)) throw ConfigError(fmt::format("--check {}: not a regular file", file.string()));
-    if (fs::file_size(file, error) > kMaxImageBytes)
-        throw ConfigError(
-            fmt::format("--check {}: larger than {} MiB, not a sequence image", file.string(), kMaxImageBytes >> 20));
-    std::ifstream in(file, std::ios::binary);
-    if (!in) throw ConfigError(fmt::format("--check {}: cannot be read", file.string()));
-    return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-}
-
 // Decodes the image under the configuration's layout and replays it: the first broken limit
 // (or undecodable word) is bad input, named with the file.
 int check_image(const ExportSequenceOptions& o, const fhg::SequenceParams& p) {
-    const std::string text = read_image_text(o.check);
+    const std::string text = read_input_file(o.check, "a sequence image", kMaxImageBytes);
     fhg::Sequence s;
     try {
         s = fhg::decode_sequence(fhg::parse_image(text, fhg::sequence_layout(p)), p);
@@ -85,7 +61,7 @@ int check_image(const ExportSequenceOptions& o, const fhg::SequenceParams& p) {
 }  // namespace
 
 int export_sequence_command(const ExportSequenceOptions& o) {
-    const Fhg::Params chip = chip_fhg(o);
+    const Fhg::Params chip = fhg_params(scenario_or_defaults(o.scenario, o.sets));
     const fhg::SequenceParams& p = chip.sequence;
     if (!o.check.empty()) return check_image(o, p);
     const fhg::Sequence* s = nullptr;

@@ -10,12 +10,7 @@
 namespace surfvp {
 
 int seqgen_command(const SeqgenOptions& options) {
-    Config config;
-    if (!options.scenario.empty()) {
-        config = load_scenario(resolve_scenario(options.scenario), options.sets);
-    } else {
-        apply_overrides(config, options.sets);
-    }
+    const Config config = scenario_or_defaults(options.scenario, options.sets);
     if (options.width == 0 || options.height == 0) throw ConfigError("--width and --height must be above zero");
     const Fhg::Params p = fhg_params(config);
     nlohmann::ordered_json out;
