@@ -181,15 +181,12 @@ std::array<double, kUnits> unit_prices(surf::HaarMode haar, const PipelineParams
     if (!moved) return prices;
     if (c.sample[h].empty()) throw std::runtime_error("calibration table: no stream sample to re-time");
     const auto cycles = sample_cycles(c.sample[h], {defaults, params});
+    // msurf, when its run kept a sample, is scaled by that one: its mix is not Bay's.
+    const auto msurf_cycles = c.msurf_sample[h].empty() ? cycles : sample_cycles(c.msurf_sample[h], {defaults, params});
     for (size_t u = 0; u < kUnits; ++u) {
+        const auto& by = Unit(u) == Unit::msurf ? msurf_cycles : cycles;
         const size_t st = size_t(step_of(Unit(u)));
-        if (cycles[0][st] > 0) prices[u] *= cycles[1][st] / cycles[0][st];
-    }
-    if (!c.msurf_sample[h].empty()) {  // its own mix: the Bay sample's ratio is undone and its own applied
-        const size_t st = size_t(step_of(Unit::msurf));
-        const auto own = sample_cycles(c.msurf_sample[h], {defaults, params});
-        prices[size_t(Unit::msurf)] = t.haar[h][size_t(Unit::msurf)].cycles;
-        if (own[0][st] > 0) prices[size_t(Unit::msurf)] *= own[1][st] / own[0][st];
+        if (by[0][st] > 0) prices[u] *= by[1][st] / by[0][st];
     }
     return prices;
 }
