@@ -108,8 +108,7 @@ module fhg_datapath (clk, rst, start, width, height, in_valid, in_value, in_read
     // its x3 tail); the block's position waits for it.
     reg [TRIPLE_MACS-1:0] have;
     reg [15:0] finished_x, finished_y;  // the block whose sums the TripleMACs latch
-    reg        reading;                 // HessianCalc has a block it has not finished reading
-    reg [4:0]  read_count;
+    wire       reading;                 // HessianCalc has a block it has not finished reading
     wire [TRIPLE_MACS-1:0] have_next = have | latched;
     wire all_latched = &have_next;
 
@@ -120,13 +119,12 @@ module fhg_datapath (clk, rst, start, width, height, in_valid, in_value, in_read
 
     hessian_calc calc (
         .clk(clk), .rst(rst), .start(all_latched), .block_x(finished_x), .block_y(finished_y), .width(width),
-        .height(height), .sums(sums), .det_valid(det_valid), .det_index(det_index), .det_value(det_value),
-        .det_block_x(det_block_x), .det_block_y(det_block_y));
+        .height(height), .sums(sums), .reading(reading), .det_valid(det_valid), .det_index(det_index),
+        .det_value(det_value), .det_block_x(det_block_x), .det_block_y(det_block_y));
 
     always @(posedge clk) begin
         if (rst) begin
             busy <= 0; done <= 0; overrun <= 0; have <= 0; block_x <= 0; block_y <= 0;
-            reading <= 0; read_count <= 0;
         end else begin
             if (start) begin
                 busy <= 1; done <= 0; block_x <= 0; block_y <= 0;
@@ -148,13 +146,6 @@ module fhg_datapath (clk, rst, start, width, height, in_valid, in_value, in_read
             end
             have <= all_latched ? {TRIPLE_MACS{1'b0}} : have_next;
             if (|latched && reading) overrun <= 1;
-            if (all_latched) begin
-                reading <= 1;
-                read_count <= 0;
-            end else if (reading) begin
-                read_count <= read_count + 1;
-                reading <= read_count != TRIPLE_MACS - 1;
-            end
         end
     end
 endmodule

@@ -8,8 +8,8 @@
 //   det = sat(round((rxx ryy - round(W rxy^2 / 2^WEIGHT_FRAC_BITS)) / 2^DET_SHIFT), DET_BITS)
 // and 0 where the filter does not lie inside the image. Four pipeline stages; the record
 // position k leaves with its determinant.
-module hessian_calc (clk, rst, start, block_x, block_y, width, height, sums, det_valid, det_index, det_value,
-                     det_block_x, det_block_y);
+module hessian_calc (clk, rst, start, block_x, block_y, width, height, sums, reading, det_valid, det_index,
+                     det_value, det_block_x, det_block_y);
 `include "fhg_params.vh"
     input  wire                              clk;
     input  wire                              rst;
@@ -19,6 +19,7 @@ module hessian_calc (clk, rst, start, block_x, block_y, width, height, sums, det
     input  wire [15:0]                       width;    // the image
     input  wire [15:0]                       height;
     input  wire [TRIPLE_MACS*3*ACC_BITS-1:0] sums;     // TripleMAC t: {xy, yy, xx} from bit 3 t ACC_BITS
+    output reg                               reading;  // the output buffers are being read
     output reg                               det_valid;
     output reg  [4:0]                        det_index;
     output reg  [DET_BITS-1:0]               det_value;
@@ -34,7 +35,6 @@ module hessian_calc (clk, rst, start, block_x, block_y, width, height, sums, det
     localparam D_BITS = (WSQ_BITS + 1 > SQ_BITS ? WSQ_BITS + 1 : SQ_BITS) + 1;
 
     // Stage 0: the TripleMAC the bus carries, and whether its filter lies inside the image.
-    reg        reading;
     reg [4:0]  k;
     wire [ACC_BITS-1:0] sxx = sums[(3 * k + 0) * ACC_BITS +: ACC_BITS];
     wire [ACC_BITS-1:0] syy = sums[(3 * k + 1) * ACC_BITS +: ACC_BITS];
