@@ -9,9 +9,28 @@
 #include "models/dma/dma_regs.h"
 #include "models/fhg/fhg_regs.h"
 #include "models/iig/iig_regs.h"
+#ifdef SURFVP_WITH_RTL
+#include "models/fhg/rtl/rtl_datapath.h"
+#include "models/fhg/sequence_cache.h"
+#endif
 #include "models/intc/intc_regs.h"
 
 namespace surfvp {
+namespace {
+
+// fhg.model=rtl: the verilated datapath running this configuration's sequence image (the
+// scenario's checks have refused it already where the build cannot run it).
+std::unique_ptr<fhg::Datapath> rtl_datapath(const Fhg::Params& p) {
+#ifdef SURFVP_WITH_RTL
+    const fhg::SequenceImage image = fhg::encode_sequence(fhg::cached_sequence(p.sequence), p.sequence);
+    return std::make_unique<fhg::RtlDatapath>(p.precision, p.sequence, p.max_width, image);
+#else
+    (void)p;
+    throw std::logic_error("fhg.model=rtl in a build without Verilator (check_consistency lets it through)");
+#endif
+}
+
+}  // namespace
 
 std::vector<MappedRegisters> chip_registers() {
     auto at = [](const map::Region& r, const char* bus) {
@@ -58,6 +77,7 @@ void Soc::build(const Config& c, Tracer& tracer) {
         const std::string suffix = pairs > 1 ? std::to_string(k) : "";
         iigs_.push_back(std::make_unique<Iig>(("iig" + suffix).c_str(), iig_params(c), tracer));
         fhgs_.push_back(std::make_unique<Fhg>(("fhg" + suffix).c_str(), fhg_params(c), tracer));
+        if (fhg_params(c).model == fhg::DatapathModel::rtl) fhgs_.back()->use_datapath(rtl_datapath(fhg_params(c)));
     }
     Ppc440::Params cpu = cpu_params(c);
     for (unsigned k = 0; k < pairs; ++k) cpu.markers.push_back(fmt::format("accelerator{}_task", k));

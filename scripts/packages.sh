@@ -18,7 +18,8 @@ readonly TEST_PACKAGES=(
   libxml2-dev                   # tests read report.html as XML
   g++-powerpc-linux-gnu qemu-user  # surfvp calibrate: the software stage built for the PPC440, run on an ISS
   slurm-wlm munge               # a one-node Slurm cluster in a test: surfvp sweep --slurm end to end
-  verilator                     # the FHG datapath in Verilog (models/fhg/rtl): verilated and co-simulated in tests
+  verilator                     # the FHG datapath in Verilog (models/fhg/rtl): verilated, co-simulated, fhg.model=rtl
+  yosys                         # the same Verilog synthesized for the FPGA (docs/rtl.md), beside the resource model
 )
 # scripts/fuzz.sh: libFuzzer targets with ASan/UBSan (tests/fuzz).
 readonly FUZZ_PACKAGES=(clang libclang-rt-14-dev)

@@ -67,4 +67,12 @@ std::vector<Candidate> block_row(const HessianCore& core, const IntegralView& li
     return found;
 }
 
+std::vector<Candidate> block_row(const std::vector<int32_t>& records, int by, int32_t threshold, uint32_t det_bytes,
+                                 uint8_t* row) {
+    fhg_regs::store_dets(row, records.data(), records.size(), det_bytes);
+    std::vector<Candidate> found;
+    LocalMaxFinder(threshold).block_row(records.data(), int(records.size()) / kDeterminantsPerBlock, by, found);
+    return found;
+}
+
 }  // namespace surfvp::fhg

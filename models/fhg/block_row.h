@@ -13,5 +13,8 @@ namespace surfvp::fhg {
 
 std::vector<Candidate> block_row(const HessianCore& core, const IntegralView& lines, int by, int32_t threshold,
                                  uint32_t det_bytes, uint8_t* row);
+// The same from a block row's records given whole (another datapath's: fhg.model=rtl).
+std::vector<Candidate> block_row(const std::vector<int32_t>& records, int by, int32_t threshold, uint32_t det_bytes,
+                                 uint8_t* row);
 
 }  // namespace surfvp::fhg

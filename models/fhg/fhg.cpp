@@ -106,6 +106,7 @@ void Fhg::start(const FhgRegisters::Frame& f) {
     } else {
         for (auto& slot : slots_) slot.resize(r::row_bytes(f.width, det_bytes()));
     }
+    if (datapath_) datapath_->start(int(f.width), int(f.height));
     busy_.write(true);
     faults_.irq_lost = false;
     corruption_.row = -1;
@@ -186,7 +187,7 @@ std::vector<fhg::Candidate> Fhg::compute_block_row(int by, uint8_t* row) {
 int Fhg::needed_line(uint32_t by) const { return std::min(int(frame_.height) - 1, int(2 * by) + fhg::kReachAfter); }
 
 void Fhg::queue_ready_rows() {
-    if (!worker_) return;
+    if (!worker_ || datapath_) return;  // a datapath of its own computes rows in order, on the kernel's thread
     while (frame_.rows_queued < frame_.blocks_y && frame_.received > needed_line(frame_.rows_queued)) {
         const uint32_t by = frame_.rows_queued++;
         uint8_t* row = row_bytes(by);
@@ -207,6 +208,15 @@ std::vector<fhg::Candidate> Fhg::block_row_results(uint32_t by) {
     return std::move(ahead_found_[by]);
 }
 
+// fhg.model=rtl: the datapath computes the row from the lines received so far and says how
+// many cycles it took; those pass, then its results are the row's.
+void Fhg::compute_by_datapath(int by) {
+    const IntegralView view{lines_.data(), int(frame_.width), int(frame_.height), frame_.width};
+    const fhg::Datapath::Row row = datapath_->row(view, frame_.received, by);
+    sc_core::wait(cycles(params_.clock, double(row.cycles)));
+    finish_block_row(by, fhg::block_row(row.records, by, frame_.threshold, det_bytes(), row_bytes(uint32_t(by))));
+}
+
 void Fhg::finish_block_row(int by, const std::vector<fhg::Candidate>& found) {
     if (faults_.attached() && corruption_.row < 0) corrupt_first_checked(found, by);
     push_candidates(found);
@@ -222,8 +232,12 @@ void Fhg::frame_thread() {
             stats_.waiting_for_lines += sc_core::sc_time_stamp() - waiting;
             if (frame_.failed) break;
             const sc_time began = sc_core::sc_time_stamp();
-            sc_core::wait(cycles(params_.clock, double(frame_.blocks_x) * block_cycles_));
-            finish_block_row(int(by), block_row_results(by));  // the results exist once the row's cycles are spent
+            if (datapath_) {
+                compute_by_datapath(int(by));
+            } else {
+                sc_core::wait(cycles(params_.clock, double(frame_.blocks_x) * block_cycles_));
+                finish_block_row(int(by), block_row_results(by));  // the results exist once the row's cycles are spent
+            }
             stats_.computing += sc_core::sc_time_stamp() - began;
             if (tracer_.perfetto_on())
                 tracer_.slice(row_track_, "block row", began, sc_core::sc_time_stamp(),

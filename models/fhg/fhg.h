@@ -21,6 +21,7 @@
 #include <tlm_utils/simple_target_socket.h>
 #include <vector>
 
+#include "datapath.h"
 #include "fhg_registers.h"
 #include "models/common/fault_plan.h"
 #include "hessian_core.h"
@@ -59,6 +60,9 @@ public:
         // lines have arrived, while the kernel simulates the rest (the wiring's run.parallel;
         // the results are the same).
         bool parallel = true;
+        // What computes the determinants and times the block rows (fhg.model): with rtl, the
+        // datapath given to use_datapath.
+        fhg::DatapathModel model = fhg::DatapathModel::core;
     };
     // Its scenario parameters with the Params field each sets (fhg_params.cpp).
     static const ParamTable<Params>& parameter_table();
@@ -104,6 +108,9 @@ public:
 
     // Its statistics, registered at elaboration (after every connection) under `scope`.
     void register_statistics(const Statistics::Scope& scope) const;
+    // fhg.model=rtl: the datapath that computes and times every block row from now on (the
+    // platform gives it: the verilated one lives outside the models' library).
+    void use_datapath(std::unique_ptr<fhg::Datapath> datapath) { datapath_ = std::move(datapath); }
     // Faults to inject (none by default); it is the FHG of accelerator pair `pair`.
     void set_faults(FaultPlan* faults, unsigned pair) { faults_.attach(faults, pair); }
 
@@ -117,6 +124,7 @@ private:
     // Row `by`'s determinants stored into `row` as the writer sends them, and its marked maxima.
     std::vector<fhg::Candidate> compute_block_row(int by, uint8_t* row);  // plain C++: any thread
     void finish_block_row(int by, const std::vector<fhg::Candidate>& found);
+    void compute_by_datapath(int by);    // fhg.model=rtl
     int needed_line(uint32_t by) const;  // the last integral line block row `by` reads
     void queue_ready_rows();             // hands the worker the rows whose lines have all arrived
     uint8_t* row_bytes(uint32_t by);     // where block row `by`'s stored determinants are kept
@@ -131,6 +139,7 @@ private:
     Params params_;
     Tracer& tracer_;
     fhg::HessianCore core_;
+    std::unique_ptr<fhg::Datapath> datapath_;  // fhg.model=rtl
     const fhg::Sequence& sequence_;
     int block_cycles_;
     FhgRegisters registers_;

@@ -132,6 +132,20 @@ const ParamTable<Fhg::Params>& Fhg::parameter_table() {
               "one their best",
               "[-] tool setting: more passes, a better improved script and a steadier basic one, slower start-up"},
              [](P & p) -> auto& { return p.sequence.attempts; }),
+         choice<P>(
+             {"fhg.model",
+              ParamKind::choice,
+              "core",
+              0,
+              0,
+              {},
+              "What computes the determinants and times the block rows: the model (HessianCore and the sequence's "
+              "interval) or the verilated Verilog reference of the datapath (models/fhg/rtl), cycle by cycle; rtl is "
+              "slow, for checking the model, and runs only the configuration the build verilated",
+              "[-] checking setting: the two give the same keypoints and frame timing (docs/rtl.md)"},
+             [](P & p) -> auto& { return p.model; },
+             std::vector<std::pair<std::string, fhg::DatapathModel>>{{"core", fhg::DatapathModel::core},
+                                                                     {"rtl", fhg::DatapathModel::rtl}}),
          field<P>({"fhg.cycles_per_block",
                    ParamKind::cycles,
                    "0 cycles",

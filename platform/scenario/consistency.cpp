@@ -4,6 +4,9 @@
 
 #include "platform/address_map.h"
 #include "platform/scenario/block_params.h"
+#ifdef SURFVP_WITH_RTL
+#include "models/fhg/rtl/rtl_datapath.h"
+#endif
 
 namespace surfvp {
 namespace {
@@ -15,6 +18,32 @@ bool at_default(const Config::Entry& e) {
 }
 
 bool in_section(const std::string& key, const char* section) { return key.rfind(std::string(section) + ".", 0) == 0; }
+
+// fhg.model=rtl runs the datapath the build verilated, as the model's rules time it: only the
+// build's configuration, with the sequence's interval as the block's time.
+void check_rtl_model(const Config& c) {
+#ifdef SURFVP_WITH_RTL
+    const Fhg::Params p = fhg_params(c);
+    const std::string difference = fhg::rtl_build_difference(p.precision, p.sequence, p.max_width);
+    if (!difference.empty())
+        throw ConfigError(
+            fmt::format("{}: rtl runs the FHG datapath verilated for the defaults, but {}: set the "
+                        "fhg parameters back to their defaults (docs/rtl.md)",
+                        c.where("fhg.model"), difference));
+    for (const auto& [key, rtl] :
+         {std::pair{"fhg.cycles_per_block", 0}, std::pair{"fhg.hessian_cycles_per_triple_mac", 1}})
+        if (c.cycles(key) != uint64_t(rtl))
+            throw ConfigError(
+                fmt::format("{}: rtl times a block by its sequence and reads one TripleMAC a cycle, but "
+                            "{} is {} (from {}); the RTL's is {}",
+                            c.where("fhg.model"), key, c.value(key), c.source_of(key), rtl));
+#else
+    throw ConfigError(
+        fmt::format("{}: rtl needs the verilated FHG datapath, and this surfvp was built without "
+                    "Verilator: install it (scripts/packages.sh test) and build again",
+                    c.where("fhg.model")));
+#endif
+}
 
 }  // namespace
 
@@ -40,6 +69,7 @@ void check_consistency(const Config& c) {
             "fpga.bram_fmax = {:g} MHz (from {}); lower fhg.clock (from {}) or choose tdp or banked",
             c.where("fhg.line_fifo"), fhg::line_fifo_name(fifo), multiple, c.frequency("fhg.clock").hz * multiple / 1e6,
             c.frequency("fpga.bram_fmax").hz / 1e6, c.source_of("fpga.bram_fmax"), c.source_of("fhg.clock")));
+    if (c.choice("fhg.model") == "rtl") check_rtl_model(c);
     if (c.choice("run.workload") != "surf") return;
 
     // surf.width and surf.height resize together: one alone would be ignored.

@@ -28,7 +28,7 @@ struct Run {
 };
 
 // `surfvp run` of the budget scenario (verdict re-simulations off) with `extra` arguments.
-Run run_budget(const std::vector<std::string>& extra) {
+Run run_budget(const std::vector<std::string>& extra, int frames = kFrames) {
     const std::string out = fmt::format("/tmp/surfvp_simbench_{}", ::getpid());
     std::vector<std::string> args{SURFVP_BINARY,
                                   "run",
@@ -37,7 +37,7 @@ Run run_budget(const std::vector<std::string>& extra) {
                                   "--out",
                                   out,
                                   "--set",
-                                  fmt::format("surf.frames={}", kFrames),
+                                  fmt::format("surf.frames={}", frames),
                                   "--set",
                                   "verdict.band=off",
                                   "--set",
@@ -101,6 +101,27 @@ void BM_DirectMode(benchmark::State& state) {
     }
     state.counters["vp_over_direct"] = vp / direct;
 }
+
+// fhg.model=rtl on whole frames: the verilated datapath computes and times every block row of
+// three 1024x768 budget frames. Iteration time: its wall time per frame; rtl_over_model is that
+// over the model's, and same_fps is 1 when both report the same frame rate and FHG figures (the test suite
+// checks every figure on 320x240 frames: tests/platform/rtl_model_test.cpp).
+void BM_FrameFhgRtl(benchmark::State& state) {
+    constexpr int kRtlFrames = 3;
+    double model = 0, rtl = 0;
+    bool same = true;
+    for (auto _ : state) {
+        const Run m = run_budget({"--trace", "none"}, kRtlFrames);
+        const Run r = run_budget({"--trace", "none", "--set", "fhg.model=rtl"}, kRtlFrames);
+        model += m.report["wall_time_s"].get<double>();
+        rtl += r.report["wall_time_s"].get<double>();
+        same = same && m.report["throughput_fps"] == r.report["throughput_fps"] && m.report["fhg"] == r.report["fhg"];
+        state.SetIterationTime(r.report["wall_time_s"].get<double>() / kRtlFrames);
+    }
+    state.counters["rtl_over_model"] = rtl / model;
+    state.counters["same_fps"] = same;
+}
+BENCHMARK(BM_FrameFhgRtl)->UseManualTime()->Unit(benchmark::kSecond)->Iterations(1);
 
 // A long run holds flat memory: peak resident memory of a run of 100 and of 1000 small frames
 // (160x120, traces off). Frames stream through the buffer sets, keypoints go to their files and

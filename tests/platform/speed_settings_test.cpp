@@ -8,9 +8,11 @@
 #include <set>
 
 #include "cli.h"
+#include "same_figures.h"
 
 namespace surfvp {
 namespace {
+using test::expect_same_figures;
 using test::fresh_dir;
 using test::kBudget;
 using test::slurp;
@@ -30,47 +32,6 @@ nlohmann::json report(const std::string& name, const std::string& sets) {
     return nlohmann::json::parse(slurp(out + "/report.json"));
 }
 
-// Every number and text of `a` against `b` (relative tolerance for numbers), but the fields
-// that name themselves wall-clock or simulation figures, and the outputs' list; the paths
-// where they differ.
-double g_tolerance = 1e-9;  // relative
-
-void compare(const nlohmann::json& a, const nlohmann::json& b, const std::set<std::string>& skip,
-             const std::string& path, std::vector<std::string>& differences) {
-    if (a.is_object()) {
-        for (const auto& [key, value] : a.items()) {
-            if (path.empty() && skip.count(key)) continue;
-            if (!b.contains(key))
-                differences.push_back(path + "/" + key + " missing");
-            else
-                compare(value, b[key], skip, path + "/" + key, differences);
-        }
-    } else if (a.is_array()) {
-        if (a.size() != b.size())
-            differences.push_back(path + " sizes differ");
-        else
-            for (size_t i = 0; i < a.size(); ++i)
-                compare(a[i], b[i], skip, path + "/" + std::to_string(i), differences);
-    } else if (a.is_number() && b.is_number()) {
-        const double x = a.get<double>(), y = b.get<double>();
-        if (std::abs(x - y) > g_tolerance * std::max({std::abs(x), std::abs(y), 1e-12}))
-            differences.push_back(path + ": " + a.dump() + " vs " + b.dump());
-    } else if (a != b) {
-        differences.push_back(path + ": " + a.dump() + " vs " + b.dump());
-    }
-}
-
-void expect_same_figures(const nlohmann::json& a, const nlohmann::json& b, const std::string& what) {
-    std::set<std::string> skip{"wall_clock_fields", "simulation_fields", "outputs"};
-    for (const char* list :
-         {"wall_clock_fields", "simulation_fields"})  // direct mode's report has no simulation_fields
-        for (const auto& f : a.value(list, nlohmann::json::array())) skip.insert(f.get<std::string>());
-    std::vector<std::string> differences;
-    compare(a, b, skip, "", differences);
-    EXPECT_TRUE(differences.empty()) << what << ": " << differences.size()
-                                     << " figures differ, first: " << differences[0];
-}
-
 class SpeedSettings : public testing::TestWithParam<const char*> {};
 
 TEST_P(SpeedSettings, DmaGranularityAndQuantumMoveNoFigure) {
@@ -87,8 +48,7 @@ TEST_P(SpeedSettings, DmaGranularityAndQuantumMoveNoFigure) {
         // transaction, take their DRAM time when handed over, while the CPU's fills take it at
         // their request time: 9 bursts in 1,480 change their wait bin, busy times move by 1e-6.
         const bool short_bursts = which == "short_bursts" && std::string(setting).find("burst") != std::string::npos;
-        g_tolerance = short_bursts ? 1e-2 : 1e-9;
-        expect_same_figures(reference, other, std::string(GetParam()) + setting);
+        expect_same_figures(reference, other, std::string(GetParam()) + setting, short_bursts ? 1e-2 : 1e-9);
         // The TLM transactions are what a granularity changes.
         const bool bursts = std::string(setting).find("burst") != std::string::npos;
         EXPECT_EQ(reference["transactions"] == other["transactions"], !bursts) << setting;

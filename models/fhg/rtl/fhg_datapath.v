@@ -39,11 +39,16 @@ module fhg_datapath (clk, rst, start, width, height, in_valid, in_value, in_read
     output wire                                stalled;  // the sequence waits for lines
 
     reg [SEQ_WIDTH-1:0] memory [0:DEPTH_MAX-1];
+`ifdef SYNTHESIS
+    // Synthesis takes no plusargs: the block RAM's contents are the file in the working folder.
+    initial $readmemh("fhg_sequence.mem", memory);
+`else
     reg [1023:0] file;
     initial begin
         if (!$value$plusargs("sequence=%s", file)) file = "fhg_sequence.mem";
         $readmemh(file, memory);
     end
+`endif
 
     // A block RAM reads synchronously: `word` is this cycle's, read last cycle from the address
     // that follows the previous word (or the first, after `last`).

@@ -35,10 +35,20 @@ module hessian_calc (clk, rst, start, block_x, block_y, width, height, sums, rea
     localparam D_BITS = (WSQ_BITS + 1 > SQ_BITS ? WSQ_BITS + 1 : SQ_BITS) + 1;
 
     // Stage 0: the TripleMAC the bus carries, and whether its filter lies inside the image.
+    // The output buffers as an array indexed by k: an 18-way multiplexer of 3 ACC_BITS. (A part
+    // select at 3 k ACC_BITS would be a barrel shifter over all 18 buffers, 20 times the LUTs.)
     reg [4:0]  k;
-    wire [ACC_BITS-1:0] sxx = sums[(3 * k + 0) * ACC_BITS +: ACC_BITS];
-    wire [ACC_BITS-1:0] syy = sums[(3 * k + 1) * ACC_BITS +: ACC_BITS];
-    wire [ACC_BITS-1:0] sxy = sums[(3 * k + 2) * ACC_BITS +: ACC_BITS];
+    wire [3*ACC_BITS-1:0] buffers [0:TRIPLE_MACS-1];
+    genvar t;
+    generate
+        for (t = 0; t < TRIPLE_MACS; t = t + 1) begin : bus
+            assign buffers[t] = sums[3 * t * ACC_BITS +: 3 * ACC_BITS];
+        end
+    endgenerate
+    wire [3*ACC_BITS-1:0] carried = k < TRIPLE_MACS ? buffers[k] : {3 * ACC_BITS{1'b0}};
+    wire [ACC_BITS-1:0] sxx = carried[0 +: ACC_BITS];
+    wire [ACC_BITS-1:0] syy = carried[ACC_BITS +: ACC_BITS];
+    wire [ACC_BITS-1:0] sxy = carried[2 * ACC_BITS +: ACC_BITS];
     wire signed [K_BITS:0] reciprocal = $signed({1'b0, det_reciprocal(k)});
     wire [15:0] x = det_block_x + det_px(k), y = det_block_y + det_py(k), b = (det_size(k) - 16'd1) >> 1;
     wire in_image = x >= b && y >= b && x + b < width && y + b < height;

@@ -78,9 +78,11 @@ TEST(QualityBudget, EachSettingIsPricedAndScoredAndTheBestAffordableIsNamed) {
     const json& best = points[report["best_affordable"].get<size_t>()];
     EXPECT_TRUE(best["affordable"].get<bool>());
     EXPECT_GE(best["precision"].get<double>(), paper["precision"].get<double>());
-    for (const json& p : points)
-        if (p["affordable"].get<bool>() && p["precision"].get<double>() >= paper["precision"].get<double>())
+    for (const json& p : points) {
+        if (p["affordable"].get<bool>() && p["precision"].get<double>() >= paper["precision"].get<double>()) {
             EXPECT_LE(p["distinguishability"].get<double>(), best["distinguishability"].get<double>());
+        }
+    }
     // Its gap to the best float, on every row of every sequence, the held-out one marked.
     const json& gaps = report["gaps"]["best_affordable"];
     ASSERT_EQ(gaps.size(), 2u);

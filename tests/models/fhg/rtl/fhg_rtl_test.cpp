@@ -5,18 +5,14 @@
 // the schedule's interval. The testbench is the PixelBus: it streams the integral lines in.
 #include <gtest/gtest.h>
 
-#include <Vfhg_datapath.h>
-#include <verilated.h>
-
+#include <algorithm>
 #include <cstdio>
-#include <filesystem>
-#include <memory>
 #include <opencv2/imgcodecs.hpp>
 
 #include "models/fhg/hessian_core.h"
+#include "models/fhg/rtl/rtl_datapath.h"
 #include "models/fhg/sequence_cache.h"
 #include "models/fhg/sequence_memory.h"
-#include "models/host/atomic_file.h"
 #include "test_images.h"
 
 namespace surfvp::fhg {
@@ -44,70 +40,35 @@ struct CoSimulation {
 };
 
 // Runs the whole crop through the RTL with this sequence image and compares every determinant.
-CoSimulation co_simulate(const Crop& crop, const std::string& image_file, const SequenceParams& p,
+CoSimulation co_simulate(const Crop& crop, const SequenceImage& image, const SequenceParams& p,
                          bool stop_at_mismatch = false) {
     const HessianCore core{Precision{}};
-    auto context = std::make_unique<VerilatedContext>();
-    const std::string plusarg = "+sequence=" + image_file;
-    const char* argv[] = {"fhg_rtl_test", plusarg.c_str()};
-    context->commandArgs(2, argv);
-    Vfhg_datapath rtl(context.get());
-    // The PixelBus: the crop's integral values, row by row, one a cycle while the FIFO takes them.
-    size_t next = 0;
+    RtlDatapath rtl(Precision{}, p, 1024, image);
+    rtl.start(crop.view.width, crop.view.height);
+    // The PixelBus has the whole crop: the FIFO takes its values one a cycle while it has room.
     const size_t values = size_t(crop.view.width) * size_t(crop.view.height);
-    auto tick = [&] {
-        rtl.in_valid = next < values;
-        rtl.in_value =
-            next < values ? crop.view.at(int(next % size_t(crop.view.width)), int(next / size_t(crop.view.width))) : 0;
-        rtl.clk = 0;
-        rtl.eval();
-        const bool taken = rtl.in_valid && rtl.in_ready;  // at this edge
-        rtl.clk = 1;
-        rtl.eval();
-        next += taken;
-    };
-    rtl.rst = 1;
-    tick();
-    tick();
-    rtl.rst = 0;
-    rtl.width = uint16_t(crop.view.width);
-    rtl.height = uint16_t(crop.view.height);
-    rtl.start = 1;
-    tick();
-    rtl.start = 0;
     CoSimulation out;
     std::array<int32_t, kDeterminantsPerBlock> expected{};
     const uint64_t total = uint64_t((crop.view.width + 1) / 2) * uint64_t((crop.view.height + 1) / 2);
-    uint64_t cycle = 0, last_first = 0;
-    for (; out.determinants < total * kDeterminantsPerBlock && cycle < 200 * total + 1000; ++cycle) {
+    uint64_t last_first = 0;
+    while (out.determinants < total * kDeterminantsPerBlock && rtl.cycles() < 200 * total + 1000) {
         if (stop_at_mismatch && out.mismatches) break;
-        tick();
-        if (!rtl.det_valid) continue;
-        const int k = rtl.det_index;
-        if (k == 0) {
-            expected = core.block(crop.view, rtl.det_block_x / 2, rtl.det_block_y / 2);
-            if (out.blocks++) out.block_cycles.push_back(cycle - last_first);
-            last_first = cycle;
+        const RtlDatapath::Determinant d = rtl.step(crop.view, values);
+        if (!d.valid) continue;
+        if (d.index == 0) {
+            expected = core.block(crop.view, d.block_x, d.block_y);
+            if (out.blocks++) out.block_cycles.push_back(rtl.cycles() - last_first);
+            last_first = rtl.cycles();
         }
         ++out.determinants;
-        out.nonzero += expected[size_t(k)] != 0;
-        if (int32_t(rtl.det_value) != expected[size_t(k)] && out.mismatches++ == 0)
-            out.first_mismatch = "block (" + std::to_string(rtl.det_block_x / 2) + ", " +
-                                 std::to_string(rtl.det_block_y / 2) + ") determinant " + std::to_string(k) + ": RTL " +
-                                 std::to_string(int32_t(rtl.det_value)) + ", HessianCore " +
-                                 std::to_string(expected[size_t(k)]);
+        out.nonzero += expected[size_t(d.index)] != 0;
+        if (d.value != expected[size_t(d.index)] && out.mismatches++ == 0)
+            out.first_mismatch = "block (" + std::to_string(d.block_x) + ", " + std::to_string(d.block_y) +
+                                 ") determinant " + std::to_string(d.index) + ": RTL " + std::to_string(d.value) +
+                                 ", HessianCore " + std::to_string(expected[size_t(d.index)]);
     }
-    out.overrun = rtl.overrun;
-    rtl.final();
+    out.overrun = rtl.overrun();
     return out;
-}
-
-std::string write_image(const SequenceImage& image, const std::string& name) {
-    const std::string path =
-        (std::filesystem::temp_directory_path() / ("surfvp_rtl_" + std::to_string(::getpid()) + "_" + name + ".mem"))
-            .string();
-    write_file_atomically(path, to_readmemh(image, name));
-    return path;
 }
 
 // Both schedules on a graf1 and a Castle-simu crop: 128 x 96 blocks each, every determinant
@@ -121,9 +82,7 @@ TEST(FhgRtl, DeterminantsAndCyclesMatchTheModelOnRealCrops) {
             SequenceParams p;
             p.scheduler = scheduler;
             const Sequence& s = cached_sequence(p);
-            const std::string file = write_image(encode_sequence(s, p), scheduler_name(scheduler));
-            const CoSimulation r = co_simulate(crop, file, p);
-            std::filesystem::remove(file);
+            const CoSimulation r = co_simulate(crop, encode_sequence(s, p), p);
             const std::string what = std::string(name) + " " + scheduler_name(scheduler);
             EXPECT_EQ(r.blocks, 128u * 96u) << what;
             EXPECT_EQ(r.determinants, 128u * 96u * 18u) << what;
@@ -152,14 +111,78 @@ TEST(FhgRtl, ABrokenSequenceImageIsCaughtNamingTheBlockAndTheValue) {
     size_t c = 0;
     while (!field_value(image.words[c], image.layout.field("mac5_take"))) ++c;
     set_field(image.words[c], coefficient, field_value(image.words[c], coefficient) ^ 1);
-    const std::string file = write_image(image, "broken");
-    const CoSimulation r = co_simulate(crop_of(graf), file, p, true);
-    std::filesystem::remove(file);
+    const CoSimulation r = co_simulate(crop_of(graf), image, p, true);
     EXPECT_GT(r.mismatches, 0u);
     EXPECT_EQ(r.first_mismatch.rfind("block (", 0), 0u) << r.first_mismatch;
     EXPECT_NE(r.first_mismatch.find(") determinant 5: RTL "), std::string::npos) << r.first_mismatch;
     EXPECT_NE(r.first_mismatch.find(", HessianCore "), std::string::npos) << r.first_mismatch;
     std::printf("the broken image: %s\n", r.first_mismatch.c_str());
+}
+
+// fhg.model=rtl's interface: block rows in order, each given once its lines have arrived (a
+// row's window and no more), with HessianCore's records and the schedule's cycles, the
+// improved script too.
+TEST(FhgRtl, BlockRowsFromTheLinesReceivedAreTheCoresWithTheSchedulesCycles) {
+    const cv::Mat graf = test::real_image("graf1.png");
+    ASSERT_FALSE(graf.empty());
+    const Crop crop = test::integral_of(graf(cv::Rect(300, 200, 96, 70)).clone());
+    const HessianCore core{Precision{}};
+    for (Scheduler scheduler : {Scheduler::basic, Scheduler::improved}) {
+        SequenceParams p;
+        p.scheduler = scheduler;
+        const Sequence& s = cached_sequence(p);
+        RtlDatapath rtl(Precision{}, p, 1024, encode_sequence(s, p));
+        for (int frame = 0; frame < 2; ++frame) {  // a second frame starts clean
+            rtl.start(crop.view.width, crop.view.height);
+            for (int by = 0; by < 35; ++by) {
+                const int received = std::min(70, 2 * by + kReachAfter + 1);
+                const Datapath::Row row = rtl.row(crop.view, received, by);
+                ASSERT_EQ(row.records.size(), 48u * 18u);
+                std::vector<int32_t> expected(48 * 18);
+                core.block_row(crop.view, by, expected.data());
+                ASSERT_EQ(row.records, expected) << scheduler_name(scheduler) << " block row " << by;
+                ASSERT_EQ(row.cycles, 48u * uint64_t(s.interval)) << scheduler_name(scheduler) << " block row " << by;
+            }
+        }
+    }
+}
+
+// Lines withheld: the datapath cannot finish the row and says so instead of hanging.
+TEST(FhgRtl, ARowWithoutItsLinesIsAnErrorNotAHang) {
+    const Crop crop = test::integral_of(cv::Mat(64, 64, CV_8U, cv::Scalar(90)));
+    const SequenceParams p;
+    RtlDatapath rtl(Precision{}, p, 1024, encode_sequence(cached_sequence(p), p));
+    rtl.start(64, 64);
+    try {
+        rtl.row(crop.view, 20, 0);  // row 0 needs 26 lines
+        FAIL() << "no error";
+    } catch (const std::runtime_error& e) {
+        EXPECT_NE(std::string(e.what()).find("gave 0 of block row 0's 576 determinants and stopped (lines received: "
+                                             "20)"),
+                  std::string::npos)
+            << e.what();
+    }
+}
+
+// The build verilates the defaults: another configuration is named by the first parameter
+// that differs, and the datapath refuses it.
+TEST(FhgRtl, AConfigurationTheBuildDidNotVerilateIsNamed) {
+    const SequenceParams p;
+    EXPECT_EQ(rtl_build_difference(Precision{}, p, 1024), "");
+    Precision narrow;
+    narrow.response_bits = 16;
+    EXPECT_EQ(rtl_build_difference(narrow, p, 1024), "RESPONSE_BITS = 16 here, 18 in the build");
+    SequenceParams two_buses;
+    two_buses.read_buses = 2;
+    EXPECT_NE(rtl_build_difference(Precision{}, two_buses, 1024), "");
+    EXPECT_EQ(rtl_build_difference(Precision{}, p, 640), "LINE_WORDS = 640 here, 1024 in the build");
+    try {
+        RtlDatapath(narrow, p, 1024, encode_sequence(cached_sequence(p), p));
+        FAIL() << "no error";
+    } catch (const std::invalid_argument& e) {
+        EXPECT_NE(std::string(e.what()).find("RESPONSE_BITS = 16 here, 18 in the build"), std::string::npos)
+            << e.what();
+    }
 }
 
 }  // namespace
