@@ -34,10 +34,6 @@ std::string rtl_parameters(const Precision& precision, const SequenceParams& seq
     const HessianCore core(precision);
     const MemoryLayout layout = sequence_layout(sequence);
     const MemoryField &bus0 = layout.field("bus0_valid"), &mac0 = layout.field("mac0_take");
-    for (int size : kSizes)
-        if (core.reciprocal(size) >= (int64_t(1) << 31))
-            throw std::invalid_argument(
-                fmt::format("K_{} = {} does not fit the RTL's 32-bit constants", size, core.reciprocal(size)));
     const int bus_stride = sequence.read_buses > 1 ? layout.field("bus1_valid").lsb - bus0.lsb : 0;
     const int mac_stride = layout.field("mac1_take").lsb - mac0.lsb;
     // Each field's place in its bus's or TripleMAC's group.

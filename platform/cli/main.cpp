@@ -29,6 +29,7 @@
 #include "platform/table2/table2.h"
 #include "platform/sweep/sweep.h"
 #include "platform/tools/export_sequence.h"
+#include "platform/tools/synthesize.h"
 #include "platform/tools/seqgen.h"
 #include "platform/soc.h"
 
@@ -121,6 +122,18 @@ Command add_export_sequence(CLI::App& app) {
                     "Read this image (.coe or .mem) under the configuration's layout and replay it instead")
         ->type_name("FILE");
     return {cmd, [o] { return export_sequence_command(*o); }};
+}
+
+Command add_synthesize(CLI::App& app) {
+    auto o = options_for<SynthesizeOptions>();
+    CLI::App* cmd = app.add_subcommand(
+        "synthesize", "Synthesize the FHG datapath's Verilog (yosys) part by part beside the resource model");
+    cmd->add_option("scenario", o->scenario, "Scenario to take the parameters from (default: the defaults)");
+    cmd->add_option("--set", o->sets, "Override a parameter: --set 'fhg.response_bits=16 bit' (repeatable)")
+        ->type_name("KEY=VALUE");
+    cmd->add_option("--out", o->out, "Folder for rtl/, yosys/ and synthesis.{md,json}")->capture_default_str();
+    cmd->add_option("--family", o->family, "synth_xilinx's family (default: fpga.device's): xc5v, xc6s, xc6v, xc7");
+    return {cmd, [o] { return synthesize_command(*o); }};
 }
 
 Command add_bench(CLI::App& app) {
@@ -343,6 +356,7 @@ int dispatch(int argc, char** argv) {
                     [] { return registers_markdown(chip_registers()); }),
         add_seqgen(app),
         add_export_sequence(app),
+        add_synthesize(app),
         add_bench(app),
         add_calibrate(app),
         add_sweep(app),

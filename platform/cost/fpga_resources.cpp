@@ -6,6 +6,7 @@
 
 #include "models/fhg/fhg.h"
 #include "models/fhg/fhg_regs.h"
+#include "models/fhg/hessian_core.h"
 #include "models/fhg/sequence_cache.h"
 #include "models/fhg/sequence_memory.h"
 #include "platform/scenario/block_params.h"
@@ -17,45 +18,25 @@ namespace {
 
 unsigned ceil_div(unsigned long a, unsigned long b) { return unsigned((a + b - 1) / b); }
 
-// The FHG of one pair. Block RAM: each line-FIFO line holds max_width integral words, in the
-// organisation fhg.line_fifo names (one RAMB36, 1K x 32 or 512 x 72, or two column banks); the maxima FIFO 32-bit words; the MasterController's sequence one control
-// word per cycle of its interval, as `surfvp export-sequence` writes it (per bus: valid, line,
-// column; per TripleMAC: take, bus, lane, coefficient, response); each determinant row buffer a block row of records. DSP48E:
-// HessianCalc's three products per determinant (Dxx Dyy, w Dxy, (w Dxy)^2), pipelined at one
-// determinant a cycle; the TripleMACs only add (the paper: x3 is three additions).
+unsigned bits_of(uint64_t v) {  // an unsigned value's bits, at least 1
+    unsigned b = 1;
+    while (b < 64 && (v >> b) != 0) ++b;
+    return b;
+}
+
+// The FHG of one pair: its parts added up.
 BlockResources fhg_block(const Config& c) {
-    const Fhg::Params p = fhg_params(c);
-    const fhg::Sequence& seq = fhg::cached_sequence(p.sequence);
-    const auto& s = p.sequence;
-    const unsigned integral_bits =
-        32;  // an integral value travels and is kept as a 32-bit word (iig.sum_bits of it used)
-    const fhg::LineFifoShape shape = fhg::line_fifo_shape(s.line_fifo);
-    const unsigned line =
-        shape.banks * (shape.aligned_pairs ? ramb36_for(ceil_div(p.max_width, 2), 2 * integral_bits)
-                                           : ramb36_for(ceil_div(p.max_width, shape.banks), integral_bits));
-    const unsigned fifo = s.fifo_lines * line;
-    const unsigned maxima = ramb36_for(p.maxima_fifo_depth, 32);
-    const unsigned control_bits = unsigned(fhg::sequence_layout(s).width);  // the exported image's word
-    const unsigned sequence = ramb36_for(unsigned(std::max(seq.interval, 1)), control_bits);
-    const unsigned record_bits = fhg_regs::record_bytes(fhg_regs::det_bytes_for(p.precision.det_bits)) * 8;
-    const unsigned rows = p.det_row_buffers * ramb36_for(ceil_div(p.max_width, 2), record_bits);
-    const unsigned r = p.precision.response_bits, w = p.precision.weight_frac_bits + 1;
-    const unsigned dsp = dsp48e_for(r, r) + dsp48e_for(w, r) + dsp48e_for(r, r);
-    // TripleMAC: three accumulators with their output buffers and a coefficient adder each;
-    // HessianCalc, LocMaxFinder (26 comparisons of det_bits over a 3x3x3 window) and control.
-    const double acc = p.precision.accumulator_bits, det = p.precision.det_bits;
-    const double luts = s.triple_macs * 4 * acc + 6 * r + 26 * det + 400;
-    const double ffs = s.triple_macs * 6 * acc + 8 * r + 27 * det + 400;
-    return {"fhg",
-            double(fifo + maxima + sequence + rows),
-            double(dsp),
-            luts,
-            ffs,
-            fmt::format("line FIFO {} x {} RAMB36 ({}), maxima FIFO {}, sequence {} ({} cycles x {} bit), determinant "
-                        "rows {} x {}; "
-                        "DSP48E for Dxx*Dyy, w*Dxy and (w*Dxy)^2 at {} bit",
-                        s.fifo_lines, line, fhg::line_fifo_name(s.line_fifo), maxima, sequence, seq.interval,
-                        control_bits, p.det_row_buffers, ramb36_for(ceil_div(p.max_width, 2), record_bits), r)};
+    const FhgParts parts = fhg_parts(c);
+    const unsigned macs = fhg_params(c).sequence.triple_macs;
+    BlockResources b{"fhg", 0, 0, 0, 0, ""};
+    for (const BlockResources* part : {&parts.line_fifo, &parts.sequence_memory, &parts.maxima_fifo, &parts.det_rows,
+                                       &parts.hessian_calc, &parts.local_max_finder, &parts.control}) {
+        b.ramb36 += part->ramb36, b.dsp48e += part->dsp48e, b.luts += part->luts, b.ffs += part->ffs;
+        if (part->ramb36 + part->dsp48e > 0) b.basis += (b.basis.empty() ? "" : ", ") + part->basis;
+    }
+    b.luts += macs * parts.triple_mac.luts;
+    b.ffs += macs * parts.triple_mac.ffs;
+    return b;
 }
 
 // The IIG of one pair: its line buffers of integral words, a row-sum adder and a column adder.
@@ -84,6 +65,71 @@ unsigned dsp48e_for(unsigned a, unsigned b) {
     // 25 x 18 signed per slice; a wider product tiles 24 x 17-bit unsigned pieces around it.
     auto pieces = [](unsigned bits, unsigned port) { return bits <= port ? 1u : 1u + ceil_div(bits - port, port - 1); };
     return std::min(pieces(a, 25) * pieces(b, 18), pieces(a, 18) * pieces(b, 25));
+}
+
+// Block RAM: each line-FIFO line holds max_width integral words, in the organisation
+// fhg.line_fifo names (one RAMB36, 1K x 32 or 512 x 72, or two column banks); the maxima FIFO
+// 32-bit words; the MasterController's sequence one word per cycle of its interval, as `surfvp
+// export-sequence` writes it; each determinant row buffer a block row of records.
+// Logic: per-bit constants fitted to yosys 0.23's synthesis of the Verilog reference for
+// Virtex-5 (synth_xilinx -family xc5v, models/fhg/rtl) at three precisions (docs/resources.md):
+// a TripleMAC 9 LUTs + 10 and 7 flip-flops + 6 per accumulator bit; HessianCalc 55 LUTs per
+// accumulator bit (the 18-way read multiplexer of three sums and the normalisation after it)
+// and 3 flip-flops per accumulator bit + 6.5 per response bit + 111 (its four pipeline
+// stages). DSP48E: HessianCalc's products as the RTL forms them (three sums x K_L, rxx x ryy,
+// rxy^2, W x rxy^2). LocMaxFinder and the control are not in the RTL: estimates.
+FhgParts fhg_parts(const Config& c) {
+    const Fhg::Params p = fhg_params(c);
+    const fhg::Sequence& seq = fhg::cached_sequence(p.sequence);
+    const auto& s = p.sequence;
+    const unsigned integral_bits = 32;  // an integral value travels and is kept as a 32-bit word
+    const fhg::LineFifoShape shape = fhg::line_fifo_shape(s.line_fifo);
+    const unsigned line =
+        shape.banks * (shape.aligned_pairs ? ramb36_for(ceil_div(p.max_width, 2), 2 * integral_bits)
+                                           : ramb36_for(ceil_div(p.max_width, shape.banks), integral_bits));
+    const unsigned control_bits = unsigned(fhg::sequence_layout(s).width);  // the exported image's word
+    const unsigned sequence = ramb36_for(unsigned(std::max(seq.interval, 1)), control_bits);
+    const unsigned record_bits = fhg_regs::record_bytes(fhg_regs::det_bytes_for(p.precision.det_bits)) * 8;
+    const unsigned row = ramb36_for(ceil_div(p.max_width, 2), record_bits);
+    const unsigned maxima = ramb36_for(p.maxima_fifo_depth, 32);
+    const fhg::HessianCore core(p.precision);
+    uint64_t largest_k = 0;
+    for (int size : fhg::kSizes) largest_k = std::max(largest_k, uint64_t(core.reciprocal(size)));
+    const unsigned acc = p.precision.accumulator_bits, r = p.precision.response_bits, k = bits_of(largest_k) + 1,
+                   w = bits_of(uint64_t(core.weight())) + 1;
+    const unsigned dsp = 3 * dsp48e_for(acc, k) + 2 * dsp48e_for(r, r) + dsp48e_for(2 * r, w);
+    const double det = p.precision.det_bits;
+    FhgParts parts;
+    parts.line_fifo = {
+        "line FIFO",
+        double(s.fifo_lines * line),
+        0,
+        0,
+        0,
+        fmt::format("line FIFO {} x {} RAMB36 ({})", s.fifo_lines, line, fhg::line_fifo_name(s.line_fifo))};
+    parts.sequence_memory = {"sequence memory",
+                             double(sequence),
+                             0,
+                             0,
+                             0,
+                             fmt::format("sequence {} ({} cycles x {} bit)", sequence, seq.interval, control_bits)};
+    parts.maxima_fifo = {"maxima FIFO", double(maxima), 0, 0, 0, fmt::format("maxima FIFO {}", maxima)};
+    parts.det_rows = {"determinant rows",
+                      double(p.det_row_buffers * row),
+                      0,
+                      0,
+                      0,
+                      fmt::format("determinant rows {} x {}", p.det_row_buffers, row)};
+    parts.triple_mac = {"TripleMAC", 0, 0, 9.0 * acc + 10, 7.0 * acc + 6, "three accumulators and output buffers"};
+    parts.hessian_calc = {"HessianCalc",
+                          0,
+                          double(dsp),
+                          55.0 * acc,
+                          3.0 * acc + 6.5 * r + 111,
+                          fmt::format("DSP48E for the sums x K_L, rxx x ryy, rxy^2 and W x rxy^2 at {} bit", r)};
+    parts.local_max_finder = {"LocMaxFinder", 0, 0, 26 * det, 27 * det, "26 comparisons over a 3x3x3 window"};
+    parts.control = {"control", 0, 0, 400, 400, "the MasterController's counters and the registers' decoding"};
+    return parts;
 }
 
 FpgaResources fpga_resources(const Config& c) {

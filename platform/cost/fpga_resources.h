@@ -32,6 +32,15 @@ struct BlockResources {
     std::string basis;  // how the figures were reached, in words
 };
 
+// One FHG's parts as the model estimates them, each on its own so that a synthesis of the
+// Verilog reference (surfvp synthesize) can stand beside it. The TripleMAC is one of
+// fhg.triple_macs.
+struct FhgParts {
+    BlockResources line_fifo, sequence_memory, maxima_fifo, det_rows;  // block RAM
+    BlockResources triple_mac, hessian_calc, local_max_finder, control;
+};
+FhgParts fhg_parts(const Config& config);
+
 struct FpgaResources {
     std::string device;
     double ramb36_capacity = 0, dsp48e_capacity = 0, lut_capacity = 0, ff_capacity = 0;

@@ -2,10 +2,8 @@
 // FIFO, its sequence memory driving the read buses and the TripleMACs, HessianCalc after them.
 //
 // - The MasterController's control and addressing sequence, too large for logic, sits in block
-//   RAM and runs once per 2 x 2 block (paper III-C): the
-//   image `surfvp export-sequence` writes (docs/sequence-memory.md), read at the start from
-//   the file given by +sequence=FILE (default fhg_sequence.mem), one word per cycle, the
-//   sequence starting again after the word marked `last`, so blocks follow without a gap.
+//   RAM and runs once per 2 x 2 block (paper III-C): sequence_memory.v, one word per cycle,
+//   the sequence starting again after the word marked `last`, so blocks follow without a gap.
 // - A word names, per bus, a word of the block's window; the line FIFO (line_fifo.v) reads it
 //   at the next edge, so the word's TripleMAC fields wait one cycle for their values.
 // - The 18 TripleMACs are connected to the read buses and capture their data (III-C): each
@@ -17,7 +15,6 @@
 module fhg_datapath (clk, rst, start, width, height, in_valid, in_value, in_ready, block_x, block_y, det_valid,
                      det_index, det_value, det_block_x, det_block_y, busy, done, overrun, stalled);
 `include "fhg_params.vh"
-    localparam DEPTH_MAX = 512;  // one RAMB36 deep at its widest (512 x 72)
     input  wire                                clk;
     input  wire                                rst;
     input  wire                                start;  // a frame: the sequence runs from its first word
@@ -38,21 +35,9 @@ module fhg_datapath (clk, rst, start, width, height, in_valid, in_value, in_read
     output reg                                 overrun;  // a TripleMAC latched before HessianCalc read the last block
     output wire                                stalled;  // the sequence waits for lines
 
-    reg [SEQ_WIDTH-1:0] memory [0:DEPTH_MAX-1];
-`ifdef SYNTHESIS
-    // Synthesis takes no plusargs: the block RAM's contents are the file in the working folder.
-    initial $readmemh("fhg_sequence.mem", memory);
-`else
-    reg [1023:0] file;
-    initial begin
-        if (!$value$plusargs("sequence=%s", file)) file = "fhg_sequence.mem";
-        $readmemh(file, memory);
-    end
-`endif
-
     // A block RAM reads synchronously: `word` is this cycle's, read last cycle from the address
     // that follows the previous word (or the first, after `last`).
-    reg  [SEQ_WIDTH-1:0] word;
+    wire [SEQ_WIDTH-1:0] word;
     reg  [8:0] pc;  // the next word's address
     wire [15:0] rows_written;
     wire [16:0] window_end = {1'b0, block_y} + WINDOW_BEFORE;  // rows the block row needs
@@ -60,10 +45,8 @@ module fhg_datapath (clk, rst, start, width, height, in_valid, in_value, in_read
     wire issue = busy && !stalled;  // this cycle's word goes out
     wire last = issue && word[SEQ_LAST];
     wire [8:0] address = (start || last) ? 9'd0 : (issue ? pc : pc - 9'd1);
-    always @(posedge clk) begin
-        word <= memory[address];
-        pc <= address + 9'd1;
-    end
+    sequence_memory control_store (.clk(clk), .address(address), .word(word));
+    always @(posedge clk) pc <= address + 9'd1;
     // The word's TripleMAC fields and `last`, a cycle later, with the values the FIFO read.
     reg [SEQ_WIDTH-1:0] taking;
     reg                 taking_valid;

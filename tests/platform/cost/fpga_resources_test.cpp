@@ -39,9 +39,11 @@ TEST(FpgaResources, TheDefaultChipFitsTheFx70t) {
     ASSERT_EQ(r.blocks.size(), 4u);
     EXPECT_EQ(r.blocks[1].block, "fhg");
     EXPECT_EQ(r.blocks[1].ramb36, 56 + 1 + 3 + 2 * 8);  // line FIFO, maxima FIFO, sequence, row buffers
-    EXPECT_EQ(r.blocks[1].dsp48e, 3);
+    // HessianCalc's products as the RTL forms them: the three sums (24 bit) x K_L (20 bit) two
+    // slices each, rxx x ryy and rxy^2 (18 x 18) one each, W (13 bit) x rxy^2 (36 bit) two.
+    EXPECT_EQ(r.blocks[1].dsp48e, 3 * 2 + 2 * 1 + 2);
     EXPECT_EQ(r.total.ramb36, 84);
-    EXPECT_EQ(r.total.dsp48e, 6);  // HessianCalc's 3 and the single-precision FPU's 3
+    EXPECT_EQ(r.total.dsp48e, 13);  // HessianCalc's 10 and the single-precision FPU's 3
     EXPECT_TRUE(r.fits());
 }
 
@@ -54,8 +56,9 @@ TEST(FpgaResources, StructureMovesTheEstimate) {
     EXPECT_EQ(fpga_resources(config({"fhg.line_fifo=sdp72", "fhg.bus_word=scalar"})).total.ramb36 -
                   fpga_resources(config({"fhg.bus_word=scalar"})).total.ramb36,
               0);
-    EXPECT_EQ(fpga_resources(config({"fhg.response_bits=24 bit"})).total.dsp48e, 2 + 1 + 2 + 3);
-    EXPECT_EQ(fpga_resources(config({"fpu.precision=double"})).total.dsp48e, 3 + 13);
+    // 24 x 24 bit: two slices each for rxx x ryy and rxy^2; W x rxy^2 (48 bit) still two.
+    EXPECT_EQ(fpga_resources(config({"fhg.response_bits=24 bit"})).total.dsp48e, 3 * 2 + 2 * 2 + 2 + 3);
+    EXPECT_EQ(fpga_resources(config({"fpu.precision=double"})).total.dsp48e, 10 + 13);
     const FpgaResources two = fpga_resources(config({"soc.accelerators=2"}));
     EXPECT_EQ(two.total.ramb36, 2 * 78 + 6);
     EXPECT_FALSE(two.fits());

@@ -1,0 +1,55 @@
+// `surfvp synthesize` through the real binary: yosys synthesizes the FHG datapath's Verilog
+// part by part for the device's family (Virtex-5), and the resource model's estimate of each
+// part is within 20 % of it: its LUTs and flip-flops, its DSP48E and RAMB36 exactly.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <nlohmann/json.hpp>
+
+#include "cli.h"
+
+namespace surfvp {
+namespace {
+using test::fresh_dir;
+using test::slurp;
+using test::surfvp;
+
+TEST(Synthesize, TheModelsEstimateOfEachPartIsWithinAFifthOfYosys) {
+    const std::string out = fresh_dir("synthesize");
+    const auto r = surfvp("synthesize --out " + out);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const auto j = nlohmann::json::parse(slurp(out + "/synthesis.json"));
+    EXPECT_EQ(j["family"], "xc5v");  // fpga.device XC5VFX70T
+    ASSERT_EQ(j["parts"].size(), 3u);
+    for (const auto& part : j["parts"]) {
+        const auto &y = part["yosys"], &m = part["model"];
+        const std::string name = part["part"];
+        for (const char* kind : {"luts", "ffs"}) {
+            const double synthesized = y[kind], model = m[kind];
+            EXPECT_NEAR(model, synthesized, 0.2 * synthesized) << name << " " << kind;
+        }
+        EXPECT_EQ(y["dsp48e"], m["dsp48e"]) << name;
+        EXPECT_EQ(y["ramb36"], m["ramb36"]) << name;
+    }
+    EXPECT_GT(j["parts"][0]["yosys"]["luts"].get<double>(), 100);  // a TripleMAC's real logic
+    EXPECT_EQ(j["parts"][1]["yosys"]["dsp48e"], 10);               // HessianCalc's products
+    EXPECT_EQ(j["parts"][2]["yosys"]["ramb36"], 3);                // the sequence memory
+    // The folder holds the configuration's RTL, ready for a simulator or a synthesis tool.
+    for (const char* file : {"rtl/fhg_datapath.v", "rtl/sequence_memory.v", "rtl/fhg_params.vh", "rtl/fhg_sequence.mem",
+                             "yosys/hessian_calc.log", "synthesis.md"})
+        EXPECT_TRUE(std::filesystem::exists(out + "/" + file)) << file;
+    EXPECT_NE(slurp(out + "/synthesis.md").find("| HessianCalc | 1 | "), std::string::npos);
+}
+
+TEST(Synthesize, AnUnknownFamilyIsBadInput) {
+    const std::string out = test::fresh_path("synthesize_bad");
+    const auto r = surfvp("synthesize --family xc9 --out " + out);
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_NE(r.err.find("--family xc9: not a family synth_xilinx maps here: xc5v, xc6s, xc6v or xc7"),
+              std::string::npos)
+        << r.err;
+    EXPECT_FALSE(std::filesystem::exists(out));
+}
+
+}  // namespace
+}  // namespace surfvp
