@@ -292,14 +292,18 @@ Json verdict_json(VerdictWork& w, const LimitChain& chain, const std::string& ou
 
 int run_with_verdict(const Config& config, const std::string& out, const std::string& trace, bool quiet) {
     VerdictWork w = plan_verdict(config);
+    // The re-simulations ask what-ifs of other parameters with the model's datapath: it gives
+    // the verilated one's figures at a hundredth of its time, and takes the break-even's
+    // fhg.cycles_per_block (fhg.model=rtl checks the whole run itself: docs/rtl.md).
+    const Config modelled = verdict_variant(config, {{"fhg.model", "core"}});
     // The re-simulations run one thread each: the jobs share the cores (run.parallel moves no figure).
     const Config reference =
-        verdict_variant(config, {{"surf.frames", std::to_string(w.frames)}, {"run.parallel", "off"}});
+        verdict_variant(modelled, {{"surf.frames", std::to_string(w.frames)}, {"run.parallel", "off"}});
     // Prepare once what every child needs: the frames, the calibration, the FHG's sequences.
     Resimulation::prepare(config);
     Resimulation::prepare(reference);
     Resimulation pool(verdict_settings(config).jobs, fs::path(out) / fmt::format(".verdict.{}", ::getpid()));
-    LimitChain chain(config, reference, w.budget, pool, w.break_even ? kChainDepth : 0);
+    LimitChain chain(modelled, reference, w.budget, pool, w.break_even ? kChainDepth : 0);
     // The reference first: it names the limit the chain starts from, while the whole run and
     // the band's points go on.
     pool.submit(reference, [&](const Json& r) {
