@@ -67,6 +67,7 @@ struct RtlDatapath::Impl {
     std::unique_ptr<VerilatedContext> context = std::make_unique<VerilatedContext>();
     std::unique_ptr<Vfhg_datapath> rtl;
     int width = 0, height = 0, interval = 0;
+    unsigned det_bits = 32;  // det_value's width: sign-extended from it
     size_t taken = 0;  // integral values the FIFO has taken this frame
     uint64_t cycle = 0;
     std::map<int, Row> rows;       // block rows begun: their records and issue cycles
@@ -97,6 +98,7 @@ RtlDatapath::RtlDatapath(const Precision& precision, const SequenceParams& seque
         throw std::invalid_argument("the verilated FHG datapath was built for the model's defaults: " + difference +
                                     " (models/fhg/rtl/README.md: re-verilate with this configuration's fhg_params.vh)");
     impl_->interval = int(image.words.size());
+    impl_->det_bits = precision.det_bits;
     const std::filesystem::path file = image_file(image);
     const std::string plusarg = "+sequence=" + file.string();
     const char* argv[] = {"surfvp", plusarg.c_str()};
@@ -136,7 +138,9 @@ RtlDatapath::Determinant RtlDatapath::step(const IntegralView& frame, size_t ava
     m.tick(frame, available);
     const Vfhg_datapath& r = *m.rtl;
     if (!r.det_valid) return {};
-    return {true, r.det_block_x / 2, r.det_block_y / 2, int(r.det_index), int32_t(r.det_value)};
+    const unsigned unused = 32 - m.det_bits;
+    const int32_t value = int32_t(uint32_t(r.det_value) << unused) >> unused;
+    return {true, r.det_block_x / 2, r.det_block_y / 2, int(r.det_index), value};
 }
 
 Datapath::Row RtlDatapath::row(const IntegralView& frame, int received, int by) {

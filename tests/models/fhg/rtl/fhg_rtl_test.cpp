@@ -13,63 +13,11 @@
 #include "models/fhg/rtl/rtl_datapath.h"
 #include "models/fhg/sequence_cache.h"
 #include "models/fhg/sequence_memory.h"
+#include "co_simulation.h"
 #include "test_images.h"
 
 namespace surfvp::fhg {
 namespace {
-
-using Crop = test::Integral;
-
-// The integral image of a 256 x 192 crop from the middle of an image.
-Crop crop_of(const cv::Mat& image) {
-    return test::integral_of(image(cv::Rect((image.cols - 256) / 2, (image.rows - 192) / 2, 256, 192)).clone());
-}
-
-cv::Mat castle_frame() {
-    const std::string path = std::string(VISP_DATA_DIR) + "/mbt-depth/Castle-simu/Images/Image_0001.pgm";
-    cv::Mat image = cv::imread(path, cv::IMREAD_GRAYSCALE);
-    if (image.empty()) ADD_FAILURE() << path << " is missing: install the Debian package visp-images-data";
-    return image;
-}
-
-struct CoSimulation {
-    uint64_t blocks = 0, determinants = 0, mismatches = 0, nonzero = 0;
-    std::string first_mismatch;
-    std::vector<uint64_t> block_cycles;  // between consecutive blocks' first determinants
-    bool overrun = false;
-};
-
-// Runs the whole crop through the RTL with this sequence image and compares every determinant.
-CoSimulation co_simulate(const Crop& crop, const SequenceImage& image, const SequenceParams& p,
-                         bool stop_at_mismatch = false) {
-    const HessianCore core{Precision{}};
-    RtlDatapath rtl(Precision{}, p, 1024, image);
-    rtl.start(crop.view.width, crop.view.height);
-    // The PixelBus has the whole crop: the FIFO takes its values one a cycle while it has room.
-    const size_t values = size_t(crop.view.width) * size_t(crop.view.height);
-    CoSimulation out;
-    std::array<int32_t, kDeterminantsPerBlock> expected{};
-    const uint64_t total = uint64_t((crop.view.width + 1) / 2) * uint64_t((crop.view.height + 1) / 2);
-    uint64_t last_first = 0;
-    while (out.determinants < total * kDeterminantsPerBlock && rtl.cycles() < 200 * total + 1000) {
-        if (stop_at_mismatch && out.mismatches) break;
-        const RtlDatapath::Determinant d = rtl.step(crop.view, values);
-        if (!d.valid) continue;
-        if (d.index == 0) {
-            expected = core.block(crop.view, d.block_x, d.block_y);
-            if (out.blocks++) out.block_cycles.push_back(rtl.cycles() - last_first);
-            last_first = rtl.cycles();
-        }
-        ++out.determinants;
-        out.nonzero += expected[size_t(d.index)] != 0;
-        if (d.value != expected[size_t(d.index)] && out.mismatches++ == 0)
-            out.first_mismatch = "block (" + std::to_string(d.block_x) + ", " + std::to_string(d.block_y) +
-                                 ") determinant " + std::to_string(d.index) + ": RTL " + std::to_string(d.value) +
-                                 ", HessianCore " + std::to_string(expected[size_t(d.index)]);
-    }
-    out.overrun = rtl.overrun();
-    return out;
-}
 
 // Both schedules on a graf1 and a Castle-simu crop: 128 x 96 blocks each, every determinant
 // equal and every block the schedule's interval.
@@ -111,7 +59,7 @@ TEST(FhgRtl, ABrokenSequenceImageIsCaughtNamingTheBlockAndTheValue) {
     size_t c = 0;
     while (!field_value(image.words[c], image.layout.field("mac5_take"))) ++c;
     set_field(image.words[c], coefficient, field_value(image.words[c], coefficient) ^ 1);
-    const CoSimulation r = co_simulate(crop_of(graf), image, p, true);
+    const CoSimulation r = co_simulate(crop_of(graf), image, p, Precision{}, true);
     EXPECT_GT(r.mismatches, 0u);
     EXPECT_EQ(r.first_mismatch.rfind("block (", 0), 0u) << r.first_mismatch;
     EXPECT_NE(r.first_mismatch.find(") determinant 5: RTL "), std::string::npos) << r.first_mismatch;
