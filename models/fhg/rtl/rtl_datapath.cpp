@@ -68,7 +68,7 @@ struct RtlDatapath::Impl {
     std::unique_ptr<Vfhg_datapath> rtl;
     int width = 0, height = 0, interval = 0;
     unsigned det_bits = 32;  // det_value's width: sign-extended from it
-    size_t taken = 0;  // integral values the FIFO has taken this frame
+    size_t taken = 0;        // integral values the FIFO has taken this frame
     uint64_t cycle = 0;
     std::map<int, Row> rows;       // block rows begun: their records and issue cycles
     std::map<int, int> delivered;  // determinants given out per block row
