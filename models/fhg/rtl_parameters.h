@@ -3,12 +3,17 @@
 // model itself uses: HessianCore's Precision and its constants (K_L, W), the block record's
 // determinants (filter_geometry.h) and the sequence memory's layout (sequence_memory.h).
 // Nothing in the RTL is a copied number. Plain C++.
+#include <cstddef>
 #include <string>
 
 #include "hessian_core.h"
 #include "sequence_generator.h"
 
 namespace surfvp::fhg {
+
+// The RTL's sequence memory holds this many words (sequence_memory.v: one RAMB36 deep at its
+// widest, a 9-bit address).
+constexpr size_t kRtlSequenceDepth = 512;
 
 // `fhg_params.vh`: localparams and constant functions to `include inside a module. Throws
 // std::invalid_argument for a machine the RTL does not build (x3_cycles other than 1 or 3).

@@ -24,7 +24,12 @@ bool in_section(const std::string& key, const char* section) { return key.rfind(
 void check_rtl_model(const Config& c) {
 #ifdef SURFVP_WITH_RTL
     const Fhg::Params p = fhg_params(c);
-    const std::string difference = fhg::rtl_build_difference(p.precision, p.sequence, p.max_width);
+    std::string difference;
+    try {
+        difference = fhg::rtl_build_difference(p.precision, p.sequence, p.max_width);
+    } catch (const std::invalid_argument& e) {  // a machine the RTL does not build at all (fhg.x3_cycles)
+        throw ConfigError(fmt::format("{}: rtl cannot run this configuration: {}", c.where("fhg.model"), e.what()));
+    }
     if (!difference.empty())
         throw ConfigError(
             fmt::format("{}: rtl runs the FHG datapath verilated for the defaults, but {}: set the "

@@ -77,11 +77,12 @@ struct Part {
     unsigned count = 1;  // how many the FHG has
 };
 
-// Cells by kind: LUTs (INV is a LUT1), flip-flops, DSP slices, RAMB36 (a RAMB18 is half one).
+// Cells by kind: LUTs (INV is a LUT1), flip-flops, DSP slices, RAMB36 (a RAMB18 or RAMB16 is
+// half one, a RAMB8 a quarter).
 Json resources_of(const Json& stat) {
     double luts = 0, ffs = 0, dsp = 0, ramb36 = 0;
     Json other = Json::object();
-    for (const auto& [cell, n] : stat["design"]["num_cells_by_type"].items()) {
+    for (const auto& [cell, n] : stat.at("design").at("num_cells_by_type").items()) {
         const double count = n.get<double>();
         if (cell.rfind("LUT", 0) == 0 || cell == "INV")
             luts += count;
@@ -91,8 +92,10 @@ Json resources_of(const Json& stat) {
             dsp += count;
         else if (cell.rfind("RAMB36", 0) == 0)
             ramb36 += count;
-        else if (cell.rfind("RAMB18", 0) == 0)
+        else if (cell.rfind("RAMB18", 0) == 0 || cell.rfind("RAMB16", 0) == 0)  // Spartan-6's RAMB16BWER: 18 Kbit
             ramb36 += count / 2;
+        else if (cell.rfind("RAMB8", 0) == 0)
+            ramb36 += count / 4;
         else
             other[cell] = n;
     }
@@ -157,12 +160,16 @@ int synthesize_command(const SynthesizeOptions& o) {
         throw ConfigError("yosys is not installed (scripts/packages.sh test installs it; Debian package yosys)");
     const Fhg::Params chip = fhg_params(c);
     std::string parameters;
+    fhg::SequenceImage image;
     try {
         parameters = fhg::rtl_parameters(chip.precision, chip.sequence, chip.max_width);
+        image = fhg::encode_sequence(fhg::cached_sequence(chip.sequence), chip.sequence);
     } catch (const std::invalid_argument& e) {
         throw ConfigError(e.what());
     }
-    const fhg::SequenceImage image = fhg::encode_sequence(fhg::cached_sequence(chip.sequence), chip.sequence);
+    if (image.words.size() > fhg::kRtlSequenceDepth)
+        throw ConfigError(fmt::format("the sequence is {} words long; the RTL's sequence memory holds {}",
+                                      image.words.size(), fhg::kRtlSequenceDepth));
     const FhgParts model = fhg_parts(c);
     const std::vector<Part> parts{
         {"TripleMAC",
@@ -176,7 +183,8 @@ int synthesize_command(const SynthesizeOptions& o) {
         {"sequence memory", "sequence_memory", {"sequence_memory.v"}, "", model.sequence_memory, 1}};
 
     OutputFolder folder(o.out, {"rtl", "yosys", "synthesis.md", "synthesis.json"});
-    const fs::path rtl = folder.staging() / "rtl", logs = folder.staging() / "yosys";
+    // Absolute: yosys runs in rtl/ and writes its log and statistics beside it.
+    const fs::path staging = fs::absolute(folder.staging()), rtl = staging / "rtl", logs = staging / "yosys";
     fs::create_directories(rtl);
     fs::create_directories(logs);
     for (const auto& entry : fs::directory_iterator(SURFVP_RTL_SOURCE_DIR))
@@ -195,9 +203,9 @@ int synthesize_command(const SynthesizeOptions& o) {
                     "bus lane, which no block RAM has; yosys expands it into logic instead (docs/rtl.md)",
                     model.line_fifo.ramb36),
         "LocMaxFinder, the maxima FIFO, the determinant row buffers and the control: not in the RTL"};
-    write_file_atomically(folder.staging() / "synthesis.json", j.dump(2) + "\n");
+    write_file_atomically(staging / "synthesis.json", j.dump(2) + "\n");
     const std::string md = markdown(j);
-    write_file_atomically(folder.staging() / "synthesis.md", md);
+    write_file_atomically(staging / "synthesis.md", md);
     folder.publish();
     std::printf("%s\nsynthesis in %s/synthesis.{md,json}; the Verilog in %s/rtl\n", md.c_str(), o.out.c_str(),
                 o.out.c_str());

@@ -18,7 +18,7 @@ struct SynthesizeOptions {
 // Writes rtl/ (the Verilog, fhg_params.vh, fhg_sequence.mem), yosys/ (each part's log and
 // statistics), synthesis.md and synthesis.json into the folder and prints the table. Throws
 // ConfigError when yosys is missing, the family is unknown or the RTL cannot build the
-// configuration; std::runtime_error naming the log when yosys fails.
+// configuration; std::runtime_error with the log's last error when yosys fails.
 int synthesize_command(const SynthesizeOptions& options);
 
 }  // namespace surfvp

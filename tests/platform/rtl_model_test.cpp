@@ -58,6 +58,13 @@ TEST(FhgRtlModel, AConfigurationTheBuildCannotRunIsBadInput) {
     EXPECT_EQ(r.exit_code, 2);
     EXPECT_NE(r.err.find("but fhg.cycles_per_block is 60 cycles (from --set); the RTL's is 0"), std::string::npos)
         << r.err;
+    r = surfvp("run " + kBudget + kSmallBudget + " --out " + out +
+               " --set fhg.model=rtl --set 'fhg.x3_cycles=2 cycles'");
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_NE(r.err.find("--set fhg.model: rtl cannot run this configuration: the RTL builds a x3 as one step or three "
+                         "additions: fhg.x3_cycles must be 1 or 3"),
+              std::string::npos)
+        << r.err;
     EXPECT_FALSE(std::filesystem::exists(out));
 }
 

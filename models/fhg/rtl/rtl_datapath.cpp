@@ -37,14 +37,23 @@ std::pair<std::string, std::string> parameter_of(const std::string& line) {
     return {line.substr(11, eq - 11), line.substr(eq + 3, semicolon - eq - 3)};
 }
 
-// The image in a file the RTL's $readmemh reads at its first evaluation.
-std::filesystem::path image_file(const SequenceImage& image) {
-    static std::atomic<unsigned> next{0};
-    const auto path =
-        std::filesystem::temp_directory_path() / fmt::format("surfvp_rtl_{}_{}.mem", ::getpid(), next.fetch_add(1));
-    write_file_atomically(path, to_readmemh(image, "fhg.model=rtl"));
-    return path;
-}
+// The image in a file the RTL's $readmemh reads at its first evaluation, removed when done.
+struct ImageFile {
+    std::filesystem::path path;
+    explicit ImageFile(const SequenceImage& image) {
+        static std::atomic<unsigned> next{0};
+        path =
+            std::filesystem::temp_directory_path() / fmt::format("surfvp_rtl_{}_{}.mem", ::getpid(), next.fetch_add(1));
+        if (path.string().size() >= 128)  // the RTL's plusarg is a 1024-bit string
+            throw std::invalid_argument("the temporary folder's path is too long for the RTL's +sequence= (" +
+                                        path.string() + "): set TMPDIR to a shorter one");
+        write_file_atomically(path, to_readmemh(image, "fhg.model=rtl"));
+    }
+    ~ImageFile() {
+        std::error_code ignored;
+        std::filesystem::remove(path, ignored);
+    }
+};
 
 }  // namespace
 
@@ -97,15 +106,17 @@ RtlDatapath::RtlDatapath(const Precision& precision, const SequenceParams& seque
     if (!difference.empty())
         throw std::invalid_argument("the verilated FHG datapath was built for the model's defaults: " + difference +
                                     " (models/fhg/rtl/README.md: re-verilate with this configuration's fhg_params.vh)");
+    if (image.words.empty() || image.words.size() > kRtlSequenceDepth)
+        throw std::invalid_argument(fmt::format("a sequence image of {} words: the RTL's sequence memory holds 1 to {}",
+                                                image.words.size(), kRtlSequenceDepth));
     impl_->interval = int(image.words.size());
     impl_->det_bits = precision.det_bits;
-    const std::filesystem::path file = image_file(image);
-    const std::string plusarg = "+sequence=" + file.string();
+    const ImageFile file(image);
+    const std::string plusarg = "+sequence=" + file.path.string();
     const char* argv[] = {"surfvp", plusarg.c_str()};
     impl_->context->commandArgs(2, argv);
     impl_->rtl = std::make_unique<Vfhg_datapath>(impl_->context.get());
     impl_->rtl->eval();  // the initial blocks: $readmemh reads the image now
-    std::filesystem::remove(file);
 }
 
 RtlDatapath::~RtlDatapath() {
@@ -156,7 +167,15 @@ Datapath::Row RtlDatapath::row(const IntegralView& frame, int received, int by) 
                 "the verilated FHG datapath gave {} of block row {}'s {} determinants and stopped (lines received: {})",
                 m.delivered[by], by, wanted, received));
         const Determinant d = step(frame, available);
+        if (m.rtl->overrun)
+            throw std::runtime_error(fmt::format(
+                "the verilated FHG datapath overran in block row {}: a TripleMAC latched a block before HessianCalc "
+                "had read the one before",
+                by));
         if (!d.valid) continue;
+        if (d.index < 0 || d.index >= kDeterminantsPerBlock || d.block_x >= blocks)
+            throw std::runtime_error(fmt::format("the verilated FHG datapath gave determinant {} of block ({}, {})",
+                                                 d.index, d.block_x, d.block_y));
         Row& row = m.rows[d.block_y];
         row.records.resize(size_t(wanted));
         row.records[size_t(d.block_x) * kDeterminantsPerBlock + size_t(d.index)] = d.value;

@@ -2,7 +2,7 @@
 // accumulators that wrap, 12-bit responses (9 fraction bits: |r| < 4) and 18-bit determinants
 // (16 fraction bits: |det| < 2) that saturate. Every determinant of real crops must still be
 // HessianCore's at that precision, bit for bit; the test counts the saturations it compared.
-// (Built with its own Verilator build, tests/CMakeLists.txt: kNarrow is what it was given.)
+// (Its own Verilator build, tests/CMakeLists.txt, is given the fields narrow() sets.)
 #include <gtest/gtest.h>
 
 #include <cstdio>
