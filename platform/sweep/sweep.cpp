@@ -11,6 +11,7 @@
 #include <unistd.h>
 
 #include "models/host/atomic_file.h"
+#include "models/host/shell.h"
 #include "platform/report/run_summary.h"
 #include "platform/run/progress_line.h"
 #include "platform/run/run.h"
@@ -155,12 +156,6 @@ std::string run_tool(const std::string& command) {
     return out;
 }
 
-std::string quoted(const std::string& text) {
-    std::string out = "'";
-    for (char c : text) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
-    return out + "'";
-}
-
 // The job array (one shard per task) and a merge that runs once every task has ended well;
 // the sweep folder must be on a file system every node sees.
 int submit_to_slurm(const SweepOptions& options, const SweepPlan& plan, const fs::path& dir) {
@@ -175,20 +170,20 @@ int submit_to_slurm(const SweepOptions& options, const SweepPlan& plan, const fs
         "#SBATCH --cpus-per-task={jobs}\n"
         "#SBATCH --output={logs}/shard-%a.log\n"
         "exec {self} sweep {file} --out {folder} --jobs {jobs} --quiet --shard \"$SLURM_ARRAY_TASK_ID/{n}\"\n",
-        fmt::arg("name", plan.name), fmt::arg("n", n), fmt::arg("jobs", jobs), fmt::arg("logs", quoted(logs.string())),
-        fmt::arg("self", quoted(self.string())), fmt::arg("file", quoted(file.string())),
-        fmt::arg("folder", quoted(folder.string())));
+        fmt::arg("name", plan.name), fmt::arg("n", n), fmt::arg("jobs", jobs),
+        fmt::arg("logs", shell_quoted(logs.string())), fmt::arg("self", shell_quoted(self.string())),
+        fmt::arg("file", shell_quoted(file.string())), fmt::arg("folder", shell_quoted(folder.string())));
     const fs::path array = logs / "array.sh";
     write_file_atomically(array.string(), script);
     // The job names go on the command line, quoted: a sweep's name may hold spaces or quotes,
     // which neither an #SBATCH line nor the shell would take as they are.
-    const std::string id = run_tool(
-        fmt::format("sbatch --parsable --job-name={} {}", quoted("surfvp-" + plan.name), quoted(array.string())));
+    const std::string id = run_tool(fmt::format("sbatch --parsable --job-name={} {}",
+                                                shell_quoted("surfvp-" + plan.name), shell_quoted(array.string())));
     const std::string array_id = id.substr(0, id.find_first_of(";\n"));
-    const std::string merge =
-        run_tool(fmt::format("sbatch --parsable --job-name={} --dependency=afterok:{} --output={} --wrap={}",
-                             quoted("surfvp-" + plan.name + "-merge"), array_id, quoted((logs / "merge.log").string()),
-                             quoted(quoted(self.string()) + " sweep-merge " + quoted(folder.string()))));
+    const std::string merge = run_tool(fmt::format(
+        "sbatch --parsable --job-name={} --dependency=afterok:{} --output={} --wrap={}",
+        shell_quoted("surfvp-" + plan.name + "-merge"), array_id, shell_quoted((logs / "merge.log").string()),
+        shell_quoted(shell_quoted(self.string()) + " sweep-merge " + shell_quoted(folder.string()))));
     std::fprintf(
         stderr, "surfvp: %s: job array %s (%u shards) and merge job %s submitted; results in %s when they end\n",
         plan.name.c_str(), array_id.c_str(), n, merge.substr(0, merge.find_first_of(";\n")).c_str(), folder.c_str());

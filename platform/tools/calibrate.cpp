@@ -18,6 +18,7 @@
 
 #include "platform/workload/describer.h"
 #include "models/host/atomic_file.h"
+#include "models/host/shell.h"
 #include "platform/run/progress_line.h"
 #include "platform/run/resimulation.h"
 #include "platform/run/run.h"
@@ -299,18 +300,6 @@ RunResult calibration_run(const CalibrateOptions& o, const std::string& scenario
     return run;
 }
 
-std::string first_line(const std::string& command) {
-    FILE* pipe = ::popen(command.c_str(), "r");
-    char line[256] = {};
-    if (pipe) {
-        if (!std::fgets(line, sizeof line, pipe)) line[0] = 0;
-        ::pclose(pipe);
-    }
-    std::string s = line;
-    while (!s.empty() && (s.back() == '\n' || s.back() == '\r')) s.pop_back();
-    return s;
-}
-
 // "integer 22016, load 10526, ..." (classes of at least half an instruction).
 std::string mix_text(const Json& mix) {
     std::string text;
@@ -523,7 +512,7 @@ int calibrate_command(const CalibrateOptions& options) {
             if (check != "none") done.emplace_back(calibration_run(o, check, modes[h], sets, stage), h);
     }
     table.provenance = {
-        {"toolchain", first_line("powerpc-linux-gnu-g++ --version")},
+        {"toolchain", first_output_line("powerpc-linux-gnu-g++ --version")},
         {"flags", SURFVP_FIRMWARE_FLAGS},
         {"iss", fmt::format("{} -cpu {}", kQemu, kQemuCpu)},
         {"fitted_on", fmt::format("{}, {} frames each per Haar mode{}", fmt::join(o.fit, " + "), o.frames,

@@ -12,6 +12,7 @@
 #include "models/fhg/sequence_cache.h"
 #include "models/fhg/sequence_memory.h"
 #include "models/host/atomic_file.h"
+#include "models/host/shell.h"
 #include "platform/cost/fpga_resources.h"
 #include "platform/run/output_folder.h"
 #include "platform/scenario/block_params.h"
@@ -39,23 +40,6 @@ std::string family_of(const SynthesizeOptions& o, const Config& c) {
         if (device.rfind(prefix, 0) == 0) return family;
     throw ConfigError(fmt::format("{}: {} names no FPGA family: give one with --family (xc5v, xc6s, xc6v, xc7)",
                                   c.where("fpga.device"), device));
-}
-
-std::string quoted(const std::string& s) {  // for sh -c
-    std::string q = "'";
-    for (char ch : s) q += ch == '\'' ? std::string("'\\''") : std::string(1, ch);
-    return q + "'";
-}
-
-std::string yosys_version() {
-    std::FILE* pipe = ::popen("yosys -V 2>/dev/null", "r");
-    if (!pipe) return "";
-    char line[256] = {};
-    const bool got = std::fgets(line, sizeof line, pipe) != nullptr;
-    const int status = ::pclose(pipe);
-    std::string v = got ? line : "";
-    while (!v.empty() && (v.back() == '\n' || v.back() == '\r')) v.pop_back();
-    return status == 0 ? v : "";
 }
 
 // The log's last line that says ERROR (the folder with the log is not published).
@@ -110,8 +94,8 @@ Json synthesize(const Part& part, const fs::path& rtl, const fs::path& logs, con
         "read_verilog -I.{}; {}synth_xilinx -flatten -noiopad -family {} -top {}; tee -q -o ../yosys/{}.json stat "
         "-json",
         files, part.prepare, family, part.top, part.top);  // relative: yosys's commands take no quoted paths
-    const std::string command = fmt::format("cd {} && yosys -q -l {} -p {} >/dev/null 2>&1", quoted(rtl.string()),
-                                            quoted(log.string()), quoted(script));
+    const std::string command = fmt::format("cd {} && yosys -q -l {} -p {} >/dev/null 2>&1", shell_quoted(rtl.string()),
+                                            shell_quoted(log.string()), shell_quoted(script));
     if (std::system(command.c_str()) != 0 || !fs::exists(stat))
         throw std::runtime_error(
             fmt::format("yosys could not synthesize {} for {}: {}", part.top, family, last_error(log)));
@@ -155,7 +139,7 @@ std::string markdown(const Json& j) {
 int synthesize_command(const SynthesizeOptions& o) {
     const Config c = scenario_or_defaults(o.scenario, o.sets);
     const std::string family = family_of(o, c);
-    const std::string version = yosys_version();
+    const std::string version = first_output_line("yosys -V 2>/dev/null");
     if (version.empty())
         throw ConfigError("yosys is not installed (scripts/packages.sh test installs it; Debian package yosys)");
     const Fhg::Params chip = fhg_params(c);
