@@ -77,7 +77,8 @@ void Soc::build(const Config& c, Tracer& tracer) {
         const std::string suffix = pairs > 1 ? std::to_string(k) : "";
         iigs_.push_back(std::make_unique<Iig>(("iig" + suffix).c_str(), iig_params(c), tracer));
         fhgs_.push_back(std::make_unique<Fhg>(("fhg" + suffix).c_str(), fhg_params(c), tracer));
-        if (fhg_params(c).model == fhg::DatapathModel::rtl) fhgs_.back()->use_datapath(rtl_datapath(fhg_params(c)));
+        const Fhg::Params& params = fhgs_.back()->params();
+        if (params.model == fhg::DatapathModel::rtl) fhgs_.back()->use_datapath(rtl_datapath(params));
     }
     Ppc440::Params cpu = cpu_params(c);
     for (unsigned k = 0; k < pairs; ++k) cpu.markers.push_back(fmt::format("accelerator{}_task", k));

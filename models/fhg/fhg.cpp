@@ -180,9 +180,10 @@ void Fhg::send_line(int y, const uint32_t* data, int width, const sc_time& trans
 // The row's determinants and marked maxima: reads only lines_ up to the row's reach (received
 // before the row began) and writes only `row`, so it may run beside the kernel.
 std::vector<fhg::Candidate> Fhg::compute_block_row(int by, uint8_t* row) {
-    const IntegralView view{lines_.data(), int(frame_.width), int(frame_.height), frame_.width};
-    return fhg::block_row(core_, view, by, frame_.threshold, det_bytes(), row);
+    return fhg::block_row(core_, frame_lines(), by, frame_.threshold, det_bytes(), row);
 }
+
+IntegralView Fhg::frame_lines() const { return {lines_.data(), int(frame_.width), int(frame_.height), frame_.width}; }
 
 int Fhg::needed_line(uint32_t by) const { return std::min(int(frame_.height) - 1, int(2 * by) + fhg::kReachAfter); }
 
@@ -211,8 +212,7 @@ std::vector<fhg::Candidate> Fhg::block_row_results(uint32_t by) {
 // fhg.model=rtl: the datapath computes the row from the lines received so far and says how
 // many cycles it took; those pass, then its results are the row's.
 void Fhg::compute_by_datapath(int by) {
-    const IntegralView view{lines_.data(), int(frame_.width), int(frame_.height), frame_.width};
-    const fhg::Datapath::Row row = datapath_->row(view, frame_.received, by);
+    const fhg::Datapath::Row row = datapath_->row(frame_lines(), frame_.received, by);
     sc_core::wait(cycles(params_.clock, double(row.cycles)));
     finish_block_row(by, fhg::block_row(row.records, by, frame_.threshold, det_bytes(), row_bytes(uint32_t(by))));
 }

@@ -125,6 +125,7 @@ private:
     std::vector<fhg::Candidate> compute_block_row(int by, uint8_t* row);  // plain C++: any thread
     void finish_block_row(int by, const std::vector<fhg::Candidate>& found);
     void compute_by_datapath(int by);    // fhg.model=rtl
+    IntegralView frame_lines() const;    // the frame's integral lines (those received so far hold values)
     int needed_line(uint32_t by) const;  // the last integral line block row `by` reads
     void queue_ready_rows();             // hands the worker the rows whose lines have all arrived
     uint8_t* row_bytes(uint32_t by);     // where block row `by`'s stored determinants are kept

@@ -20,13 +20,19 @@ std::string record_function(const char* name, int bits, const char* what, Value 
     return s + fmt::format("        default: {} = {}'d0;\n    endcase\nendfunction\n", name, bits);
 }
 
-int bits_of(uint64_t v) {  // an unsigned value's bits, at least 1
-    int b = 1;
+unsigned bits_of(uint64_t v) {  // an unsigned value's bits, at least 1
+    unsigned b = 1;
     while (b < 64 && (v >> b) != 0) ++b;
     return b;
 }
 
 }  // namespace
+
+ConstantWidths constant_widths(const HessianCore& core) {
+    uint64_t largest_k = 0;
+    for (int size : kSizes) largest_k = std::max(largest_k, uint64_t(core.reciprocal(size)));
+    return {bits_of(largest_k), bits_of(uint64_t(core.weight()))};
+}
 
 std::string rtl_parameters(const Precision& precision, const SequenceParams& sequence, unsigned line_words) {
     if (sequence.x3_cycles != 1 && sequence.x3_cycles != 3)
@@ -64,16 +70,15 @@ std::string rtl_parameters(const Precision& precision, const SequenceParams& seq
         layout.field("mac0_bus").width, layout.field("mac0_lane").width, kReachBefore, sequence.fifo_lines, line_words,
         at("bus0_line", bus0), at("bus0_column", bus0), at("mac0_bus", mac0), at("mac0_lane", mac0),
         at("mac0_coefficient", mac0), at("mac0_response", mac0));
-    uint64_t largest_k = 0;
-    for (int size : kSizes) largest_k = std::max(largest_k, uint64_t(core.reciprocal(size)));
+    const ConstantWidths widths = constant_widths(core);
     s += fmt::format("localparam K_BITS = {};  // the largest K_L's bits\nlocalparam W_BITS = {};  // W's bits\n",
-                     bits_of(largest_k), bits_of(uint64_t(core.weight())));
+                     widths.k_bits, widths.w_bits);
     s += record_function("det_size", 16, "filter size L of record position k",
                          [](int k) { return block_determinant(k).size; });
     s += record_function("det_px", 16, "pixel column in the block", [](int k) { return block_determinant(k).px; });
     s += record_function("det_py", 16, "pixel row in the block", [](int k) { return block_determinant(k).py; });
     s +=
-        record_function("det_reciprocal", bits_of(largest_k), "K_L = round(2^(RESPONSE_FRAC_BITS + RECIP_SHIFT) / L^2)",
+        record_function("det_reciprocal", int(widths.k_bits), "K_L = round(2^(RESPONSE_FRAC_BITS + RECIP_SHIFT) / L^2)",
                         [&](int k) { return core.reciprocal(block_determinant(k).size); });
     return s + "/* verilator lint_on UNUSEDPARAM */\n";
 }

@@ -7,6 +7,7 @@
 #include "models/fhg/fhg.h"
 #include "models/fhg/fhg_regs.h"
 #include "models/fhg/hessian_core.h"
+#include "models/fhg/rtl_parameters.h"
 #include "models/fhg/sequence_cache.h"
 #include "models/fhg/sequence_memory.h"
 #include "platform/scenario/block_params.h"
@@ -17,12 +18,6 @@ namespace surfvp {
 namespace {
 
 unsigned ceil_div(unsigned long a, unsigned long b) { return unsigned((a + b - 1) / b); }
-
-unsigned bits_of(uint64_t v) {  // an unsigned value's bits, at least 1
-    unsigned b = 1;
-    while (b < 64 && (v >> b) != 0) ++b;
-    return b;
-}
 
 // The FHG of one pair: its parts added up.
 BlockResources fhg_block(const Config& c) {
@@ -92,11 +87,10 @@ FhgParts fhg_parts(const Config& c) {
     const unsigned record_bits = fhg_regs::record_bytes(fhg_regs::det_bytes_for(p.precision.det_bits)) * 8;
     const unsigned row = ramb36_for(ceil_div(p.max_width, 2), record_bits);
     const unsigned maxima = ramb36_for(p.maxima_fifo_depth, 32);
-    const fhg::HessianCore core(p.precision);
-    uint64_t largest_k = 0;
-    for (int size : fhg::kSizes) largest_k = std::max(largest_k, uint64_t(core.reciprocal(size)));
-    const unsigned acc = p.precision.accumulator_bits, r = p.precision.response_bits, k = bits_of(largest_k) + 1,
-                   w = bits_of(uint64_t(core.weight())) + 1;
+    // The RTL's constants, as the signed operands it multiplies by.
+    const fhg::ConstantWidths widths = fhg::constant_widths(fhg::HessianCore(p.precision));
+    const unsigned acc = p.precision.accumulator_bits, r = p.precision.response_bits, k = widths.k_bits + 1,
+                   w = widths.w_bits + 1;
     const unsigned dsp = 3 * dsp48e_for(acc, k) + 2 * dsp48e_for(r, r) + dsp48e_for(2 * r, w);
     const double det = p.precision.det_bits;
     FhgParts parts;

@@ -79,8 +79,11 @@ struct RtlDatapath::Impl {
     unsigned det_bits = 32;  // det_value's width: sign-extended from it
     size_t taken = 0;        // integral values the FIFO has taken this frame
     uint64_t cycle = 0;
-    std::map<int, Row> rows;       // block rows begun: their records and issue cycles
-    std::map<int, int> delivered;  // determinants given out per block row
+    struct Pending {
+        Row row;            // its records so far and its issue cycles
+        int delivered = 0;  // determinants given out
+    };
+    std::map<int, Pending> rows;  // the block rows begun and not yet handed over
 
     // One clock cycle; the PixelBus offers a value while fewer than `available` are taken.
     void tick(const IntegralView& frame, size_t available) {
@@ -91,7 +94,7 @@ struct RtlDatapath::Impl {
         r.clk = 0;
         r.eval();
         const bool accepted = offer && r.in_ready;
-        if (r.busy && !r.stalled) ++rows[r.block_y / 2].cycles;  // the sequence issues a word this cycle
+        if (r.busy && !r.stalled) ++rows[r.block_y / 2].row.cycles;  // the sequence issues a word this cycle
         r.clk = 1;
         r.eval();
         taken += accepted;
@@ -127,9 +130,6 @@ void RtlDatapath::start(int width, int height) {
     Impl& m = *impl_;
     m.width = width;
     m.height = height;
-    m.taken = 0;
-    m.rows.clear();
-    m.delivered.clear();
     const IntegralView none{};
     m.rtl->rst = 1;
     m.tick(none, 0);
@@ -140,6 +140,8 @@ void RtlDatapath::start(int width, int height) {
     m.rtl->start = 1;
     m.tick(none, 0);
     m.rtl->start = 0;
+    // The reset's cycles may have counted a word of the frame before: the frame starts here.
+    m.taken = 0;
     m.cycle = 0;
     m.rows.clear();
 }
@@ -161,11 +163,11 @@ Datapath::Row RtlDatapath::row(const IntegralView& frame, int received, int by) 
     // A row needs its sequence's cycles, the values it may still have to take and a pipeline's
     // tail; four times that and the datapath has stopped.
     const uint64_t limit = m.cycle + 4 * (uint64_t(blocks) * uint64_t(m.interval) + available + 1000);
-    while (m.delivered[by] < wanted) {
+    while (m.rows[by].delivered < wanted) {
         if (m.cycle > limit)
             throw std::runtime_error(fmt::format(
                 "the verilated FHG datapath gave {} of block row {}'s {} determinants and stopped (lines received: {})",
-                m.delivered[by], by, wanted, received));
+                m.rows[by].delivered, by, wanted, received));
         const Determinant d = step(frame, available);
         if (m.rtl->overrun)
             throw std::runtime_error(fmt::format(
@@ -176,14 +178,13 @@ Datapath::Row RtlDatapath::row(const IntegralView& frame, int received, int by) 
         if (d.index < 0 || d.index >= kDeterminantsPerBlock || d.block_x >= blocks)
             throw std::runtime_error(fmt::format("the verilated FHG datapath gave determinant {} of block ({}, {})",
                                                  d.index, d.block_x, d.block_y));
-        Row& row = m.rows[d.block_y];
-        row.records.resize(size_t(wanted));
-        row.records[size_t(d.block_x) * kDeterminantsPerBlock + size_t(d.index)] = d.value;
-        ++m.delivered[d.block_y];
+        Impl::Pending& pending = m.rows[d.block_y];
+        pending.row.records.resize(size_t(wanted));
+        pending.row.records[size_t(d.block_x) * kDeterminantsPerBlock + size_t(d.index)] = d.value;
+        ++pending.delivered;
     }
-    Row out = std::move(m.rows[by]);
+    Row out = std::move(m.rows[by].row);
     m.rows.erase(by);
-    m.delivered.erase(by);
     return out;
 }
 
