@@ -56,9 +56,11 @@ int bram_of(const SequenceParams& p, int y, int x) {
 // The reads that deliver the values at `points` (y, x): one a value, or with 72-bit reads one
 // an aligned pair, counted per BRAM.
 Ports reads_of(const SequenceParams& p, const std::vector<Point>& points) {
-    const bool pairs = line_fifo_shape(p.line_fifo).aligned_pairs;
     std::vector<std::pair<int, int>> units;  // (BRAM, the column or aligned pair it reads)
-    for (const auto& [y, x] : points) units.emplace_back(bram_of(p, y, x), pairs ? floor_div(x, 2) : x);
+    for (const auto& [y, x] : points) {
+        const LineRead r = line_read(p, y, x);
+        units.emplace_back(r.bram, r.unit);
+    }
     std::sort(units.begin(), units.end());
     units.erase(std::unique(units.begin(), units.end()), units.end());
     Ports ports;
@@ -424,6 +426,10 @@ std::string check_one_group(const Step& step, const SequenceParams& p) {
 }
 
 }  // namespace
+
+LineRead line_read(const SequenceParams& params, int y, int x) {
+    return {bram_of(params, y, x), line_fifo_shape(params.line_fifo).aligned_pairs ? floor_div(x, 2) : x};
+}
 
 const std::vector<std::array<int, 2>>& word_shape(BusWord word) {
     static const std::vector<std::array<int, 2>> scalar{{0, 0}}, pair{{0, 0}, {0, 1}},

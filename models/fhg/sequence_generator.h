@@ -116,6 +116,15 @@ struct Sequence {
 // naming the parameter.
 Sequence generate_sequence(const SequenceParams& params);
 
+// What reading the value at (y, x) of the block's window takes from the line FIFO: one read of
+// `unit` (its column, or with 72-bit reads its aligned pair) on BRAM `bram` (the window line's,
+// and its column bank's). A BRAM serves line_fifo_shape().reads distinct units a cycle.
+struct LineRead {
+    int bram;
+    int unit;
+};
+LineRead line_read(const SequenceParams& params, int y, int x);
+
 // Values of a bus word, as (dy, dx) offsets from its top-left point, in lane order.
 const std::vector<std::array<int, 2>>& word_shape(BusWord word);
 const char* bus_word_name(BusWord word);

@@ -4,18 +4,20 @@
 // - The MasterController's control and addressing sequence, too large for logic, sits in block
 //   RAM and runs once per 2 x 2 block (paper III-C): sequence_memory.v, one word per cycle,
 //   the sequence starting again after the word marked `last`, so blocks follow without a gap.
-// - A word names, per bus, a word of the block's window; the line FIFO (line_fifo.v) reads it
-//   at the next edge, so the word's TripleMAC fields wait one cycle for their values.
+// - A word names, per bus, a word of the block's window and the read port of each value it
+//   wants; the line FIFO (line_fifo.v) reads them at the next edge, so the word's TripleMAC
+//   fields wait one cycle for their values.
 // - The 18 TripleMACs are connected to the read buses and capture their data (III-C): each
 //   takes, in a cycle its word says so, one value
 //   of one bus word (bus, lane), with its coefficient and response.
 // - Blocks run row by row over the frame, ceil(width / 2) x ceil(height / 2) of them, from
 //   `start` until `done`; a block row waits until the FIFO holds its whole window. The block
 //   in flight is (block_x, block_y), its pixel (0, 0).
-module fhg_datapath (clk, rst, start, width, height, in_valid, in_value, in_ready, block_x, block_y, det_valid,
+module fhg_datapath (clk, clk2x, rst, start, width, height, in_valid, in_value, in_ready, block_x, block_y, det_valid,
                      det_index, det_value, det_block_x, det_block_y, busy, done, overrun, stalled);
 `include "fhg_params.vh"
     input  wire                                clk;
+    input  wire                                clk2x;  // twice clk, edges aligned: a `tdp_x2` line FIFO's BRAMs
     input  wire                                rst;
     input  wire                                start;  // a frame: the sequence runs from its first word
     input  wire [15:0]                         width;
@@ -57,15 +59,26 @@ module fhg_datapath (clk, rst, start, width, height, in_valid, in_value, in_read
     wire [READ_BUSES*LANES*32-1:0] bus_data;
     wire [READ_BUSES-1:0] bus_valid;
     wire [READ_BUSES*COORD_BITS-1:0] bus_line, bus_column;
+    wire [READ_BUSES*LANES-1:0] lane_read;
+    wire [READ_BUSES*LANES*PORT_BITS-1:0] lane_port;
+    // The slot of the window's top line (row block_y - 26) in the line FIFO.
+    localparam SLOT_BITS = $clog2(FIFO_LINES);
+    localparam [SLOT_BITS-1:0] FIRST_TOP = (FIFO_LINES - WINDOW_BEFORE % FIFO_LINES) % FIFO_LINES;
+    reg [SLOT_BITS-1:0] top_slot;
     wire [15:0] last_x = 2 * (((width + 1) >> 1) - 1), last_y = 2 * (((height + 1) >> 1) - 1);
 
-    genvar b, t;
+    genvar b, t, l;
     generate
         for (b = 0; b < READ_BUSES; b = b + 1) begin : buses
             localparam AT = BUS_LSB + b * BUS_STRIDE;
             assign bus_valid[b] = issue && word[AT];
             assign bus_line[b * COORD_BITS +: COORD_BITS] = word[AT + BUS_LINE +: COORD_BITS];
             assign bus_column[b * COORD_BITS +: COORD_BITS] = word[AT + BUS_COLUMN +: COORD_BITS];
+            for (l = 0; l < LANES; l = l + 1) begin : lanes
+                localparam LANE = AT + LANE_LSB + l * LANE_STRIDE;
+                assign lane_read[LANES * b + l] = word[LANE];
+                assign lane_port[(LANES * b + l) * PORT_BITS +: PORT_BITS] = word[LANE + LANE_PORT +: PORT_BITS];
+            end
         end
     endgenerate
 
@@ -101,9 +114,10 @@ module fhg_datapath (clk, rst, start, width, height, in_valid, in_value, in_read
     wire all_latched = &have_next;
 
     line_fifo fifo (
-        .clk(clk), .rst(rst), .start(start), .width(width), .height(height), .in_valid(in_valid),
+        .clk(clk), .clk2x(clk2x), .rst(rst), .start(start), .width(width), .height(height), .in_valid(in_valid),
         .in_value(in_value), .in_ready(in_ready), .rows_written(rows_written), .block_x(block_x), .block_y(block_y),
-        .bus_valid(bus_valid), .bus_line(bus_line), .bus_column(bus_column), .bus_data(bus_data));
+        .top_slot(top_slot), .bus_valid(bus_valid), .bus_line(bus_line), .bus_column(bus_column),
+        .lane_read(lane_read), .lane_port(lane_port), .bus_data(bus_data));
 
     hessian_calc calc (
         .clk(clk), .rst(rst), .start(all_latched), .block_x(finished_x), .block_y(finished_y), .width(width),
@@ -112,10 +126,10 @@ module fhg_datapath (clk, rst, start, width, height, in_valid, in_value, in_read
 
     always @(posedge clk) begin
         if (rst) begin
-            busy <= 0; done <= 0; overrun <= 0; have <= 0; block_x <= 0; block_y <= 0;
+            busy <= 0; done <= 0; overrun <= 0; have <= 0; block_x <= 0; block_y <= 0; top_slot <= FIRST_TOP;
         end else begin
             if (start) begin
-                busy <= 1; done <= 0; block_x <= 0; block_y <= 0;
+                busy <= 1; done <= 0; block_x <= 0; block_y <= 0; top_slot <= FIRST_TOP;
             end else if (busy) begin
                 if (last) begin
                     finished_x <= block_x;
@@ -123,6 +137,7 @@ module fhg_datapath (clk, rst, start, width, height, in_valid, in_value, in_read
                     if (block_x == last_x) begin
                         block_x <= 0;
                         block_y <= block_y + 2;
+                        top_slot <= top_slot >= FIFO_LINES - 2 ? top_slot + 2 - FIFO_LINES : top_slot + 2;
                         if (block_y == last_y) begin
                             busy <= 0;
                             done <= 1;

@@ -1,79 +1,161 @@
 // The MasterController's line FIFO (paper III-C: 56 integral-image lines, reached through 4
 // independent buses, because a block reads its 52 x 52 window many times and out of order):
-// FIFO_LINES lines of up to LINE_WORDS integral values, written
-// row by row as the PixelBus delivers them and read by the buses, one word each per cycle.
+// FIFO_LINES lines of up to LINE_WORDS integral values, each line the block RAM fhg.line_fifo
+// names (line_ram.v: LINE_BANKS banks of it, LINE_READS reads of each a cycle), written row by
+// row as the PixelBus delivers them and read by the buses.
 //
 // - Writing: a line's slot is its row modulo FIFO_LINES. Row r waits (in_ready low) until the
 //   row FIFO_LINES before it has left the window of the block row in flight (rows
-//   block_y - 26 .. block_y + 25), so no value a block still needs is overwritten.
-// - Reading: each bus names a word of the block's window; its lanes are read at the next clock
-//   edge, as a block RAM reads. A value left of column 0 or above row 0 is 0 (the integral
-//   image's I(-1, .) = I(., -1) = 0); a value right of or below the image is never needed.
-// - `rows_written` tells the sequence when a block row's window is complete.
-//
-// Storage is one array with a read port per bus lane. How a real design splits it into block
-// RAMs with their port limits (fhg.line_fifo) is what the sequence already respects
-// (check_sequence); mapping it onto RAMB36 is left to synthesis.
-module line_fifo (clk, rst, start, width, height, in_valid, in_value, in_ready, rows_written, block_x, block_y,
-                  bus_valid, bus_line, bus_column, bus_data);
+//   block_y - 26 .. block_y + 25), so no value a block still needs is overwritten, and a line
+//   being written is never one a block reads.
+// - Reading: each bus names a word of the block's window, and each value of it the sequence
+//   wants read (lane_read) says which read port of its line's BRAM reads it (lane_port): the
+//   sequence memory carries the addressing (III-C), so the FIFO only routes each read to its
+//   port. The values are bus_data in the next cycle. A value left of column 0 or above row 0
+//   is 0 (the integral image's I(-1, .) = I(., -1) = 0); one right of or below the image is
+//   never needed.
+// - `rows_written` tells the sequence when a block row's window is complete; `top_slot` is the
+//   slot of the window's top line, row block_y - 26 (fhg_datapath.v keeps it).
+module line_fifo (clk, clk2x, rst, start, width, height, in_valid, in_value, in_ready, rows_written, block_x,
+                  block_y, top_slot, bus_valid, bus_line, bus_column, lane_read, lane_port, bus_data);
 `include "fhg_params.vh"
-    input  wire                             clk;
-    input  wire                             rst;
-    input  wire                             start;
-    input  wire [15:0]                      width;
-    input  wire [15:0]                      height;
-    input  wire                             in_valid;
-    input  wire [31:0]                      in_value;
-    output wire                             in_ready;
-    output reg  [15:0]                      rows_written;
-    input  wire [15:0]                      block_x;  // the block in flight, pixel (0, 0)
-    input  wire [15:0]                      block_y;
-    input  wire [READ_BUSES-1:0]            bus_valid;
-    input  wire [READ_BUSES*COORD_BITS-1:0] bus_line;
-    input  wire [READ_BUSES*COORD_BITS-1:0] bus_column;
-    output reg  [READ_BUSES*LANES*32-1:0]   bus_data;  // the words named last cycle
+    localparam REQUESTS = READ_BUSES * LANES;
+    localparam BANK_WORDS = LINE_WORDS / LINE_BANKS / (LINE_PAIRS + 1);
+    localparam ADDR_BITS = $clog2(BANK_WORDS);
+    localparam DATA = (LINE_PAIRS + 1) * 32;
+    localparam RAMS = FIFO_LINES * LINE_BANKS;
+    localparam PORT_INDEX_BITS = $clog2(RAMS * LINE_READS);
+    localparam SLOT_BITS = $clog2(FIFO_LINES);
+    localparam SHIFT = LINE_BANKS == 2 || LINE_PAIRS == 1 ? 1 : 0;  // a column's address: column >> SHIFT
+    input  wire                               clk;
+    input  wire                               clk2x;
+    input  wire                               rst;
+    input  wire                               start;
+    input  wire [15:0]                        width;
+    input  wire [15:0]                        height;
+    input  wire                               in_valid;
+    input  wire [31:0]                        in_value;
+    output wire                               in_ready;
+    output reg  [15:0]                        rows_written;
+    input  wire [15:0]                        block_x;  // the block in flight, pixel (0, 0)
+    input  wire [15:0]                        block_y;
+    input  wire [SLOT_BITS-1:0]               top_slot;
+    input  wire [READ_BUSES-1:0]              bus_valid;
+    input  wire [READ_BUSES*COORD_BITS-1:0]   bus_line;
+    input  wire [READ_BUSES*COORD_BITS-1:0]   bus_column;
+    input  wire [REQUESTS-1:0]                lane_read;
+    input  wire [REQUESTS*PORT_BITS-1:0]      lane_port;
+    output wire [REQUESTS*32-1:0]             bus_data;  // the values named last cycle, 0 where none
 
-    reg [31:0] memory [0:FIFO_LINES*LINE_WORDS-1];
-    reg [15:0] column;  // the next value's place in row rows_written
-    reg        busy_frame;
+    reg [15:0]          column;  // the next value's place in row rows_written
+    reg [SLOT_BITS-1:0] write_slot;
+    reg                 busy_frame;
 
     // The row FIFO_LINES before the one being written is free once it is above the window.
     wire [16:0] window_top = {1'b0, block_y} - WINDOW_BEFORE;  // may be "negative": bit 16 set
     wire free = rows_written < FIFO_LINES ||
                 (!window_top[16] && {1'b0, rows_written} - FIFO_LINES < window_top);
     assign in_ready = busy_frame && rows_written < height && free;
+    wire write = in_valid && in_ready;
 
     always @(posedge clk) begin
         if (rst) begin
-            rows_written <= 0; column <= 0; busy_frame <= 0;
+            rows_written <= 0; column <= 0; write_slot <= 0; busy_frame <= 0;
         end else if (start) begin
-            rows_written <= 0; column <= 0; busy_frame <= 1;
-        end else if (in_valid && in_ready) begin
-            memory[({16'd0, rows_written} % FIFO_LINES) * LINE_WORDS + {16'd0, column}] <= in_value;
+            rows_written <= 0; column <= 0; write_slot <= 0; busy_frame <= 1;
+        end else if (write) begin
             if (column == width - 1) begin
                 column <= 0;
                 rows_written <= rows_written + 1;
+                write_slot <= write_slot == FIFO_LINES - 1 ? 0 : write_slot + 1;
             end else begin
                 column <= column + 1;
             end
         end
     end
 
-    genvar b, l;
+    // Each read: its BRAM's port (BRAM slot LINE_BANKS + bank), address and half; `wanted` if
+    // it reads.
+    reg [REQUESTS-1:0]           wanted;
+    reg [REQUESTS*16-1:0]        port_of;  // BRAM LINE_READS + port
+    reg [REQUESTS*ADDR_BITS-1:0] address;
+    reg [REQUESTS-1:0]           half;
+    genvar b, l, m;
     generate
         for (b = 0; b < READ_BUSES; b = b + 1) begin : buses
             for (l = 0; l < LANES; l = l + 1) begin : lanes
                 // The lane's offset in the word: quad (dx, dy) = (l % 2, l / 2), pair dx = l.
                 localparam DX = LANES == 1 ? 0 : l % 2, DY = LANES == 4 ? l / 2 : 0;
-                wire signed [17:0] y = $signed({2'b0, block_y}) + $signed({12'b0, bus_line[b * COORD_BITS +: COORD_BITS]})
-                                       + DY - WINDOW_BEFORE;
-                wire signed [17:0] x = $signed({2'b0, block_x}) + $signed({12'b0, bus_column[b * COORD_BITS +: COORD_BITS]})
-                                       + DX - WINDOW_BEFORE;
-                always @(posedge clk)
-                    bus_data[32 * (LANES * b + l) +: 32] <=
-                        (!bus_valid[b] || y < 0 || x < 0 || x >= $signed({2'b0, width})) ? 32'd0
-                        : memory[({16'd0, y[15:0]} % FIFO_LINES) * LINE_WORDS + {16'd0, x[15:0]}];
+                localparam R = LANES * b + l;
+                wire [COORD_BITS-1:0] line = bus_line[b * COORD_BITS +: COORD_BITS];
+                wire signed [17:0] y = $signed({2'b0, block_y}) + $signed({12'b0, line}) + DY - WINDOW_BEFORE;
+                wire signed [17:0] x = $signed({2'b0, block_x}) +
+                                       $signed({12'b0, bus_column[b * COORD_BITS +: COORD_BITS]}) + DX - WINDOW_BEFORE;
+                // The window's lines are consecutive slots from top_slot on.
+                wire [7:0] sum = {{(8 - SLOT_BITS){1'b0}}, top_slot} + {2'b0, line} + DY;
+                wire [7:0] slot = sum >= FIFO_LINES ? sum - FIFO_LINES : sum;
+                /* verilator lint_off UNUSEDSIGNAL */
+                wire [15:0] column_of = x[15:0];
+                /* verilator lint_on UNUSEDSIGNAL */
+                always @* begin
+                    wanted[R] = bus_valid[b] && lane_read[R] && y >= 0 && x >= 0 && x < $signed({2'b0, width});
+                    port_of[16 * R +: 16] =
+                        ({8'd0, slot} * LINE_BANKS + (LINE_BANKS == 2 ? {15'd0, column_of[0]} : 16'd0)) * LINE_READS +
+                        {{(16 - PORT_BITS){1'b0}}, lane_port[PORT_BITS * R +: PORT_BITS]};
+                    address[ADDR_BITS * R +: ADDR_BITS] = column_of[SHIFT +: ADDR_BITS];
+                    half[R] = LINE_PAIRS == 1 && column_of[0];
+                end
             end
+        end
+    endgenerate
+
+    // Each BRAM's read addresses: a read goes to the port the sequence gave it. Reads that share
+    // a port name the same unit (the sequence memory's decoder holds every image to that).
+    reg [RAMS*LINE_READS*ADDR_BITS-1:0] ram_address;
+    integer r;
+    always @* begin
+        ram_address = 0;
+        for (r = 0; r < REQUESTS; r = r + 1)
+            if (wanted[r])
+                ram_address[port_of[16 * r +: 16] * ADDR_BITS +: ADDR_BITS] = address[ADDR_BITS * r +: ADDR_BITS];
+    end
+
+    // The incoming value's BRAM, address and half.
+    wire [ADDR_BITS-1:0] write_address = column[SHIFT +: ADDR_BITS];
+    wire [DATA-1:0] ram_data [0:RAMS*LINE_READS-1];  // each BRAM port's value
+    genvar p;
+    generate
+        for (m = 0; m < RAMS; m = m + 1) begin : rams
+            localparam integer SLOT = m / LINE_BANKS, BANK = m % LINE_BANKS;
+            wire [LINE_READS*DATA-1:0] q;
+            line_ram #(.WORDS(BANK_WORDS), .ADDR_BITS(ADDR_BITS), .PAIRS(LINE_PAIRS), .READS(LINE_READS)) ram (
+                .clk(clk), .clk2x(clk2x),
+                .we(write && write_slot == SLOT[SLOT_BITS-1:0] && (LINE_BANKS == 1 || column[0] == BANK[0])),
+                .waddr(write_address), .whalf(column[0]), .wdata(in_value),
+                .raddr(ram_address[m * LINE_READS * ADDR_BITS +: LINE_READS * ADDR_BITS]), .q(q));
+            for (p = 0; p < LINE_READS; p = p + 1) begin : ports
+                assign ram_data[m * LINE_READS + p] = q[p * DATA +: DATA];
+            end
+        end
+    endgenerate
+
+    // Next cycle, each read takes its value from its BRAM's port (and half).
+    reg [REQUESTS-1:0]    took, took_half;
+    reg [REQUESTS*16-1:0] took_from;  // the BRAM's port
+    always @(posedge clk) begin
+        for (r = 0; r < REQUESTS; r = r + 1) begin
+            took[r] <= wanted[r];
+            took_half[r] <= half[r];
+            took_from[16 * r +: 16] <= port_of[16 * r +: 16];
+        end
+    end
+    generate
+        for (m = 0; m < REQUESTS; m = m + 1) begin : values
+            /* verilator lint_off UNUSEDSIGNAL */
+            wire [15:0] from = took_from[16 * m +: 16];
+            /* verilator lint_on UNUSEDSIGNAL */
+            wire [DATA-1:0] value = ram_data[from[PORT_INDEX_BITS-1:0]];
+            assign bus_data[32 * m +: 32] = !took[m] ? 32'd0 : took_half[m] ? value[DATA-1 -: 32] : value[31:0];
         end
     endgenerate
 endmodule

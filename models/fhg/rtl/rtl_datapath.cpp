@@ -91,11 +91,18 @@ struct RtlDatapath::Impl {
         const bool offer = taken < available;
         r.in_valid = offer;
         r.in_value = offer ? frame.at(int(taken % size_t(width)), int(taken / size_t(width))) : 0;
+        // clk2x (a `tdp_x2` line FIFO's) rises with clk and in the middle of its cycle.
         r.clk = 0;
+        r.clk2x = 1;
+        r.eval();
+        r.clk2x = 0;
         r.eval();
         const bool accepted = offer && r.in_ready;
         if (r.busy && !r.stalled) ++rows[r.block_y / 2].row.cycles;  // the sequence issues a word this cycle
         r.clk = 1;
+        r.clk2x = 1;
+        r.eval();
+        r.clk2x = 0;
         r.eval();
         taken += accepted;
         ++cycle;

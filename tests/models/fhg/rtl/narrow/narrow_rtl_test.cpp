@@ -1,10 +1,13 @@
-// The verilated datapath at a precision whose paths the defaults never reach: 20-bit
-// accumulators that wrap, 12-bit responses (9 fraction bits: |r| < 4) and 18-bit determinants
-// (16 fraction bits: |det| < 2) that saturate. Every determinant of real crops must still be
-// HessianCore's at that precision, bit for bit; the test counts the saturations it compared.
-// (Its own Verilator build, tests/CMakeLists.txt, is given the fields narrow() sets.)
+// The verilated datapath on another machine, at a precision whose paths the defaults never
+// reach: 20-bit accumulators that wrap, 12-bit responses (9 fraction bits: |r| < 4) and 18-bit
+// determinants (16 fraction bits: |det| < 2) that saturate, read by six pair buses from a
+// `banked` line FIFO (two BRAMs a line, columns interleaved, two ports each at the FHG clock).
+// Every determinant of real crops must still be HessianCore's at that precision, bit for bit,
+// each block in the schedule's interval; the test counts the saturations it compared. (Its own
+// Verilator build, tests/CMakeLists.txt, is given the fields narrow() and machine() set.)
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 
@@ -20,6 +23,14 @@ Precision narrow() {
     p.response_bits = 12;
     p.det_bits = 18;
     return p;
+}
+
+SequenceParams machine() {
+    SequenceParams s;
+    s.line_fifo = LineFifo::banked;
+    s.bus_word = BusWord::pair;
+    s.read_buses = 6;
+    return s;
 }
 
 // Responses beyond 12 bits and determinants beyond 18 in the crop, as HessianCore forms them.
@@ -52,18 +63,23 @@ TEST(FhgRtlNarrow, SaturatedResponsesAndDeterminantsMatchTheModelBitForBit) {
     const Precision p = narrow();
     for (const auto& [name, image] : {std::pair{"graf1", graf}, std::pair{"castle", castle}}) {
         const Crop crop = crop_of(image);
-        const SequenceParams sequence;
-        const CoSimulation r = co_simulate(crop, encode_sequence(cached_sequence(sequence), sequence), sequence, p);
+        const SequenceParams sequence = machine();
+        const Sequence schedule = cached_sequence(sequence);
+        const CoSimulation r = co_simulate(crop, encode_sequence(schedule, sequence), sequence, p);
         EXPECT_EQ(r.determinants, 128u * 96u * 18u) << name;
         EXPECT_EQ(r.mismatches, 0u) << name << ": " << r.first_mismatch;
+        ASSERT_FALSE(r.block_cycles.empty());
+        const auto [low, high] = std::minmax_element(r.block_cycles.begin(), r.block_cycles.end());
+        EXPECT_EQ(*low, uint64_t(schedule.interval)) << name;
+        EXPECT_EQ(*high, uint64_t(schedule.interval)) << name;
         const Saturations s = saturations(crop, p);
         EXPECT_GT(s.responses, 1000u) << name;  // the saturation paths were compared, not only reachable
         EXPECT_GT(s.determinants, 100u) << name;
         std::printf(
-            "%s at 20/12/18 bits: %llu determinants, %llu mismatches; %llu responses and %llu determinants "
-            "saturated\n",
-            name, (unsigned long long)r.determinants, (unsigned long long)r.mismatches, (unsigned long long)s.responses,
-            (unsigned long long)s.determinants);
+            "%s at 20/12/18 bits, banked, 6 pair buses: %llu determinants, %llu mismatches, %d cycles a block; %llu "
+            "responses and %llu determinants saturated\n",
+            name, (unsigned long long)r.determinants, (unsigned long long)r.mismatches, schedule.interval,
+            (unsigned long long)s.responses, (unsigned long long)s.determinants);
     }
 }
 

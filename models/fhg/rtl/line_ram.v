@@ -1,0 +1,84 @@
+// One line of the line FIFO, or one column bank of it, as the block RAM fhg.line_fifo names
+// (models/fhg/sequence_generator.h, LineFifo; Virtex-5 UG190 for the RAMB36's ports):
+// WORDS words of 32 bits, or of 64 (PAIRS: an aligned pair of columns, the 72-bit simple
+// dual-port mode), written one 32-bit value at a time, with READS reads each FHG cycle:
+//
+// - READS 1 or 2 (`sdp72`; `tdp`, `banked`): the RAM's ports at the FHG clock. Port A writes
+//   while the line fills and reads otherwise; a line is never read while written (the
+//   window's lines are all written, line_fifo.v), so both ports serve the buses.
+// - READS 4 (`tdp_x2`): the same two ports at twice the FHG clock (clk2x, edges aligned with
+//   clk's), each reading twice a cycle: reads 0 and 1 at the edge in the middle of the cycle,
+//   reads 2 and 3 (or the write) at the edge that ends it. Hold registers keep the four values
+//   for the whole next cycle, as one read at the FHG clock would.
+//
+// A read's address is sampled at the end of the cycle that names it (mid-cycle as well for
+// READS 4), and its value is `q` during the next cycle, as the sequence expects (line_fifo.v).
+module line_ram #(
+    parameter WORDS = 1024,
+    parameter ADDR_BITS = 10,
+    parameter PAIRS = 0,
+    parameter READS = 2
+) (
+    input  wire                           clk,
+    /* verilator lint_off UNUSEDSIGNAL */
+    input  wire                           clk2x,  // READS 4 only
+    input  wire                           whalf,  // PAIRS: the pair's upper column
+    /* verilator lint_on UNUSEDSIGNAL */
+    input  wire                           we,     // write wdata (the FHG cycle's, at its end)
+    input  wire [ADDR_BITS-1:0]           waddr,
+    input  wire [31:0]                    wdata,
+    input  wire [READS*ADDR_BITS-1:0]     raddr,  // read r's address at bits r ADDR_BITS
+    output wire [READS*(PAIRS+1)*32-1:0]  q       // read r's word at bits r DATA: last cycle's reads
+);
+    localparam DATA = (PAIRS + 1) * 32;
+    reg [DATA-1:0] memory [0:WORDS-1];
+
+    // Port A's write: a whole word, or the half of a pair the column selects.
+    task write;
+        begin
+            if (PAIRS == 0) memory[waddr] <= wdata[DATA-1:0];
+            else if (whalf) memory[waddr][DATA-1:DATA-32] <= wdata;
+            else memory[waddr][31:0] <= wdata;
+        end
+    endtask
+
+    generate
+        if (READS == 4) begin : double_clock
+            // The edge in the middle of the cycle: clk toggled `toggle` at the cycle's start, and
+            // clk2x has not seen it yet.
+            reg toggle = 1'b0, seen = 1'b0;
+            always @(posedge clk) toggle <= ~toggle;
+            wire middle = seen != toggle;
+            reg [DATA-1:0] qa, qb, held [0:3];
+            always @(posedge clk2x) begin
+                seen <= toggle;
+                if (!middle && we) write;
+                else qa <= memory[raddr[(middle ? 0 : 2) * ADDR_BITS +: ADDR_BITS]];
+                qb <= memory[raddr[(middle ? 1 : 3) * ADDR_BITS +: ADDR_BITS]];
+                // The values read at the previous edge: reads 2 and 3 of the cycle before the
+                // middle edge, reads 0 and 1 of this cycle at its end.
+                if (middle) begin
+                    held[2] <= qa;
+                    held[3] <= qb;
+                end else begin
+                    held[0] <= qa;
+                    held[1] <= qb;
+                end
+            end
+            assign q = {held[3], held[2], held[1], held[0]};
+        end else begin : single_clock
+            reg [DATA-1:0] qa;
+            always @(posedge clk) begin
+                if (we) write;
+                else qa <= memory[raddr[0 +: ADDR_BITS]];
+            end
+            if (READS == 2) begin : port_b
+                reg [DATA-1:0] qb;
+                always @(posedge clk) qb <= memory[raddr[ADDR_BITS +: ADDR_BITS]];
+                assign q = {qb, qa};
+            end else begin : port_a_only
+                assign q = qa;
+            end
+        end
+    endgenerate
+endmodule
