@@ -73,6 +73,26 @@ unsigned dsp48e_for(unsigned a, unsigned b) {
 // and 3 flip-flops per accumulator bit + 6.5 per response bit + 111 (its four pipeline
 // stages). DSP48E: HessianCalc's products as the RTL forms them (three sums x K_L, rxx x ryy,
 // rxy^2, W x rxy^2). LocMaxFinder and the control are not in the RTL: estimates.
+namespace {
+
+// The logic beside each line-FIFO BRAM (line_ram.v), as yosys 0.23 synthesizes it for
+// Virtex-5: a true dual-port BRAM's port A takes the write address or a read's (one LUT an
+// address bit); `sdp72` writes a half of the pair (2 LUTs of write enables); `tdp_x2` adds the
+// hold registers of its four reads a cycle (4 x 32 + 2 flip-flops), and its address and
+// phase multiplexers come to 86 LUTs at a 10-bit address (8.6 a bit).
+struct BramLogic {
+    double luts = 0, ffs = 0;
+};
+BramLogic bram_logic(const fhg::LineFifoShape& shape, unsigned max_width) {
+    unsigned address_bits = 1;
+    while ((1u << address_bits) < max_width / unsigned(shape.banks) / (shape.aligned_pairs ? 2 : 1)) ++address_bits;
+    if (shape.aligned_pairs) return {2, 0};
+    if (shape.clock_multiple == 2) return {8.6 * address_bits, 4 * 32 + 2};
+    return {double(address_bits), 0};
+}
+
+}  // namespace
+
 FhgParts fhg_parts(const Config& c) {
     const Fhg::Params p = fhg_params(c);
     const fhg::Sequence& seq = fhg::cached_sequence(p.sequence);
@@ -94,13 +114,16 @@ FhgParts fhg_parts(const Config& c) {
     const unsigned dsp = 3 * dsp48e_for(acc, k) + 2 * dsp48e_for(r, r) + dsp48e_for(2 * r, w);
     const double det = p.precision.det_bits;
     FhgParts parts;
+    const BramLogic bram = bram_logic(shape, p.max_width);
+    const double brams = double(s.fifo_lines) * shape.banks;
     parts.line_fifo = {
         "line FIFO",
         double(s.fifo_lines * line),
         0,
-        0,
-        0,
-        fmt::format("line FIFO {} x {} RAMB36 ({})", s.fifo_lines, line, fhg::line_fifo_name(s.line_fifo))};
+        brams * bram.luts,
+        brams * bram.ffs,
+        fmt::format("line FIFO {} x {} RAMB36 ({}), each with {:g} LUTs and {:g} flip-flops of port logic",
+                    s.fifo_lines, line, fhg::line_fifo_name(s.line_fifo), bram.luts, bram.ffs)};
     parts.sequence_memory = {"sequence memory",
                              double(sequence),
                              0,

@@ -61,6 +61,27 @@ struct Part {
     unsigned count = 1;  // how many the FHG has
 };
 
+// One block RAM of the line FIFO (line_ram.v) in the organisation fhg.line_fifo names: a line,
+// or a column bank of one, with its read ports; the model's share of the FIFO's RAMB36 each.
+Part line_fifo_ram(const Fhg::Params& chip, const BlockResources& line_fifo) {
+    const fhg::LineFifoShape shape = fhg::line_fifo_shape(chip.sequence.line_fifo);
+    const unsigned words = chip.max_width / unsigned(shape.banks) / (shape.aligned_pairs ? 2 : 1);
+    unsigned address_bits = 1;
+    while ((1u << address_bits) < words) ++address_bits;
+    const unsigned count = chip.sequence.fifo_lines * unsigned(shape.banks);
+    BlockResources one = line_fifo;
+    one.ramb36 /= count;
+    one.luts /= count;
+    one.ffs /= count;
+    return {"line FIFO BRAM",
+            "line_ram",
+            {"line_ram.v"},
+            fmt::format("chparam -set WORDS {} -set ADDR_BITS {} -set PAIRS {} -set READS {} line_ram; ", words,
+                        address_bits, shape.aligned_pairs ? 1 : 0, shape.reads),
+            one,
+            count};
+}
+
 // Cells by kind: LUTs (INV is a LUT1), flip-flops, DSP slices, RAMB36 (a RAMB18 or RAMB16 is
 // half one, a RAMB8 a quarter).
 Json resources_of(const Json& stat) {
@@ -164,7 +185,8 @@ int synthesize_command(const SynthesizeOptions& o) {
          model.triple_mac,
          chip.sequence.triple_macs},
         {"HessianCalc", "hessian_calc", {"hessian_calc.v", "round_saturate.v"}, "", model.hessian_calc, 1},
-        {"sequence memory", "sequence_memory", {"sequence_memory.v"}, "", model.sequence_memory, 1}};
+        {"sequence memory", "sequence_memory", {"sequence_memory.v"}, "", model.sequence_memory, 1},
+        line_fifo_ram(chip, model.line_fifo)};
 
     OutputFolder folder(o.out, {"rtl", "yosys", "synthesis.md", "synthesis.json"});
     // Absolute: yosys runs in rtl/ and writes its log and statistics beside it.

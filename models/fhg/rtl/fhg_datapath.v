@@ -20,7 +20,7 @@ module fhg_datapath (clk, clk2x, rst, start, width, height, in_valid, in_value, 
     input  wire                                clk2x;  // twice clk, edges aligned: a `tdp_x2` line FIFO's BRAMs
     input  wire                                rst;
     input  wire                                start;  // a frame: the sequence runs from its first word
-    input  wire [15:0]                         width;
+    input  wire [15:0]                         width;   // the frame's, taken at `start`
     input  wire [15:0]                         height;
     input  wire                                in_valid;  // integral values, row by row (the PixelBus)
     input  wire [31:0]                         in_value;
@@ -37,13 +37,21 @@ module fhg_datapath (clk, clk2x, rst, start, width, height, in_valid, in_value, 
     output reg                                 overrun;  // a TripleMAC latched before HessianCalc read the last block
     output wire                                stalled;  // the sequence waits for lines
 
+    // The frame's size, held from `start` on as the FHG's registers hold it.
+    reg [15:0] frame_width, frame_height;
+    always @(posedge clk)
+        if (start) begin
+            frame_width <= width;
+            frame_height <= height;
+        end
+
     // A block RAM reads synchronously: `word` is this cycle's, read last cycle from the address
     // that follows the previous word (or the first, after `last`).
     wire [SEQ_WIDTH-1:0] word;
     reg  [8:0] pc;  // the next word's address
     wire [15:0] rows_written;
     wire [16:0] window_end = {1'b0, block_y} + WINDOW_BEFORE;  // rows the block row needs
-    assign stalled = busy && {1'b0, rows_written} < (window_end < {1'b0, height} ? window_end : {1'b0, height});
+    assign stalled = busy && {1'b0, rows_written} < (window_end < {1'b0, frame_height} ? window_end : {1'b0, frame_height});
     wire issue = busy && !stalled;  // this cycle's word goes out
     wire last = issue && word[SEQ_LAST];
     wire [8:0] address = (start || last) ? 9'd0 : (issue ? pc : pc - 9'd1);
@@ -65,7 +73,7 @@ module fhg_datapath (clk, clk2x, rst, start, width, height, in_valid, in_value, 
     localparam SLOT_BITS = $clog2(FIFO_LINES);
     localparam [SLOT_BITS-1:0] FIRST_TOP = (FIFO_LINES - WINDOW_BEFORE % FIFO_LINES) % FIFO_LINES;
     reg [SLOT_BITS-1:0] top_slot;
-    wire [15:0] last_x = 2 * (((width + 1) >> 1) - 1), last_y = 2 * (((height + 1) >> 1) - 1);
+    wire [15:0] last_x = 2 * (((frame_width + 1) >> 1) - 1), last_y = 2 * (((frame_height + 1) >> 1) - 1);
 
     genvar b, t, l;
     generate
@@ -114,14 +122,14 @@ module fhg_datapath (clk, clk2x, rst, start, width, height, in_valid, in_value, 
     wire all_latched = &have_next;
 
     line_fifo fifo (
-        .clk(clk), .clk2x(clk2x), .rst(rst), .start(start), .width(width), .height(height), .in_valid(in_valid),
+        .clk(clk), .clk2x(clk2x), .rst(rst), .start(start), .width(frame_width), .height(frame_height), .in_valid(in_valid),
         .in_value(in_value), .in_ready(in_ready), .rows_written(rows_written), .block_x(block_x), .block_y(block_y),
         .top_slot(top_slot), .bus_valid(bus_valid), .bus_line(bus_line), .bus_column(bus_column),
         .lane_read(lane_read), .lane_port(lane_port), .bus_data(bus_data));
 
     hessian_calc calc (
-        .clk(clk), .rst(rst), .start(all_latched), .block_x(finished_x), .block_y(finished_y), .width(width),
-        .height(height), .sums(sums), .reading(reading), .det_valid(det_valid), .det_index(det_index),
+        .clk(clk), .rst(rst), .start(all_latched), .block_x(finished_x), .block_y(finished_y), .width(frame_width),
+        .height(frame_height), .sums(sums), .reading(reading), .det_valid(det_valid), .det_index(det_index),
         .det_value(det_value), .det_block_x(det_block_x), .det_block_y(det_block_y));
 
     always @(posedge clk) begin

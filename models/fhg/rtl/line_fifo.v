@@ -25,6 +25,7 @@ module line_fifo (clk, clk2x, rst, start, width, height, in_valid, in_value, in_
     localparam DATA = (LINE_PAIRS + 1) * 32;
     localparam RAMS = FIFO_LINES * LINE_BANKS;
     localparam PORT_INDEX_BITS = $clog2(RAMS * LINE_READS);
+    localparam BANK_SHIFT = $clog2(LINE_BANKS), PORT_SHIFT = $clog2(LINE_READS);
     localparam SLOT_BITS = $clog2(FIFO_LINES);
     localparam SHIFT = LINE_BANKS == 2 || LINE_PAIRS == 1 ? 1 : 0;  // a column's address: column >> SHIFT
     input  wire                               clk;
@@ -99,9 +100,10 @@ module line_fifo (clk, clk2x, rst, start, width, height, in_valid, in_value, in_
                 /* verilator lint_on UNUSEDSIGNAL */
                 always @* begin
                     wanted[R] = bus_valid[b] && lane_read[R] && y >= 0 && x >= 0 && x < $signed({2'b0, width});
+                    // (slot, bank, port) as bit fields: banks and reads are powers of two.
                     port_of[16 * R +: 16] =
-                        ({8'd0, slot} * LINE_BANKS + (LINE_BANKS == 2 ? {15'd0, column_of[0]} : 16'd0)) * LINE_READS +
-                        {{(16 - PORT_BITS){1'b0}}, lane_port[PORT_BITS * R +: PORT_BITS]};
+                        ((({8'd0, slot} << BANK_SHIFT) | (LINE_BANKS == 2 ? {15'd0, column_of[0]} : 16'd0)) << PORT_SHIFT) |
+                        ({{(16 - PORT_BITS){1'b0}}, lane_port[PORT_BITS * R +: PORT_BITS]} & (LINE_READS - 1));
                     address[ADDR_BITS * R +: ADDR_BITS] = column_of[SHIFT +: ADDR_BITS];
                     half[R] = LINE_PAIRS == 1 && column_of[0];
                 end
@@ -109,16 +111,22 @@ module line_fifo (clk, clk2x, rst, start, width, height, in_valid, in_value, in_
         end
     endgenerate
 
-    // Each BRAM's read addresses: a read goes to the port the sequence gave it. Reads that share
-    // a port name the same unit (the sequence memory's decoder holds every image to that).
+    // Each BRAM port's read address: the read the sequence gave that port, if any. Reads that
+    // share a port name the same unit (the sequence memory's decoder holds every image to that),
+    // so their addresses are ORed.
     reg [RAMS*LINE_READS*ADDR_BITS-1:0] ram_address;
-    integer r;
-    always @* begin
-        ram_address = 0;
-        for (r = 0; r < REQUESTS; r = r + 1)
-            if (wanted[r])
-                ram_address[port_of[16 * r +: 16] * ADDR_BITS +: ADDR_BITS] = address[ADDR_BITS * r +: ADDR_BITS];
-    end
+    generate
+        for (m = 0; m < RAMS * LINE_READS; m = m + 1) begin : port_address
+            integer r;
+            always @* begin
+                ram_address[m * ADDR_BITS +: ADDR_BITS] = 0;
+                for (r = 0; r < REQUESTS; r = r + 1)
+                    if (wanted[r] && port_of[16 * r +: 16] == m)
+                        ram_address[m * ADDR_BITS +: ADDR_BITS] =
+                            ram_address[m * ADDR_BITS +: ADDR_BITS] | address[ADDR_BITS * r +: ADDR_BITS];
+            end
+        end
+    endgenerate
 
     // The incoming value's BRAM, address and half.
     wire [ADDR_BITS-1:0] write_address = column[SHIFT +: ADDR_BITS];
@@ -143,11 +151,9 @@ module line_fifo (clk, clk2x, rst, start, width, height, in_valid, in_value, in_
     reg [REQUESTS-1:0]    took, took_half;
     reg [REQUESTS*16-1:0] took_from;  // the BRAM's port
     always @(posedge clk) begin
-        for (r = 0; r < REQUESTS; r = r + 1) begin
-            took[r] <= wanted[r];
-            took_half[r] <= half[r];
-            took_from[16 * r +: 16] <= port_of[16 * r +: 16];
-        end
+        took <= wanted;
+        took_half <= half;
+        took_from <= port_of;
     end
     generate
         for (m = 0; m < REQUESTS; m = m + 1) begin : values

@@ -35,13 +35,16 @@ module line_ram #(
 
     // Port A's write: a whole word, or the half of a pair the column selects.
     task write;
+        input [ADDR_BITS-1:0] at;
         begin
-            if (PAIRS == 0) memory[waddr] <= wdata[DATA-1:0];
-            else if (whalf) memory[waddr][DATA-1:DATA-32] <= wdata;
-            else memory[waddr][31:0] <= wdata;
+            if (PAIRS == 0) memory[at] <= wdata[DATA-1:0];
+            else if (whalf) memory[at][DATA-1:DATA-32] <= wdata;
+            else memory[at][31:0] <= wdata;
         end
     endtask
 
+    // A port that writes reads from the address it writes (one address a port, as the RAMB36's
+    // true dual-port mode has it); what it reads then is not used.
     generate
         if (READS == 4) begin : double_clock
             // The edge in the middle of the cycle: clk toggled `toggle` at the cycle's start, and
@@ -49,36 +52,41 @@ module line_ram #(
             reg toggle = 1'b0, seen = 1'b0;
             always @(posedge clk) toggle <= ~toggle;
             wire middle = seen != toggle;
-            reg [DATA-1:0] qa, qb, held [0:3];
+            wire [ADDR_BITS-1:0] a = middle ? raddr[0 +: ADDR_BITS] : we ? waddr : raddr[2 * ADDR_BITS +: ADDR_BITS];
+            wire [ADDR_BITS-1:0] b = raddr[(middle ? 1 : 3) * ADDR_BITS +: ADDR_BITS];
+            reg [DATA-1:0] qa, qb, held0, held1, held2, held3;
             always @(posedge clk2x) begin
                 seen <= toggle;
-                if (!middle && we) write;
-                else qa <= memory[raddr[(middle ? 0 : 2) * ADDR_BITS +: ADDR_BITS]];
-                qb <= memory[raddr[(middle ? 1 : 3) * ADDR_BITS +: ADDR_BITS]];
-                // The values read at the previous edge: reads 2 and 3 of the cycle before the
+                if (!middle && we) write(a);
+                qa <= memory[a];
+                qb <= memory[b];
+                // The values read at the previous edge: reads 2 and 3 of the cycle before at the
                 // middle edge, reads 0 and 1 of this cycle at its end.
                 if (middle) begin
-                    held[2] <= qa;
-                    held[3] <= qb;
+                    held2 <= qa;
+                    held3 <= qb;
                 end else begin
-                    held[0] <= qa;
-                    held[1] <= qb;
+                    held0 <= qa;
+                    held1 <= qb;
                 end
             end
-            assign q = {held[3], held[2], held[1], held[0]};
-        end else begin : single_clock
+            assign q = {held3, held2, held1, held0};
+        end else if (READS == 2) begin : two_ports
+            wire [ADDR_BITS-1:0] a = we ? waddr : raddr[0 +: ADDR_BITS];
+            reg [DATA-1:0] qa, qb;
+            always @(posedge clk) begin
+                if (we) write(a);
+                qa <= memory[a];
+            end
+            always @(posedge clk) qb <= memory[raddr[ADDR_BITS +: ADDR_BITS]];
+            assign q = {qb, qa};
+        end else begin : write_and_read_port  // simple dual-port: a write port and a read port
             reg [DATA-1:0] qa;
             always @(posedge clk) begin
-                if (we) write;
-                else qa <= memory[raddr[0 +: ADDR_BITS]];
+                if (we) write(waddr);
+                qa <= memory[raddr];
             end
-            if (READS == 2) begin : port_b
-                reg [DATA-1:0] qb;
-                always @(posedge clk) qb <= memory[raddr[ADDR_BITS +: ADDR_BITS]];
-                assign q = {qb, qa};
-            end else begin : port_a_only
-                assign q = qa;
-            end
+            assign q = qa;
         end
     endgenerate
 endmodule
