@@ -48,7 +48,10 @@ failed=0
 
 stat() { sed -n "s/^stat::$1: *//p" "$2" | tail -1; }
 
-for t in "${targets[@]}"; do
+# One target: its seeds, then fuzzing; its summary row goes to rows/<target>.md. Always
+# returns 0: the row says how it went.
+fuzz_one() {
+  local t=$1
   exe="$BUILD/fuzz/${t}_fuzz"
   log="$BUILD/fuzz/logs/$t.log"
   artifacts="$BUILD/fuzz/artifacts/$t/"
@@ -89,15 +92,30 @@ for t in "${targets[@]}"; do
     cov=$(grep -o 'cov: [0-9]*' "$log" | tail -1 | cut -d' ' -f2)
     line="| $t | $runs | $took | $rate | $cov | $start -> $(find "$work" -type f | wc -l) | ok |"
   else
-    failed=1
     found=$(find "$artifacts" -type f | head -1)
     kind=$(grep -m1 -oE 'ERROR: (libFuzzer|AddressSanitizer|LeakSanitizer|UndefinedBehaviorSanitizer): [a-z-]+|runtime error|surfvp fuzz: BUG' "$log" "$log.seeds" 2>/dev/null | head -1 | cut -d: -f2- || true)
     line="| $t | | | | | | $result: ${kind:-see the log} |"
     echo "fuzz: $t: $result (${kind:-see $log}); log $log${found:+; input $found}" >&2
     [ -n "$found" ] && echo "fuzz: fix the cause, then copy $found into $SOURCE/regressions/$t/ (kept forever, run by every CI run)" >&2
   fi
-  echo "$line" >> "$summary"
+  echo "$line" > "$BUILD/fuzz/rows/$t.md"
   echo "fuzz: $line"
+}
+
+# Two targets at a time (the machine has 2 cores); each has its own folders and seed, so the
+# executions and results are those of one at a time.
+rm -rf "$BUILD/fuzz/rows"
+mkdir -p "$BUILD/fuzz/rows"
+for t in "${targets[@]}"; do
+  fuzz_one "$t" &
+  while [ "$(jobs -rp | wc -l)" -ge 2 ]; do wait -n || true; done
+done
+wait
+for t in "${targets[@]}"; do
+  row="$BUILD/fuzz/rows/$t.md"
+  [ -f "$row" ] || { echo "fuzz: $t: no result (see above)" >&2; failed=1; continue; }
+  cat "$row" >> "$summary"
+  grep -q "| ok |$" "$row" || failed=1
 done
 
 echo "fuzz: summary in $summary"

@@ -79,7 +79,7 @@ namespace {
 // Virtex-5: a true dual-port BRAM's port A takes the write address or a read's (one LUT an
 // address bit); `sdp72` writes a half of the pair (2 LUTs of write enables); `tdp_x2` adds the
 // hold registers of its four reads a cycle (4 x 32 + 2 flip-flops), and its address and
-// phase multiplexers come to 86 LUTs at a 10-bit address (8.6 a bit).
+// phase multiplexers come to 86 or 87 LUTs at a 10-bit address (8.6 a bit).
 struct BramLogic {
     double luts = 0, ffs = 0;
 };

@@ -53,7 +53,7 @@ module line_ram #(
             always @(posedge clk) toggle <= ~toggle;
             wire middle = seen != toggle;
             wire [ADDR_BITS-1:0] a = middle ? raddr[0 +: ADDR_BITS] : we ? waddr : raddr[2 * ADDR_BITS +: ADDR_BITS];
-            wire [ADDR_BITS-1:0] b = raddr[(middle ? 1 : 3) * ADDR_BITS +: ADDR_BITS];
+            wire [ADDR_BITS-1:0] b = middle ? raddr[ADDR_BITS +: ADDR_BITS] : raddr[3 * ADDR_BITS +: ADDR_BITS];
             reg [DATA-1:0] qa, qb, held0, held1, held2, held3;
             always @(posedge clk2x) begin
                 seen <= toggle;
