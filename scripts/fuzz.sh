@@ -48,8 +48,9 @@ failed=0
 
 stat() { sed -n "s/^stat::$1: *//p" "$2" | tail -1; }
 
-# One target: its seeds, then fuzzing; its summary row goes to rows/<target>.md. Always
-# returns 0: the row says how it went.
+# One target: its seeds, then fuzzing; its summary row goes to rows/<target>.md. A target that
+# finds something still writes its row; one that cannot run at all (not libFuzzer's main, no
+# RUNS entry, a failing command under set -e) writes none, which the summary reports.
 fuzz_one() {
   local t=$1
   exe="$BUILD/fuzz/${t}_fuzz"

@@ -84,8 +84,9 @@ struct BramLogic {
     double luts = 0, ffs = 0;
 };
 BramLogic bram_logic(const fhg::LineFifoShape& shape, unsigned max_width) {
+    const unsigned per_word = unsigned(shape.banks) * (shape.aligned_pairs ? 2 : 1);  // columns a word covers
     unsigned address_bits = 1;
-    while ((1u << address_bits) < max_width / unsigned(shape.banks) / (shape.aligned_pairs ? 2 : 1)) ++address_bits;
+    while ((1u << address_bits) < ceil_div(max_width, per_word)) ++address_bits;
     if (shape.aligned_pairs) return {2, 0};
     if (shape.clock_multiple == 2) return {8.6 * address_bits, 4 * 32 + 2};
     return {double(address_bits), 0};

@@ -65,7 +65,8 @@ struct Part {
 // or a column bank of one, with its read ports; the model's share of the FIFO's RAMB36 each.
 Part line_fifo_ram(const Fhg::Params& chip, const BlockResources& line_fifo) {
     const fhg::LineFifoShape shape = fhg::line_fifo_shape(chip.sequence.line_fifo);
-    const unsigned words = chip.max_width / unsigned(shape.banks) / (shape.aligned_pairs ? 2 : 1);
+    const unsigned per_word = unsigned(shape.banks) * (shape.aligned_pairs ? 2 : 1);  // columns a word covers
+    const unsigned words = (chip.max_width + per_word - 1) / per_word;
     unsigned address_bits = 1;
     while ((1u << address_bits) < words) ++address_bits;
     const unsigned count = chip.sequence.fifo_lines * unsigned(shape.banks);

@@ -96,13 +96,13 @@ module fhg_datapath (clk, clk2x, rst, start, width, height, in_valid, in_value, 
         for (t = 0; t < TRIPLE_MACS; t = t + 1) begin : macs
             localparam AT = MAC_LSB + t * MAC_STRIDE;
             wire [MAC_BUS_BITS-1:0] bus = taking[AT + MAC_BUS +: MAC_BUS_BITS];
-            wire [MAC_LANE_BITS-1:0] lane = taking[AT + MAC_LANE +: MAC_LANE_BITS];
             // Bus b's lane l sits at bit 32 (LANES b + l); LANES is 1, 2 or 4.
             wire [ACC_BITS-1:0] value;
-            if (LANES == 1) begin : scalar
+            if (LANES == 1) begin : scalar  // the lane field is there (one bit), but always 0
                 assign value = bus_data[{bus, 5'd0} +: ACC_BITS];
             end else begin : wide
-                assign value = bus_data[{bus, lane[MAC_LANE_BITS-1:0], 5'd0} +: ACC_BITS];
+                wire [MAC_LANE_BITS-1:0] lane = taking[AT + MAC_LANE +: MAC_LANE_BITS];
+                assign value = bus_data[{bus, lane, 5'd0} +: ACC_BITS];
             end
             triple_mac #(.ACC_BITS(ACC_BITS), .X3_CYCLES(X3_CYCLES)) mac (
                 .clk(clk), .rst(rst), .take(taking_valid && taking[AT]), .value(value),

@@ -20,7 +20,8 @@ module line_fifo (clk, clk2x, rst, start, width, height, in_valid, in_value, in_
                   block_y, top_slot, bus_valid, bus_line, bus_column, lane_read, lane_port, bus_data);
 `include "fhg_params.vh"
     localparam REQUESTS = READ_BUSES * LANES;
-    localparam BANK_WORDS = LINE_WORDS / LINE_BANKS / (LINE_PAIRS + 1);
+    localparam PER_WORD = LINE_BANKS * (LINE_PAIRS + 1);  // columns a bank's word covers over the banks
+    localparam BANK_WORDS = (LINE_WORDS + PER_WORD - 1) / PER_WORD;  // an odd last column too
     localparam ADDR_BITS = $clog2(BANK_WORDS);
     localparam DATA = (LINE_PAIRS + 1) * 32;
     localparam RAMS = FIFO_LINES * LINE_BANKS;
@@ -93,8 +94,9 @@ module line_fifo (clk, clk2x, rst, start, width, height, in_valid, in_value, in_
                 wire signed [17:0] x = $signed({2'b0, block_x}) +
                                        $signed({12'b0, bus_column[b * COORD_BITS +: COORD_BITS]}) + DX - WINDOW_BEFORE;
                 // The window's lines are consecutive slots from top_slot on.
-                wire [7:0] sum = {{(8 - SLOT_BITS){1'b0}}, top_slot} + {2'b0, line} + DY;
-                wire [7:0] slot = sum >= FIFO_LINES ? sum - FIFO_LINES : sum;
+                // top_slot + line + 1 < 2 FIFO_LINES, as the window's 52 lines fit the FIFO.
+                wire [SLOT_BITS:0] sum = {1'b0, top_slot} + {{(SLOT_BITS + 1 - COORD_BITS){1'b0}}, line} + DY;
+                wire [SLOT_BITS:0] slot = sum >= FIFO_LINES ? sum - FIFO_LINES : sum;
                 /* verilator lint_off UNUSEDSIGNAL */
                 wire [15:0] column_of = x[15:0];
                 /* verilator lint_on UNUSEDSIGNAL */
@@ -102,7 +104,7 @@ module line_fifo (clk, clk2x, rst, start, width, height, in_valid, in_value, in_
                     wanted[R] = bus_valid[b] && lane_read[R] && y >= 0 && x >= 0 && x < $signed({2'b0, width});
                     // (slot, bank, port) as bit fields: banks and reads are powers of two.
                     port_of[16 * R +: 16] =
-                        ((({8'd0, slot} << BANK_SHIFT) | (LINE_BANKS == 2 ? {15'd0, column_of[0]} : 16'd0)) << PORT_SHIFT) |
+                        ((({{(15 - SLOT_BITS){1'b0}}, slot} << BANK_SHIFT) | (LINE_BANKS == 2 ? {15'd0, column_of[0]} : 16'd0)) << PORT_SHIFT) |
                         ({{(16 - PORT_BITS){1'b0}}, lane_port[PORT_BITS * R +: PORT_BITS]} & (LINE_READS - 1));
                     address[ADDR_BITS * R +: ADDR_BITS] = column_of[SHIFT +: ADDR_BITS];
                     half[R] = LINE_PAIRS == 1 && column_of[0];

@@ -8,11 +8,14 @@
 //   window's lines are all written, line_fifo.v), so both ports serve the buses.
 // - READS 4 (`tdp_x2`): the same two ports at twice the FHG clock (clk2x, edges aligned with
 //   clk's), each reading twice a cycle: reads 0 and 1 at the edge in the middle of the cycle,
-//   reads 2 and 3 (or the write) at the edge that ends it. Hold registers keep the four values
-//   for the whole next cycle, as one read at the FHG clock would.
+//   reads 2 and 3 (or the write) at the edge that ends it. Hold registers take reads 0 and 1
+//   at that edge and reads 2 and 3 at the next middle edge, so all four are `q` at the end of
+//   the next cycle, where the TripleMACs take them. Two paths get half a cycle: a word to the
+//   address of reads 0 and 1, and held reads 2 and 3 to the TripleMACs.
 //
-// A read's address is sampled at the end of the cycle that names it (mid-cycle as well for
-// READS 4), and its value is `q` during the next cycle, as the sequence expects (line_fifo.v).
+// A read's address is sampled at the end of the cycle that names it (mid-cycle for reads 0
+// and 1 of READS 4), and its value is `q` at the end of the next cycle, as one read at the FHG
+// clock would give it and the sequence expects (line_fifo.v).
 module line_ram #(
     parameter WORDS = 1024,
     parameter ADDR_BITS = 10,
@@ -37,9 +40,8 @@ module line_ram #(
     task write;
         input [ADDR_BITS-1:0] at;
         begin
-            if (PAIRS == 0) memory[at] <= wdata[DATA-1:0];
-            else if (whalf) memory[at][DATA-1:DATA-32] <= wdata;
-            else memory[at][31:0] <= wdata;
+            if (PAIRS == 0 || !whalf) memory[at][31:0] <= wdata;
+            else memory[at][DATA-1:DATA-32] <= wdata;
         end
     endtask
 
