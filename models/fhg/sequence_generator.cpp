@@ -427,6 +427,14 @@ std::string check_one_group(const Step& step, const SequenceParams& p) {
 
 }  // namespace
 
+LineBram line_bram(LineFifo fifo, unsigned line_words) {
+    const LineFifoShape shape = line_fifo_shape(fifo);
+    const unsigned columns = unsigned(shape.banks) * (shape.aligned_pairs ? 2 : 1);  // a word covers, over the banks
+    LineBram b{(line_words + columns - 1) / columns, 1};
+    while ((1u << b.address_bits) < b.words) ++b.address_bits;
+    return b;
+}
+
 LineRead line_read(const SequenceParams& params, int y, int x) {
     return {bram_of(params, y, x), line_fifo_shape(params.line_fifo).aligned_pairs ? floor_div(x, 2) : x};
 }

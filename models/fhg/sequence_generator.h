@@ -67,6 +67,13 @@ struct LineFifoShape {
 LineFifoShape line_fifo_shape(LineFifo fifo);
 const char* line_fifo_name(LineFifo fifo);
 
+// One BRAM of a line FIFO whose lines hold `line_words` values: its words (a value each, or an
+// aligned pair; a bank holds every banks-th column) and the bits that address them (at least 1).
+struct LineBram {
+    unsigned words = 0, address_bits = 1;
+};
+LineBram line_bram(LineFifo fifo, unsigned line_words);
+
 struct SequenceParams {
     unsigned read_buses = 4;
     unsigned triple_macs = 18;

@@ -83,10 +83,7 @@ namespace {
 struct BramLogic {
     double luts = 0, ffs = 0;
 };
-BramLogic bram_logic(const fhg::LineFifoShape& shape, unsigned max_width) {
-    const unsigned per_word = unsigned(shape.banks) * (shape.aligned_pairs ? 2 : 1);  // columns a word covers
-    unsigned address_bits = 1;
-    while ((1u << address_bits) < ceil_div(max_width, per_word)) ++address_bits;
+BramLogic bram_logic(const fhg::LineFifoShape& shape, unsigned address_bits) {
     if (shape.aligned_pairs) return {2, 0};
     if (shape.clock_multiple == 2) return {8.6 * address_bits, 4 * 32 + 2};
     return {double(address_bits), 0};
@@ -100,9 +97,8 @@ FhgParts fhg_parts(const Config& c) {
     const auto& s = p.sequence;
     const unsigned integral_bits = 32;  // an integral value travels and is kept as a 32-bit word
     const fhg::LineFifoShape shape = fhg::line_fifo_shape(s.line_fifo);
-    const unsigned line =
-        shape.banks * (shape.aligned_pairs ? ramb36_for(ceil_div(p.max_width, 2), 2 * integral_bits)
-                                           : ramb36_for(ceil_div(p.max_width, shape.banks), integral_bits));
+    const fhg::LineBram line_bram = fhg::line_bram(s.line_fifo, p.max_width);  // a line, or a bank of one
+    const unsigned line = shape.banks * ramb36_for(line_bram.words, (shape.aligned_pairs ? 2 : 1) * integral_bits);
     const unsigned control_bits = unsigned(fhg::sequence_layout(s).width);  // the exported image's word
     const unsigned sequence = ramb36_for(unsigned(std::max(seq.interval, 1)), control_bits);
     const unsigned record_bits = fhg_regs::record_bytes(fhg_regs::det_bytes_for(p.precision.det_bits)) * 8;
@@ -115,7 +111,7 @@ FhgParts fhg_parts(const Config& c) {
     const unsigned dsp = 3 * dsp48e_for(acc, k) + 2 * dsp48e_for(r, r) + dsp48e_for(2 * r, w);
     const double det = p.precision.det_bits;
     FhgParts parts;
-    const BramLogic bram = bram_logic(shape, p.max_width);
+    const BramLogic bram = bram_logic(shape, line_bram.address_bits);
     const double brams = double(s.fifo_lines) * shape.banks;
     parts.line_fifo = {
         "line FIFO",

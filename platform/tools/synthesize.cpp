@@ -65,10 +65,7 @@ struct Part {
 // or a column bank of one, with its read ports; the model's share of the FIFO's RAMB36 each.
 Part line_fifo_ram(const Fhg::Params& chip, const BlockResources& line_fifo) {
     const fhg::LineFifoShape shape = fhg::line_fifo_shape(chip.sequence.line_fifo);
-    const unsigned per_word = unsigned(shape.banks) * (shape.aligned_pairs ? 2 : 1);  // columns a word covers
-    const unsigned words = (chip.max_width + per_word - 1) / per_word;
-    unsigned address_bits = 1;
-    while ((1u << address_bits) < words) ++address_bits;
+    const fhg::LineBram bram = fhg::line_bram(chip.sequence.line_fifo, chip.max_width);
     const unsigned count = chip.sequence.fifo_lines * unsigned(shape.banks);
     BlockResources one = line_fifo;
     one.ramb36 /= count;
@@ -77,8 +74,8 @@ Part line_fifo_ram(const Fhg::Params& chip, const BlockResources& line_fifo) {
     return {"line FIFO BRAM",
             "line_ram",
             {"line_ram.v"},
-            fmt::format("chparam -set WORDS {} -set ADDR_BITS {} -set PAIRS {} -set READS {} line_ram; ", words,
-                        address_bits, shape.aligned_pairs ? 1 : 0, shape.reads),
+            fmt::format("chparam -set WORDS {} -set ADDR_BITS {} -set PAIRS {} -set READS {} line_ram; ", bram.words,
+                        bram.address_bits, shape.aligned_pairs ? 1 : 0, shape.reads),
             one,
             count};
 }
