@@ -42,10 +42,26 @@ inline Cli surfvp(const std::string& args) {
 inline const std::string kBudget = std::string(SURFVP_SOURCE_DIR) + "/scenarios/budget_1024x768.yaml";
 inline const std::string kOneRun = " --set verdict.band=off --set verdict.break_even=off --set verdict.software=off";
 
-// The folder fresh_dir(name) makes, without emptying it.
-inline std::string fresh_path(const std::string& name) {
-    return (std::filesystem::temp_directory_path() / ("surfvp_test_" + std::to_string(::getpid())) / name).string();
+// This test process's folder under the temporary directory. It is emptied when first used,
+// because a process id comes back: a folder an earlier process of the same id left would
+// otherwise pass for this one's output. It is removed at exit if every test passed, and kept
+// for a look otherwise.
+inline const std::filesystem::path& test_root() {
+    struct Root {
+        std::filesystem::path path =
+            std::filesystem::temp_directory_path() / ("surfvp_test_" + std::to_string(::getpid()));
+        Root() { std::filesystem::remove_all(path); }
+        ~Root() {
+            std::error_code ignored;
+            if (::testing::UnitTest::GetInstance()->Passed()) std::filesystem::remove_all(path, ignored);
+        }
+    };
+    static const Root root;
+    return root.path;
 }
+
+// The folder fresh_dir(name) makes, without emptying it.
+inline std::string fresh_path(const std::string& name) { return (test_root() / name).string(); }
 
 // A fresh empty folder under the temporary directory, unique to this test process.
 inline std::string fresh_dir(const std::string& name) {
