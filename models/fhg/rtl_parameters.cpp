@@ -70,16 +70,15 @@ std::string rtl_parameters(const Precision& precision, const SequenceParams& seq
         layout.field("mac0_bus").width, layout.field("mac0_lane").width, kReachBefore, sequence.fifo_lines, line_words,
         at("bus0_line", bus0), at("bus0_column", bus0), at("mac0_bus", mac0), at("mac0_lane", mac0),
         at("mac0_coefficient", mac0), at("mac0_response", mac0));
-    // Each value of a bus word: whether the FIFO reads it, and on which port of its BRAM.
+    // Each value of a bus word: whether the FIFO reads it (through the port its lane is wired to).
     const MemoryField& lane0 = layout.field("bus0_lane0_read");
     const LineFifoShape fifo = line_fifo_shape(sequence.line_fifo);
     s += fmt::format(
-        "localparam LANE_LSB = {};  // in a bus's fields\nlocalparam LANE_STRIDE = {};\nlocalparam LANE_PORT = {};\n"
-        "localparam PORT_BITS = {};\nlocalparam LINE_BANKS = {};  // fhg.line_fifo = {}\nlocalparam LINE_READS = {};  "
+        "localparam LANE_LSB = {};  // in a bus's fields\nlocalparam LANE_STRIDE = {};\n"
+        "localparam LINE_BANKS = {};  // fhg.line_fifo = {}\nlocalparam LINE_READS = {};  "
         "// a BRAM's reads a FHG cycle\nlocalparam LINE_PAIRS = {};  // a read returns an aligned pair\n",
         at("bus0_lane0_read", bus0),
-        word_shape(sequence.bus_word).size() > 1 ? layout.field("bus0_lane1_read").lsb - lane0.lsb : 0,
-        at("bus0_lane0_port", lane0), layout.field("bus0_lane0_port").width, fifo.banks,
+        word_shape(sequence.bus_word).size() > 1 ? layout.field("bus0_lane1_read").lsb - lane0.lsb : 0, fifo.banks,
         line_fifo_name(sequence.line_fifo), fifo.reads, fifo.aligned_pairs ? 1 : 0);
     const ConstantWidths widths = constant_widths(core);
     s += fmt::format("localparam K_BITS = {};  // the largest K_L's bits\nlocalparam W_BITS = {};  // W's bits\n",

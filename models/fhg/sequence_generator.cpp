@@ -219,8 +219,7 @@ public:
           busy_until_(p.triple_macs, 0),
           claimed_at_(p.triple_macs, -1),
           remaining_(problem.work),
-          port_cycle_(size_t(problem.brams), -1),
-          port_use_(size_t(problem.brams), 0),
+          port_read_(size_t(problem.brams * reads_), {-1, 0}),
           bram_left_(size_t(problem.brams), 0),
           left_(int(problem.needs.size())) {
         for (const Need& n : problem.needs) bram_left_[size_t(bram_of(p, n.y, n.x))] += 1;
@@ -236,15 +235,24 @@ public:
         for (const auto& [bram, reads] : ports) most = std::max(most, bram_left_[size_t(bram)]);
         return (most + reads_ - 1) / reads_;
     }
-    bool ports_fit(const Ports& ports, int cycle) const {
-        for (const auto& [bram, n] : ports)
-            if ((port_cycle_[size_t(bram)] == cycle ? port_use_[size_t(bram)] : 0) + n > reads_) return false;
+    // Whether `bus` can read the values of `w` that `needs` take in `cycle`: each through the
+    // port its lane is wired to (lane_port), which reads one unit a cycle, shared by every lane
+    // that wants that unit.
+    bool ports_fit(const Word& w, const std::vector<int>& needs, int bus, int cycle) const {
+        mine_.clear();
+        for (int i : needs) {
+            const auto [port, unit] = port_read(w, i, bus);
+            const auto& [at, read] = port_read_[size_t(port)];
+            if (at == cycle && read != unit) return false;
+            for (const auto& [other, other_unit] : mine_)
+                if (other == port && other_unit != unit) return false;
+            mine_.emplace_back(port, unit);
+        }
         return true;
     }
 
-    // Delivers `w` on `bus` in `cycle` to the given needs, taking `ports` from the BRAMs.
-    void deliver(const Word& w, const std::vector<int>& needs, const Ports& ports, int cycle, int bus,
-                 std::vector<Step>& steps) {
+    // Delivers `w` on `bus` in `cycle` to the given needs.
+    void deliver(const Word& w, const std::vector<int>& needs, int cycle, int bus, std::vector<Step>& steps) {
         Step step{cycle, bus, w.x, w.y, {}};
         for (int i : needs) {
             const Need& n = problem_.needs[size_t(i)];
@@ -255,21 +263,32 @@ public:
             bram_left_[size_t(bram_of(p_, n.y, n.x))] -= 1;
             step.taps.push_back({n.tm, lane_of(p_, n, w), n.coefficient, n.response});
         }
-        for (const auto& [bram, reads] : ports) {
-            if (port_cycle_[size_t(bram)] != cycle) port_cycle_[size_t(bram)] = cycle, port_use_[size_t(bram)] = 0;
-            port_use_[size_t(bram)] += reads;
+        for (int i : needs) {
+            const auto [port, unit] = port_read(w, i, bus);
+            port_read_[size_t(port)] = {cycle, unit};
         }
         left_ -= int(needs.size());
         steps.push_back(std::move(step));
     }
 
 private:
+    // Need `i`'s read as word `w` on `bus` makes it: (the BRAM port, numbered BRAM x reads +
+    // port, and the unit it reads).
+    std::pair<int, int> port_read(const Word& w, int i, int bus) const {
+        const Need& n = problem_.needs[size_t(i)];
+        const LineRead r = line_read(p_, n.y, n.x);
+        return {r.bram * reads_ + lane_port(p_, bus, lane_of(p_, n, w)), r.unit};
+    }
+
     const Problem& problem_;
     const SequenceParams& p_;
-    std::vector<bool> pending_;
-    std::vector<int> busy_until_, claimed_at_, remaining_, port_cycle_, port_use_, bram_left_;
-    int left_;
     int reads_ = line_fifo_shape(p_.line_fifo).reads;  // per BRAM and FHG cycle
+    std::vector<bool> pending_;
+    std::vector<int> busy_until_, claimed_at_, remaining_;
+    std::vector<std::pair<int, int>> port_read_;  // per BRAM port: the cycle it last read, and what
+    std::vector<int> bram_left_;
+    int left_;
+    mutable std::vector<std::pair<int, int>> mine_;  // ports_fit's scratch: this word's reads
 };
 
 constexpr int kCycleLimit = 1 << 16;  // far beyond any schedule; a guard against a scheduler bug
@@ -286,9 +305,9 @@ std::vector<Step> schedule_list(const Problem& problem, const SequenceParams& p,
     const std::vector<Word>& candidates = reuse ? problem.words : problem.groups;
     std::vector<int> alive(candidates.size());
     for (size_t i = 0; i < alive.size(); ++i) alive[i] = int(i);
-    std::vector<int> served, best_served, slot(p.triple_macs, -1);
+    std::vector<int> served, taken, best_served, slot(p.triple_macs, -1);
     std::vector<Point> points;
-    Ports ports, best_ports;
+    Ports ports;
     for (int cycle = 0; !m.done(); ++cycle) {
         if (cycle > kCycleLimit) throw std::logic_error("sequence generator: the list schedule does not end");
         for (unsigned bus = 0; bus < p.read_buses; ++bus) {
@@ -325,7 +344,9 @@ std::vector<Step> schedule_list(const Problem& problem, const SequenceParams& p,
                     ports = reads_of(p, points);
                 }
                 const Ports& reads = reuse ? ports : w.ports;
-                if (!served.empty() && whole && m.ports_fit(reads, cycle)) {
+                taken.clear();
+                for (int tm : served) taken.push_back(slot[size_t(tm)]);
+                if (!served.empty() && whole && m.ports_fit(w, taken, int(bus), cycle)) {
                     long most = 0;
                     for (int tm : served) most = std::max<long>(most, m.remaining(tm));
                     if (port_aware) most = std::max<long>(most, m.bram_pressure(reads));
@@ -333,16 +354,14 @@ std::vector<Step> schedule_list(const Problem& problem, const SequenceParams& p,
                     if (score > best_score) {
                         best_score = score;
                         best = alive[a];
-                        best_served.clear();
-                        for (int tm : served) best_served.push_back(slot[size_t(tm)]);
-                        best_ports = reads;
+                        best_served = taken;
                     }
                 }
                 for (int tm : served) slot[size_t(tm)] = -1;
                 ++a;
             }
             if (best < 0) break;  // nothing any bus could deliver this cycle
-            m.deliver(candidates[size_t(best)], best_served, best_ports, cycle, int(bus), steps);
+            m.deliver(candidates[size_t(best)], best_served, cycle, int(bus), steps);
         }
     }
     return steps;
@@ -433,6 +452,12 @@ LineBram line_bram(LineFifo fifo, unsigned line_words) {
     LineBram b{(line_words + columns - 1) / columns, 1};
     while ((1u << b.address_bits) < b.words) ++b.address_bits;
     return b;
+}
+
+int lane_port(const SequenceParams& params, int bus, int lane) {
+    const int dx = word_shape(params.bus_word)[size_t(lane)][1];
+    const int columns = params.bus_word == BusWord::scalar ? 1 : 2;
+    return (bus * columns + dx) % line_fifo_shape(params.line_fifo).reads;
 }
 
 LineRead line_read(const SequenceParams& params, int y, int x) {
@@ -538,7 +563,8 @@ std::string check_sequence(const Sequence& sequence, const SequenceParams& param
     const LineFifoShape fifo = line_fifo_shape(params.line_fifo);
     std::vector<int> busy_until(params.triple_macs, 0), last_cycle(params.triple_macs, -1),
         first(params.triple_macs, -1);
-    std::map<std::pair<int, int>, int> bus_use, bram_use;  // (cycle, bus) / (cycle, BRAM) -> count
+    std::map<std::pair<int, int>, int> bus_use;           // (cycle, bus) -> words
+    std::map<std::tuple<int, int, int>, int> port_reads;  // (cycle, BRAM, port) -> the unit it reads
     for (const Step& step : steps) {
         const std::string where = " in cycle " + std::to_string(step.cycle);
         if (step.bus < 0 || step.bus >= int(params.read_buses)) return "a step uses bus " + std::to_string(step.bus);
@@ -547,15 +573,17 @@ std::string check_sequence(const Sequence& sequence, const SequenceParams& param
             return "bus " + std::to_string(step.bus) + " carries two words" + where;
         for (const auto& [dy, dx] : shape)
             if (!in_window(step.y + dy) || !in_window(step.x + dx)) return "a word outside the 52-line window" + where;
-        std::vector<Point> taken;
-        for (const Tap& tap : step.taps)
-            if (tap.lane >= 0 && tap.lane < int(shape.size()))
-                taken.emplace_back(step.y + shape[size_t(tap.lane)][0], step.x + shape[size_t(tap.lane)][1]);
-        for (const auto& [bram, reads] : reads_of(params, taken))
-            if ((bram_use[{step.cycle, bram}] += reads) > fifo.reads)
-                return "line " + std::to_string(bram / fifo.banks - kReachBefore) + " (BRAM " +
-                       std::to_string(bram % fifo.banks) + ") serves more than " + std::to_string(fifo.reads) +
-                       " reads" + where;
+        for (const Tap& tap : step.taps) {
+            if (tap.lane < 0 || tap.lane >= int(shape.size())) continue;
+            const LineRead r =
+                line_read(params, step.y + shape[size_t(tap.lane)][0], step.x + shape[size_t(tap.lane)][1]);
+            const int port = lane_port(params, step.bus, tap.lane);
+            const auto [read, fresh] = port_reads.emplace(std::make_tuple(step.cycle, r.bram, port), r.unit);
+            if (!fresh && read->second != r.unit)
+                return "line " + std::to_string(r.bram / fifo.banks - kReachBefore) + " (BRAM " +
+                       std::to_string(r.bram % fifo.banks) + ") port " + std::to_string(port) + " reads two addresses" +
+                       where;
+        }
         if (!params.reuse) {
             const std::string why = check_one_group(step, params);
             if (!why.empty()) return why + where;

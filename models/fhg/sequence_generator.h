@@ -11,8 +11,9 @@
 // - The line FIFO holds each integral line in block RAM, organised as `line_fifo` says
 //   (LineFifo below): how many BRAMs a line is spread over, how many reads each serves in an
 //   FHG cycle, and whether a read returns one value or an aligned pair. A word reads only the
-//   values some TripleMAC takes from it (an octave-2 word carrying one value reads one); the
-//   reads all words of one cycle take from one BRAM may not exceed what it serves.
+//   values some TripleMAC takes from it (an octave-2 word carrying one value reads one), each
+//   through the BRAM port its lane is wired to (lane_port below), and a port reads one
+//   address a cycle.
 // - TripleMAC t forms the three responses of block determinant t (filter_geometry.h): it
 //   snoops every bus, takes at most one value per cycle, and a coefficient of +-3 keeps it
 //   busy `x3_cycles` cycles (three additions; it does not report busy, so the sequence
@@ -132,6 +133,15 @@ struct LineRead {
 };
 LineRead line_read(const SequenceParams& params, int y, int x);
 
+// The read port of a BRAM that lane `lane` of bus `bus` reads through: fixed wiring, not a
+// choice of the sequence. Letting any lane reach any port costs more LUTs than the FX70T has
+// (docs/rtl.md); with one port a lane, a lane's value comes through a (lines x banks):1
+// multiplexer and a port's address from the few lanes wired to it. The ports are dealt out
+// column by column, bus after bus ((bus x the word's columns + the lane's column) mod reads),
+// so the two columns of a word take two ports, and neighbouring buses different ones.
+// A port reads one unit a cycle: lanes wired to it share it only if they want that unit.
+int lane_port(const SequenceParams& params, int bus, int lane);
+
 // Values of a bus word, as (dy, dx) offsets from its top-left point, in lane order.
 const std::vector<std::array<int, 2>>& word_shape(BusWord word);
 const char* bus_word_name(BusWord word);
@@ -140,8 +150,8 @@ const char* scheduler_name(Scheduler scheduler);
 // Replays a sequence against every limit of the machine: each TripleMAC gets exactly the
 // reads its determinant needs with the right coefficient and response, at most one value a
 // cycle and never while busy, also across the step to the next block; one word per bus and
-// cycle; no BRAM of a line serves more reads in a cycle than it can (counting only the values
-// the words' taps take); every word lies in the 52-line window. Returns "" when it holds, otherwise the first violation in words.
+// cycle; each value a tap takes read through its lane's port (lane_port), and no port reading
+// two units in a cycle; every word lies in the 52-line window. Returns "" when it holds, otherwise the first violation in words.
 std::string check_sequence(const Sequence& sequence, const SequenceParams& params);
 
 }  // namespace surfvp::fhg

@@ -41,32 +41,6 @@ std::vector<int> read_lanes(const Step& step) {
     return lanes;
 }
 
-// The read ports of one word (cycle): each distinct unit a BRAM reads gets the BRAM's next port,
-// so the lanes that want the same unit share its read.
-class PortPlan {
-public:
-    explicit PortPlan(const SequenceParams& p) : p_(p), reads_(line_fifo_shape(p.line_fifo).reads) {}
-    // The port for lane `lane` of a word at (y, x); throws past the BRAM's reads a cycle.
-    int port(const Step& step, int lane) {
-        const auto& d = word_shape(p_.bus_word)[size_t(lane)];
-        const LineRead r = line_read(p_, step.y + d[0], step.x + d[1]);
-        auto& ports = units_[r.bram];
-        const auto it = std::find(ports.begin(), ports.end(), r.unit);
-        if (it != ports.end()) return int(it - ports.begin());
-        if (int(ports.size()) == reads_)
-            throw std::invalid_argument("cycle " + std::to_string(step.cycle) +
-                                        ": a BRAM of the line FIFO would serve " + std::to_string(reads_ + 1) +
-                                        " reads, more than its " + std::to_string(reads_));
-        ports.push_back(r.unit);
-        return int(ports.size()) - 1;
-    }
-
-private:
-    const SequenceParams& p_;
-    int reads_;
-    std::map<int, std::vector<int>> units_;  // per BRAM, the unit each port reads
-};
-
 std::string at_word(size_t i) { return "sequence memory word " + std::to_string(i); }
 
 int hex_digits(const MemoryLayout& layout) { return (layout.width + 3) / 4; }
@@ -112,12 +86,11 @@ void add(MemoryLayout& layout, std::string name, int width, std::string meaning)
     layout.width += width;
 }
 
-// Word i's read fields must be what the encoder writes: exactly the lanes its TripleMACs take,
-// each on a port of its BRAM that reads nothing else in the word.
+// Word i's read bits must be what the encoder writes: exactly the lanes its TripleMACs take. Each
+// lane reads through the port it is wired to (lane_port), which reads one address a cycle.
 void check_reads(const MemoryWord& word, const MemoryLayout& l, const SequenceParams& p, const std::vector<Step>& steps,
                  size_t first, size_t i) {
-    const int ports = line_fifo_shape(p.line_fifo).reads;
-    std::map<std::pair<int, int>, int> unit_on;  // (BRAM, port): the unit it reads
+    std::map<std::pair<int, int>, std::pair<int, std::string>> unit_on;  // (BRAM, port): its unit, and who reads it
     for (int b = 0; b < int(p.read_buses); ++b) {
         const auto step =
             std::find_if(steps.begin() + long(first), steps.end(), [&](const Step& s) { return s.bus == b; });
@@ -125,25 +98,19 @@ void check_reads(const MemoryWord& word, const MemoryLayout& l, const SequencePa
         for (int lane = 0; lane < lanes(p.bus_word); ++lane) {
             const std::string name = lane_name(b, lane);
             const uint64_t read = field_value(word, l.field(name + "_read"));
-            const uint64_t port = field_value(word, l.field(name + "_port"));
             const bool wanted = std::count(taken.begin(), taken.end(), lane) > 0;
             if (read != uint64_t(wanted))
                 throw std::invalid_argument(at_word(i) + ": " + name + "_read is " + std::to_string(read) + ", but " +
                                             (wanted ? "a TripleMAC takes the value" : "no TripleMAC takes it"));
-            if (!read) {
-                if (port) throw std::invalid_argument(at_word(i) + ": " + name + " reads nothing but has a port");
-                continue;
-            }
-            if (port >= uint64_t(ports))
-                throw std::invalid_argument(at_word(i) + ": " + name + "_port is " + std::to_string(port) +
-                                            ", but a BRAM of the `" + line_fifo_name(p.line_fifo) + "` line FIFO has " +
-                                            std::to_string(ports) + " read port" + (ports > 1 ? "s" : ""));
+            if (!read) continue;
             const auto& d = word_shape(p.bus_word)[size_t(lane)];
             const LineRead r = line_read(p, step->y + d[0], step->x + d[1]);
-            const auto [on, fresh] = unit_on.emplace(std::make_pair(r.bram, int(port)), r.unit);
-            if (!fresh && on->second != r.unit)
-                throw std::invalid_argument(at_word(i) + ": " + name + " reads port " + std::to_string(port) +
-                                            " of a BRAM whose port another lane uses for another address");
+            const int port = lane_port(p, b, lane);
+            const auto [on, fresh] = unit_on.emplace(std::make_pair(r.bram, port), std::make_pair(r.unit, name));
+            if (!fresh && on->second.first != r.unit)
+                throw std::invalid_argument(at_word(i) + ": " + name + " and " + on->second.second +
+                                            " read two addresses of one BRAM through port " + std::to_string(port) +
+                                            ", the port both are wired to");
         }
     }
 }
@@ -167,8 +134,6 @@ MemoryLayout sequence_layout(const SequenceParams& params) {
         for (int l = 0; l < lanes(params.bus_word); ++l) {
             const std::string lane = lane_name(b, l);
             add(layout, lane + "_read", 1, "the line FIFO reads this value of the word (a TripleMAC takes it)");
-            add(layout, lane + "_port", bits_for(unsigned(line_fifo_shape(params.line_fifo).reads)),
-                "the read port of the value's line (and bank) that reads it");
         }
     }
     for (int t = 0; t < int(params.triple_macs); ++t) {
@@ -205,7 +170,6 @@ SequenceImage encode_sequence(const Sequence& sequence, const SequenceParams& pa
     if (sequence.interval <= 0) throw std::invalid_argument("a sequence without an interval has no memory image");
     image.words.assign(size_t(sequence.interval), MemoryWord(size_t((l.width + 63) / 64), 0));
     set_field(image.words.back(), l.field("last"), 1);
-    std::map<int, PortPlan> plans;  // per cycle
     for (const Step& step : sequence.steps) {
         if (step.cycle < 0 || step.cycle >= sequence.interval || step.bus < 0 || step.bus >= int(params.read_buses))
             throw std::invalid_argument("a step outside the interval or the buses");
@@ -222,11 +186,7 @@ SequenceImage encode_sequence(const Sequence& sequence, const SequenceParams& pa
             set_field(word, l.field(mac + "_coefficient"), uint64_t(coefficient_code(tap.coefficient)));
             set_field(word, l.field(mac + "_response"), uint64_t(tap.response));
         }
-        PortPlan& plan = plans.try_emplace(step.cycle, params).first->second;
-        for (int lane : read_lanes(step)) {
-            set_field(word, l.field(lane_name(step.bus, lane) + "_read"), 1);
-            set_field(word, l.field(lane_name(step.bus, lane) + "_port"), uint64_t(plan.port(step, lane)));
-        }
+        for (int lane : read_lanes(step)) set_field(word, l.field(lane_name(step.bus, lane) + "_read"), 1);
     }
     return image;
 }

@@ -68,7 +68,6 @@ module fhg_datapath (clk, clk2x, rst, start, width, height, in_valid, in_value, 
     wire [READ_BUSES-1:0] bus_valid;
     wire [READ_BUSES*COORD_BITS-1:0] bus_line, bus_column;
     wire [READ_BUSES*LANES-1:0] lane_read;
-    wire [READ_BUSES*LANES*PORT_BITS-1:0] lane_port;
     // The slot of the window's top line (row block_y - 26) in the line FIFO.
     localparam SLOT_BITS = $clog2(FIFO_LINES);
     localparam [SLOT_BITS-1:0] FIRST_TOP = (FIFO_LINES - WINDOW_BEFORE % FIFO_LINES) % FIFO_LINES;
@@ -85,7 +84,6 @@ module fhg_datapath (clk, clk2x, rst, start, width, height, in_valid, in_value, 
             for (l = 0; l < LANES; l = l + 1) begin : lanes
                 localparam LANE = AT + LANE_LSB + l * LANE_STRIDE;
                 assign lane_read[LANES * b + l] = word[LANE];
-                assign lane_port[(LANES * b + l) * PORT_BITS +: PORT_BITS] = word[LANE + LANE_PORT +: PORT_BITS];
             end
         end
     endgenerate
@@ -125,7 +123,7 @@ module fhg_datapath (clk, clk2x, rst, start, width, height, in_valid, in_value, 
         .clk(clk), .clk2x(clk2x), .rst(rst), .start(start), .width(frame_width), .height(frame_height), .in_valid(in_valid),
         .in_value(in_value), .in_ready(in_ready), .rows_written(rows_written), .block_x(block_x), .block_y(block_y),
         .top_slot(top_slot), .bus_valid(bus_valid), .bus_line(bus_line), .bus_column(bus_column),
-        .lane_read(lane_read), .lane_port(lane_port), .bus_data(bus_data));
+        .lane_read(lane_read), .bus_data(bus_data));
 
     hessian_calc calc (
         .clk(clk), .rst(rst), .start(all_latched), .block_x(finished_x), .block_y(finished_y), .width(frame_width),

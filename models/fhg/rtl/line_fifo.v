@@ -8,16 +8,19 @@
 //   row FIFO_LINES before it has left the window of the block row in flight (rows
 //   block_y - 26 .. block_y + 25), so no value a block still needs is overwritten, and a line
 //   being written is never one a block reads.
-// - Reading: each bus names a word of the block's window, and each value of it the sequence
-//   wants read (lane_read) says which read port of its line's BRAM reads it (lane_port): the
-//   sequence memory carries the addressing (III-C), so the FIFO only routes each read to its
-//   port. The values are bus_data in the next cycle. A value left of column 0 or above row 0
-//   is 0 (the integral image's I(-1, .) = I(., -1) = 0); one right of or below the image is
-//   never needed.
+// - Reading: each bus names a word of the block's window, and the sequence says which of its
+//   values to read (lane_read): the sequence memory carries the addressing (III-C). Each lane
+//   is wired to one read port of every BRAM (lane_port in sequence_generator.h: port
+//   (bus x columns + the lane's column) mod LINE_READS), and the sequence never gives a port
+//   two addresses in a cycle, so a port's address is the OR of its lanes' and a lane's value
+//   comes from its port of the BRAM it names. Wiring the ports rather than choosing them keeps
+//   the routing to a FIFO_LINES x LINE_BANKS : 1 multiplexer a lane (docs/rtl.md). The values
+//   are bus_data in the next cycle. A value left of column 0 or above row 0 is 0 (the integral
+//   image's I(-1, .) = I(., -1) = 0); one right of or below the image is never needed.
 // - `rows_written` tells the sequence when a block row's window is complete; `top_slot` is the
 //   slot of the window's top line, row block_y - 26 (fhg_datapath.v keeps it).
 module line_fifo (clk, clk2x, rst, start, width, height, in_valid, in_value, in_ready, rows_written, block_x,
-                  block_y, top_slot, bus_valid, bus_line, bus_column, lane_read, lane_port, bus_data);
+                  block_y, top_slot, bus_valid, bus_line, bus_column, lane_read, bus_data);
 `include "fhg_params.vh"
     localparam REQUESTS = READ_BUSES * LANES;
     localparam PER_WORD = LINE_BANKS * (LINE_PAIRS + 1);  // columns a bank's word covers over the banks
@@ -25,8 +28,7 @@ module line_fifo (clk, clk2x, rst, start, width, height, in_valid, in_value, in_
     localparam ADDR_BITS = $clog2(BANK_WORDS);
     localparam DATA = (LINE_PAIRS + 1) * 32;
     localparam RAMS = FIFO_LINES * LINE_BANKS;
-    localparam PORT_INDEX_BITS = $clog2(RAMS * LINE_READS);
-    localparam BANK_SHIFT = $clog2(LINE_BANKS), PORT_SHIFT = $clog2(LINE_READS);
+    localparam RAM_BITS = $clog2(RAMS);
     localparam SLOT_BITS = $clog2(FIFO_LINES);
     localparam SHIFT = LINE_BANKS == 2 || LINE_PAIRS == 1 ? 1 : 0;  // a column's address: column >> SHIFT
     input  wire                               clk;
@@ -46,7 +48,6 @@ module line_fifo (clk, clk2x, rst, start, width, height, in_valid, in_value, in_
     input  wire [READ_BUSES*COORD_BITS-1:0]   bus_line;
     input  wire [READ_BUSES*COORD_BITS-1:0]   bus_column;
     input  wire [REQUESTS-1:0]                lane_read;
-    input  wire [REQUESTS*PORT_BITS-1:0]      lane_port;
     output wire [REQUESTS*32-1:0]             bus_data;  // the values named last cycle, 0 where none
 
     reg [15:0]          column;  // the next value's place in row rows_written
@@ -76,10 +77,15 @@ module line_fifo (clk, clk2x, rst, start, width, height, in_valid, in_value, in_
         end
     end
 
-    // Each read: its BRAM's port (BRAM slot LINE_BANKS + bank), address and half; `wanted` if
-    // it reads.
+    // The port of every BRAM that read r (bus r / LANES, lane r % LANES) is wired to.
+    function integer lane_port;
+        input integer r;
+        lane_port = ((r / LANES) * (LANES == 1 ? 1 : 2) + (LANES == 1 ? 0 : (r % LANES) % 2)) % LINE_READS;
+    endfunction
+
+    // Each read: its BRAM (slot LINE_BANKS + bank), address and half; `wanted` if it reads.
     reg [REQUESTS-1:0]           wanted;
-    reg [REQUESTS*16-1:0]        port_of;  // BRAM LINE_READS + port
+    reg [REQUESTS*RAM_BITS-1:0]  ram_of;
     reg [REQUESTS*ADDR_BITS-1:0] address;
     reg [REQUESTS-1:0]           half;
     genvar b, l, m;
@@ -96,16 +102,17 @@ module line_fifo (clk, clk2x, rst, start, width, height, in_valid, in_value, in_
                 // The window's lines are consecutive slots from top_slot on.
                 // top_slot + line + 1 < 2 FIFO_LINES, as the window's 52 lines fit the FIFO.
                 wire [SLOT_BITS:0] sum = {1'b0, top_slot} + {{(SLOT_BITS + 1 - COORD_BITS){1'b0}}, line} + DY;
-                wire [SLOT_BITS:0] slot = sum >= FIFO_LINES ? sum - FIFO_LINES : sum;
+                /* verilator lint_off UNUSEDSIGNAL */
+                wire [SLOT_BITS:0] slot = sum >= FIFO_LINES ? sum - FIFO_LINES : sum;  // its top bit is 0
+                /* verilator lint_on UNUSEDSIGNAL */
                 /* verilator lint_off UNUSEDSIGNAL */
                 wire [15:0] column_of = x[15:0];
                 /* verilator lint_on UNUSEDSIGNAL */
                 always @* begin
                     wanted[R] = bus_valid[b] && lane_read[R] && y >= 0 && x >= 0 && x < $signed({2'b0, width});
-                    // (slot, bank, port) as bit fields: banks and reads are powers of two.
-                    port_of[16 * R +: 16] =
-                        ((({{(15 - SLOT_BITS){1'b0}}, slot} << BANK_SHIFT) | (LINE_BANKS == 2 ? {15'd0, column_of[0]} : 16'd0)) << PORT_SHIFT) |
-                        ({{(16 - PORT_BITS){1'b0}}, lane_port[PORT_BITS * R +: PORT_BITS]} & (LINE_READS - 1));
+                    // (slot, bank) as bit fields: banks are one or two.
+                    ram_of[RAM_BITS * R +: RAM_BITS] = LINE_BANKS == 2 ? {slot[RAM_BITS-2:0], column_of[0]}
+                                                                       : slot[RAM_BITS-1:0];
                     address[ADDR_BITS * R +: ADDR_BITS] = column_of[SHIFT +: ADDR_BITS];
                     half[R] = LINE_PAIRS == 1 && column_of[0];
                 end
@@ -113,17 +120,18 @@ module line_fifo (clk, clk2x, rst, start, width, height, in_valid, in_value, in_
         end
     endgenerate
 
-    // Each BRAM port's read address: the read the sequence gave that port, if any. Reads that
-    // share a port name the same unit (the sequence memory's decoder holds every image to that),
-    // so their addresses are ORed.
+    // Each BRAM port's read address: that of the reads wired to it that name its BRAM, if any.
+    // Reads that share a port name the same unit (the sequence memory's decoder holds every
+    // image to that), so their addresses are ORed.
     reg [RAMS*LINE_READS*ADDR_BITS-1:0] ram_address;
     generate
         for (m = 0; m < RAMS * LINE_READS; m = m + 1) begin : port_address
+            localparam integer RAM = m / LINE_READS, PORT = m % LINE_READS;
             integer r;
             always @* begin
                 ram_address[m * ADDR_BITS +: ADDR_BITS] = 0;
                 for (r = 0; r < REQUESTS; r = r + 1)
-                    if (wanted[r] && port_of[16 * r +: 16] == m)
+                    if (lane_port(r) == PORT && wanted[r] && ram_of[RAM_BITS * r +: RAM_BITS] == RAM[RAM_BITS-1:0])
                         ram_address[m * ADDR_BITS +: ADDR_BITS] =
                             ram_address[m * ADDR_BITS +: ADDR_BITS] | address[ADDR_BITS * r +: ADDR_BITS];
             end
@@ -132,7 +140,7 @@ module line_fifo (clk, clk2x, rst, start, width, height, in_valid, in_value, in_
 
     // The incoming value's BRAM, address and half.
     wire [ADDR_BITS-1:0] write_address = column[SHIFT +: ADDR_BITS];
-    wire [DATA-1:0] ram_data [0:RAMS*LINE_READS-1];  // each BRAM port's value
+    wire [DATA-1:0] ram_data [0:LINE_READS*RAMS-1];  // each BRAM port's value, port by port
     genvar p;
     generate
         for (m = 0; m < RAMS; m = m + 1) begin : rams
@@ -144,25 +152,23 @@ module line_fifo (clk, clk2x, rst, start, width, height, in_valid, in_value, in_
                 .waddr(write_address), .whalf(column[0]), .wdata(in_value),
                 .raddr(ram_address[m * LINE_READS * ADDR_BITS +: LINE_READS * ADDR_BITS]), .q(q));
             for (p = 0; p < LINE_READS; p = p + 1) begin : ports
-                assign ram_data[m * LINE_READS + p] = q[p * DATA +: DATA];
+                assign ram_data[p * RAMS + m] = q[p * DATA +: DATA];
             end
         end
     endgenerate
 
-    // Next cycle, each read takes its value from its BRAM's port (and half).
-    reg [REQUESTS-1:0]    took, took_half;
-    reg [REQUESTS*16-1:0] took_from;  // the BRAM's port
+    // Next cycle, each read takes its value from its port of its BRAM (and half).
+    reg [REQUESTS-1:0]          took, took_half;
+    reg [REQUESTS*RAM_BITS-1:0] took_from;  // the BRAM
     always @(posedge clk) begin
         took <= wanted;
         took_half <= half;
-        took_from <= port_of;
+        took_from <= ram_of;
     end
     generate
         for (m = 0; m < REQUESTS; m = m + 1) begin : values
-            /* verilator lint_off UNUSEDSIGNAL */
-            wire [15:0] from = took_from[16 * m +: 16];
-            /* verilator lint_on UNUSEDSIGNAL */
-            wire [DATA-1:0] value = ram_data[from[PORT_INDEX_BITS-1:0]];
+            localparam integer FIRST = lane_port(m) * RAMS;  // its port of BRAM 0
+            wire [DATA-1:0] value = ram_data[FIRST + {{(32 - RAM_BITS){1'b0}}, took_from[RAM_BITS * m +: RAM_BITS]}];
             assign bus_data[32 * m +: 32] = !took[m] ? 32'd0 : took_half[m] ? value[DATA-1 -: 32] : value[31:0];
         end
     endgenerate

@@ -98,9 +98,9 @@ TEST(SequenceGenerator, IdleBusOverheadCountsTheWordsCarried) {
     }
 }
 
-// An octave-2 word carries one value: it reads that value's line once, not the four lanes of
-// its quad, so two such words on one line fit a RAMB36's two ports in one cycle and a third
-// does not.
+// An octave-2 word carries one value: it reads that value's line once, through the port its
+// lane is wired to (`tdp`: the lane's column). Another bus wanting that value shares the read;
+// one wanting another value of the line through the same port must wait for another cycle.
 TEST(SequenceGenerator, AWordReadsOnlyTheValuesItsTapsTake) {
     SequenceParams p;
     p.reuse = false;
@@ -109,18 +109,20 @@ TEST(SequenceGenerator, AWordReadsOnlyTheValuesItsTapsTake) {
     const auto single =
         std::find_if(s.steps.begin(), s.steps.end(), [](const Step& st) { return st.taps.size() == 1; });
     ASSERT_NE(single, s.steps.end()) << "the basic script delivers octave 2's values one a word";
+    SequenceParams shared = p;
+    shared.reuse = true;  // three TripleMACs take from words like it: only the ports can object
     Sequence cycle;
     cycle.interval = s.interval;
     for (int bus = 0; bus < 3; ++bus) {
         Step copy = *single;
         copy.bus = bus;
-        copy.taps[0].triple_mac = bus;  // three TripleMACs (sharing words, as with reuse): only the ports can object
+        copy.taps[0].triple_mac = bus;
+        if (bus == 2) copy.x += copy.x > 0 ? -2 : 2;  // the same lane, so the same port: another column
         cycle.steps.push_back(copy);
-        SequenceParams shared = p;
-        shared.reuse = true;
         const std::string why = check_sequence(cycle, shared);
-        EXPECT_EQ(why.find("serves more than 2 reads") != std::string::npos, bus == 2) << bus << ": " << why;
+        EXPECT_EQ(why.find("reads two addresses") != std::string::npos, bus == 2) << bus << ": " << why;
     }
+    EXPECT_EQ(lane_port(p, 0, single->taps[0].lane), lane_port(p, 2, single->taps[0].lane));
 }
 
 // Fewer reads a line makes the centre line the limit; more relax it.
@@ -213,7 +215,8 @@ TEST(SequenceGenerator, CheckerCatchesEveryBrokenLimit) {
             }
     EXPECT_TRUE(found) << "no x3 tap found";
 
-    // Two quads of the same cycle on line 0, each taken whole: more reads than its two ports.
+    // Two quads of the same cycle on line 0, each taken whole: each lane's port asked for two
+    // addresses.
     Sequence crowded = s;
     crowded.steps.erase(
         std::remove_if(crowded.steps.begin(), crowded.steps.end(), [](const Step& st) { return st.cycle == 0; }),
@@ -225,7 +228,8 @@ TEST(SequenceGenerator, CheckerCatchesEveryBrokenLimit) {
     };
     crowded.steps.push_back({0, 1, -1, 0, whole_quad(0)});
     crowded.steps.push_back({0, 2, 5, 0, whole_quad(4)});
-    EXPECT_NE(check_sequence(crowded, p).find("serves more than 2 reads"), std::string::npos)
+    EXPECT_NE(check_sequence(crowded, p).find("line 0 (BRAM 0) port 0 reads two addresses in cycle 0"),
+              std::string::npos)
         << check_sequence(crowded, p);
 
     // A word outside the 52 x 52 window.

@@ -7,6 +7,7 @@
 #include <tuple>
 #include <utility>
 
+#include "fhg/bus_swap.h"
 #include "models/fhg/sequence_cache.h"
 #include "models/fhg/sequence_memory.h"
 
@@ -67,38 +68,38 @@ INSTANTIATE_TEST_SUITE_P(Machines, RoundTrip,
                                          Configuration{"two_quad_buses", 2, BusWord::quad, LineFifo::tdp, false}),
                          [](const auto& info) { return std::string(info.param.name); });
 
-// The default word: `last`, 4 buses x (1 + 6 + 6 + 4 lanes x (1 read + 2 port of the
-// `tdp_x2` BRAM's 4)), 18 TripleMACs x (1 take + 2 bus + 2 lane + 2 coefficient + 2 response)
-// = 1 + 100 + 162 = 263 bits; fields tile the word without a gap.
-TEST(SequenceMemory, TheDefaultLayoutIs263Bits) {
+// The default word: `last`, 4 buses x (1 + 6 + 6 + 4 lanes x 1 read), 18 TripleMACs x (1 take
+// + 2 bus + 2 lane + 2 coefficient + 2 response) = 1 + 68 + 162 = 231 bits; fields tile the
+// word without a gap. A lane's BRAM port is wiring (lane_port), not a field.
+TEST(SequenceMemory, TheDefaultLayoutIs231Bits) {
     const MemoryLayout l = sequence_layout(SequenceParams{});
-    EXPECT_EQ(l.width, 263);
+    EXPECT_EQ(l.width, 231);
     EXPECT_EQ(l.field("last").lsb, 0);
     EXPECT_EQ(l.field("bus0_line").lsb, 2);
     EXPECT_EQ(l.field("bus0_lane0_read").lsb, 14);
-    EXPECT_EQ(l.field("bus0_lane3_port").width, 2);
-    EXPECT_EQ(l.field("bus3_column").lsb, 83);
-    EXPECT_EQ(l.field("mac0_take").lsb, 101);
-    EXPECT_EQ(l.field("mac17_response").lsb, 261);
+    EXPECT_EQ(l.field("bus0_lane3_read").lsb, 17);
+    EXPECT_EQ(l.field("bus3_column").lsb, 59);
+    EXPECT_EQ(l.field("mac0_take").lsb, 69);
+    EXPECT_EQ(l.field("mac17_response").lsb, 229);
     int next = 0;
     for (const MemoryField& f : l.fields) EXPECT_EQ(f.lsb, std::exchange(next, f.lsb + f.width)) << f.name;
     EXPECT_EQ(next, l.width);
     SequenceParams scalar;
     scalar.bus_word = BusWord::scalar;
     scalar.read_buses = 6;  // 3 bus bits; the lane keeps one bit, so the RTL can always slice it
-    EXPECT_EQ(sequence_layout(scalar).width, 1 + 6 * (13 + 3) + 18 * 9);
-    scalar.line_fifo = LineFifo::sdp72;  // one read a BRAM: the port keeps one bit
-    EXPECT_EQ(sequence_layout(scalar).width, 1 + 6 * (13 + 2) + 18 * 9);
+    EXPECT_EQ(sequence_layout(scalar).width, 1 + 6 * (13 + 1) + 18 * 9);
+    scalar.line_fifo = LineFifo::sdp72;  // the organisation changes the wiring, not the word
+    EXPECT_EQ(sequence_layout(scalar).width, 1 + 6 * (13 + 1) + 18 * 9);
 }
 
-// The hex text: the default's 263 bits are 66 digits, the last word's bit 0 is `last`.
+// The hex text: the default's 231 bits are 58 digits, the last word's bit 0 is `last`.
 TEST(SequenceMemory, FilesHoldOneHexWordPerCycle) {
     const SequenceParams p;
     const SequenceImage image = encode_sequence(cached_sequence(p), p);
     const std::string mem = to_readmemh(image, "t");
     const std::string last = mem.substr(mem.rfind('\n', mem.size() - 2) + 1);
-    EXPECT_EQ(last.size(), 66u + 1);
-    EXPECT_EQ(std::stoi(last.substr(65, 1), nullptr, 16) & 1, 1);
+    EXPECT_EQ(last.size(), 58u + 1);
+    EXPECT_EQ(std::stoi(last.substr(57, 1), nullptr, 16) & 1, 1);
     const std::string coe = to_coe(image, "t");
     EXPECT_NE(coe.find("memory_initialization_radix=16;\nmemory_initialization_vector=\n"), std::string::npos);
     EXPECT_EQ(coe.substr(coe.size() - 2), ";\n");
@@ -139,15 +140,18 @@ TEST(SequenceMemory, DecodingRefusesWhatTheEncoderCannotWrite) {
     while (field_value(good.words[idle], l.field("mac4_take"))) ++idle;
     EXPECT_EQ(refusal([&](SequenceImage& b) { set_field(b.words[idle], l.field("mac4_bus"), 2); }),
               "sequence memory word " + std::to_string(idle) + ": mac4 takes nothing but has fields set");
-    // The reads: exactly the lanes taken, each value on a port of its own.
-    size_t pair = 0;  // a word in which bus 0 reads two values of one line: two columns, two ports
+    // The reads: exactly the lanes taken, and one address a port. Buses 1 and 2 traded in a word
+    // still give every TripleMAC its value, but through other ports.
+    const size_t swap = word_a_swap_breaks(good, p, 1, 2);
+    ASSERT_LT(swap, good.words.size());
+    const std::string two = refusal([&](SequenceImage& b) { swap_buses(b, swap, 1, 2); });
+    EXPECT_EQ(two.rfind("sequence memory word " + std::to_string(swap) + ": bus", 0), 0u) << two;
+    EXPECT_NE(two.find(" read two addresses of one BRAM through port "), std::string::npos) << two;
+    EXPECT_NE(two.find(", the port both are wired to"), std::string::npos) << two;
+    size_t pair = 0;  // a word in which bus 0 reads two values of one line
     while (!field_value(good.words[pair], l.field("bus0_lane0_read")) ||
            !field_value(good.words[pair], l.field("bus0_lane1_read")))
         ++pair;
-    const uint64_t port0 = field_value(good.words[pair], l.field("bus0_lane0_port"));
-    EXPECT_EQ(refusal([&](SequenceImage& b) { set_field(b.words[pair], l.field("bus0_lane1_port"), port0); }),
-              "sequence memory word " + std::to_string(pair) + ": bus0_lane1 reads port " + std::to_string(port0) +
-                  " of a BRAM whose port another lane uses for another address");
     EXPECT_EQ(
         refusal([&](SequenceImage& b) { set_field(b.words[pair], l.field("bus0_lane0_read"), 0); }),
         "sequence memory word " + std::to_string(pair) + ": bus0_lane0_read is 0, but a TripleMAC takes the value");
@@ -166,15 +170,15 @@ TEST(SequenceMemory, ParsingNamesTheLine) {
         }
         return std::string("accepted");
     };
-    const std::string one = std::string(65, '0') + "1";  // a word of 66 digits: bit 0
-    const std::string bad = std::string(65, '0') + "z";
+    const std::string one = std::string(57, '0') + "1";  // a word of 58 digits: bit 0
+    const std::string bad = std::string(57, '0') + "z";
     EXPECT_EQ(refusal("// c\n" + one + "\n" + bad + "\n"), "line 3: '" + bad + "' is not hexadecimal");
     EXPECT_EQ(refusal("@10\n" + one + "\n"), "line 1: addresses (@) are not read: one word a line");
-    EXPECT_EQ(refusal(one + "0\n"), "line 1: '" + one + "0' is not a word of 263 bits (66 hex digits; it has 67)");
-    EXPECT_EQ(refusal("1\n"), "line 1: '1' is not a word of 263 bits (66 hex digits; it has 1)");
-    EXPECT_EQ(refusal("8" + std::string(65, '0') + "\n"),
-              "line 1: '8" + std::string(65, '0') + "' has bits above the word's 263");
-    EXPECT_EQ(refusal("4" + std::string(65, '0') + "\n"), "accepted");  // bit 262, the top one
+    EXPECT_EQ(refusal(one + "0\n"), "line 1: '" + one + "0' is not a word of 231 bits (58 hex digits; it has 59)");
+    EXPECT_EQ(refusal("1\n"), "line 1: '1' is not a word of 231 bits (58 hex digits; it has 1)");
+    EXPECT_EQ(refusal("8" + std::string(57, '0') + "\n"),
+              "line 1: '8" + std::string(57, '0') + "' has bits above the word's 231");
+    EXPECT_EQ(refusal("4" + std::string(57, '0') + "\n"), "accepted");  // bit 230, the top one
     EXPECT_EQ(refusal("memory_initialization_radix=2;\nmemory_initialization_vector=\n" + one + ";\n"),
               "line 1: only radix 16 is read (memory_initialization_radix=2;)");
     EXPECT_EQ(refusal("memory_initialization_radix=16;\nmemory_initialization_vector=\n" + one + ",\n" + one + "\n"),

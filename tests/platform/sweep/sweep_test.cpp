@@ -206,8 +206,8 @@ TEST(Sweep, PointsRunInParallelAndResultsComeOutAsCsvJsonAndPlots) {
         EXPECT_GT(p["figures"]["fps"].get<double>(), 0.0) << p;
         EXPECT_GT(p["figures"]["keypoints_per_frame"].get<double>(), 0.0) << p;
         EXPECT_FALSE(p["figures"]["bottleneck"].get<std::string>().empty()) << p;
-        // FPGA resources ride along (docs/resources.md): the sequence memory's words (195 bits
-        // with two read buses, 263 with four: docs/sequence-memory.md) take three and four
+        // FPGA resources ride along (docs/resources.md): the sequence memory's words (179 bits
+        // with two read buses, 231 with four: docs/sequence-memory.md) take three and four
         // 72-bit columns of block RAM.
         EXPECT_EQ(p["figures"]["bram36"], p["params"]["fhg.read_buses"] == "2" ? 84 : 85) << p;
         EXPECT_TRUE(p["figures"]["fits"].get<bool>()) << p;

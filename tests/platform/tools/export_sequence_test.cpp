@@ -25,19 +25,19 @@ TEST(ExportSequence, WritesTheImageTheCheckAcceptsAndTheModelCounts) {
     const auto j = nlohmann::json::parse(slurp(out + "/fhg_sequence.json"));
     const int cycles = nlohmann::json::parse(surfvp("seqgen").out)["cycles_per_block"];
     EXPECT_EQ(j["depth"], cycles);  // the basic script's interval: one word a cycle
-    EXPECT_EQ(j["width_bits"], 263);
-    EXPECT_EQ(j["ramb36"], 4);  // 263 bits over four 72-bit columns, 512 deep
-    EXPECT_EQ(j["fields"].size(), 1u + 4 * (3 + 4 * 2) + 18 * 5);
-    EXPECT_NE(r.out.find(std::to_string(cycles) + " words x 263 bits in 4 RAMB36"), std::string::npos) << r.out;
+    EXPECT_EQ(j["width_bits"], 231);
+    EXPECT_EQ(j["ramb36"], 4);  // 231 bits over four 72-bit columns, 512 deep
+    EXPECT_EQ(j["fields"].size(), 1u + 4 * (3 + 4) + 18 * 5);
+    EXPECT_NE(r.out.find(std::to_string(cycles) + " words x 231 bits in 4 RAMB36"), std::string::npos) << r.out;
     for (const char* file : {"fhg_sequence.coe", "fhg_sequence.mem"}) {
         const auto check = surfvp(std::string("export-sequence --check ") + out + "/" + file);
         EXPECT_EQ(check.exit_code, 0) << check.err;
         EXPECT_NE(check.out.find("the replay checker accepts it"), std::string::npos) << check.out;
     }
-    // Another machine's layout does not read it: 6 buses make a 331-bit word.
+    // Another machine's layout does not read it: 6 buses make a 283-bit word.
     const auto other = surfvp("export-sequence --set fhg.read_buses=6 --check " + out + "/fhg_sequence.mem");
     EXPECT_EQ(other.exit_code, 2);
-    EXPECT_NE(other.err.find("is not a word of 331 bits (83 hex digits; it has 66)"), std::string::npos) << other.err;
+    EXPECT_NE(other.err.find("is not a word of 283 bits (71 hex digits; it has 58)"), std::string::npos) << other.err;
 }
 
 // The RTL's parameters come from the configuration: the defaults are what the build verilates
@@ -48,7 +48,7 @@ TEST(ExportSequence, WritesTheRtlParametersOfTheConfiguration) {
     const std::string header = slurp(out + "/fhg_params.vh");
     const Fhg::Params defaults;  // what the build verilates
     EXPECT_EQ(header, fhg::rtl_parameters(defaults.precision, defaults.sequence, defaults.max_width));
-    for (const char* line : {"localparam ACC_BITS = 24;", "localparam SEQ_WIDTH = 263;", "localparam WEIGHT = 3318;",
+    for (const char* line : {"localparam ACC_BITS = 24;", "localparam SEQ_WIDTH = 231;", "localparam WEIGHT = 3318;",
                              "localparam K_BITS = 19;", "        5'd17: det_reciprocal = 19'd12901;"})
         EXPECT_NE(header.find(line), std::string::npos) << line;
     const auto r = surfvp("export-sequence --set 'fhg.accumulator_bits=20 bit' --set fhg.read_buses=6 --out " + out);
