@@ -24,8 +24,9 @@ BlockResources fhg_block(const Config& c) {
     const FhgParts parts = fhg_parts(c);
     const unsigned macs = fhg_params(c).sequence.triple_macs;
     BlockResources b{"fhg", 0, 0, 0, 0, ""};
-    for (const BlockResources* part : {&parts.line_fifo, &parts.sequence_memory, &parts.maxima_fifo, &parts.det_rows,
-                                       &parts.hessian_calc, &parts.local_max_finder, &parts.control}) {
+    for (const BlockResources* part :
+         {&parts.line_fifo, &parts.sequence_memory, &parts.maxima_fifo, &parts.det_rows, &parts.line_routing,
+          &parts.hessian_calc, &parts.local_max_finder, &parts.control}) {
         b.ramb36 += part->ramb36, b.dsp48e += part->dsp48e, b.luts += part->luts, b.ffs += part->ffs;
         if (part->ramb36 + part->dsp48e > 0) b.basis += (b.basis.empty() ? "" : ", ") + part->basis;
     }
@@ -89,6 +90,25 @@ BramLogic bram_logic(const fhg::LineFifoShape& shape, unsigned address_bits) {
     return {double(address_bits), 0};
 }
 
+// The line FIFO's routing (line_fifo.v), fitted to yosys 0.23's synthesis of the whole FIFO at
+// six machines (docs/rtl.md), within 14 % on each: every bus lane picks its value among all the
+// BRAMs and gives its address to its port of the one it reads (23.4 LUTs a lane per BRAM), and
+// every BRAM gathers its ports' addresses (18 LUTs a BRAM). Its flip-flops are exact: a bit a lane for `took`, one more with aligned pairs
+// (the half), the BRAM index of each line a bus word spans, and the write side's column, row
+// count, slot and frame bit.
+BramLogic line_routing(const fhg::SequenceParams& s, const fhg::LineFifoShape& shape, unsigned brams) {
+    auto clog2 = [](unsigned n) {  // Verilog's $clog2, as the RTL sizes its indices
+        unsigned b = 0;
+        while ((1u << b) < n) ++b;
+        return b;
+    };
+    const auto& word = fhg::word_shape(s.bus_word);
+    const unsigned lanes = s.read_buses * unsigned(word.size());
+    const unsigned lines_a_word = word.size() == 4 ? 2 : 1;
+    const unsigned lane_bits = lanes * (shape.aligned_pairs ? 2 : 1) + s.read_buses * lines_a_word * clog2(brams);
+    return {std::round(brams * (23.4 * lanes + 18)), double(lane_bits + 16 + 16 + clog2(s.fifo_lines) + 1)};
+}
+
 }  // namespace
 
 FhgParts fhg_parts(const Config& c) {
@@ -121,6 +141,14 @@ FhgParts fhg_parts(const Config& c) {
         brams * bram.ffs,
         fmt::format("line FIFO {} x {} RAMB36 ({}), each with {:g} LUTs and {:g} flip-flops of port logic",
                     s.fifo_lines, line, fhg::line_fifo_name(s.line_fifo), bram.luts, bram.ffs)};
+    const BramLogic routing = line_routing(s, shape, unsigned(brams));
+    parts.line_routing = {"line FIFO routing",
+                          0,
+                          0,
+                          routing.luts,
+                          routing.ffs,
+                          fmt::format("the reads of {} bus lanes routed to and from {:g} BRAMs",
+                                      s.read_buses * fhg::word_shape(s.bus_word).size(), brams)};
     parts.sequence_memory = {"sequence memory",
                              double(sequence),
                              0,

@@ -34,10 +34,11 @@ struct BlockResources {
 
 // One FHG's parts as the model estimates them, each on its own so that a synthesis of the
 // Verilog reference (surfvp synthesize) can stand beside it. The TripleMAC is one of
-// fhg.triple_macs.
+// fhg.triple_macs. line_fifo is its BRAMs with their port logic, line_routing what takes the
+// bus lanes' reads to their ports and the values back (and the write side's counters).
 struct FhgParts {
     BlockResources line_fifo, sequence_memory, maxima_fifo, det_rows;  // block RAM
-    BlockResources triple_mac, hessian_calc, local_max_finder, control;
+    BlockResources line_routing, triple_mac, hessian_calc, local_max_finder, control;
 };
 FhgParts fhg_parts(const Config& config);
 

@@ -17,7 +17,7 @@ TEST(FpgaResources, BlockRamsInTheRamb36AspectRatios) {
     EXPECT_EQ(ramb36_for(32768, 1), 1u);
     EXPECT_EQ(ramb36_for(512, 72), 1u);
     EXPECT_EQ(ramb36_for(60, 215), 3u);  // three 72-bit columns
-    EXPECT_EQ(ramb36_for(53, 263), 4u);  // four: the default sequence image
+    EXPECT_EQ(ramb36_for(53, 231), 4u);  // four: the default sequence image
     EXPECT_EQ(ramb36_for(0, 32), 0u);
 }
 
@@ -46,6 +46,13 @@ TEST(FpgaResources, TheDefaultChipFitsTheFx70t) {
     EXPECT_EQ(r.total.ramb36, 85);
     EXPECT_EQ(r.total.dsp48e, 13);  // HessianCalc's 10 and the single-precision FPU's 3
     EXPECT_TRUE(r.fits());
+    // The line FIFO's routing: 16 lanes (4 quad buses) to and from 56 BRAMs. Its flip-flops: a
+    // bit a lane, 6 bits of BRAM index for each of a quad's two lines on each bus, and the write
+    // side's 16 + 16 + 6 + 1.
+    const FhgParts parts = fhg_parts(config({}));
+    EXPECT_EQ(parts.line_routing.luts, 21974);  // 56 x (23.4 x 16 + 18), to the whole LUT
+    EXPECT_EQ(parts.line_routing.ffs, 16 + 4 * 2 * 6 + 39);
+    EXPECT_NEAR(r.total.luts, 43742, 1);  // 98 % of the FX70T's 44,800
 }
 
 TEST(FpgaResources, StructureMovesTheEstimate) {
@@ -63,9 +70,13 @@ TEST(FpgaResources, StructureMovesTheEstimate) {
     const FpgaResources two = fpga_resources(config({"soc.accelerators=2"}));
     EXPECT_EQ(two.total.ramb36, 2 * 79 + 6);
     EXPECT_FALSE(two.fits());
-    ASSERT_EQ(two.over.size(), 1u);
+    ASSERT_EQ(two.over.size(), 2u);
     EXPECT_EQ(two.over[0], "RAMB36: 164 of 148");
-    EXPECT_TRUE(fpga_resources(config({"soc.accelerators=2", "fpga.ramb36=228"})).fits());  // an FX100T's block RAMs
+    // Each FHG's line FIFO routing (21,974 LUTs) is half the FX70T's LUTs: two pairs need
+    // 2 x (1,012 + 34,110) + 2,620 (the FPU) + 6,000 (the rest).
+    EXPECT_EQ(two.over[1], "LUT: 78864 of 44800");
+    // An FX100T's block RAMs (228) and a device with 20,000 slices (80,000 LUTs).
+    EXPECT_TRUE(fpga_resources(config({"soc.accelerators=2", "fpga.ramb36=228", "fpga.slices=20000"})).fits());
 }
 
 }  // namespace
