@@ -133,6 +133,9 @@ Command add_synthesize(CLI::App& app) {
         ->type_name("KEY=VALUE");
     cmd->add_option("--out", o->out, "Folder for rtl/, yosys/ and synthesis.{md,json}")->capture_default_str();
     cmd->add_option("--family", o->family, "synth_xilinx's family (default: fpga.device's): xc5v, xc6s, xc6v, xc7");
+    cmd->add_flag("--whole-fifo", o->whole_fifo,
+                  "Also the whole line FIFO: its BRAMs and the routing of the bus lanes to their ports (about 4 "
+                  "minutes and 2 GB at the default)");
     return {cmd, [o] { return synthesize_command(*o); }};
 }
 

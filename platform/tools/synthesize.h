@@ -12,7 +12,8 @@ struct SynthesizeOptions {
     std::string scenario;  // optional: parameters start from this scenario
     std::vector<std::string> sets;
     std::string out = "traces/synthesis";
-    std::string family;  // yosys synth_xilinx -family; empty: fpga.device's
+    std::string family;       // yosys synth_xilinx -family; empty: fpga.device's
+    bool whole_fifo = false;  // also the whole line FIFO: its BRAMs and the routing (minutes)
 };
 
 // Writes rtl/ (the Verilog, fhg_params.vh, fhg_sequence.mem), yosys/ (each part's log and
