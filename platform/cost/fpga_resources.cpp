@@ -93,9 +93,9 @@ BramLogic bram_logic(const fhg::LineFifoShape& shape, unsigned address_bits) {
 // The line FIFO's routing (line_fifo.v), fitted to yosys 0.23's synthesis of the whole FIFO at
 // six machines (docs/rtl.md), within 14 % on each: every bus lane picks its value among all the
 // BRAMs and gives its address to its port of the one it reads (23.4 LUTs a lane per BRAM), and
-// every BRAM gathers its ports' addresses (18 LUTs a BRAM). Its flip-flops are exact: a bit a lane for `took`, one more with aligned pairs
-// (the half), the BRAM index of each line a bus word spans, and the write side's column, row
-// count, slot and frame bit.
+// every BRAM gathers its ports' addresses (18 LUTs a BRAM). Its flip-flops are exact: a bit a
+// lane for `took`, one more with aligned pairs (the half), the BRAM index of each line a bus
+// word spans, and the write side's column, row count, slot and frame bit.
 BramLogic line_routing(const fhg::SequenceParams& s, const fhg::LineFifoShape& shape, unsigned brams) {
     auto clog2 = [](unsigned n) {  // Verilog's $clog2, as the RTL sizes its indices
         unsigned b = 0;

@@ -220,8 +220,7 @@ int synthesize_command(const SynthesizeOptions& o) {
             "model): --whole-fifo synthesizes the whole FIFO, which takes minutes (docs/rtl.md)",
             model.line_routing.luts, model.line_routing.ffs));
     j["not_synthesized"].push_back(
-        "LocMaxFinder, the maxima FIFO, the determinant row buffers and the control: "
-        "not in the RTL");
+        "LocMaxFinder, the maxima FIFO, the determinant row buffers and the control: not in the RTL");
     write_file_atomically(staging / "synthesis.json", j.dump(2) + "\n");
     const std::string md = markdown(j);
     write_file_atomically(staging / "synthesis.md", md);
