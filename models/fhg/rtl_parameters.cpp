@@ -76,10 +76,11 @@ std::string rtl_parameters(const Precision& precision, const SequenceParams& seq
     s += fmt::format(
         "localparam LANE_LSB = {};  // in a bus's fields\nlocalparam LANE_STRIDE = {};\n"
         "localparam LINE_BANKS = {};  // fhg.line_fifo = {}\nlocalparam LINE_READS = {};  "
-        "// a BRAM's reads a FHG cycle\nlocalparam LINE_PAIRS = {};  // a read returns an aligned pair\n",
+        "// a BRAM's reads a FHG cycle\nlocalparam LINE_PAIRS = {};  // a read returns an aligned pair\n"
+        "localparam LINE_GROUPS = {};  // fhg.line_groups: a lane reaches the lines of one group\n",
         at("bus0_lane0_read", bus0),
         word_shape(sequence.bus_word).size() > 1 ? layout.field("bus0_lane1_read").lsb - lane0.lsb : 0, fifo.banks,
-        line_fifo_name(sequence.line_fifo), fifo.reads, fifo.aligned_pairs ? 1 : 0);
+        line_fifo_name(sequence.line_fifo), fifo.reads, fifo.aligned_pairs ? 1 : 0, sequence.line_groups);
     const ConstantWidths widths = constant_widths(core);
     s += fmt::format("localparam K_BITS = {};  // the largest K_L's bits\nlocalparam W_BITS = {};  // W's bits\n",
                      widths.k_bits, widths.w_bits);

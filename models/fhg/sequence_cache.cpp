@@ -21,9 +21,9 @@ std::optional<fs::path> sequence_cache_folder() { return cache_folder(); }
 std::string sequence_key(const SequenceParams& p) {
     return fmt::format(
         "generator {} read_buses {} triple_macs {} fifo_lines {} x3_cycles {} bus_word {} reuse {} "
-        "line_fifo {} scheduler {} attempts {}",
+        "line_fifo {} line_groups {} scheduler {} attempts {}",
         SURFVP_SEQUENCE_FINGERPRINT, p.read_buses, p.triple_macs, p.fifo_lines, p.x3_cycles, bus_word_name(p.bus_word),
-        p.reuse, line_fifo_name(p.line_fifo), scheduler_name(p.scheduler), p.attempts);
+        p.reuse, line_fifo_name(p.line_fifo), p.line_groups, scheduler_name(p.scheduler), p.attempts);
 }
 
 // Line 1 the key; line 2 the figures; then one line per step: cycle bus x y and its taps as
@@ -84,11 +84,11 @@ Sequence stored_sequence(const SequenceParams& params, const fs::path& folder) {
 }
 
 const Sequence& cached_sequence(const SequenceParams& p) {
-    using Key = std::tuple<unsigned, unsigned, unsigned, unsigned, int, bool, int, int, unsigned>;
+    using Key = std::tuple<unsigned, unsigned, unsigned, unsigned, int, bool, int, unsigned, int, unsigned>;
     static std::map<Key, Sequence> cache;
     static std::mutex mutex;
-    const Key key{p.read_buses, p.triple_macs,    p.fifo_lines,     p.x3_cycles, int(p.bus_word),
-                  p.reuse,      int(p.line_fifo), int(p.scheduler), p.attempts};
+    const Key key{p.read_buses, p.triple_macs,    p.fifo_lines,  p.x3_cycles,      int(p.bus_word),
+                  p.reuse,      int(p.line_fifo), p.line_groups, int(p.scheduler), p.attempts};
     std::lock_guard<std::mutex> lock(mutex);
     auto it = cache.find(key);
     if (it == cache.end()) {

@@ -85,6 +85,17 @@ void validate(const SequenceParams& p) {
                                     std::to_string(kWindow) + "-line window of the largest filter (51)");
     if (p.x3_cycles < 1 || p.x3_cycles > 8)
         throw std::invalid_argument("fhg.x3_cycles must be 1 to 8, not " + std::to_string(p.x3_cycles));
+    const std::string groups = std::to_string(p.line_groups);
+    if (p.line_groups != 1 && p.line_groups != 2 && p.line_groups != 4)
+        throw std::invalid_argument("fhg.line_groups must be 1, 2 or 4, not " + groups);
+    if (p.read_buses % p.line_groups)
+        throw std::invalid_argument(
+            "fhg.line_groups: " + groups + " groups need a multiple of " + groups +
+            " read buses (each group its own), not fhg.read_buses = " + std::to_string(p.read_buses));
+    if (p.fifo_lines % p.line_groups)
+        throw std::invalid_argument("fhg.line_groups: " + groups + " groups must divide fhg.fifo_lines (" +
+                                    std::to_string(p.fifo_lines) +
+                                    "), or a line's group would change as the FIFO wraps");
 }
 
 // Every word the basic script must deliver has to be readable in one cycle: the reads it takes
@@ -174,7 +185,12 @@ std::pair<int, std::string> lower_bound(const Problem& problem, const SequencePa
     const int tm = *std::max_element(problem.work.begin(), problem.work.end());
     const int values = int(word_shape(p.bus_word).size());
     const int words = p.reuse ? ceil_div(problem.distinct, values) : int(problem.groups.size());
-    const int buses = ceil_div(words, int(p.read_buses));
+    int buses = ceil_div(words, int(p.read_buses));
+    if (!p.reuse) {  // each line group's words on its own buses
+        std::vector<int> in_group(p.line_groups, 0);
+        for (const Word& g : problem.groups) ++in_group[size_t(line_group(p, g.y))];
+        for (int n : in_group) buses = std::max(buses, ceil_div(n, int(p.read_buses / p.line_groups)));
+    }
     std::vector<int> reads(size_t(problem.brams), 0);
     if (p.reuse) {
         std::vector<Point> points;
@@ -334,6 +350,11 @@ std::vector<Step> schedule_list(const Problem& problem, const SequenceParams& p,
                     alive.pop_back();
                     continue;
                 }
+                if (!bus_reaches(p, int(bus), w.y)) {  // its lines are another group's
+                    for (int tm : served) slot[size_t(tm)] = -1;
+                    ++a;
+                    continue;
+                }
                 // A group goes whole or not at all.
                 const bool whole = reuse || served.size() == w.needs.size();
                 if (reuse && !served.empty()) {  // a shared word reads the values it is taken for
@@ -360,7 +381,7 @@ std::vector<Step> schedule_list(const Problem& problem, const SequenceParams& p,
                 for (int tm : served) slot[size_t(tm)] = -1;
                 ++a;
             }
-            if (best < 0) break;  // nothing any bus could deliver this cycle
+            if (best < 0) continue;  // nothing this bus could deliver this cycle
             m.deliver(candidates[size_t(best)], best_served, cycle, int(bus), steps);
         }
     }
@@ -452,6 +473,15 @@ LineBram line_bram(LineFifo fifo, unsigned line_words) {
     LineBram b{(line_words + columns - 1) / columns, 1};
     while ((1u << b.address_bits) < b.words) ++b.address_bits;
     return b;
+}
+
+int line_group(const SequenceParams& params, int y) {
+    const int g = int(params.line_groups);
+    return ((y + kReachBefore) % g + g) % g;
+}
+
+bool bus_reaches(const SequenceParams& params, int bus, int y) {
+    return bus % int(params.line_groups) == line_group(params, y);
 }
 
 int lane_port(const SequenceParams& params, int bus, int lane) {
@@ -573,6 +603,11 @@ std::string check_sequence(const Sequence& sequence, const SequenceParams& param
             return "bus " + std::to_string(step.bus) + " carries two words" + where;
         for (const auto& [dy, dx] : shape)
             if (!in_window(step.y + dy) || !in_window(step.x + dx)) return "a word outside the 52-line window" + where;
+        if (!bus_reaches(params, step.bus, step.y))
+            return "bus " + std::to_string(step.bus) + " reaches line group " +
+                   std::to_string(step.bus % int(params.line_groups)) + " only, but its word's top line " +
+                   std::to_string(step.y + kReachBefore) + " is in group " +
+                   std::to_string(line_group(params, step.y)) + where;
         for (const Tap& tap : step.taps) {
             if (tap.lane < 0 || tap.lane >= int(shape.size())) continue;
             const LineRead r =

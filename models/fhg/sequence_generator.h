@@ -83,6 +83,9 @@ struct SequenceParams {
     BusWord bus_word = BusWord::quad;
     bool reuse = true;
     LineFifo line_fifo = LineFifo::tdp_x2;
+    // Which lines a bus lane reaches (line_group below): 1, every line (a full crossbar); 2 or
+    // 4, the lines of one group of slots, so a lane's multiplexer spans 1/line_groups of the BRAMs.
+    unsigned line_groups = 1;
     Scheduler scheduler = Scheduler::basic;
     unsigned attempts = 16;  // passes with different tie-breaks: basic takes their median, improved the shortest
 };
@@ -141,6 +144,18 @@ LineRead line_read(const SequenceParams& params, int y, int x);
 // so the two columns of a word take two ports, and neighbouring buses different ones.
 // A port reads one unit a cycle: lanes wired to it share it only if they want that unit.
 int lane_port(const SequenceParams& params, int bus, int lane);
+
+// The line groups: the line FIFO's slots are dealt into `line_groups` groups (slot mod
+// line_groups), and each bus lane is wired to the BRAMs of one group only: lane (dy) of bus b
+// to group (b + dy) mod line_groups. The sequence addresses window lines (line 0 is the block's
+// pixel row - 26), and the window's top slot steps by two lines a block row, so at a window
+// whose top slot is in group 0 a word whose top line is window line L goes on a bus of group L
+// mod line_groups; the line FIFO rotates its buses by (top slot mod line_groups) at the other
+// windows (only with 4 groups: 0 or 2), which keeps every lane in its group with one sequence.
+// So a bus reaches 1/line_groups of the window's lines; it needs read_buses to be a multiple
+// of line_groups, and line_groups to divide the FIFO's lines.
+int line_group(const SequenceParams& params, int y);             // the group of the window line at block row y
+bool bus_reaches(const SequenceParams& params, int bus, int y);  // whether a word at top line y may go on bus
 
 // Values of a bus word, as (dy, dx) offsets from its top-left point, in lane order.
 const std::vector<std::array<int, 2>>& word_shape(BusWord word);

@@ -105,8 +105,12 @@ BramLogic line_routing(const fhg::SequenceParams& s, const fhg::LineFifoShape& s
     const auto& word = fhg::word_shape(s.bus_word);
     const unsigned lanes = s.read_buses * unsigned(word.size());
     const unsigned lines_a_word = word.size() == 4 ? 2 : 1;
-    const unsigned lane_bits = lanes * (shape.aligned_pairs ? 2 : 1) + s.read_buses * lines_a_word * clog2(brams);
-    return {std::round(brams * (23.4 * lanes + 18)), double(lane_bits + 16 + 16 + clog2(s.fifo_lines) + 1)};
+    const unsigned lane_bits =
+        lanes * (shape.aligned_pairs ? 2 : 1) + s.read_buses * lines_a_word * clog2(brams / s.line_groups);
+    const unsigned reach = brams / s.line_groups;            // the BRAMs one lane multiplexes
+    const unsigned rotate = s.line_groups > 2 ? 32 + 8 : 0;  // with 4 groups, each lane's 2:1 value and address turn
+    return {std::round(lanes * (23.4 * reach + rotate) + 18 * brams),
+            double(lane_bits + 16 + 16 + clog2(s.fifo_lines) + 1)};
 }
 
 }  // namespace
@@ -202,12 +206,14 @@ FpgaResources fpga_resources(const Config& c) {
         r.total.ramb36 += b.ramb36, r.total.dsp48e += b.dsp48e, r.total.luts += b.luts, r.total.ffs += b.ffs;
     }
     auto check = [&](const char* name, double need, double have) {
-        if (need > have) r.over.push_back(fmt::format("{}: {:g} of {:g}", name, need, have));
+        if (need > have)
+            r.over.push_back(fmt::format("{}: {:.0f} of {:g} ({:.0f} %), more than the device has", name, need, have,
+                                         100 * need / have));
     };
-    check("RAMB36", r.total.ramb36, r.ramb36_capacity);
-    check("DSP48E", r.total.dsp48e, r.dsp48e_capacity);
     check("LUT", r.total.luts, r.lut_capacity);
     check("FF", r.total.ffs, r.ff_capacity);
+    check("RAMB36", r.total.ramb36, r.ramb36_capacity);
+    check("DSP48E", r.total.dsp48e, r.dsp48e_capacity);
     return r;
 }
 

@@ -14,8 +14,10 @@
 //   (bus x columns + the lane's column) mod LINE_READS), and the sequence never gives a port
 //   two addresses in a cycle, so a port's address is the OR of its lanes' and a lane's value
 //   comes from its port of the BRAM it names. Wiring the ports rather than choosing them keeps
-//   the routing to a FIFO_LINES x LINE_BANKS : 1 multiplexer a lane (docs/rtl.md). The values
-//   are bus_data in the next cycle. A value left of column 0 or above row 0 is 0 (the integral
+//   the routing to a FIFO_LINES x LINE_BANKS : 1 multiplexer a lane (docs/rtl.md); with
+//   LINE_GROUPS > 1 a lane is wired to one group of the lines only (slot mod LINE_GROUPS), a
+//   multiplexer of 1 / LINE_GROUPS of that, the buses turned so that every read finds its
+//   group's lane (below). The values are bus_data in the next cycle. A value left of column 0 or above row 0 is 0 (the integral
 //   image's I(-1, .) = I(., -1) = 0); one right of or below the image is never needed.
 // - `rows_written` tells the sequence when a block row's window is complete; `top_slot` is the
 //   slot of the window's top line, row block_y - 26 (fhg_datapath.v keeps it).
@@ -28,9 +30,10 @@ module line_fifo (clk, clk2x, rst, start, width, height, in_valid, in_value, in_
     localparam ADDR_BITS = $clog2(BANK_WORDS);
     localparam DATA = (LINE_PAIRS + 1) * 32;
     localparam RAMS = FIFO_LINES * LINE_BANKS;
-    localparam RAM_BITS = $clog2(RAMS);
     localparam SLOT_BITS = $clog2(FIFO_LINES);
     localparam SHIFT = LINE_BANKS == 2 || LINE_PAIRS == 1 ? 1 : 0;  // a column's address: column >> SHIFT
+    localparam REACH = RAMS / LINE_GROUPS;  // the BRAMs one lane is wired to: its line group's
+    localparam REACH_BITS = $clog2(REACH);
     input  wire                               clk;
     input  wire                               clk2x;
     input  wire                               rst;
@@ -82,12 +85,18 @@ module line_fifo (clk, clk2x, rst, start, width, height, in_valid, in_value, in_
         input integer r;
         lane_port = ((r / LANES) * (LANES == 1 ? 1 : 2) + (LANES == 1 ? 0 : (r % LANES) % 2)) % LINE_READS;
     endfunction
+    // The line group whose BRAMs read r is wired to: its bus's, a line lower for a quad's lower lanes.
+    function integer lane_group;
+        input integer r;
+        lane_group = (r / LANES + (LANES == 4 ? (r % LANES) / 2 : 0)) % LINE_GROUPS;
+    endfunction
 
-    // Each read: its BRAM (slot LINE_BANKS + bank), address and half; `wanted` if it reads.
-    reg [REQUESTS-1:0]           wanted;
-    reg [REQUESTS*RAM_BITS-1:0]  ram_of;
-    reg [REQUESTS*ADDR_BITS-1:0] address;
-    reg [REQUESTS-1:0]           half;
+    // Each read as the sequence names it: `wanted` if it reads, its BRAM among its group's
+    // (`reach`: the slot's place in its group, then the bank), address and half.
+    reg [REQUESTS-1:0]             wanted;
+    reg [REQUESTS*REACH_BITS-1:0]  reach_of;
+    reg [REQUESTS*ADDR_BITS-1:0]   address;
+    reg [REQUESTS-1:0]             half;
     genvar b, l, m;
     generate
         for (b = 0; b < READ_BUSES; b = b + 1) begin : buses
@@ -104,15 +113,14 @@ module line_fifo (clk, clk2x, rst, start, width, height, in_valid, in_value, in_
                 wire [SLOT_BITS:0] sum = {1'b0, top_slot} + {{(SLOT_BITS + 1 - COORD_BITS){1'b0}}, line} + DY;
                 /* verilator lint_off UNUSEDSIGNAL */
                 wire [SLOT_BITS:0] slot = sum >= FIFO_LINES ? sum - FIFO_LINES : sum;  // its top bit is 0
-                /* verilator lint_on UNUSEDSIGNAL */
-                /* verilator lint_off UNUSEDSIGNAL */
+                wire [SLOT_BITS:0] in_group = slot / LINE_GROUPS;
                 wire [15:0] column_of = x[15:0];
                 /* verilator lint_on UNUSEDSIGNAL */
                 always @* begin
                     wanted[R] = bus_valid[b] && lane_read[R] && y >= 0 && x >= 0 && x < $signed({2'b0, width});
-                    // (slot, bank) as bit fields: banks are one or two.
-                    ram_of[RAM_BITS * R +: RAM_BITS] = LINE_BANKS == 2 ? {slot[RAM_BITS-2:0], column_of[0]}
-                                                                       : slot[RAM_BITS-1:0];
+                    // (place in the group, bank) as bit fields: banks are one or two.
+                    reach_of[REACH_BITS * R +: REACH_BITS] = LINE_BANKS == 2 ? {in_group[REACH_BITS-2:0], column_of[0]}
+                                                                             : in_group[REACH_BITS-1:0];
                     address[ADDR_BITS * R +: ADDR_BITS] = column_of[SHIFT +: ADDR_BITS];
                     half[R] = LINE_PAIRS == 1 && column_of[0];
                 end
@@ -120,20 +128,53 @@ module line_fifo (clk, clk2x, rst, start, width, height, in_valid, in_value, in_
         end
     endgenerate
 
-    // Each BRAM port's read address: that of the reads wired to it that name its BRAM, if any.
-    // Reads that share a port name the same unit (the sequence memory's decoder holds every
-    // image to that), so their addresses are ORed.
+    // The buses turned by the window's top group: the sequence puts a word whose top line is
+    // window line L on a bus of group L mod LINE_GROUPS, written for a window whose top slot is
+    // in group 0; at a top slot in group g its lines are in groups L + g, so read r goes out on
+    // bus (its bus + g) mod READ_BUSES, whose lanes are wired to them (a multiple of LINE_GROUPS
+    // buses keeps the groups). The top slot moves two lines a block row: g is 0, or 0 and 2.
+    localparam [SLOT_BITS-1:0] GROUP_MASK = LINE_GROUPS - 1;
+    /* verilator lint_off UNUSEDSIGNAL */
+    wire [SLOT_BITS-1:0] top_group = top_slot & GROUP_MASK;
+    /* verilator lint_on UNUSEDSIGNAL */
+    wire [2:0] turn = top_group[2:0];
+    function integer turned;  // the read whose fields wired lane r carries at turn `by`
+        input integer r, by;
+        turned = ((r / LANES + READ_BUSES - by) % READ_BUSES) * LANES + r % LANES;
+    endfunction
+    reg [REQUESTS-1:0]            wired_wanted, wired_half;
+    reg [REQUESTS*REACH_BITS-1:0] wired_reach;
+    reg [REQUESTS*ADDR_BITS-1:0]  wired_address;
+    integer w, g;
+    always @* begin
+        wired_wanted = 0; wired_half = 0; wired_reach = 0; wired_address = 0;
+        for (w = 0; w < REQUESTS; w = w + 1)
+            for (g = 0; g < LINE_GROUPS; g = g + 1)
+                if (turn == g[2:0]) begin
+                    wired_wanted[w] = wanted[turned(w, g)];
+                    wired_half[w] = half[turned(w, g)];
+                    wired_reach[REACH_BITS * w +: REACH_BITS] = reach_of[REACH_BITS * turned(w, g) +: REACH_BITS];
+                    wired_address[ADDR_BITS * w +: ADDR_BITS] = address[ADDR_BITS * turned(w, g) +: ADDR_BITS];
+                end
+    end
+
+    // Each BRAM port's read address: that of the wired reads of its group that name its BRAM,
+    // if any. Reads that share a port name the same unit (the sequence memory's decoder holds
+    // every image to that), so their addresses are ORed.
     reg [RAMS*LINE_READS*ADDR_BITS-1:0] ram_address;
     generate
         for (m = 0; m < RAMS * LINE_READS; m = m + 1) begin : port_address
             localparam integer RAM = m / LINE_READS, PORT = m % LINE_READS;
+            localparam integer SLOT = RAM / LINE_BANKS, GROUP = SLOT % LINE_GROUPS;
+            localparam integer PLACE = (SLOT / LINE_GROUPS) * LINE_BANKS + RAM % LINE_BANKS;  // in its group
             integer r;
             always @* begin
                 ram_address[m * ADDR_BITS +: ADDR_BITS] = 0;
                 for (r = 0; r < REQUESTS; r = r + 1)
-                    if (lane_port(r) == PORT && wanted[r] && ram_of[RAM_BITS * r +: RAM_BITS] == RAM[RAM_BITS-1:0])
+                    if (lane_port(r) == PORT && lane_group(r) == GROUP && wired_wanted[r] &&
+                        wired_reach[REACH_BITS * r +: REACH_BITS] == PLACE[REACH_BITS-1:0])
                         ram_address[m * ADDR_BITS +: ADDR_BITS] =
-                            ram_address[m * ADDR_BITS +: ADDR_BITS] | address[ADDR_BITS * r +: ADDR_BITS];
+                            ram_address[m * ADDR_BITS +: ADDR_BITS] | wired_address[ADDR_BITS * r +: ADDR_BITS];
             end
         end
     endgenerate
@@ -157,19 +198,39 @@ module line_fifo (clk, clk2x, rst, start, width, height, in_valid, in_value, in_
         end
     endgenerate
 
-    // Next cycle, each read takes its value from its port of its BRAM (and half).
-    reg [REQUESTS-1:0]          took, took_half;
-    reg [REQUESTS*RAM_BITS-1:0] took_from;  // the BRAM
+    // Next cycle, each wired read takes its value from its port of its BRAM (and half): a
+    // multiplexer over its group's BRAMs. Then the buses turn back.
+    reg [REQUESTS-1:0]            took, took_half;
+    reg [REQUESTS*REACH_BITS-1:0] took_from;  // the BRAM, in the lane's group
+    reg [2:0]                     took_turn;
     always @(posedge clk) begin
-        took <= wanted;
-        took_half <= half;
-        took_from <= ram_of;
+        took <= wired_wanted;
+        took_half <= wired_half;
+        took_from <= wired_reach;
+        took_turn <= turn;
     end
+    wire [REQUESTS*32-1:0] wired_data;
     generate
         for (m = 0; m < REQUESTS; m = m + 1) begin : values
-            localparam integer FIRST = lane_port(m) * RAMS;  // its port of BRAM 0
-            wire [DATA-1:0] value = ram_data[FIRST + {{(32 - RAM_BITS){1'b0}}, took_from[RAM_BITS * m +: RAM_BITS]}];
-            assign bus_data[32 * m +: 32] = !took[m] ? 32'd0 : took_half[m] ? value[DATA-1 -: 32] : value[31:0];
+            localparam integer GROUP = lane_group(m);
+            wire [DATA-1:0] reach [0:REACH-1];  // its port of each BRAM of its group
+            for (p = 0; p < REACH; p = p + 1) begin : reachable
+                localparam integer RAM = ((p / LINE_BANKS) * LINE_GROUPS + GROUP) * LINE_BANKS + p % LINE_BANKS;
+                assign reach[p] = ram_data[lane_port(m) * RAMS + RAM];
+            end
+            wire [DATA-1:0] value = reach[took_from[REACH_BITS * m +: REACH_BITS]];
+            assign wired_data[32 * m +: 32] = !took[m] ? 32'd0 : took_half[m] ? value[DATA-1 -: 32] : value[31:0];
+        end
+        for (m = 0; m < REQUESTS; m = m + 1) begin : unturn
+            // Read m went out on the wired lane of its bus plus the turn.
+            reg [31:0] v;
+            integer t;
+            always @* begin
+                v = 32'd0;
+                for (t = 0; t < LINE_GROUPS; t = t + 1)
+                    if (took_turn == t[2:0]) v = wired_data[32 * (((m / LANES + t) % READ_BUSES) * LANES + m % LANES) +: 32];
+            end
+            assign bus_data[32 * m +: 32] = v;
         end
     endgenerate
 endmodule

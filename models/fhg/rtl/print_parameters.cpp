@@ -16,7 +16,7 @@
 
 namespace {
 
-// NAME=VALUE: a precision field's bits, or the machine's line_fifo, bus_word or read_buses.
+// NAME=VALUE: a precision field's bits, or the machine's line_fifo, bus_word, read_buses or line_groups.
 void set_field(surfvp::Fhg::Params& params, const std::string& assignment) {
     using surfvp::fhg::Precision;
     const std::map<std::string, unsigned Precision::*> bits{{"accumulator_bits", &Precision::accumulator_bits},
@@ -40,9 +40,11 @@ void set_field(surfvp::Fhg::Params& params, const std::string& assignment) {
         params.sequence.bus_word = words.at(value);
     else if (name == "read_buses")
         params.sequence.read_buses = unsigned(std::stoul(value));
+    else if (name == "line_groups")
+        params.sequence.line_groups = unsigned(std::stoul(value));
     else
-        throw std::invalid_argument("not a precision field NAME=BITS or line_fifo, bus_word, read_buses: " +
-                                    assignment);
+        throw std::invalid_argument(
+            "not a precision field NAME=BITS or line_fifo, bus_word, read_buses, line_groups: " + assignment);
 }
 
 }  // namespace

@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <gtest/gtest.h>
 #include <map>
+#include <tuple>
 
 #include "models/fhg/sequence_cache.h"
 
@@ -62,6 +63,7 @@ TEST(SequenceGenerator, ImprovedIsNeverWorseThanBasic) {
 
 TEST(SequenceGenerator, BoundsFollowTheStructure) {
     SequenceParams p;
+    p.line_groups = 1;  // every lane reaches every line
     p.bus_word = BusWord::scalar;
     p.reuse = false;
     Sequence s = generate_sequence(p);
@@ -103,6 +105,7 @@ TEST(SequenceGenerator, IdleBusOverheadCountsTheWordsCarried) {
 // one wanting another value of the line through the same port must wait for another cycle.
 TEST(SequenceGenerator, AWordReadsOnlyTheValuesItsTapsTake) {
     SequenceParams p;
+    p.line_groups = 1;  // every lane reaches every line
     p.reuse = false;
     p.line_fifo = LineFifo::tdp;
     const Sequence s = generate_sequence(p);
@@ -147,6 +150,7 @@ TEST(SequenceGenerator, FewerLineReadsNeverFaster) {
 TEST(SequenceGenerator, BasicScriptOverheadByLineFifo) {
     SequenceParams p;
     p.reuse = false;
+    p.line_groups = 1;
     p.line_fifo = LineFifo::tdp_x2;
     const Sequence four = generate_sequence(p);
     EXPECT_EQ(four.interval, 53);
@@ -157,8 +161,45 @@ TEST(SequenceGenerator, BasicScriptOverheadByLineFifo) {
     EXPECT_GT(generate_sequence(p).interval, 53);
 }
 
+// A bus that reaches half of the lines (the default) costs the basic script a cycle; one that
+// reaches a quarter, twelve: octave 1's words crowd the groups of the lines around the centre,
+// so the busiest group's words over its one bus (62) become the structural bound.
+TEST(SequenceGenerator, LineGroupsConstrainWhichBusCarriesAWord) {
+    SequenceParams p;
+    p.reuse = false;
+    for (const auto& [groups, interval, bound] : {std::tuple{1u, 53, 48}, {2u, 54, 49}, {4u, 65, 62}}) {
+        p.line_groups = groups;
+        const Sequence s = generate_sequence(p);
+        EXPECT_EQ(check_sequence(s, p), "") << groups;
+        EXPECT_EQ(s.interval, interval) << groups << " groups";
+        EXPECT_EQ(s.optimal_cycles, bound) << groups << " groups: the busiest group's words over its buses";
+        for (const Step& step : s.steps) ASSERT_TRUE(bus_reaches(p, step.bus, step.y)) << groups;
+    }
+    // The checker refuses a word on a bus of another group.
+    p.line_groups = 2;
+    Sequence s = generate_sequence(p);
+    Step& moved = s.steps.back();
+    moved.bus ^= 1;
+    s.steps.erase(std::remove_if(s.steps.begin(), s.steps.end() - 1,
+                                 [&](const Step& st) { return st.cycle == moved.cycle && st.bus == moved.bus; }),
+                  s.steps.end() - 1);
+    EXPECT_NE(check_sequence(s, p).find("reaches line group"), std::string::npos) << check_sequence(s, p);
+    // Groups the buses or the FIFO cannot be dealt into are refused, naming the parameter.
+    p.line_groups = 3;
+    EXPECT_THROW(generate_sequence(p), std::invalid_argument);
+    p.line_groups = 4;
+    p.read_buses = 6;
+    try {
+        generate_sequence(p);
+        ADD_FAILURE() << "6 buses in 4 groups";
+    } catch (const std::invalid_argument& e) {
+        EXPECT_NE(std::string(e.what()).find("fhg.line_groups"), std::string::npos) << e.what();
+    }
+}
+
 TEST(SequenceGenerator, MoreBusesNeverSlower) {
     SequenceParams p;
+    p.line_groups = 1;  // every lane reaches every line
     p.bus_word = BusWord::scalar;
     p.scheduler = Scheduler::improved;
     int previous = 1 << 30;
@@ -194,6 +235,7 @@ TEST(SequenceGenerator, SuccessiveBlocksOverlapTheLastAdditions) {
 
 TEST(SequenceGenerator, CheckerCatchesEveryBrokenLimit) {
     SequenceParams p;
+    p.line_groups = 1;            // every lane reaches every line
     p.line_fifo = LineFifo::tdp;  // two reads a line and cycle
     const Sequence s = generate_sequence(p);
     ASSERT_EQ(check_sequence(s, p), "");

@@ -1,5 +1,6 @@
 // The FPGA resource estimate (docs/resources.md): block RAMs in the RAMB36's aspect ratios,
 // DSP48E tiles for the multipliers, the totals of a configuration against the device.
+#include <cmath>
 #include <gtest/gtest.h>
 
 #include "platform/cost/fpga_resources.h"
@@ -55,6 +56,16 @@ TEST(FpgaResources, TheDefaultChipFitsTheFx70t) {
     EXPECT_NEAR(r.total.luts, 43742, 1);  // 98 % of the FX70T's 44,800
 }
 
+// A lane wired to one group of the lines multiplexes that share of the BRAMs: 28 of 56 with
+// two groups, 14 with four (and a 2:1 turn of each lane's value and address).
+TEST(FpgaResources, LineGroupsNarrowEachLanesMultiplexer) {
+    const FhgParts two = fhg_parts(config({"fhg.line_groups=2"}));
+    EXPECT_EQ(two.line_routing.luts, 11491);               // 16 x 23.4 x 28 + 18 x 56, to the whole LUT
+    EXPECT_EQ(two.line_routing.ffs, 16 + 4 * 2 * 5 + 39);  // 5 bits of BRAM index in a group
+    EXPECT_NEAR(fpga_resources(config({"fhg.line_groups=2"})).total.luts, 33259, 1);  // 74 % of the FX70T
+    EXPECT_EQ(fhg_parts(config({"fhg.line_groups=4"})).line_routing.luts, std::round(16 * (23.4 * 14 + 40) + 18 * 56));
+}
+
 TEST(FpgaResources, StructureMovesTheEstimate) {
     const double base = fpga_resources(config({})).total.ramb36;
     EXPECT_EQ(fpga_resources(config({"fhg.fifo_lines=64"})).total.ramb36, base + 8);
@@ -71,10 +82,10 @@ TEST(FpgaResources, StructureMovesTheEstimate) {
     EXPECT_EQ(two.total.ramb36, 2 * 79 + 6);
     EXPECT_FALSE(two.fits());
     ASSERT_EQ(two.over.size(), 2u);
-    EXPECT_EQ(two.over[0], "RAMB36: 164 of 148");
     // Each FHG's line FIFO routing (21,974 LUTs) is half the FX70T's LUTs: two pairs need
     // 2 x (1,012 + 34,110) + 2,620 (the FPU) + 6,000 (the rest).
-    EXPECT_EQ(two.over[1], "LUT: 78864 of 44800");
+    EXPECT_EQ(two.over[0], "LUT: 78864 of 44800 (176 %), more than the device has");
+    EXPECT_EQ(two.over[1], "RAMB36: 164 of 148 (111 %), more than the device has");
     // An FX100T's block RAMs (228) and a device with 20,000 slices (80,000 LUTs).
     EXPECT_TRUE(fpga_resources(config({"soc.accelerators=2", "fpga.ramb36=228", "fpga.slices=20000"})).fits());
 }

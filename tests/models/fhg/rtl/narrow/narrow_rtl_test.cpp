@@ -1,7 +1,8 @@
 // The verilated datapath on another machine, at a precision whose paths the defaults never
 // reach: 20-bit accumulators that wrap, 12-bit responses (9 fraction bits: |r| < 4) and 18-bit
 // determinants (16 fraction bits: |det| < 2) that saturate, read by six pair buses from a
-// `banked` line FIFO (two BRAMs a line, columns interleaved, two ports each at the FHG clock).
+// `banked` line FIFO (two BRAMs a line, columns interleaved, two ports each at the FHG clock),
+// each bus reaching the lines of one of two groups (fhg.line_groups = 2).
 // Every determinant of real crops must still be HessianCore's at that precision, bit for bit,
 // each block in the schedule's interval; the test counts the saturations it compared. (Its own
 // Verilator build, tests/CMakeLists.txt, is given the fields narrow() and machine() set.)
@@ -30,6 +31,7 @@ SequenceParams machine() {
     s.line_fifo = LineFifo::banked;
     s.bus_word = BusWord::pair;
     s.read_buses = 6;
+    s.line_groups = 2;  // each lane reaches half of the lines, which the default build (every line) does not wire
     return s;
 }
 
