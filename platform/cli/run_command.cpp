@@ -12,6 +12,7 @@
 #include "models/host/atomic_file.h"
 #include "platform/compare/compare.h"
 #include "platform/catalog.h"
+#include "platform/cost/clock_closure.h"
 #include "platform/cost/fpga_resources.h"
 #include "platform/report/report.h"
 #include "platform/report/run_summary.h"
@@ -69,8 +70,16 @@ void print_warnings(const Config& config) {
     for (const std::string& w : scenario_warnings(config)) std::fprintf(stderr, "surfvp: warning: %s\n", w.c_str());
     const FpgaResources fpga = fpga_resources(config);
     if (!fpga.fits())
-        std::fprintf(stderr, "surfvp: warning: the configuration does not fit the %s: %s (docs/resources.md)\n",
+        std::fprintf(stderr,
+                     "surfvp: warning: the configuration does not fit the %s: %s; a run misses its goal "
+                     "(docs/resources.md)\n",
                      fpga.device.c_str(), fmt::format("{}", fmt::join(fpga.over, "; ")).c_str());
+    const ClockClosure closure = clock_closure(config);
+    if (!closure.closes())
+        std::fprintf(stderr,
+                     "surfvp: warning: the configuration does not close its clocks: %s; a run misses its goal "
+                     "(docs/resources.md)\n",
+                     fmt::format("{}", fmt::join(closure.failing, "; ")).c_str());
 }
 
 }  // namespace

@@ -273,8 +273,10 @@ Json compare_runs(const std::vector<std::string>& names) {
     for (const Json& s : sides) {
         const Json& m = s["main"];
         const auto flag = [&m](const char* key) { return m.contains(key) && m[key].is_boolean() ? m[key] : Json(); };
-        budgets.push_back(
-            {{"frame_rate", flag("budget_met")}, {"power", flag("within_power_budget")}, {"fits_fpga", flag("fits")}});
+        budgets.push_back({{"frame_rate", flag("budget_met")},
+                           {"power", flag("within_power_budget")},
+                           {"fits_fpga", flag("fits")},
+                           {"closes_clocks", flag("closes")}});
     }
     Json side_list = Json::array();
     for (const Json& s : sides) side_list.push_back({{"name", s["name"]}, {"kind", s["kind"]}});
@@ -294,7 +296,7 @@ std::string compare_markdown(const Json& c) {
     std::string md = fmt::format("# surfvp compare\n\nAgainst the first, `{}`: each figure with its change and %.\n\n",
                                  c["reference"].get<std::string>());
     md += "## Budgets\n\n" + header(c);
-    for (const char* b : {"frame_rate", "power", "fits_fpga"}) {
+    for (const char* b : {"frame_rate", "power", "fits_fpga", "closes_clocks"}) {
         md += fmt::format("| {} |", b);
         for (const auto& s : c["budgets"])
             md += " " + (s[b].is_null() ? std::string("-") : s[b].get<bool>() ? "met" : "**missed**") + " |";

@@ -47,7 +47,9 @@ struct FpgaResources {
     double ramb36_capacity = 0, dsp48e_capacity = 0, lut_capacity = 0, ff_capacity = 0;
     std::vector<BlockResources> blocks;
     BlockResources total;
-    std::vector<std::string> over;  // the resources the configuration needs more of than the device has
+    // The resources the configuration needs more of than the device has: "RAMB36: 164 of 148
+    // (111 %), more than the device has".
+    std::vector<std::string> over;
     bool fits() const { return over.empty(); }
 };
 

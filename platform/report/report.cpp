@@ -618,11 +618,27 @@ std::string why_broken(const nlohmann::ordered_json& r) {
 
 }  // namespace
 
+// Why the chip could not have been built (it does not fit the device with its placement
+// margin, or a clock does not close), or "".
+std::string why_unbuildable(const nlohmann::ordered_json& r) {
+    std::string why;
+    for (const auto& c : r["checks"])
+        if (!c["passed"].get<bool>() && (c["name"] == "fits the FPGA" || c["name"] == "closes its clocks"))
+            why += (why.empty() ? "" : "; ") + c["detail"].get<std::string>();
+    return why;
+}
+
 std::string answer_line(const nlohmann::ordered_json& r) {
     if (r.value("broken", false)) return why_broken(r);
+    const std::string unbuildable = why_unbuildable(r);
+    const std::string first = unbuildable.empty() ? "" : "Not buildable: " + unbuildable + ". ";
     if (r.contains("verdict") && r["verdict"].contains("statement"))
-        return "Verdict: " + r["verdict"]["statement"].get<std::string>();
-    if (!r.contains("throughput_fps")) return "";
+        return first + "Verdict: " + r["verdict"]["statement"].get<std::string>();
+    if (!r.contains("throughput_fps")) return first.empty() ? "" : first.substr(0, first.size() - 2);
+    return first + frame_rate_answer(r);
+}
+
+std::string frame_rate_answer(const nlohmann::ordered_json& r) {
     const RunSummary run = RunSummary::of(r);
     std::string line = fmt::format("{:.2f} frames/s", run.fps);
     if (run.budget_met)

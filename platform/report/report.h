@@ -16,6 +16,8 @@ std::string report_markdown(const nlohmann::ordered_json& report);
 // limit; why the run broke when it did; "" for a run without a frame rate (the smoke test). The
 // terminal's last line says it.
 std::string answer_line(const nlohmann::ordered_json& report);
+// The frame rate against the budget and what limits it: "9.40 frames/s against a budget of 10.00: MISSED; ...".
+std::string frame_rate_answer(const nlohmann::ordered_json& report);
 
 // A workload's per-frame list (report.json's workload.per_frame) as CSV: a header of its keys,
 // a row per frame.

@@ -13,6 +13,7 @@ const std::pair<const char*, const char*> kExtras[] = {
     {"dsp48e", "/fpga_resources/total/dsp48e"},
     {"luts", "/fpga_resources/total/luts"},
     {"fits", "/fpga_resources/fits"},
+    {"closes", "/clock_closure/closes"},
     {"watts", "/power/watts"},
     {"joules_per_frame", "/power/joules_per_frame"},
     {"within_power_budget", "/power/within_budget"},

@@ -1,5 +1,6 @@
 #include "platform/run/run.h"
 
+#include "platform/cost/clock_closure.h"
 #include "platform/cost/power.h"
 #include "platform/report/correlation.h"
 
@@ -13,6 +14,7 @@
 #include <filesystem>
 #include <fstream>
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include "models/common/zeroed_memory.h"
 #include "models/fhg/hessian_core.h"
@@ -84,6 +86,23 @@ void record_checks(nlohmann::ordered_json& r, const std::vector<Check>& checks, 
     r["checks"] = list;
 }
 
+// The chip must have been buildable (the paper's was): it fits the device with the placement
+// margin kept, and closes every clock. Goals: a configuration that misses them is the
+// design's answer (exit 1), first in the report.
+std::vector<Check> buildability_checks(const FpgaResources& resources, const ClockClosure& closure) {
+    return {
+        {"fits the FPGA", resources.fits(),
+         resources.fits() ? fmt::format("{:.0f} % of the LUTs, {:.0f} % of the RAMB36 of the {}",
+                                        100 * resources.total.luts / resources.lut_capacity,
+                                        100 * resources.total.ramb36 / resources.ramb36_capacity, resources.device)
+                          : fmt::format("does not fit the {}: {}", resources.device, fmt::join(resources.over, "; ")),
+         true},
+        {"closes its clocks", closure.closes(),
+         closure.closes() ? fmt::format("{} clock domains under their maximum", closure.domains.size())
+                          : fmt::format("does not close: {}", fmt::join(closure.failing, "; ")),
+         true}};
+}
+
 struct Outcome {
     sc_core::sc_time sim_time;
     std::string failure;  // empty when the software ran to its end
@@ -125,7 +144,11 @@ nlohmann::ordered_json build_report(const Config& config, Soc& soc, const Outcom
     nlohmann::ordered_json r;
     r["surfvp_version"] = SURFVP_VERSION;
     r["scenario"] = {{"name", config.name}, {"file", config.file}, {"description", config.description}};
-    record_checks(r, soc.workload().checks(), outcome.failure);
+    const FpgaResources resources = fpga_resources(config);
+    const ClockClosure closure = clock_closure(config);
+    std::vector<Check> checks = soc.workload().checks();
+    for (const Check& c : buildability_checks(resources, closure)) checks.push_back(c);
+    record_checks(r, checks, outcome.failure);
     r["budget"] = nullptr;  // unless the workload's summary sets one
     r["sim_time_s"] = sim_s;
     r["startup_s"] = startup_s;  // from the process's start to the simulation's
@@ -148,8 +171,8 @@ nlohmann::ordered_json build_report(const Config& config, Soc& soc, const Outcom
     for (size_t k = 0; k < soc.fhgs().size(); ++k)
         (fhg.is_array() ? fhg[k] : fhg)["schedules"] = schedule_figures(soc.fhgs()[k]->params());
     if (summary.contains("frames_done") && summary["frames_done"].get<size_t>() > 1) add_limits(r, config);
-    const FpgaResources resources = fpga_resources(config);
     r["fpga_resources"] = resources_json(resources);
+    r["clock_closure"] = closure_json(closure);
     r["power"] = power_estimate(config, r, resources);
     r["power"]["band"] = cost_band(config, r);
     if (run_settings(config).workload == "surf") r["correlation"] = correlation_json(r);

@@ -65,15 +65,6 @@ void check_consistency(const Config& c) {
         throw ConfigError(
             fmt::format("{}: {} inputs are too few for {} accelerator pairs (soc.accelerators): they need {}",
                         c.where("intc.inputs"), c.count("intc.inputs"), pairs, needed));
-    // A line FIFO clocked at a multiple of the FHG's clock must be one the block RAM can run.
-    const fhg::LineFifo fifo = fhg_params(c).sequence.line_fifo;
-    const int multiple = fhg::line_fifo_shape(fifo).clock_multiple;
-    if (multiple > 1 && c.frequency("fhg.clock").hz * multiple > c.frequency("fpga.bram_fmax").hz)
-        throw ConfigError(fmt::format(
-            "{}: {} clocks the line FIFO's block RAM at {} x fhg.clock = {:g} MHz, above "
-            "fpga.bram_fmax = {:g} MHz (from {}); lower fhg.clock (from {}) or choose tdp or banked",
-            c.where("fhg.line_fifo"), fhg::line_fifo_name(fifo), multiple, c.frequency("fhg.clock").hz * multiple / 1e6,
-            c.frequency("fpga.bram_fmax").hz / 1e6, c.source_of("fpga.bram_fmax"), c.source_of("fhg.clock")));
     if (c.choice("fhg.model") == "rtl") check_rtl_model(c);
     if (c.choice("run.workload") != "surf") return;
 

@@ -63,17 +63,17 @@ std::string results_markdown(const std::string& name, const std::vector<std::str
                              const std::vector<SweepRow>& rows, const std::vector<bool>& front,
                              const std::vector<Objective>& objectives) {
     std::vector<std::string> shown;
-    for (const char* c : {"fps", "bottleneck", "latency_ms", "bram36", "dsp48e", "luts", "watts", "repeatability",
-                          "precision", "distinguishability"})
+    for (const char* c : {"fps", "bottleneck", "latency_ms", "bram36", "dsp48e", "luts", "fits", "closes", "watts",
+                          "repeatability", "precision", "distinguishability"})
         if (std::any_of(rows.begin(), rows.end(), [&](const SweepRow& r) { return r.figures.contains(c); }))
             shown.emplace_back(c);
     std::vector<std::string> weighed;
     for (const Objective& o : objectives) weighed.push_back(o.figure);
     const size_t on_front = size_t(std::count(front.begin(), front.end(), true));
     std::string md = fmt::format(
-        "# Sweep {}\n\n{} points; {} on the Pareto front of {} (only points that ran whole and fit the device "
-        "are weighed). Status: passed, missed (a budget or goal), broken (the run broke), error (could not "
-        "run).\n\n| point |",
+        "# Sweep {}\n\n{} points; {} on the Pareto front of {} (only points that ran whole, fit the device "
+        "and close their clocks are weighed). Status: passed, missed (a budget or goal: a design that does not fit "
+        "or close misses), broken (the run broke), error (could not run).\n\n| point |",
         name, rows.size(), on_front, fmt::join(weighed, ", "));
     std::string rule = "|---:|";
     for (const std::string& a : axes) md += " " + a + " |", rule += "---|";
@@ -117,10 +117,11 @@ std::vector<bool> pareto_front(const std::vector<SweepRow>& rows, const std::vec
         const double v = r.figures.value(o.figure, 0.0);
         return o.higher_is_better ? v : -v;
     };
-    // Only points that ran whole and fit the device trade off: one that does not fit is no
-    // design, whatever its figures.
+    // Only points that ran whole, fit the device and close their clocks trade off: one that
+    // could not be built is no design, whatever its figures.
     auto candidate = [](const SweepRow& r) {
-        return r.error.empty() && r.exit != kExitBroken && !(r.figures.contains("fits") && r.figures["fits"] == false);
+        auto is_false = [&r](const char* key) { return r.figures.contains(key) && r.figures[key] == false; };
+        return r.error.empty() && r.exit != kExitBroken && !is_false("fits") && !is_false("closes");
     };
     std::vector<bool> front(rows.size(), false);
     for (size_t i = 0; i < rows.size(); ++i) {

@@ -159,12 +159,6 @@ TEST(BadInput, InconsistentParametersAreReportedAtTheirOrigin) {
     const std::string out = fresh_path("inconsistent_out");
     expect_refused(surfvp("run " + kBudget + kOneRun + " --quiet --out " + out + " --set fhg.line_fifo=sdp72"),
                    {"fhg.line_fifo: sdp72 serves 1 aligned pair", "fhg.line_fifo = sdp72 from --set"}, "sequence");
-    // A line FIFO clocked at twice the FHG's must stay within the block RAM's clock.
-    expect_refused(
-        surfvp("validate " + kBudget + " --set 'fhg.clock=250 MHz'"),
-        {"tdp_x2 clocks the line FIFO's block RAM at 2 x fhg.clock = 500 MHz, above fpga.bram_fmax = 450 MHz",
-         "lower fhg.clock (from --set)"},
-        "block RAM clock");
     EXPECT_FALSE(fs::exists(out)) << "an empty output folder was made";
     expect_refused(surfvp("validate " + kBudget + " --set surf.frames=1"),
                    {"--set surf.frames: 1 frames cannot give a frame rate", "budget.fps = 0 (from " + kBudget + ":12)"},

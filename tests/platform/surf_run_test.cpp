@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
+#include <tuple>
 
 #include "cli.h"
 #include "sw/eval/keypoint_file.h"
@@ -98,9 +99,10 @@ TEST(SurfRun, LimitWithAFiftyTwoLineFifoIsLineFifoStarvation) {
 }
 
 TEST(SurfRun, LimitWithTwoPairsAndTwoTasksIsTheTaskLimit) {
-    const auto r =
-        run("limit_tasks",
-            " --set surf.frames=6 --set budget.fps=0 --set soc.accelerators=2 --set surf.tasks_in_flight=2", 0);
+    const auto r = run("limit_tasks",
+                       " --set surf.frames=6 --set budget.fps=0 --set soc.accelerators=2 --set surf.tasks_in_flight=2" +
+                           test::kRoomForTwoPairs,
+                       0);
     // Each pair waits for a free task slot; the limit named is that wait (or, since the CPU's
     // fills overlap (issue 33), the IIG held back behind it on the PixelBus), not a busy block.
     EXPECT_TRUE(r["limit"]["resource"] == "task slots" || r["limit"]["cause"] == "PixelBus back-pressure")
@@ -119,7 +121,7 @@ TEST(SurfRun, EveryResourcesFrameAddsUpToItsPeriod) {
              {"adds_default", ""},
              {"adds_contention", contention},
              {"adds_two_pairs", " --set soc.accelerators=2 --set surf.tasks_in_flight=2"}}) {
-        const auto r = run(name, " --set surf.frames=5 --set budget.fps=0" + sets, 0);
+        const auto r = run(name, " --set surf.frames=5 --set budget.fps=0" + test::kRoomForTwoPairs + sets, 0);
         const double run_period = r["sim_time_s"].get<double>() * 1e3 / r["frames_done"].get<double>();
         const double pairs = r["iig"].is_array() ? double(r["iig"].size()) : 1.0;
         ASSERT_TRUE(r.contains("time_per_frame")) << name;
@@ -143,6 +145,32 @@ TEST(SurfRun, LimitWithASlowIigIsTheIig) {
     EXPECT_EQ(r["limit"]["resource"], "iig") << r["limit"];
     EXPECT_NEAR(r["time_per_frame"]["iig"]["busy_ms"].get<double>(), 1024.0 * 768 / 5e6 * 1e3, 0.5);  // 1 px a cycle
     EXPECT_GT(r["time_per_frame"]["fhg"]["waits_ms"]["line FIFO empty"].get<double>(), 30.0);
+}
+
+// A chip that could not have been built misses its goal, whatever its frame rate: six read
+// buses need more LUTs than the FX70T has, a 250 MHz FHG clocks the tdp_x2 line FIFO's block
+// RAM at 500 MHz. The reason is the terminal's last line and report.md's first.
+TEST(SurfRun, AChipThatCouldNotBeBuiltMissesItsGoal) {
+    for (const auto& [name, sets, reason] :
+         {std::tuple{"over_the_device", " --set fhg.read_buses=6",
+                     "Not buildable: does not fit the XC5VFX70T: LUT: 54226 of 44800 (121 %), more than the device "
+                     "has."},
+          std::tuple{"over_the_bram_clock", " --set 'fhg.clock=250 MHz'",
+                     "Not buildable: does not close: FHG line FIFO block RAM: 500 MHz, above its 450 MHz (2 x "
+                     "fhg.clock (tdp_x2) against fpga.bram_fmax)."}}) {
+        const std::string out = fresh_dir(name);
+        const auto r = surfvp("run " + kBudget + " --trace none --out " + out + kOneRun + sets);
+        EXPECT_EQ(r.exit_code, 1) << name << ": " << r.err;
+        const std::string last = r.err.substr(r.err.rfind('\n', r.err.size() - 2) + 1);
+        EXPECT_NE(last.find(std::string("FAILED: ") + reason), std::string::npos) << name << ": " << last;
+        const std::string md = slurp(out + "/report.md");
+        const size_t first = md.find("\n\n**"), result = md.find("**Result: FAILED**");
+        EXPECT_EQ(md.find(reason), first + 4) << name << ": the reason comes first in report.md";
+        EXPECT_LT(first, result) << name;
+        const auto report = nlohmann::json::parse(slurp(out + "/report.json"));
+        EXPECT_FALSE(report["passed"].get<bool>()) << name;
+        EXPECT_FALSE(report["broken"].get<bool>()) << name;
+    }
 }
 
 // With few keypoints the CPU keeps up and the FHG sets the rate.
