@@ -111,17 +111,17 @@ const ParamTable<Fhg::Params>& Fhg::parameter_table() {
          field<P>(
              {"fhg.line_groups",
               ParamKind::count,
-              "1",
+              "2",
               1,
               4,
               {},
               "Which line-FIFO lines a read bus reaches: 1, every line (each bus lane multiplexes all the FIFO's "
               "BRAMs); 2 or 4, one group of the lines (slot mod line_groups), so each lane multiplexes that "
               "fraction of them and the sequence puts each word on a bus of its line's group",
-              "[A] the paper names 4 independent buses and 56 lines, not their wiring. Every line (1) reproduces "
-              "its basic script (53 cycles, +10.4 % over note 4's optimum) but puts the chip at 98 % of the FX70T's "
-              "LUTs; half of them (2) takes 74 % at 54 cycles (+12.5 %); a quarter (4) 64 % at 65 cycles "
-              "(docs/correlation.md)",
+              "[A] the paper names 4 independent buses and 56 lines, not their wiring; its chip was built, so it "
+              "fitted: every line (1) puts it at 98 % of the FX70T's LUTs, which does not place and route; half of "
+              "them (2) fits at 72 % with the same basic script (53 cycles, +10.4 % over note 4's optimum) and "
+              "frame rate; a quarter (4) takes 58 cycles (docs/correlation.md)",
               {"1", "4", "every line (a 56:1 multiplexer a lane) to a quarter of them (14:1)"},
               ParamRole::design},
              [](P & p) -> auto& { return p.sequence.line_groups; }),

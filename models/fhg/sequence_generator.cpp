@@ -186,9 +186,10 @@ std::pair<int, std::string> lower_bound(const Problem& problem, const SequencePa
     const int values = int(word_shape(p.bus_word).size());
     const int words = p.reuse ? ceil_div(problem.distinct, values) : int(problem.groups.size());
     int buses = ceil_div(words, int(p.read_buses));
-    if (!p.reuse) {  // each line group's words on its own buses
+    if (!p.reuse) {  // each line group's words on its own buses (a single value's may move: top_on_bus)
         std::vector<int> in_group(p.line_groups, 0);
-        for (const Word& g : problem.groups) ++in_group[size_t(line_group(p, g.y))];
+        for (const Word& g : problem.groups)
+            if (g.needs.size() > 1 || p.bus_word != BusWord::quad) ++in_group[size_t(line_group(p, g.y))];
         for (int n : in_group) buses = std::max(buses, ceil_div(n, int(p.read_buses / p.line_groups)));
     }
     std::vector<int> reads(size_t(problem.brams), 0);
@@ -307,6 +308,20 @@ private:
     mutable std::vector<std::pair<int, int>> mine_;  // ports_fit's scratch: this word's reads
 };
 
+constexpr int kNoTop = -1000;  // no top line puts the word on the bus
+
+// The top line at which `bus` can carry word `w`: its own, or for a group whose values all lie
+// on one line of a quad word (octave 2's single values), the line above it, the value then in
+// the word's lower lanes, where the bus reaches the other group (fhg.line_groups); else kNoTop.
+int top_on_bus(const SequenceParams& p, const Problem& problem, const Word& w, int bus, bool reuse) {
+    if (bus_reaches(p, bus, w.y)) return w.y;
+    if (reuse || p.bus_word != BusWord::quad) return kNoTop;
+    for (int i : w.needs)
+        if (problem.needs[size_t(i)].y != w.y) return kNoTop;
+    const int up = w.y - 1;
+    return bus_reaches(p, bus, up) && word_in_window(p, up, w.x) ? up : kNoTop;
+}
+
 constexpr int kCycleLimit = 1 << 16;  // far beyond any schedule; a guard against a scheduler bug
 
 // One pass of the list scheduler both scripts use: each bus carries the word whose free
@@ -328,7 +343,7 @@ std::vector<Step> schedule_list(const Problem& problem, const SequenceParams& p,
         if (cycle > kCycleLimit) throw std::logic_error("sequence generator: the list schedule does not end");
         for (unsigned bus = 0; bus < p.read_buses; ++bus) {
             long best_score = 0;
-            int best = -1;
+            int best = -1, best_top = 0;
             for (size_t a = 0; a < alive.size();) {
                 const Word& w = candidates[size_t(alive[a])];
                 bool any = false;
@@ -350,11 +365,15 @@ std::vector<Step> schedule_list(const Problem& problem, const SequenceParams& p,
                     alive.pop_back();
                     continue;
                 }
-                if (!bus_reaches(p, int(bus), w.y)) {  // its lines are another group's
+                const int top = top_on_bus(p, problem, w, int(bus), reuse);
+                if (top == kNoTop) {  // its lines are another group's
                     for (int tm : served) slot[size_t(tm)] = -1;
                     ++a;
                     continue;
                 }
+                Word moved;  // the word as this bus carries it
+                if (top != w.y) moved = {top, w.x, w.needs, w.ports};
+                const Word& carried = top == w.y ? w : moved;
                 // A group goes whole or not at all.
                 const bool whole = reuse || served.size() == w.needs.size();
                 if (reuse && !served.empty()) {  // a shared word reads the values it is taken for
@@ -367,7 +386,7 @@ std::vector<Step> schedule_list(const Problem& problem, const SequenceParams& p,
                 const Ports& reads = reuse ? ports : w.ports;
                 taken.clear();
                 for (int tm : served) taken.push_back(slot[size_t(tm)]);
-                if (!served.empty() && whole && m.ports_fit(w, taken, int(bus), cycle)) {
+                if (!served.empty() && whole && m.ports_fit(carried, taken, int(bus), cycle)) {
                     long most = 0;
                     for (int tm : served) most = std::max<long>(most, m.remaining(tm));
                     if (port_aware) most = std::max<long>(most, m.bram_pressure(reads));
@@ -375,6 +394,7 @@ std::vector<Step> schedule_list(const Problem& problem, const SequenceParams& p,
                     if (score > best_score) {
                         best_score = score;
                         best = alive[a];
+                        best_top = top;
                         best_served = taken;
                     }
                 }
@@ -382,7 +402,9 @@ std::vector<Step> schedule_list(const Problem& problem, const SequenceParams& p,
                 ++a;
             }
             if (best < 0) continue;  // nothing this bus could deliver this cycle
-            m.deliver(candidates[size_t(best)], best_served, cycle, int(bus), steps);
+            Word chosen = candidates[size_t(best)];
+            chosen.y = best_top;
+            m.deliver(chosen, best_served, cycle, int(bus), steps);
         }
     }
     return steps;

@@ -85,7 +85,7 @@ struct SequenceParams {
     LineFifo line_fifo = LineFifo::tdp_x2;
     // Which lines a bus lane reaches (line_group below): 1, every line (a full crossbar); 2 or
     // 4, the lines of one group of slots, so a lane's multiplexer spans 1/line_groups of the BRAMs.
-    unsigned line_groups = 1;
+    unsigned line_groups = 2;
     Scheduler scheduler = Scheduler::basic;
     unsigned attempts = 16;  // passes with different tie-breaks: basic takes their median, improved the shortest
 };
@@ -153,7 +153,9 @@ int lane_port(const SequenceParams& params, int bus, int lane);
 // mod line_groups; the line FIFO rotates its buses by (top slot mod line_groups) at the other
 // windows (only with 4 groups: 0 or 2), which keeps every lane in its group with one sequence.
 // So a bus reaches 1/line_groups of the window's lines; it needs read_buses to be a multiple
-// of line_groups, and line_groups to divide the FIFO's lines.
+// of line_groups, and line_groups to divide the FIFO's lines. A quad word that carries values
+// of one line only (octave 2's) may sit a line higher, the values in its lower lanes, so that a
+// bus of the other group can carry it.
 int line_group(const SequenceParams& params, int y);             // the group of the window line at block row y
 bool bus_reaches(const SequenceParams& params, int bus, int y);  // whether a word at top line y may go on bus
 

@@ -77,9 +77,12 @@ Json schedule_row(const Config& base, const Sets& sets) {
         row["script_cycles"] = s.interval;
         row["block_cycles"] = Fhg::block_cycles(s, p);
         row["overhead"] = s.idle_bus_overhead();
-        row["reproduces"] = within_about(s.idle_bus_overhead(), paper::kOverhead);
         row["ramb36"] = resources.total.ramb36;
+        row["lut_share"] = resources.total.luts / resources.lut_capacity;
         row["fits"] = resources.fits();
+        // The paper's chip was built: a schedule reproduces it only on a chip that fits.
+        row["reproduces_script"] = within_about(s.idle_bus_overhead(), paper::kOverhead);
+        row["reproduces"] = row["reproduces_script"].get<bool>() && resources.fits();
     } catch (const std::invalid_argument& e) {
         row["refused"] = e.what();
         row["reproduces"] = false;
@@ -183,28 +186,31 @@ std::string correlate_markdown(const Json& r) {
         "their "
         "bands; kept where the VP reproduces the paper within its precision (docs/correlation.md): the basic script "
         "{:.1f} % to {:.1f} % over note 4's optimal state, and {:.0f} to {:.0f} frames/s at 1024x768 with around 100 "
-        "keypoints.\n\n## The schedule: bus word, line FIFO, read buses\n\n"
-        "| fhg.bus_word | fhg.line_fifo | fhg.read_buses | basic script | over note 4's optimum | RAMB36 (of the chip) "
-        "| "
-        "reproduces |\n|---|---|---|---:|---:|---:|---|\n",
+        "keypoints, on a chip that fits the device.\n\n## The schedule: bus word, line FIFO, read buses, line "
+        "groups\n\n"
+        "| fhg.bus_word | fhg.line_fifo | fhg.read_buses | fhg.line_groups | basic script | over note 4's optimum | "
+        "RAMB36 (of the chip) | LUTs (of the chip) | reproduces |\n|---|---|---|---|---:|---:|---:|---:|---|\n",
         r["scenario"].get<std::string>(), 100 * r["paper"]["overhead"][0].get<double>(),
         100 * r["paper"]["overhead"][1].get<double>(), r["paper"]["fps"][0].get<double>(),
         r["paper"]["fps"][1].get<double>());
     for (const Json& s : r["schedules"]) {
         if (s.contains("refused")) {
-            md += fmt::format("| {} | {} | {} | refused: {} | | | no |\n", s["fhg.bus_word"].get<std::string>(),
+            md += fmt::format("| {} | {} | {} | {} | refused: {} | | | | no |\n", s["fhg.bus_word"].get<std::string>(),
                               s["fhg.line_fifo"].get<std::string>(), s["fhg.read_buses"].get<std::string>(),
-                              s["refused"].get<std::string>());
+                              s["fhg.line_groups"].get<std::string>(), s["refused"].get<std::string>());
             continue;
         }
-        md +=
-            fmt::format("| {} | {} | {} | {} cycles | {:.1f} % | {:g}{} | {} |\n", s["fhg.bus_word"].get<std::string>(),
-                        s["fhg.line_fifo"].get<std::string>(), s["fhg.read_buses"].get<std::string>(),
-                        s["script_cycles"].get<int>(), 100 * s["overhead"].get<double>(), s["ramb36"].get<double>(),
-                        s["fits"].get<bool>() ? "" : " (does not fit)", s["reproduces"].get<bool>() ? "**yes**" : "no");
+        md += fmt::format("| {} | {} | {} | {} | {} cycles | {:.1f} % | {:g} | {:.0f} %{} | {} |\n",
+                          s["fhg.bus_word"].get<std::string>(), s["fhg.line_fifo"].get<std::string>(),
+                          s["fhg.read_buses"].get<std::string>(), s["fhg.line_groups"].get<std::string>(),
+                          s["script_cycles"].get<int>(), 100 * s["overhead"].get<double>(), s["ramb36"].get<double>(),
+                          100 * s["lut_share"].get<double>(), s["fits"].get<bool>() ? "" : " (does not fit)",
+                          s["reproduces"].get<bool>()          ? "**yes**"
+                          : s["reproduces_script"].get<bool>() ? "script only: does not fit"
+                                                               : "no");
     }
     md +=
-        "\n## The frame rate, for the schedules that reproduce the script\n\nThe FHG clocks at which the rate is "
+        "\n## The frame rate, for the schedules that reproduce the script on a chip that fits\n\nThe FHG clocks at which the rate is "
         "within "
         "the paper's precision, for each CPU clock, APU FPU ratio and keypoint count (2-frame re-simulations):\n\n"
         "| block cycles | cpu.clock | cpu.fpu_ratio | surf.target_keypoints | fhg.clock that reproduces | frames/s "
@@ -251,8 +257,11 @@ int correlate_command(const CorrelateOptions& o) {
     for (const std::string& word : words)
         for (const std::string& fifo : fifos)
             for (const char* buses : {"2", "4", "6"})
-                schedules.push_back(
-                    schedule_row(config, {{"fhg.bus_word", word}, {"fhg.line_fifo", fifo}, {"fhg.read_buses", buses}}));
+                for (const char* groups : {"1", "2", "4"})
+                    schedules.push_back(schedule_row(config, {{"fhg.bus_word", word},
+                                                              {"fhg.line_fifo", fifo},
+                                                              {"fhg.read_buses", buses},
+                                                              {"fhg.line_groups", groups}}));
 
     // The frame rate for each block-cycle count among the reproducing schedules (the FHG's
     // timing depends on nothing else of the schedule), over the other unknowns.
@@ -274,7 +283,7 @@ int correlate_command(const CorrelateOptions& o) {
                                            {"cpu.fpu_ratio", ratio},
                                            {"surf.target_keypoints", kp}},
                                           {}});
-    const Sets schedule_keys = config.sets_of({"fhg.bus_word", "fhg.line_fifo", "fhg.read_buses"});
+    const Sets schedule_keys = config.sets_of({"fhg.bus_word", "fhg.line_fifo", "fhg.read_buses", "fhg.line_groups"});
     Sets defaults = config.sets_of({"cpu.clock", "cpu.fpu_ratio", "surf.target_keypoints"});
     defaults.insert(defaults.begin(), {"fhg.clock", mhz(fhg_params(config).clock.hz)});
     Json default_point;
@@ -286,7 +295,7 @@ int correlate_command(const CorrelateOptions& o) {
         Resimulation pool(o.jobs, out.staging() / ".points");
         for (CorrelationPoint& p : points) {
             Sets sets = p.sets;
-            for (const char* key : {"fhg.bus_word", "fhg.line_fifo", "fhg.read_buses"})
+            for (const char* key : {"fhg.bus_word", "fhg.line_fifo", "fhg.read_buses", "fhg.line_groups"})
                 sets.emplace_back(key, schedules[p.schedule][key].get<std::string>());
             pool.submit(correlate_variant(reference, sets), [&p](const Json& r) { p.result = r; });
         }

@@ -91,9 +91,11 @@ BramLogic bram_logic(const fhg::LineFifoShape& shape, unsigned address_bits) {
 }
 
 // The line FIFO's routing (line_fifo.v), fitted to yosys 0.23's synthesis of the whole FIFO at
-// six machines (docs/rtl.md), within 14 % on each: every bus lane picks its value among all the
-// BRAMs and gives its address to its port of the one it reads (23.4 LUTs a lane per BRAM), and
-// every BRAM gathers its ports' addresses (18 LUTs a BRAM). Its flip-flops are exact: a bit a
+// six crossbar machines (docs/rtl.md), within 14 % on each: every bus lane picks its value
+// among the BRAMs it reaches (all, or its line group's) and gives its address to its port of
+// the one it reads (23.4 LUTs a lane per BRAM), and with every lane reaching every BRAM each
+// BRAM gathers its ports' addresses (18 LUTs a BRAM). Four groups' turn of the buses (180 LUTs
+// a lane) is fitted on four scalar buses; two groups hold within 3 % unfitted (docs/rtl.md). Its flip-flops are exact: a bit a
 // lane for `took`, one more with aligned pairs (the half), the BRAM index of each line a bus
 // word spans, and the write side's column, row count, slot and frame bit.
 BramLogic line_routing(const fhg::SequenceParams& s, const fhg::LineFifoShape& shape, unsigned brams) {
@@ -107,10 +109,12 @@ BramLogic line_routing(const fhg::SequenceParams& s, const fhg::LineFifoShape& s
     const unsigned lines_a_word = word.size() == 4 ? 2 : 1;
     const unsigned lane_bits =
         lanes * (shape.aligned_pairs ? 2 : 1) + s.read_buses * lines_a_word * clog2(brams / s.line_groups);
-    const unsigned reach = brams / s.line_groups;            // the BRAMs one lane multiplexes
-    const unsigned rotate = s.line_groups > 2 ? 32 + 8 : 0;  // with 4 groups, each lane's 2:1 value and address turn
-    return {std::round(lanes * (23.4 * reach + rotate) + 18 * brams),
-            double(lane_bits + 16 + 16 + clog2(s.fifo_lines) + 1)};
+    const unsigned reach = brams / s.line_groups;  // the BRAMs one lane multiplexes
+    // Wired to one group, a port gathers no other group's addresses (the 18 a BRAM go); four
+    // groups turn the buses (180 a lane); the turn's register is a bit a group bit.
+    const double gather = s.line_groups == 1 ? 18.0 * brams : 0, turn = s.line_groups == 4 ? 180.0 * lanes : 0;
+    return {std::round(lanes * 23.4 * reach + gather + turn),
+            double(lane_bits + 16 + 16 + clog2(s.fifo_lines) + 1 + clog2(s.line_groups))};
 }
 
 }  // namespace
@@ -205,15 +209,19 @@ FpgaResources fpga_resources(const Config& c) {
     for (const BlockResources& b : r.blocks) {
         r.total.ramb36 += b.ramb36, r.total.dsp48e += b.dsp48e, r.total.luts += b.luts, r.total.ffs += b.ffs;
     }
-    auto check = [&](const char* name, double need, double have) {
-        if (need > have)
-            r.over.push_back(fmt::format("{}: {:.0f} of {:g} ({:.0f} %), more than the device has", name, need, have,
-                                         100 * need / have));
+    r.max_utilisation = device.max_utilisation;
+    r.max_block_utilisation = device.max_block_utilisation;
+    auto check = [&](const char* name, double need, double have, double share, const char* key) {
+        if (need <= have * share) return;
+        const std::string used = fmt::format("{}: {:.0f} of {:g} ({:.0f} %)", name, need, have, 100 * need / have);
+        r.over.push_back(need > have
+                             ? used + ", more than the device has"
+                             : fmt::format("{}, above the {:g} % that places and routes ({})", used, 100 * share, key));
     };
-    check("LUT", r.total.luts, r.lut_capacity);
-    check("FF", r.total.ffs, r.ff_capacity);
-    check("RAMB36", r.total.ramb36, r.ramb36_capacity);
-    check("DSP48E", r.total.dsp48e, r.dsp48e_capacity);
+    check("LUT", r.total.luts, r.lut_capacity, r.max_utilisation, "fpga.max_utilisation");
+    check("FF", r.total.ffs, r.ff_capacity, r.max_utilisation, "fpga.max_utilisation");
+    check("RAMB36", r.total.ramb36, r.ramb36_capacity, r.max_block_utilisation, "fpga.max_block_utilisation");
+    check("DSP48E", r.total.dsp48e, r.dsp48e_capacity, r.max_block_utilisation, "fpga.max_block_utilisation");
     return r;
 }
 
@@ -241,6 +249,7 @@ nlohmann::ordered_json resources_json(const FpgaResources& r) {
               {"ffs", r.ff_capacity}}},
             {"total", figures(r.total)},
             {"share", share},
+            {"max_utilisation", {{"logic", r.max_utilisation}, {"blocks", r.max_block_utilisation}}},
             {"fits", r.fits()},
             {"over", r.over},
             {"blocks", blocks}};

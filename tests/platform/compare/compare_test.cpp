@@ -71,12 +71,12 @@ TEST(Compare, SweepPointsSideBySide) {
     const std::string file = write_file(dir, "s.yaml",
                                         "scenario: " + kBudget +
                                             "\nset: {surf.frames: 3, surf.width: 256, surf.height: 192}\n"
-                                            "axes:\n  fhg.read_buses: [2, 4]\n");
+                                            "axes:\n  fhg.clock: [25 MHz, 100 MHz]\n");
     ASSERT_EQ(surfvp("sweep " + file + " --quiet --out " + dir + "/out").exit_code, 0);
     const auto r = surfvp("compare " + dir + "/out@0 " + dir + "/out@1 --json " + dir + "/c.json");
     ASSERT_EQ(r.exit_code, 0) << r.err;
     const Json c = Json::parse(slurp(dir + "/c.json"));
-    EXPECT_EQ(c["parameters"], (Json{{"fhg.read_buses", {"2", "4"}}}));
+    EXPECT_EQ(c["parameters"], (Json{{"fhg.clock", {"25 MHz", "100 MHz"}}}));
     EXPECT_GT(c["figures"]["fps"][1]["percent"].get<double>(), 0.0);
     EXPECT_NE(r.out.find("## Figures"), std::string::npos) << r.out;
 }

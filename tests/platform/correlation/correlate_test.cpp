@@ -28,7 +28,9 @@ TEST(Correlate, TheDefaultsLieInTheRegionThatReproducesThePaper) {
     const auto run = surfvp("correlate --quiet --out " + out);
     ASSERT_EQ(run.exit_code, 0) << run.err;
     const auto r = nlohmann::json::parse(slurp(out + "/correlate.json"));
-    EXPECT_EQ(reproducing_schedules(r), (std::set<std::string>{"quad/tdp_x2/4", "quad/banked/4"}));
+    // Each bus reaching half of the lines (fhg.line_groups = 2), only tdp_x2 keeps the crossbar's
+    // 53 cycles; banked takes 54 (+12.5 %).
+    EXPECT_EQ(reproducing_schedules(r), (std::set<std::string>{"quad/tdp_x2/4"}));
     EXPECT_TRUE(r["defaults"]["inside"].get<bool>()) << r["defaults"];
     EXPECT_EQ(r["failed_points"].size(), 0u) << r["failed_points"];
     // Each point's verdict is its rate against the paper's 9 to 11 frames/s.

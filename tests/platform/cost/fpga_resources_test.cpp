@@ -47,23 +47,34 @@ TEST(FpgaResources, TheDefaultChipFitsTheFx70t) {
     EXPECT_EQ(r.total.ramb36, 85);
     EXPECT_EQ(r.total.dsp48e, 13);  // HessianCalc's 10 and the single-precision FPU's 3
     EXPECT_TRUE(r.fits());
-    // The line FIFO's routing: 16 lanes (4 quad buses) to and from 56 BRAMs. Its flip-flops: a
-    // bit a lane, 6 bits of BRAM index for each of a quad's two lines on each bus, and the write
-    // side's 16 + 16 + 6 + 1.
+    // The line FIFO's routing: 16 lanes (4 quad buses), each wired to the 28 BRAMs of its line
+    // group (fhg.line_groups = 2). Its flip-flops: a bit a lane, 5 bits of BRAM index in the
+    // group for each of a quad's two lines on each bus, the write side's 16 + 16 + 6 + 1, and
+    // the turn's bit.
     const FhgParts parts = fhg_parts(config({}));
-    EXPECT_EQ(parts.line_routing.luts, 21974);  // 56 x (23.4 x 16 + 18), to the whole LUT
-    EXPECT_EQ(parts.line_routing.ffs, 16 + 4 * 2 * 6 + 39);
-    EXPECT_NEAR(r.total.luts, 43742, 1);  // 98 % of the FX70T's 44,800
+    EXPECT_EQ(parts.line_routing.luts, 10483);  // 16 x 23.4 x 28, to the whole LUT
+    EXPECT_EQ(parts.line_routing.ffs, 16 + 4 * 2 * 5 + 39 + 1);
+    EXPECT_NEAR(r.total.luts, 32251, 1);  // 72 % of the FX70T's 44,800: under the 85 % margin
 }
 
-// A lane wired to one group of the lines multiplexes that share of the BRAMs: 28 of 56 with
-// two groups, 14 with four (and a 2:1 turn of each lane's value and address).
-TEST(FpgaResources, LineGroupsNarrowEachLanesMultiplexer) {
-    const FhgParts two = fhg_parts(config({"fhg.line_groups=2"}));
-    EXPECT_EQ(two.line_routing.luts, 11491);               // 16 x 23.4 x 28 + 18 x 56, to the whole LUT
-    EXPECT_EQ(two.line_routing.ffs, 16 + 4 * 2 * 5 + 39);  // 5 bits of BRAM index in a group
-    EXPECT_NEAR(fpga_resources(config({"fhg.line_groups=2"})).total.luts, 33259, 1);  // 74 % of the FX70T
-    EXPECT_EQ(fhg_parts(config({"fhg.line_groups=4"})).line_routing.luts, std::round(16 * (23.4 * 14 + 40) + 18 * 56));
+// The placement margin: a design above fpga.max_utilisation of the LUTs does not fit, though
+// the device has them. Every lane reaching every line (the crossbar) is such a design; a
+// quarter of the lines a lane is 14 BRAMs and a 2:1 turn of each lane's value and address.
+TEST(FpgaResources, ACrossbarLineFifoIsOverThePlacementMargin) {
+    const FpgaResources crossbar = fpga_resources(config({"fhg.line_groups=1"}));
+    EXPECT_EQ(fhg_parts(config({"fhg.line_groups=1"})).line_routing.luts, 21974);  // 56 x (23.4 x 16 + 18)
+    EXPECT_NEAR(crossbar.total.luts, 43742, 1);
+    ASSERT_EQ(crossbar.over.size(), 1u);
+    EXPECT_EQ(crossbar.over[0],
+              "LUT: 43742 of 44800 (98 %), above the 85 % that places and routes (fpga.max_utilisation)");
+    EXPECT_TRUE(fpga_resources(config({"fhg.line_groups=1", "fpga.max_utilisation=0.99"})).fits());
+    EXPECT_EQ(fhg_parts(config({"fhg.line_groups=4"})).line_routing.luts, std::round(16 * (23.4 * 14 + 180)));
+    // The block RAM's margin apart from the logic's.
+    const FpgaResources banked =
+        fpga_resources(config({"fhg.line_fifo=banked", "fpga.max_utilisation=1", "fpga.max_block_utilisation=0.9"}));
+    ASSERT_EQ(banked.over.size(), 1u);
+    EXPECT_EQ(banked.over[0],
+              "RAMB36: 141 of 148 (95 %), above the 90 % that places and routes (fpga.max_block_utilisation)");
 }
 
 TEST(FpgaResources, StructureMovesTheEstimate) {
@@ -81,13 +92,16 @@ TEST(FpgaResources, StructureMovesTheEstimate) {
     const FpgaResources two = fpga_resources(config({"soc.accelerators=2"}));
     EXPECT_EQ(two.total.ramb36, 2 * 79 + 6);
     EXPECT_FALSE(two.fits());
-    ASSERT_EQ(two.over.size(), 2u);
-    // Each FHG's line FIFO routing (21,974 LUTs) is half the FX70T's LUTs: two pairs need
-    // 2 x (1,012 + 34,110) + 2,620 (the FPU) + 6,000 (the rest).
-    EXPECT_EQ(two.over[0], "LUT: 78864 of 44800 (176 %), more than the device has");
-    EXPECT_EQ(two.over[1], "RAMB36: 164 of 148 (111 %), more than the device has");
+    ASSERT_EQ(two.over.size(), 3u);
+    // A pair (its IIG and FHG with their PLB interfaces) is 23,631 LUTs: two need 2 x 23,631 +
+    // 2,620 (the FPU) + 6,000 (the rest).
+    EXPECT_EQ(two.over[0], "LUT: 55882 of 44800 (125 %), more than the device has");
+    EXPECT_EQ(two.over[1], "FF: 38100 of 44800 (85 %), above the 85 % that places and routes (fpga.max_utilisation)");
+    EXPECT_EQ(two.over[2], "RAMB36: 164 of 148 (111 %), more than the device has");
     // An FX100T's block RAMs (228) and a device with 20,000 slices (80,000 LUTs).
     EXPECT_TRUE(fpga_resources(config({"soc.accelerators=2", "fpga.ramb36=228", "fpga.slices=20000"})).fits());
+    EXPECT_FALSE(fpga_resources(config({"soc.accelerators=2", "fpga.ramb36=228", "fpga.slices=16000"})).fits())
+        << "55,882 of 64,000 LUTs is 87 %";
 }
 
 }  // namespace
