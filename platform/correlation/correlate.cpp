@@ -210,7 +210,8 @@ std::string correlate_markdown(const Json& r) {
                                                                : "no");
     }
     md +=
-        "\n## The frame rate, for the schedules that reproduce the script on a chip that fits\n\nThe FHG clocks at which the rate is "
+        "\n## The frame rate, for the schedules that reproduce the script on a chip that fits\n\nThe FHG clocks at "
+        "which the rate is "
         "within "
         "the paper's precision, for each CPU clock, APU FPU ratio and keypoint count (2-frame re-simulations):\n\n"
         "| block cycles | cpu.clock | cpu.fpu_ratio | surf.target_keypoints | fhg.clock that reproduces | frames/s "
