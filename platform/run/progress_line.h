@@ -1,6 +1,7 @@
 #pragma once
-// A progress line on stderr for a long command. On a terminal it is rewritten in place every
-// `tty_every` seconds once `delay` seconds have gone, and ended with a newline when it goes, so
+// A progress line on stderr for a long command. On a terminal it is drawn at the first update
+// once `delay` seconds have gone, then rewritten in place every `tty_every` seconds, and ended
+// with a newline when it goes, so
 // that what follows is a line of its own. Elsewhere (a pipe, a log) it says nothing, unless
 // asked (--progress: ProgressLine::show_in_logs), then a line of its own every `log_every`
 // seconds.
@@ -93,7 +94,7 @@ private:
     std::string name_;
     double delay_, every_;
     bool shown_ = false;
-    double last_ = 0;
+    double last_ = -1e300;  // the first line comes as soon as `delay` has gone, however fast the steps
     std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
 };
 
