@@ -95,9 +95,10 @@ BramLogic bram_logic(const fhg::LineFifoShape& shape, unsigned address_bits) {
 // among the BRAMs it reaches (all, or its line group's) and gives its address to its port of
 // the one it reads (23.4 LUTs a lane per BRAM), and with every lane reaching every BRAM each
 // BRAM gathers its ports' addresses (18 LUTs a BRAM). Four groups' turn of the buses (180 LUTs
-// a lane) is fitted on four scalar buses; two groups hold within 3 % unfitted (docs/rtl.md). Its flip-flops are exact: a bit a
-// lane for `took`, one more with aligned pairs (the half), the BRAM index of each line a bus
-// word spans, and the write side's column, row count, slot and frame bit.
+// a lane) is fitted on four scalar buses; two groups hold within 3 % unfitted (docs/rtl.md).
+// Its flip-flops are exact: a bit a lane for `took`, one more with aligned pairs (the half),
+// the BRAM index of each line a bus word spans, and the write side's column, row count, slot
+// and frame bit.
 BramLogic line_routing(const fhg::SequenceParams& s, const fhg::LineFifoShape& shape, unsigned brams) {
     auto clog2 = [](unsigned n) {  // Verilog's $clog2, as the RTL sizes its indices
         unsigned b = 0;

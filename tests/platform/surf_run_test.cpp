@@ -149,7 +149,8 @@ TEST(SurfRun, LimitWithASlowIigIsTheIig) {
 
 // A chip that could not have been built misses its goal, whatever its frame rate: every bus
 // lane reaching every line (the crossbar) needs more LUTs than the FX70T places and routes, a
-// 250 MHz FHG clocks the tdp_x2 line FIFO's block RAM at 500 MHz. The reason is the terminal's last line and report.md's first.
+// 250 MHz FHG clocks the tdp_x2 line FIFO's block RAM at 500 MHz. The reason is the
+// terminal's last line and report.md's first.
 TEST(SurfRun, AChipThatCouldNotBeBuiltMissesItsGoal) {
     for (const auto& [name, sets, reason] :
          {std::tuple{"over_the_device", " --set fhg.line_groups=1",

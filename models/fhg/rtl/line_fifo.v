@@ -17,8 +17,9 @@
 //   the routing to a FIFO_LINES x LINE_BANKS : 1 multiplexer a lane (docs/rtl.md); with
 //   LINE_GROUPS > 1 a lane is wired to one group of the lines only (slot mod LINE_GROUPS), a
 //   multiplexer of 1 / LINE_GROUPS of that, the buses turned so that every read finds its
-//   group's lane (below). The values are bus_data in the next cycle. A value left of column 0 or above row 0 is 0 (the integral
-//   image's I(-1, .) = I(., -1) = 0); one right of or below the image is never needed.
+//   group's lane (below). The values are bus_data in the next cycle. A value left of column 0
+//   or above row 0 is 0 (the integral image's I(-1, .) = I(., -1) = 0); one right of or below
+//   the image is never needed.
 // - `rows_written` tells the sequence when a block row's window is complete; `top_slot` is the
 //   slot of the window's top line, row block_y - 26 (fhg_datapath.v keeps it).
 module line_fifo (clk, clk2x, rst, start, width, height, in_valid, in_value, in_ready, rows_written, block_x,
@@ -228,7 +229,8 @@ module line_fifo (clk, clk2x, rst, start, width, height, in_valid, in_value, in_
             always @* begin
                 v = 32'd0;
                 for (t = 0; t < LINE_GROUPS; t = t + 1)
-                    if (took_turn == t[2:0]) v = wired_data[32 * (((m / LANES + t) % READ_BUSES) * LANES + m % LANES) +: 32];
+                    if (took_turn == t[2:0])
+                        v = wired_data[32 * (((m / LANES + t) % READ_BUSES) * LANES + m % LANES) +: 32];
             end
             assign bus_data[32 * m +: 32] = v;
         end
